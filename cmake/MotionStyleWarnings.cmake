@@ -1,0 +1,25 @@
+# Shared compile settings for every MotionStyle target: warnings, sanitizers and the CPU target.
+add_library(motionstyle_settings INTERFACE)
+add_library(MotionStyle::settings ALIAS motionstyle_settings)
+
+target_compile_options(motionstyle_settings INTERFACE
+  $<$<CXX_COMPILER_ID:GNU,Clang>:-Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wno-sign-conversion
+    -Wnon-virtual-dtor -Woverloaded-virtual -Wcast-align -Wnull-dereference -Wdouble-promotion
+    -Wimplicit-fallthrough>)
+if(MOTIONSTYLE_STRICT_WARNINGS)
+  target_compile_options(motionstyle_settings INTERFACE $<$<CXX_COMPILER_ID:GNU,Clang>:-Werror>)
+endif()
+
+if(MOTIONSTYLE_SANITIZE)
+  target_compile_options(motionstyle_settings INTERFACE -fsanitize=address,undefined -fno-omit-frame-pointer
+                                                       -fno-sanitize-recover=undefined)
+  target_link_options(motionstyle_settings INTERFACE -fsanitize=address,undefined)
+endif()
+
+if(MOTIONSTYLE_ARCH STREQUAL "native")
+  target_compile_options(motionstyle_settings INTERFACE -march=native)
+elseif(MOTIONSTYLE_ARCH STREQUAL "x86-64-v3")
+  target_compile_options(motionstyle_settings INTERFACE -march=x86-64-v3)
+elseif(NOT MOTIONSTYLE_ARCH STREQUAL "portable")
+  message(FATAL_ERROR "MOTIONSTYLE_ARCH must be native, x86-64-v3 or portable, not '${MOTIONSTYLE_ARCH}'")
+endif()

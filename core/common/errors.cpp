@@ -1,0 +1,23 @@
+#include "common/errors.h"
+
+namespace motionstyle {
+namespace {
+
+std::string formatInputError(const std::string& file, int line, const std::string& detail) {
+  std::string where = file.empty() ? std::string("<input>") : file;
+  if (line > 0) where += ":" + std::to_string(line);
+  return where + ": " + detail;
+}
+
+}  // namespace
+
+InputError::InputError(std::string file, int line, std::string detail)
+    : std::runtime_error(formatInputError(file, line, detail)),
+      file_(std::move(file)),
+      line_(line),
+      detail_(std::move(detail)) {}
+
+WriteError::WriteError(std::string file, std::string detail)
+    : std::runtime_error(file + ": cannot write: " + detail), file_(std::move(file)) {}
+
+}  // namespace motionstyle

@@ -1,0 +1,2 @@
+#include <QObject>  // must not compile: core has no Qt include path
+int probe();

@@ -1,0 +1,28 @@
+#pragma once
+// Paths to test data. Committed fixtures are always present; the licensed dataset may not be.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+namespace motionstyle::test {
+
+inline std::filesystem::path fixture(const std::string& name) {
+  return std::filesystem::path(MOTIONSTYLE_TEST_DATA_DIR) / name;
+}
+
+// ../shared/data/bandai, or an empty path when the dataset is not beside the project.
+inline std::filesystem::path bandaiDir() {
+  const std::filesystem::path dir = std::filesystem::path(MOTIONSTYLE_SHARED_DATA_DIR) / "bandai";
+  return std::filesystem::is_directory(dir) ? dir : std::filesystem::path();
+}
+
+}  // namespace motionstyle::test
+
+// Use at the top of a test that needs the licensed dataset (label "data").
+#define MOTIONSTYLE_REQUIRE_BANDAI(dir_var)                                                         \
+  const std::filesystem::path dir_var = ::motionstyle::test::bandaiDir();                           \
+  if (dir_var.empty())                                                                              \
+    GTEST_SKIP() << "../shared/data/bandai is absent: skipping a test that needs the licensed dataset " \
+                    "(set MOTIONSTYLE_SHARED_DATA_DIR to run it)"
