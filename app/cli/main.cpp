@@ -1,7 +1,67 @@
-// motionstyle-cli: command dispatch only; every command's work is done by core.
+// motionstyle-cli: command dispatch and error-to-exit-code mapping only; the work is done by core.
+#include <exception>
 #include <iostream>
+#include <new>
 
-int main() {
-  std::cout << "motionstyle-cli\n";
-  return 0;
+#include "cli_args.h"
+#include "commands.h"
+#include "common/errors.h"
+
+namespace {
+
+void printUsage(std::ostream& out) {
+  out << "usage: motionstyle-cli <command> [options]\n\n"
+         "Fast neural style transfer for motion capture (Holden et al. 2017).\n\ncommands:\n";
+  for (const auto& command : motionstyle::cli::commands())
+    out << "  " << command.name << std::string(14 - std::string(command.name).size(), ' ') << command.summary << "\n";
+  out << "\nRun 'motionstyle-cli <command> --help' for a command's options.\n"
+         "Exit codes: 0 ok, 2 bad input (message names the file and line), 1 internal error.\n";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace motionstyle;
+  const std::vector<std::string> all(argv + 1, argv + argc);
+  if (all.empty() || all[0] == "--help" || all[0] == "-h" || all[0] == "help") {
+    printUsage(all.empty() ? std::cerr : std::cout);
+    return all.empty() ? 2 : 0;
+  }
+  if (all[0] == "--version") {
+    std::cout << "motionstyle-cli " << MOTIONSTYLE_VERSION << "\n";
+    return 0;
+  }
+  const cli::Command* command = nullptr;
+  for (const auto& candidate : cli::commands())
+    if (all[0] == candidate.name) command = &candidate;
+  if (!command) {
+    std::cerr << "motionstyle-cli: unknown command '" << all[0] << "'\n\n";
+    printUsage(std::cerr);
+    return 2;
+  }
+  const cli::Args args(all.begin() + 1, all.end());
+  for (const std::string& arg : args)
+    if (arg == "--help" || arg == "-h") {
+      std::cout << command->help;
+      return 0;
+    }
+  try {
+    return command->run(args);
+  } catch (const cli::UsageError& error) {
+    std::cerr << "motionstyle-cli " << command->name << ": " << error.what() << "\n(see 'motionstyle-cli "
+              << command->name << " --help')\n";
+    return 2;
+  } catch (const InputError& error) {
+    std::cerr << "error: " << error.what() << "\n";
+    return 2;
+  } catch (const WriteError& error) {
+    std::cerr << "error: " << error.what() << "\n";
+    return 1;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "internal error: out of memory\n";
+    return 1;
+  } catch (const std::exception& error) {
+    std::cerr << "internal error: " << error.what() << "\n";
+    return 1;
+  }
 }

@@ -5,8 +5,8 @@ namespace {
 
 std::string formatInputError(const std::string& file, int line, const std::string& detail) {
   std::string where = file.empty() ? std::string("<input>") : file;
-  if (line > 0) where += ":" + std::to_string(line);
-  return where + ": " + detail;
+  if (line > 0) where.append(":").append(std::to_string(line));
+  return where.append(": ").append(detail);
 }
 
 }  // namespace
@@ -18,6 +18,6 @@ InputError::InputError(std::string file, int line, std::string detail)
       detail_(std::move(detail)) {}
 
 WriteError::WriteError(std::string file, std::string detail)
-    : std::runtime_error(file + ": cannot write: " + detail), file_(std::move(file)) {}
+    : std::runtime_error(std::string(file).append(": cannot write: ").append(detail)), file_(std::move(file)) {}
 
 }  // namespace motionstyle

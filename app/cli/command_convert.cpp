@@ -1,0 +1,27 @@
+// motionstyle-cli convert IN OUT [--fps N]: read, resample, write (atomically).
+#include <iostream>
+
+#include "bvh/bvh_reader.h"
+#include "bvh/bvh_writer.h"
+#include "cli_args.h"
+#include "commands.h"
+#include "motion/resample.h"
+
+namespace motionstyle::cli {
+
+int runConvert(const Args& args) {
+  const ParsedArgs parsed = parseArgs(args, {{"fps"}});
+  if (parsed.positional.size() != 2) throw UsageError("convert needs IN and OUT");
+  Motion motion = readBvh(parsed.positional[0]);
+  if (parsed.has("fps")) {
+    const double fps = parsed.number("fps", 0.0);
+    if (!(fps > 0.0 && fps <= 1000.0)) throw UsageError("--fps must be in (0, 1000]");
+    motion = resampleMotion(motion, fps);
+  }
+  writeBvh(motion, parsed.positional[1]);
+  std::cout << "wrote " << parsed.positional[1] << ": " << motion.frameCount() << " frames at " << motion.fps()
+            << " fps\n";
+  return 0;
+}
+
+}  // namespace motionstyle::cli

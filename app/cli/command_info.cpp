@@ -1,0 +1,124 @@
+// motionstyle-cli info FILE...: what MotionStyle reads from each BVH file.
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <optional>
+
+#include "bvh/bvh_reader.h"
+#include "cli_args.h"
+#include "commands.h"
+#include "common/errors.h"
+#include "features/representation.h"
+#include "mapping/canonical_joints.h"
+#include "mapping/joint_mapping.h"
+#include "mapping/mapping_file.h"
+
+namespace motionstyle::cli {
+namespace {
+
+struct ContactSummary {
+  double fraction = 0.0;
+  int segments = 0;
+};
+
+ContactSummary summarize(const Eigen::RowVectorXd& labels) {
+  ContactSummary summary;
+  if (labels.size() == 0) return summary;
+  summary.fraction = labels.mean();
+  for (Eigen::Index t = 0; t < labels.size(); ++t)
+    if (labels[t] > 0.5 && (t == 0 || labels[t - 1] < 0.5)) ++summary.segments;
+  return summary;
+}
+
+constexpr const char* kContactNames[kContactCount] = {"left heel", "left toe", "right heel", "right toe"};
+
+nlohmann::ordered_json describeClip(const std::string& path, const std::optional<std::string>& mapping_file,
+                            const std::optional<std::string>& unit) {
+  const Motion motion = readBvh(path);
+  nlohmann::ordered_json info;
+  info["file"] = path;
+  int end_sites = 0;
+  for (const Joint& joint : motion.skeleton.joints) end_sites += joint.end_site ? 1 : 0;
+  info["joints"] = motion.skeleton.jointCount() - end_sites;
+  info["end_sites"] = end_sites;
+  info["channels"] = motion.skeleton.channelCount();
+  info["frames"] = motion.frameCount();
+  info["fps"] = motion.fps();
+  info["duration_s"] = motion.durationSeconds();
+
+  JointMapping mapping;
+  try {
+    mapping = mapping_file ? loadJointMapping(*mapping_file, motion.skeleton) : mapJoints(motion.skeleton, path);
+  } catch (const InputError& error) {
+    info["mapping"] = {{"complete", false}, {"error", error.detail()}};
+    return info;
+  }
+  nlohmann::ordered_json joints = nlohmann::ordered_json::object();
+  for (int c = 0; c < kCanonicalJointCount; ++c)
+    joints[std::string(canonicalJointName(static_cast<CanonicalJoint>(c)))] =
+        motion.skeleton.joints[static_cast<size_t>(mapping.joints[static_cast<size_t>(c)])].name;
+  info["mapping"] = {{"complete", true}, {"convention", mapping.convention}, {"joints", joints}};
+
+  FeatureOptions options;
+  options.unit = unit;
+  const MotionFeatures features = extractFeatures(motion, mapping, options);
+  const SpaceConvention& convention = features.anchor.convention;
+  info["up_axis"] = convention.up_axis;
+  info["unit"] = {{"name", convention.unit}, {"cm_per_unit", convention.cm_per_unit}, {"guessed", convention.unit_guessed}};
+  info["skeletal_height_cm"] = skeletalHeight(motion.skeleton, mapping) * convention.cm_per_unit;
+  nlohmann::ordered_json contacts = nlohmann::ordered_json::object();
+  for (int label = 0; label < kContactCount; ++label) {
+    const ContactSummary summary = summarize(features.contacts.row(label));
+    contacts[kContactNames[label]] = {{"fraction", summary.fraction}, {"segments", summary.segments}};
+  }
+  info["contacts"] = {{"fps", features.anchor.fps}, {"labels", contacts}};
+  return info;
+}
+
+void printText(const nlohmann::ordered_json& info) {
+  std::printf("%s\n", info["file"].get<std::string>().c_str());
+  std::printf("  joints       %d (+%d end sites), %d channels\n", info["joints"].get<int>(), info["end_sites"].get<int>(),
+              info["channels"].get<int>());
+  std::printf("  frames       %d at %.4g fps (%.2f s)\n", info["frames"].get<int>(), info["fps"].get<double>(),
+              info["duration_s"].get<double>());
+  const auto& mapping = info["mapping"];
+  if (!mapping["complete"].get<bool>()) {
+    std::printf("  mapping      INCOMPLETE: %s\n", mapping["error"].get<std::string>().c_str());
+    return;
+  }
+  std::printf("  up axis      %s (detected)\n", info["up_axis"].get<std::string>().c_str());
+  const auto& unit = info["unit"];
+  std::printf("  unit         %s, 1 unit = %.4g cm (%s)\n", unit["name"].get<std::string>().c_str(),
+              unit["cm_per_unit"].get<double>(), unit["guessed"].get<bool>() ? "guessed from the skeleton's size; override with --unit" : "given");
+  std::printf("  skeletal height %.1f cm (hip-knee-ankle + hips-spine-chest-neck-head)\n", info["skeletal_height_cm"].get<double>());
+  std::printf("  mapping      complete (%s):", mapping["convention"].get<std::string>().c_str());
+  int column = 0;
+  for (const auto& [canonical, joint] : mapping["joints"].items()) {
+    std::printf("%s%s=%s", column++ % 4 == 0 ? "\n               " : "  ", canonical.c_str(), joint.get<std::string>().c_str());
+  }
+  std::printf("\n  contacts     at %.4g fps:", info["contacts"]["fps"].get<double>());
+  for (const auto& [name, summary] : info["contacts"]["labels"].items())
+    std::printf(" %s %.0f%% (%d)", name.c_str(), 100.0 * summary["fraction"].get<double>(), summary["segments"].get<int>());
+  std::printf("\n");
+}
+
+}  // namespace
+
+int runInfo(const Args& args) {
+  const ParsedArgs parsed = parseArgs(args, {{"json", false}, {"mapping"}, {"unit"}});
+  if (parsed.positional.empty()) throw UsageError("info needs at least one FILE");
+  nlohmann::ordered_json all = nlohmann::ordered_json::array();
+  for (const std::string& path : parsed.positional) {
+    nlohmann::ordered_json info = describeClip(path, parsed.value("mapping"), parsed.value("unit"));
+    if (parsed.has("json"))
+      all.push_back(std::move(info));
+    else
+      printText(info);
+  }
+  if (parsed.has("json")) std::cout << (all.size() == 1 ? all[0] : all).dump(2) << "\n";
+  return 0;
+}
+
+}  // namespace motionstyle::cli

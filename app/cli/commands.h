@@ -1,0 +1,34 @@
+#pragma once
+// The motionstyle-cli commands. Each takes the arguments after its name and returns the exit code:
+// 0 ok, 2 bad input or usage (message on stderr naming the file and line), 1 internal error.
+// Exceptions propagate to main(), which maps them to those codes.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace motionstyle::style {
+struct StylizedClip;
+}
+
+namespace motionstyle::cli {
+
+using Args = std::vector<std::string>;
+
+struct Command {
+  const char* name;
+  const char* summary;
+  const char* help;  // full --help text
+  int (*run)(const Args& args);
+};
+
+const std::vector<Command>& commands();
+
+int runInfo(const Args& args);
+int runConvert(const Args& args);
+
+// The output step of stylize and transfer (command_stylize.cpp): a positions-only BVH of the 21
+// canonical joints at the clip's feature rate, until the IK clean-up replaces it.
+void writePositionsClip(const style::StylizedClip& clip, const std::filesystem::path& output);
+
+}  // namespace motionstyle::cli

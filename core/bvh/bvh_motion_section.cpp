@@ -1,0 +1,170 @@
+#include "bvh/bvh_motion_section.h"
+
+#include <algorithm>
+#include <climits>
+#include <cstddef>
+
+#include "common/errors.h"
+
+namespace motionstyle::bvh_detail {
+namespace {
+
+// Removes leading blanks and then `label` (any case) from `rest`; false if `rest` does not start so.
+bool consumeLabel(std::string_view& rest, std::string_view label) {
+  rest = trim(rest);
+  if (rest.size() < label.size() || !equalsIgnoreCase(rest.substr(0, label.size()), label)) return false;
+  rest.remove_prefix(label.size());
+  return true;
+}
+
+std::string frameCount(std::size_t frames) { return std::to_string(frames) + (frames == 1 ? " frame" : " frames"); }
+
+// "Xrotation of joint 'LeftHip'" for the c-th channel of a frame line (only built for messages).
+std::string describeChannel(const Skeleton& skeleton, std::size_t channel) {
+  std::size_t first = 0;
+  for (const Joint& joint : skeleton.joints) {
+    if (channel < first + joint.channels.size())
+      return std::string(channelName(joint.channels[channel - first])) + " of joint " + excerpt(joint.name);
+    first += joint.channels.size();
+  }
+  return "an extra value";
+}
+
+class MotionSectionParser {
+ public:
+  MotionSectionParser(LineCursor& cursor, const std::string& source, Motion& motion)
+      : cursor_(cursor), source_(source), motion_(motion) {}
+
+  void parse() {
+    readLine("MOTION after the ROOT's closing '}' (no MOTION section)");
+    if (!equalsIgnoreCase(line_, "MOTION")) {
+      std::string hint;
+      if (line_.substr(0, 4) == "ROOT") hint = " (only one ROOT is supported)";
+      if (line_ == "}") hint = " (unbalanced braces)";
+      fail(line_number_, "expected MOTION after the ROOT's closing '}', got " + excerpt(line_) + hint);
+    }
+
+    readLine("'Frames: <count>'");
+    std::string_view rest = line_;
+    long long frames = 0;
+    if (!consumeLabel(rest, "Frames") || !consumeLabel(rest, ":"))
+      fail(line_number_, "expected 'Frames: <count>', got " + excerpt(line_));
+    if (!parseCount(trim(rest), INT_MAX, frames))
+      fail(line_number_, "expected a frame count from 0 to " + std::to_string(INT_MAX) + " after 'Frames:', got " +
+                             excerpt(trim(rest)));
+    frames_line_ = line_number_;
+
+    readLine("'Frame Time: <seconds>'");
+    rest = line_;
+    if (!consumeLabel(rest, "Frame") || !consumeLabel(rest, "Time") || !consumeLabel(rest, ":"))
+      fail(line_number_, "expected 'Frame Time: <seconds>', got " + excerpt(line_));
+    double frame_time = 0.0;
+    if (parseNumber(trim(rest), frame_time) != NumberStatus::Ok || !(frame_time > 0.0))
+      fail(line_number_, "expected a positive, finite frame time in seconds, got " + excerpt(trim(rest)));
+    motion_.frame_time = frame_time;
+
+    readFrames(static_cast<std::size_t>(frames));
+  }
+
+ private:
+  [[noreturn]] void fail(int line, const std::string& detail) const { throw InputError(source_, line, detail); }
+
+  void readLine(const std::string& expected) {
+    if (!cursor_.nextNonBlank(line_, line_number_)) fail(cursor_.lastLine(), "expected " + expected + ", got the end of the file");
+    line_ = trim(line_);
+  }
+
+  // The hot loop: parses frame lines in place over the raw text.
+  void readFrames(std::size_t claimed) {
+    const std::string_view text = cursor_.text();
+    const char* p = text.data() + cursor_.position();
+    const char* const end = text.data() + text.size();
+    const auto channels = static_cast<std::size_t>(motion_.skeleton.channelCount());
+
+    // A value takes at least 2 bytes ("0 "), so the remaining text bounds the frames it can hold; a
+    // claim beyond that cannot be met and only gets a small buffer that grows as lines arrive.
+    const std::size_t room = (static_cast<std::size_t>(end - p) + 1) / (2 * std::max<std::size_t>(channels, 1));
+    std::size_t capacity = claimed <= room ? claimed : std::min<std::size_t>(claimed, 1024);
+    MatrixRowMajor& values = motion_.values;
+    values.resize(static_cast<Eigen::Index>(capacity), static_cast<Eigen::Index>(channels));
+
+    std::size_t frames = 0;
+    int line = cursor_.linesRead();
+    while (frames < claimed) {
+      ++line;  // `p` is at the start of `line`
+      while (p < end && isBlank(*p)) ++p;
+      if (p == end) break;
+      if (*p == '\n') {
+        ++p;
+        continue;
+      }
+      if (frames == capacity) {
+        capacity = std::min(claimed, capacity * 2);
+        values.conservativeResize(static_cast<Eigen::Index>(capacity), Eigen::NoChange);
+      }
+      double* row = values.data() + frames * channels;
+      std::size_t count = 0;
+      while (true) {
+        if (count == channels)
+          fail(line, "expected " + std::to_string(channels) + " values on frame line " + std::to_string(frames + 1) +
+                         ", got more (" + excerpt(wordAt(p, end)) + " is value " + std::to_string(count + 1) + ")");
+        NumberStatus status = NumberStatus::Ok;
+        const char* stop = parseNumberAt(p, end, row[count], status);
+        if (stop == nullptr) failValue(line, count, status, wordAt(p, end));
+        p = stop;
+        ++count;
+        while (p < end && isBlank(*p)) ++p;
+        if (p == end || *p == '\n') break;
+      }
+      if (count != channels)
+        fail(line, "expected " + std::to_string(channels) + " values on frame line " + std::to_string(frames + 1) +
+                       ", got " + std::to_string(count));
+      if (p < end) ++p;  // the '\n'
+      ++frames;
+    }
+
+    if (frames < claimed) {
+      const int last_line = (text.empty() || text.back() == '\n') ? line - 1 : line;
+      fail(last_line, "expected " + frameCount(claimed) + " as 'Frames:' on line " + std::to_string(frames_line_) +
+                          " states, got " + std::to_string(frames) + " (the data ends here)");
+    }
+    // After the last claimed frame only blank lines may follow: anything else is a frame too many.
+    int extra_line = line + 1;  // `p` is at the start of this line
+    for (; p < end; ++p) {
+      if (*p == '\n') {
+        ++extra_line;
+      } else if (!isBlank(*p)) {
+        fail(extra_line, "expected " + frameCount(claimed) + " as 'Frames:' on line " +
+                             std::to_string(frames_line_) + " states, got more: data continues on this line");
+      }
+    }
+    if (capacity != frames) values.conservativeResize(static_cast<Eigen::Index>(frames), Eigen::NoChange);
+  }
+
+  [[noreturn]] void failValue(int line, std::size_t channel, NumberStatus status, std::string_view word) const {
+    const std::string where = " for " + describeChannel(motion_.skeleton, channel) + " (value " + std::to_string(channel + 1) +
+                              " of " + std::to_string(motion_.skeleton.channelCount()) + ")";
+    switch (status) {
+      case NumberStatus::NotFinite: fail(line, "expected a finite number" + where + ", got " + excerpt(word));
+      case NumberStatus::OutOfRange: fail(line, "expected a number within double range" + where + ", got " + excerpt(word));
+      case NumberStatus::NotANumber:
+      case NumberStatus::Ok: break;
+    }
+    fail(line, "expected a number" + where + ", got " + excerpt(word));
+  }
+
+  LineCursor& cursor_;
+  const std::string& source_;
+  Motion& motion_;
+  std::string_view line_;
+  int line_number_ = 0;
+  int frames_line_ = 0;
+};
+
+}  // namespace
+
+void parseMotionSection(LineCursor& cursor, const std::string& source, Motion& motion) {
+  MotionSectionParser(cursor, source, motion).parse();
+}
+
+}  // namespace motionstyle::bvh_detail

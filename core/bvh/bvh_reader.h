@@ -1,0 +1,50 @@
+#pragma once
+// BVH reader: text -> validated Motion (editable data, file units, rotations in degrees).
+//
+// Accepted (what real exporters write, Blender/Maya/MotionBuilder/CMU/Bandai alike):
+// - One ROOT with any tree of JOINTs and End Sites. An End Site becomes a Joint with end_site = true,
+//   no channels, named "<parent>_End" (suffixed "_End2", "_End3"... if that name is taken).
+// - Every ROOT/JOINT has "CHANNELS 3" or "CHANNELS 6": three rotations, three positions, or both, in any
+//   order (the order of the rotation channels is the Euler order). "CHANNELS 0" and partial sets such as
+//   "CHANNELS 2 Xrotation Yrotation" are rejected: the issue lists a channel-less joint as bad input, and
+//   kinematics, IK and the feature code all assume a joint rotates about all three axes or not at all.
+// - Keywords and channel names in any letter case; tabs or spaces; LF, CRLF or both mixed; a UTF-8
+//   BOM; numbers as "-0.5", ".0083333", "+1", "1.87e-05". Joint names are the rest of the line
+//   (trimmed), so names with inner spaces survive.
+// - "Frames: N" must match the frame lines exactly; each frame line has exactly channelCount() values;
+//   blank lines are ignored; "Frames: 0" is a valid skeleton-only file (0 rows).
+// Rejected with InputError(file, line, "expected ..., got ..."): everything else, including NaN/inf
+// values, numbers beyond double range, a frame time <= 0, duplicate joint names and the caps below.
+//
+// Resource caps (the parser never allocates more than the text justifies):
+// - kBvhMaxBytes: texts over 1 GiB are refused (line numbers are int; a 1 GiB clip is ~2 h of mocap).
+// - kBvhMaxJoints / kBvhMaxDepth: the hierarchy is parsed iteratively, but downstream code (FK, IK,
+//   the viewport) walks chains, so absurd headers are refused early with the offending line.
+// - The frame matrix is sized from min(claimed frames, what the remaining bytes could hold at 2 bytes
+//   per value), so "Frames: 1000000000" on a small file allocates nothing big and fails on the data.
+//
+// Speed: the MOTION section is parsed in place with std::from_chars, no per-line allocation; see
+// tests/bench/bvh for the measured throughput.
+
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+#include "motion/motion.h"
+
+namespace motionstyle {
+
+inline constexpr std::size_t kBvhMaxBytes = std::size_t{1} << 30;
+inline constexpr int kBvhMaxJoints = 10'000;  // End Sites included
+inline constexpr int kBvhMaxDepth = 1'000;    // ROOT is depth 1
+
+// Reads the whole file and parses it. Throws InputError (line 0) if the file cannot be read, and
+// InputError (file, line, detail) if its content is not a valid BVH.
+Motion readBvh(const std::filesystem::path& file);
+
+// Parses BVH text already in memory. `source_name` is used in error messages and stored in
+// Motion::source.
+Motion parseBvh(std::string_view text, const std::string& source_name);
+
+}  // namespace motionstyle

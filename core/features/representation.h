@@ -1,0 +1,79 @@
+#pragma once
+// The paper's motion representation ("Data Representation"), computed from a clip and inverted back.
+// Layout of the 66 values: see feature_layout.h. Pipeline of extractFeatures():
+//   1. resample to `fps` (default 60; slerp rotations, linear positions),
+//   2. forward kinematics, canonical joints only, converted to canonical space (Y-up, cm),
+//   3. scaled by kReferenceSkeletalHeightCm / the character's skeletal height, so that characters of
+//      any size and unit meet the networks at one reference scale,
+//   4. floor: the clip is lowered so that a soft minimum of its feet's heights is at y = 0,
+//   5. root: the hips projected on the floor, Gaussian-smoothed (sigma 3 frames at 60 fps);
+//      facing: (left - right across the hips and across the shoulders) x up, Gaussian-smoothed
+//      (sigma 20 frames) - as in Holden et al. 2016's preprocessing,
+//   6. joints expressed in the root frame; root velocities (sideways, forward, turning) per frame.
+// The inverse integrates the velocities from the anchor and undoes steps 2-4, giving world positions
+// of the canonical joints in the clip's own file space (units and axes).
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+
+#include "features/feature_layout.h"
+#include "features/space_convention.h"
+#include "mapping/joint_mapping.h"
+#include "motion/motion.h"
+
+namespace motionstyle {
+
+// The skeletal height (see space_convention.h) every character is scaled to before features are
+// computed. Chosen as the mean skeletal height of the Bandai Namco actors, so their clips scale by ~1.
+constexpr double kReferenceSkeletalHeightCm = 127.0;
+constexpr double kDefaultFeatureFps = 60.0;
+
+struct FeatureOptions {
+  double fps = kDefaultFeatureFps;
+  std::optional<std::string> unit;  // override the guessed length unit ("cm", "m", "inch", "cmu", ...)
+  double root_smoothing_frames = 3.0;
+  double facing_smoothing_frames = 20.0;
+};
+
+// Everything needed to map features back to the clip's file space.
+struct FeatureAnchor {
+  SpaceConvention convention;
+  double scale = 1.0;               // reference cm per canonical cm (features = scale * canonical)
+  double floor_height = 0.0;        // height of the floor before it was moved to y = 0, reference cm
+  Eigen::Vector2d start_root = Eigen::Vector2d::Zero();  // root (x, z) at frame 0, reference cm
+  double start_heading = 0.0;       // facing angle at frame 0, radians (0 = +Z, positive toward +X)
+  double fps = kDefaultFeatureFps;
+};
+
+// Computed result for one clip.
+struct MotionFeatures {
+  Eigen::MatrixXd values;    // kFeatureCount x frames (each column a frame), units per feature_layout.h
+  Eigen::MatrixXd contacts;  // kContactCount x frames, 0 or 1
+  FeatureAnchor anchor;
+  JointMapping mapping;
+
+  int frameCount() const { return static_cast<int>(values.cols()); }
+};
+
+// Full pipeline. Throws InputError (naming motion.source) when the rig cannot be mapped or the clip is
+// too short (fewer than 2 frames after resampling).
+MotionFeatures extractFeatures(const Motion& motion, const JointMapping& mapping, const FeatureOptions& options = {});
+
+// Inverse: features -> world positions of the 21 canonical joints, frames x 63, in the clip's FILE
+// space (file units and axes), by integrating the root velocities from anchor.start_root/heading.
+Eigen::MatrixXd canonicalWorldPositions(const Eigen::MatrixXd& features, const FeatureAnchor& anchor);
+
+// Same, but in reference canonical space (Y-up, reference cm, floor at 0): used by metrics and the
+// viewport. Columns as above.
+Eigen::MatrixXd referenceWorldPositions(const Eigen::MatrixXd& features, const FeatureAnchor& anchor);
+
+// World positions (file space, frames x 63) of the canonical joints of a clip at its own rate,
+// straight from forward kinematics: the ground truth that the inverse must reproduce.
+Eigen::MatrixXd canonicalJointPositions(const Motion& motion, const JointMapping& mapping);
+
+// Mean length of each canonical bone (joint c to kCanonicalParent[c]; 0 for the hips) over the clip,
+// in reference cm, from its features.
+Eigen::VectorXd canonicalBoneLengths(const Eigen::MatrixXd& features);
+
+}  // namespace motionstyle

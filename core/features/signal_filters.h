@@ -1,0 +1,15 @@
+#pragma once
+// Small 1-D signal helpers used by the representation (time runs along rows: one row per frame).
+
+#include <Eigen/Core>
+
+namespace motionstyle {
+
+// Gaussian smoothing of every column over time (rows), sigma in frames, edges clamped (the first and
+// last frames are repeated), kernel truncated at 3 sigma. sigma <= 0 returns the input unchanged.
+Eigen::MatrixXd gaussianSmoothRows(const Eigen::MatrixXd& signal, double sigma_frames);
+
+// The q-quantile (0..1) of the values, by partial sort of a copy. Empty input: 0.
+double quantile(const Eigen::VectorXd& values, double q);
+
+}  // namespace motionstyle

@@ -1,0 +1,61 @@
+#pragma once
+// Kinematics over a Motion (computed results, never stored in Motion).
+//
+// Conventions (BVH): column vectors; a joint's channels compose in file order, e.g.
+// "Zrotation Xrotation Yrotation" gives R = Rz(a) * Rx(b) * Ry(c) (angles in degrees in the file,
+// radians nowhere outside rotation.h). A joint's local transform is T(t) * R, where t is the joint's
+// position channels when it has them (they REPLACE the offset, as Bandai-style files that carry 6
+// channels on every joint expect) and its OFFSET otherwise. A joint with only some position channels
+// (rare) replaces those components and keeps the offset's others. World = parent_world * local.
+// Euler <-> quaternion conversions are those of rotation.h (also for joints with 1 or 2 rotation
+// channels).
+// Lengths stay in the file's unit and axes stay the file's: see features/space_convention.h for normalisation.
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <vector>
+
+#include "motion/motion.h"
+
+namespace motionstyle {
+
+// Local joint transforms of every frame. Index [frame * jointCount + joint].
+struct LocalPoses {
+  int frames = 0;
+  int joints = 0;
+  std::vector<Eigen::Quaterniond> rotations;  // unit quaternions
+  std::vector<Eigen::Vector3d> translations;  // file units
+
+  const Eigen::Quaterniond& rotation(int frame, int joint) const { return rotations[at(frame, joint)]; }
+  const Eigen::Vector3d& translation(int frame, int joint) const { return translations[at(frame, joint)]; }
+  Eigen::Quaterniond& rotation(int frame, int joint) { return rotations[at(frame, joint)]; }
+  Eigen::Vector3d& translation(int frame, int joint) { return translations[at(frame, joint)]; }
+  size_t at(int frame, int joint) const { return static_cast<size_t>(frame) * static_cast<size_t>(joints) + static_cast<size_t>(joint); }
+};
+
+// Channel values -> local transforms (End Sites: identity rotation, their offset). Validates the motion
+// (std::invalid_argument from Motion::validate).
+LocalPoses localPoses(const Motion& motion);
+
+// Local transforms -> channel values, written into motion.values (resized to poses.frames rows),
+// decomposing each rotation into the joint's own Euler order and writing translations into its
+// position channels. Joints without rotation channels must have identity rotations (to 1e-6 rad);
+// translation components without a position channel must equal the offset's (to 1e-6 relative to
+// max(1, |offset|)); std::invalid_argument otherwise, and for non-finite poses or a size mismatch
+// (motion is then unchanged). Joints with 1 or 2 rotation channels receive the projection described in
+// rotation.h. Continuity: every frame takes the Euler solution nearest the previous frame's angles;
+// frame 0 takes the one nearest the motion's current frame 0 when it has one (so a round trip keeps
+// the file's angle ranges), else the principal solution.
+void setLocalPoses(const LocalPoses& poses, Motion& motion);
+
+// World positions of every joint (file units, file axes), frames x (3 * jointCount):
+// row f = x0 y0 z0 x1 y1 z1 ... Rotations must be unit quaternions. std::invalid_argument when the
+// poses do not match the skeleton or a parent does not precede its child. Allocates only the result
+// and one frame of scratch.
+Eigen::MatrixXd worldPositions(const Skeleton& skeleton, const LocalPoses& poses);
+inline Eigen::MatrixXd worldPositions(const Motion& motion) { return worldPositions(motion.skeleton, localPoses(motion)); }
+
+// World rotation of every joint (joint frame -> world), same indexing as LocalPoses.
+std::vector<Eigen::Quaterniond> worldRotations(const Skeleton& skeleton, const LocalPoses& poses);
+
+}  // namespace motionstyle

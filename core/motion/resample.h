@@ -1,0 +1,54 @@
+#pragma once
+// Frame-rate conversion of motions and per-frame matrices (computed results from editable data).
+//
+// Timing: source frame f is at time f * source_frame_time seconds; the output covers
+// [0, (N - 1) * source_frame_time] with frames at k / target_fps, k = 0 .. M - 1, where
+//   M = floor((N - 1) * source_frame_time * target_fps) + 1,
+// and nothing is extrapolated (a sample that would fall past the last source frame takes it).
+//
+// BVH files round the frame time (".0083333" for 120 fps is 4e-6 off 1/120, ".0333333" for 30 fps
+// 1e-6), so rates are compared to within 1e-5 relative:
+//   - same rate: resampleMotion returns an identical copy;
+//   - whole-number decimation (n = 2, 3, ... source frames per output frame): output frame k is
+//     EXACTLY source frame k * n, M = floor((N - 1) / n) + 1 (120 -> 60 fps keeps the captured frames
+//     instead of blending neighbours by 0.0004%);
+//   - whole-number subdivision (n = 2, 3, ... output frames per source frame): output frame k samples
+//     k / n source frames exactly, M = (N - 1) * n + 1 (30 -> 60 fps of 128 frames gives 255 frames,
+//     of which every second one is a source frame);
+//   - other ratios: M uses (N - 1) * source_frame_time * target_fps scaled by (1 + 1e-5) inside the
+//     floor, so a duration within rounding of a whole output frame keeps that frame.
+//
+// Limits: target_fps must be positive and finite, and at most 100 times the source rate (more would
+// allocate far beyond what the data justifies); the source needs at least one frame.
+// std::invalid_argument otherwise (these are programmer-supplied values, not file input).
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "motion/motion.h"
+
+namespace motionstyle {
+
+// Where output frame k samples the source: between frames `index` and `index + 1` with weight
+// `fraction` in [0, 1) on the latter (fraction 0 means exactly source frame `index`).
+struct ResampleSample {
+  int index = 0;
+  double fraction = 0.0;
+};
+
+// The sample positions of every output frame (size M above). source_frame_time in seconds, target in
+// frames per second. Throws std::invalid_argument as described above.
+std::vector<ResampleSample> resampleSchedule(int source_frames, double source_frame_time, double target_fps);
+
+// The motion at target_fps: rotations slerped along the shortest path, translations (position
+// channels) interpolated linearly, Euler angles re-derived per frame in each joint's own channel order
+// with continuity (kinematics.h setLocalPoses). Keeps the skeleton, channel layout and source; the
+// frame time becomes 1 / target_fps. A target rate within 1e-5 relative of the source's returns an
+// identical copy (frame time included). Validates the motion (Motion::validate).
+Motion resampleMotion(const Motion& motion, double target_fps);
+
+// Linear resampling of a per-frame matrix (one ROW per frame, e.g. world positions or features) with
+// the same timing rules. Do not use it for angles (they wrap) or quaternions (use slerp).
+Eigen::MatrixXd resampleRowsLinear(const Eigen::MatrixXd& rows, double source_frame_time, double target_fps);
+
+}  // namespace motionstyle

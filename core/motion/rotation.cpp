@@ -1,0 +1,240 @@
+#include "motion/rotation.h"
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+namespace motionstyle {
+namespace {
+
+constexpr double kDegreesPerRadian = 180.0 / std::numbers::pi;
+constexpr double kRadiansPerDegree = std::numbers::pi / 180.0;
+// |cos(middle angle)| below this counts as gimbal lock: only there do the first and third angles trade
+// off freely without moving the rotation by more than ~1e-12 rad.
+constexpr double kGimbalLockCosine = 1e-12;
+
+// Maps degrees into (-180, 180].
+double wrapPrincipal(double degrees) {
+  double wrapped = std::remainder(degrees, 360.0);  // [-180, 180]
+  if (wrapped <= -180.0) wrapped += 360.0;
+  return wrapped;
+}
+
+// `degrees` moved by a multiple of 360 to lie within 180 of `reference`.
+double wrapNear(double degrees, double reference) { return reference + std::remainder(degrees - reference, 360.0); }
+
+// Three distinct axes i, j, k in channel order and the parity sign s: +1 when (i, j, k) is a cyclic
+// permutation of (X, Y, Z), -1 otherwise. With it the matrix entries of R = Ri(a) Rj(b) Rk(c) read
+// uniformly: R(i,k) = s sin b, R(j,k) = -s sin a cos b, R(k,k) = cos a cos b, R(i,j) = -s cos b sin c.
+struct TaitBryan {
+  int i, j, k;
+  double s;
+};
+
+TaitBryan taitBryan(int first, int second) {
+  return {first, second, 3 - first - second, second == (first + 1) % 3 ? 1.0 : -1.0};
+}
+
+Eigen::Matrix3d axisMatrix(int axis, double radians) {
+  return Eigen::AngleAxisd(radians, Eigen::Vector3d::Unit(axis)).toRotationMatrix();
+}
+
+// Given the first angle a (radians), the middle and last angles of R = Ri(a) Rj(b) Rk(c): from
+// M = Ri(a)^T R = Rj(b) Rk(c), whose column k is Rj(b) e_k and whose row j is e_j^T Rk(c). Exact when
+// some decomposition with this a exists (always one of the two solutions' a, any a at gimbal lock).
+Eigen::Vector3d completeFromFirst(const Eigen::Matrix3d& r, const TaitBryan& t, double a) {
+  const Eigen::Matrix3d m = axisMatrix(t.i, a).transpose() * r;
+  const double b = std::atan2(t.s * m(t.i, t.k), m(t.k, t.k));
+  const double c = std::atan2(t.s * m(t.j, t.i), m(t.j, t.j));
+  return {a, b, c};
+}
+
+// Principal solution in radians: b in [-pi/2, pi/2]; at gimbal lock c = 0 and a carries the free angle.
+Eigen::Vector3d principalRadians(const Eigen::Matrix3d& r, const TaitBryan& t, bool& gimbal_lock) {
+  // b from row i = (cos b cos c, -s cos b sin c, s sin b): well conditioned everywhere, in [-pi/2, pi/2].
+  const double cos_b = std::hypot(r(t.i, t.i), r(t.i, t.j));
+  const double b = std::atan2(t.s * r(t.i, t.k), cos_b);
+  gimbal_lock = cos_b < kGimbalLockCosine;
+  double a = 0.0;
+  if (!gimbal_lock) {
+    a = std::atan2(-t.s * r(t.j, t.k), r(t.k, t.k));
+  } else {
+    // At b = +-90: Ri(a) Rj(b) = Rj(b) Rk(s sin(b) a), so R = Rj(b) Rk(s sin(b) a + c). With c = 0, read
+    // the angle phi of Rk(phi) = Rj(b)^T R (row j of Rk(phi) is e_j^T Rk) and set a = s sin(b) phi.
+    const Eigen::Matrix3d p = axisMatrix(t.j, b).transpose() * r;
+    const double phi = std::atan2(t.s * p(t.j, t.i), p(t.j, t.j));
+    a = t.s * (b > 0.0 ? 1.0 : -1.0) * phi;
+  }
+  // c from a (not from row i, whose entries vanish near lock), so that the three stay consistent.
+  return {a, b, completeFromFirst(r, t, a)[2]};
+}
+
+Eigen::Vector3d toDegrees(const Eigen::Vector3d& radians) { return radians * kDegreesPerRadian; }
+
+double squaredDistance(const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return (a - b).squaredNorm(); }
+
+Eigen::Vector3d wrapAllNear(const Eigen::Vector3d& degrees, const Eigen::Vector3d& previous) {
+  return {wrapNear(degrees[0], previous[0]), wrapNear(degrees[1], previous[1]), wrapNear(degrees[2], previous[2])};
+}
+
+// The other solution of a Tait-Bryan decomposition (degrees): (a + 180, 180 - b, c + 180).
+Eigen::Vector3d alternateSolution(const Eigen::Vector3d& degrees) {
+  return {degrees[0] + 180.0, 180.0 - degrees[1], degrees[2] + 180.0};
+}
+
+Eigen::Vector3d threeAxisPrincipal(const Eigen::Matrix3d& r, const TaitBryan& t) {
+  bool gimbal_lock = false;
+  const Eigen::Vector3d d = toDegrees(principalRadians(r, t, gimbal_lock));
+  return {wrapPrincipal(d[0]), d[1], wrapPrincipal(d[2])};
+}
+
+Eigen::Vector3d threeAxisNearest(const Eigen::Matrix3d& r, const TaitBryan& t, const Eigen::Vector3d& previous) {
+  bool gimbal_lock = false;
+  const Eigen::Vector3d principal = toDegrees(principalRadians(r, t, gimbal_lock));
+  Eigen::Vector3d best = wrapAllNear(principal, previous);
+  const Eigen::Vector3d alternate = wrapAllNear(alternateSolution(principal), previous);
+  if (squaredDistance(alternate, previous) < squaredDistance(best, previous)) best = alternate;
+  if (!gimbal_lock) return best;
+  // The free family is (a + u, b, c - sigma u) with sigma = s sign(sin b): take the u that moves a and c
+  // least, then re-derive b and c from that a so that the rotation stays exact.
+  const double sigma = t.s * (std::sin(best[1] * kRadiansPerDegree) > 0.0 ? 1.0 : -1.0);
+  const double u = 0.5 * ((previous[0] - best[0]) + sigma * (best[2] - previous[2]));
+  const Eigen::Vector3d split = toDegrees(completeFromFirst(r, t, (best[0] + u) * kRadiansPerDegree));
+  const Eigen::Vector3d candidate = wrapAllNear(split, previous);
+  return squaredDistance(candidate, previous) < squaredDistance(best, previous) ? candidate : best;
+}
+
+// Two axes (a, b): decompose with the missing third axis and keep the solution whose third angle is
+// nearest 0 (mod 360); ties (only for rotations far from expressible) go to the one nearest `previous`.
+Eigen::Vector3d twoAxis(const Eigen::Matrix3d& r, const RotationAxes& axes, const Eigen::Vector3d* previous) {
+  const TaitBryan t = taitBryan(axes.axis[0], axes.axis[1]);
+  bool gimbal_lock = false;
+  const Eigen::Vector3d principal = toDegrees(principalRadians(r, t, gimbal_lock));
+  const Eigen::Vector3d alternate = alternateSolution(principal);
+  const double residual_principal = std::abs(wrapPrincipal(principal[2]));
+  const double residual_alternate = std::abs(wrapPrincipal(alternate[2]));
+  Eigen::Vector3d chosen;
+  if (previous == nullptr) {
+    chosen = residual_alternate < residual_principal ? alternate : principal;
+    return {wrapPrincipal(chosen[0]), wrapPrincipal(chosen[1]), 0.0};
+  }
+  const Eigen::Vector3d reference((*previous)[0], (*previous)[1], 0.0);
+  const Eigen::Vector3d near_principal = wrapAllNear(principal, reference);
+  const Eigen::Vector3d near_alternate = wrapAllNear(alternate, reference);
+  if (std::abs(residual_alternate - residual_principal) > 1e-9)
+    chosen = residual_alternate < residual_principal ? near_alternate : near_principal;
+  else
+    chosen = squaredDistance(near_alternate, reference) < squaredDistance(near_principal, reference) ? near_alternate
+                                                                                                      : near_principal;
+  return {chosen[0], chosen[1], 0.0};
+}
+
+// One axis: the twist about it, 2 atan2(q_axis, q_w), in degrees.
+double twistDegrees(const Eigen::Quaterniond& q, int axis) {
+  return 2.0 * std::atan2(q.vec()[axis], q.w()) * kDegreesPerRadian;
+}
+
+Eigen::Vector3d decompose(const Eigen::Quaterniond& rotation, const RotationAxes& axes,
+                          const Eigen::Vector3d* previous) {
+  const double norm = rotation.norm();
+  if (!(std::isfinite(norm) && norm > 0.0))
+    throw std::invalid_argument("quaternionToEuler: the quaternion is zero or not finite");
+  const Eigen::Quaterniond q(rotation.coeffs() / norm);
+  switch (axes.count) {
+    case 0: return Eigen::Vector3d::Zero();
+    case 1: {
+      const double twist = twistDegrees(q, axes.axis[0]);
+      return {previous ? wrapNear(twist, (*previous)[0]) : wrapPrincipal(twist), 0.0, 0.0};
+    }
+    case 2: return twoAxis(q.toRotationMatrix(), axes, previous);
+    case 3: {
+      const TaitBryan t = taitBryan(axes.axis[0], axes.axis[1]);
+      const Eigen::Matrix3d r = q.toRotationMatrix();
+      return previous ? threeAxisNearest(r, t, *previous) : threeAxisPrincipal(r, t);
+    }
+    default: throw std::invalid_argument("rotation axes: count must be 0..3, got " + std::to_string(axes.count));
+  }
+}
+
+void checkAxes(const RotationAxes& axes) {
+  if (axes.count < 0 || axes.count > 3)
+    throw std::invalid_argument("rotation axes: count must be 0..3, got " + std::to_string(axes.count));
+  for (int n = 0; n < axes.count; ++n) {
+    if (axes.axis[n] < 0 || axes.axis[n] > 2) throw std::invalid_argument("rotation axes: axis must be 0, 1 or 2");
+    for (int m = 0; m < n; ++m)
+      if (axes.axis[m] == axes.axis[n]) throw std::invalid_argument("rotation axes: an axis repeats");
+  }
+}
+
+}  // namespace
+
+std::string_view eulerOrderName(EulerOrder order) {
+  switch (order) {
+    case EulerOrder::XYZ: return "XYZ";
+    case EulerOrder::XZY: return "XZY";
+    case EulerOrder::YXZ: return "YXZ";
+    case EulerOrder::YZX: return "YZX";
+    case EulerOrder::ZXY: return "ZXY";
+    case EulerOrder::ZYX: return "ZYX";
+  }
+  return "?";
+}
+
+RotationAxes RotationAxes::of(EulerOrder order) {
+  switch (order) {
+    case EulerOrder::XYZ: return {{0, 1, 2}, 3};
+    case EulerOrder::XZY: return {{0, 2, 1}, 3};
+    case EulerOrder::YXZ: return {{1, 0, 2}, 3};
+    case EulerOrder::YZX: return {{1, 2, 0}, 3};
+    case EulerOrder::ZXY: return {{2, 0, 1}, 3};
+    case EulerOrder::ZYX: return {{2, 1, 0}, 3};
+  }
+  throw std::invalid_argument("unknown Euler order");
+}
+
+RotationAxes RotationAxes::of(const std::vector<ChannelType>& channels) {
+  RotationAxes axes;
+  for (ChannelType c : channels) {
+    if (!isRotation(c)) continue;
+    const int axis = axisOf(c);
+    for (int n = 0; n < axes.count; ++n)
+      if (axes.axis[n] == axis) throw std::invalid_argument("rotation channel " + std::string(channelName(c)) + " repeats");
+    if (axes.count == 3) throw std::invalid_argument("more than three rotation channels");
+    axes.axis[axes.count++] = axis;
+  }
+  return axes;
+}
+
+Eigen::Quaterniond axisRotation(int axis, double degrees) {
+  const double half = 0.5 * degrees * kRadiansPerDegree;
+  Eigen::Quaterniond q(std::cos(half), 0.0, 0.0, 0.0);
+  q.vec()[axis] = std::sin(half);
+  return q;
+}
+
+Eigen::Quaterniond eulerToQuaternion(const Eigen::Vector3d& degrees, const RotationAxes& axes) {
+  checkAxes(axes);
+  Eigen::Quaterniond q = Eigen::Quaterniond::Identity();
+  for (int n = 0; n < axes.count; ++n) q = q * axisRotation(axes.axis[n], degrees[n]);
+  return q;
+}
+
+Eigen::Vector3d quaternionToEuler(const Eigen::Quaterniond& rotation, const RotationAxes& axes) {
+  checkAxes(axes);
+  return decompose(rotation, axes, nullptr);
+}
+
+Eigen::Vector3d quaternionToEuler(const Eigen::Quaterniond& rotation, const RotationAxes& axes,
+                                  const Eigen::Vector3d& previous_degrees) {
+  checkAxes(axes);
+  return decompose(rotation, axes, &previous_degrees);
+}
+
+double rotationDistance(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) {
+  // atan2 of the relative rotation keeps full precision for tiny angles (acos of the dot does not).
+  const Eigen::Quaterniond relative = a.normalized().conjugate() * b.normalized();
+  return 2.0 * std::atan2(relative.vec().norm(), std::abs(relative.w()));
+}
+
+}  // namespace motionstyle

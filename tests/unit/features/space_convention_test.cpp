@@ -1,0 +1,92 @@
+#include <gtest/gtest.h>
+
+#include "bvh/bvh_reader.h"
+#include "features/space_convention.h"
+#include "mapping/joint_mapping.h"
+#include "motion/kinematics.h"
+#include "test_paths.h"
+
+namespace motionstyle {
+namespace {
+
+struct LoadedClip {
+  Motion motion;
+  JointMapping mapping;
+  Eigen::MatrixXd world;
+};
+
+LoadedClip load(const std::string& name) {
+  LoadedClip clip{readBvh(test::fixture(name)), {}, {}};
+  clip.mapping = mapJoints(clip.motion.skeleton, name);
+  clip.world = worldPositions(clip.motion);
+  return clip;
+}
+
+TEST(SpaceConvention, RejectsPositionsOfAnotherSkeleton) {
+  const LoadedClip clip = load("cmu_131_01.bvh");
+  EXPECT_THROW(detectSpaceConvention(clip.motion.skeleton, clip.world.leftCols(6), clip.mapping), std::invalid_argument);
+  EXPECT_THROW(detectSpaceConvention(clip.motion.skeleton, clip.world.topRows(0), clip.mapping), std::invalid_argument);
+}
+
+TEST(SpaceConvention, RejectsUnknownUnit) {
+  const LoadedClip clip = load("cmu_131_01.bvh");
+  EXPECT_THROW(detectSpaceConvention(clip.motion.skeleton, clip.world, clip.mapping, std::string("furlong")),
+               std::invalid_argument);
+}
+
+TEST(SpaceConvention, CmuIsYUpInCmuUnits) {
+  const LoadedClip clip = load("cmu_131_01.bvh");
+  const SpaceConvention convention = detectSpaceConvention(clip.motion.skeleton, clip.world, clip.mapping);
+  EXPECT_EQ(convention.up_axis, "+Y");
+  EXPECT_EQ(convention.unit, "cmu");
+  EXPECT_TRUE(convention.unit_guessed);
+  EXPECT_TRUE(convention.axes.isIdentity());
+}
+
+TEST(SpaceConvention, ZombieIsZUpAndTurnsToYUp) {
+  const LoadedClip clip = load("zombie.bvh");
+  const SpaceConvention convention = detectSpaceConvention(clip.motion.skeleton, clip.world, clip.mapping);
+  EXPECT_EQ(convention.up_axis, "+Z");
+  EXPECT_NEAR(convention.axes.determinant(), 1.0, 1e-12);
+  // The head ends up above the feet in canonical space.
+  const int head = clip.mapping[CanonicalJoint::Head];
+  const int toe = clip.mapping[CanonicalJoint::LeftToe];
+  const Eigen::Vector3d head_up = convention.toCanonical(clip.world.row(0).segment<3>(3 * head).transpose());
+  const Eigen::Vector3d toe_up = convention.toCanonical(clip.world.row(0).segment<3>(3 * toe).transpose());
+  EXPECT_GT(head_up.y() - toe_up.y(), 50.0);
+}
+
+TEST(SpaceConvention, GivenUnitIsUsedAndNotGuessed) {
+  const LoadedClip clip = load("cmu_131_01.bvh");
+  const SpaceConvention convention = detectSpaceConvention(clip.motion.skeleton, clip.world, clip.mapping, std::string("m"));
+  EXPECT_EQ(convention.unit, "m");
+  EXPECT_DOUBLE_EQ(convention.cm_per_unit, 100.0);
+  EXPECT_FALSE(convention.unit_guessed);
+}
+
+TEST(SpaceConvention, UnitGuessFollowsScale) {
+  // The same rig in centimetres and in metres: the guess must tell them apart.
+  LoadedClip clip = load("cmu_131_01.bvh");
+  const double cmu_cm = *centimetresPerUnit("cmu");
+  for (const auto& [unit, cm_per_unit] : {std::pair<std::string, double>{"cm", 1.0}, {"m", 100.0}, {"mm", 0.1}}) {
+    Skeleton scaled = clip.motion.skeleton;
+    for (Joint& joint : scaled.joints) joint.offset *= cmu_cm / cm_per_unit;
+    const SpaceConvention convention =
+        detectSpaceConvention(scaled, clip.world * (cmu_cm / cm_per_unit), clip.mapping);
+    EXPECT_EQ(convention.unit, unit);
+    EXPECT_NEAR(skeletalHeight(scaled, clip.mapping) * convention.cm_per_unit,
+                skeletalHeight(clip.motion.skeleton, clip.mapping) * cmu_cm, 1e-9);
+  }
+}
+
+TEST(SpaceConvention, ToFileInvertsToCanonical) {
+  SpaceConvention convention;
+  convention.cm_per_unit = 2.54;
+  convention.axes << 1, 0, 0, 0, 0, 1, 0, -1, 0;
+  const Eigen::Vector3d p(1.5, -2.0, 7.25);
+  EXPECT_TRUE(convention.toFile(convention.toCanonical(p)).isApprox(p, 1e-12));
+  EXPECT_TRUE(convention.fileUp().isApprox(Eigen::Vector3d::UnitZ(), 1e-12));
+}
+
+}  // namespace
+}  // namespace motionstyle
