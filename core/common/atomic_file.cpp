@@ -35,6 +35,12 @@ void syncToDisk(const std::filesystem::path& path) {
 
 void writeFileAtomically(const std::filesystem::path& destination,
                          const std::function<void(std::ostream&)>& write) {
+  // Only regular files are replaced: renaming over a device node (/dev/null, /dev/full) or a
+  // directory would destroy it rather than write to it.
+  std::error_code status_error;
+  const auto status = std::filesystem::status(destination, status_error);
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+    throw WriteError(destination.string(), "it exists and is not a regular file");
   const std::filesystem::path temporary = temporarySibling(destination);
   try {
     {

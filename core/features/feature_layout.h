@@ -21,6 +21,12 @@
 
 namespace motionstyle {
 
+// The skeletal height (see space_convention.h) every character is scaled to before features are
+// computed. Chosen as the mean skeletal height of the Bandai Namco actors, so their clips scale by ~1.
+constexpr double kReferenceSkeletalHeightCm = 127.0;
+// Frames per second of the representation: input at other rates is resampled.
+constexpr double kDefaultFeatureFps = 60.0;
+
 constexpr int kCanonicalJointCount = 21;
 constexpr int kFeatureCount = 3 * kCanonicalJointCount + 3;  // 66
 constexpr int kSidewaysVelocity = 63;

@@ -24,11 +24,6 @@
 
 namespace motionstyle {
 
-// The skeletal height (see space_convention.h) every character is scaled to before features are
-// computed. Chosen as the mean skeletal height of the Bandai Namco actors, so their clips scale by ~1.
-constexpr double kReferenceSkeletalHeightCm = 127.0;
-constexpr double kDefaultFeatureFps = 60.0;
-
 struct FeatureOptions {
   double fps = kDefaultFeatureFps;
   std::optional<std::string> unit;  // override the guessed length unit ("cm", "m", "inch", "cmu", ...)

@@ -3,7 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <filesystem>
+#include <random>
 #include <string>
 
 namespace motionstyle::test {
@@ -16,6 +19,18 @@ inline std::filesystem::path fixture(const std::string& name) {
 inline std::filesystem::path bandaiDir() {
   const std::filesystem::path dir = std::filesystem::path(MOTIONSTYLE_SHARED_DATA_DIR) / "bandai";
   return std::filesystem::is_directory(dir) ? dir : std::filesystem::path();
+}
+
+// A new, empty directory for one test, unique across processes: ctest runs tests in parallel, so
+// fixed names under /tmp would race. The caller removes it (or leaves it for the OS).
+inline std::filesystem::path uniqueTempDir(const std::string& purpose) {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  std::random_device entropy;
+  const std::string name = "motionstyle-" + purpose + "-" + (info ? std::string(info->name()) : std::string("test")) +
+                           "-" + std::to_string(::getpid()) + "-" + std::to_string(entropy());
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / name;
+  std::filesystem::create_directories(dir);
+  return dir;
 }
 
 }  // namespace motionstyle::test

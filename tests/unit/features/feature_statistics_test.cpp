@@ -6,12 +6,13 @@
 #include "common/errors.h"
 #include "features/feature_layout.h"
 #include "features/feature_statistics.h"
+#include "test_paths.h"
 
 namespace motionstyle {
 namespace {
 
 std::filesystem::path tempFile(const std::string& name, const std::string& content) {
-  const auto path = std::filesystem::temp_directory_path() / ("motionstyle_test_" + name);
+  const auto path = test::uniqueTempDir("statistics") / name;
   std::ofstream(path) << content;
   return path;
 }
@@ -61,7 +62,7 @@ TEST(FeatureStatistics, SaveLoadRoundTrip) {
   FeatureStatistics statistics;
   statistics.mean = Eigen::VectorXd::LinSpaced(kFeatureCount, -3.0, 3.0);
   statistics.std = Eigen::VectorXd::LinSpaced(kFeatureCount, 0.5, 9.0);
-  const auto path = std::filesystem::temp_directory_path() / "motionstyle_test_stats.json";
+  const auto path = test::uniqueTempDir("statistics") / "stats.json";
   saveFeatureStatistics(statistics, path);
   const FeatureStatistics loaded = loadFeatureStatistics(path);
   EXPECT_EQ(loaded.mean, statistics.mean);

@@ -26,11 +26,8 @@ std::string readText(const std::filesystem::path& file) {
 
 class MappingFile : public ::testing::Test {
  protected:
-  std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "mapping_file_test";
-  void SetUp() override {
-    std::filesystem::remove_all(dir);
-    std::filesystem::create_directories(dir);
-  }
+  std::filesystem::path dir;
+  void SetUp() override { dir = test::uniqueTempDir("mapping-file"); }
   void TearDown() override { std::filesystem::remove_all(dir); }
 };
 
