@@ -14,6 +14,7 @@
 #include "mapping/canonical_joints.h"
 #include "mapping/joint_mapping.h"
 #include "mapping/mapping_file.h"
+#include "nn/network_file.h"
 
 namespace motionstyle::cli {
 namespace {
@@ -104,6 +105,14 @@ void printText(const nlohmann::ordered_json& info) {
   std::printf("\n");
 }
 
+// A network file starts with the magic "MSTYLNET" (core/nn/NETWORK_FORMAT.md); anything else is read as BVH.
+bool isNetworkFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  char magic[8] = {};
+  in.read(magic, sizeof magic);
+  return in.gcount() == static_cast<std::streamsize>(sizeof magic) && std::string(magic, sizeof magic) == "MSTYLNET";
+}
+
 }  // namespace
 
 int runInfo(const Args& args) {
@@ -111,6 +120,14 @@ int runInfo(const Args& args) {
   if (parsed.positional.empty()) throw UsageError("info needs at least one FILE");
   nlohmann::ordered_json all = nlohmann::ordered_json::array();
   for (const std::string& path : parsed.positional) {
+    if (isNetworkFile(path)) {
+      const std::string description = nn::describeNetworkFile(path);
+      if (parsed.has("json"))
+        all.push_back({{"file", path}, {"network", description}});
+      else
+        std::cout << path << "\n" << description << (description.empty() || description.back() == '\n' ? "" : "\n");
+      continue;
+    }
     nlohmann::ordered_json info = describeClip(path, parsed.value("mapping"), parsed.value("unit"));
     if (parsed.has("json"))
       all.push_back(std::move(info));

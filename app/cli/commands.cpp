@@ -1,13 +1,17 @@
 #include "commands.h"
 
+#include "stylized_output.h"
+
 namespace motionstyle::cli {
 
 const std::vector<Command>& commands() {
   static const std::vector<Command> table = {
-      {"info", "describe BVH files (joints, frames, fps, units, mapping, contacts)",
+      {"info", "describe BVH files (joints, frames, fps, units, mapping, contacts) or network files",
        "usage: motionstyle-cli info FILE... [--json] [--mapping MAP.json] [--unit UNIT]\n\n"
        "Prints what MotionStyle reads from each BVH file: joints, frames, frame rate, the up axis and\n"
-       "length unit it assumed, the mapping to the 21 canonical joints, and a foot-contact summary.\n\n"
+       "length unit it assumed, the mapping to the 21 canonical joints, and a foot-contact summary.\n"
+       "For a network file (train-ae, train-style): its kind, shapes, representation, training settings,\n"
+       "style clips and loss history.\n\n"
        "  --json            print JSON instead of text\n"
        "  --mapping FILE    use this joint-mapping JSON instead of the automatic mapping\n"
        "  --unit UNIT       the file's length unit: cm, m, mm, inch, ft, dm or cmu (default: guessed)\n",
@@ -17,6 +21,100 @@ const std::vector<Command>& commands() {
        "Reads IN, resamples it to N frames per second if --fps is given (slerp for rotations, linear\n"
        "for positions), and writes OUT atomically with the same hierarchy and channel layout.\n",
        runConvert},
+      {"train-ae", "train the loss network (convolutional autoencoder) on a motion database",
+       "usage: motionstyle-cli train-ae --data DIR... --out FILE [--epochs N] [--seed S] [--batch B] [--lr LR]\n"
+       "                                [--threads T] [--resume] [options]\n\n"
+       "Trains the paper's loss network L (eq. 1-3: 66 -> 256 units, width 25, max-pool 2) on 240-frame\n"
+       "windows (step 120) at 60 fps of every .bvh under the given folders (recursively) or files, and\n"
+       "writes a network file with its normalisation statistics. A checkpoint is written after every epoch\n"
+       "(FILE.checkpoint and FILE.checkpoint.state); Ctrl-C stops within a second and keeps it.\n\n"
+       "  --data DIR|FILE   training clips (repeatable; more may follow as plain arguments)\n"
+       "  --out FILE        the network file to write (atomically, when training completes)\n"
+       "  --epochs N        epochs (default 100)\n"
+       "  --seed S          seed for initialisation, shuffling and dropout (default 1); same seed and\n"
+       "                    thread count give identical networks\n"
+       "  --batch B         windows per step (default 16)\n"
+       "  --lr LR           Adam learning rate (default 0.001)\n"
+       "  --threads T       compute threads (default: all cores, at most 8)\n"
+       "  --resume          continue from the checkpoint (same data and settings)\n"
+       "  --init NET        warm start from an existing autoencoder (its weights and normalisation)\n"
+       "  --checkpoint FILE checkpoint path (default FILE.checkpoint)\n"
+       "  --holdout N       keep every N-th clip (sorted by path) out of training, for eval; listed at the end\n"
+       "  --skip-bad        skip unreadable or unmappable files found in folders (default: stop on them)\n"
+       "  --unit UNIT       length unit of the clips (cm, m, mm, inch, ft, dm, cmu; default: guessed)\n"
+       "  --hidden H        hidden units (default 256)\n"
+       "  --sparsity A      L1 weight of eq. 3 on the mean |w| (default 0.1)\n"
+       "  --dropout P       input dropout while training (default 0.25)\n",
+       runTrainAutoencoder},
+      {"train-style", "train a style network (transformation network) for one style",
+       "usage: motionstyle-cli train-style --ae AE --content DIR... --style CLIP.bvh [--style LABEL=CLIP.bvh ...]\n"
+       "                                   --out FILE [--weights content=1,style=100,foot=F,bone=B,traj=R]\n"
+       "                                   [--epochs N] [--init NET] [--seed S] [--lr LR] [--resume] [options]\n\n"
+       "Trains the transformation network T (3 convolutions, 128 units, width 25) so that T(content) keeps\n"
+       "the content (eq. 4) in the style of the style clip (eq. 5), with no foot sliding (eq. 7), constant\n"
+       "bone lengths (eq. 8) and the content's trajectory (eq. 9), measured through the loss network AE.\n\n"
+       "Pairing: each content clip is paired with the style clip of its content label, read from file names\n"
+       "(dataset-2_walk_elderly_001.bvh: content 'walk', style 'elderly'; other names: the first word, e.g.\n"
+       "walk_fast.bvh: 'walk'). A plain --style CLIP pairs by its own label and is the default for labels\n"
+       "without a clip; --style LABEL=CLIP pairs that label explicitly. Labels left without a style clip\n"
+       "are an error that lists them.\n\n"
+       "  --ae AE             the trained loss network (train-ae)\n"
+       "  --content DIR|FILE  content clips (repeatable; more may follow as plain arguments)\n"
+       "  --style [LABEL=]CLIP  style clip(s), at least 25 frames at 60 fps (repeatable)\n"
+       "  --out FILE          the style network file (embeds the loss network)\n"
+       "  --weights LIST      loss weights, any subset (defaults content=1,style=100,foot=0.01,bone=0.01,traj=0.01)\n"
+       "  --init NET          warm start from an existing style network (adjust the weights and retrain)\n"
+       "  --epochs N, --seed S, --batch B, --lr LR, --threads T, --resume, --checkpoint FILE, --holdout N,\n"
+       "  --skip-bad, --unit UNIT: as for train-ae; --hidden H: hidden units (default 128)\n",
+       runTrainStyle},
+      {"stylize", "apply a trained style network to a clip",
+       "usage: motionstyle-cli stylize --net NET [--ae AE] IN.bvh --out OUT.bvh [--strength S]\n"
+       "                              [--no-cleanup] [--metrics FILE.json] [--fps N]\n\n"
+       "Runs the style network on the whole clip (any length, no seams), projects the result onto the\n"
+       "loss network's motion manifold (decode(encode(.))), cleans it up with IK onto IN's own skeleton\n"
+       "and writes OUT atomically.\n\n"
+       "  --net NET       the style network (train-style)\n"
+       "  --ae AE         optional: checked to be the loss network NET was trained against\n"
+       "  --strength S    0 = the content unchanged, 1 = fully styled (default 1), blended in feature space\n"
+       "  --unit UNIT     IN's length unit (default: guessed)\n" MOTIONSTYLE_OUTPUT_OPTIONS_HELP,
+       runStylize},
+      {"transfer", "style transfer by optimisation (Holden et al. 2016), no style network needed",
+       "usage: motionstyle-cli transfer --ae AE --style CLIP.bvh IN.bvh --out OUT.bvh [--iterations N]\n\n"
+       "Optimises the loss network's hidden units so that the decoded motion keeps IN's content and takes\n"
+       "the style clip's Gram matrix (Adam, lr 0.01), starting from IN's own hidden units, then runs a\n"
+       "constraint pass (feet, bone lengths, trajectory). OUT as for stylize (IK clean-up by default).\n\n"
+       "  --iterations N             style iterations (default 250)\n"
+       "  --constraint-iterations N  constraint iterations (default 100)\n"
+       "  --style-weight S           style weight against content 1, renormalised to sum 1 (default 1)\n"
+       "  --lr LR                    Adam learning rate (default 0.01)\n"
+       "  --noise-start              start from noise like the 2016 code (for comparison)\n"
+       "  --unit UNIT                length unit of the clips (default: guessed)\n" MOTIONSTYLE_OUTPUT_OPTIONS_HELP,
+       runTransfer},
+      {"cleanup", "IK clean-up of a clip on its own skeleton: feet locked, bones exact, on the floor",
+       "usage: motionstyle-cli cleanup IN.bvh --out OUT.bvh [--contacts FILE] [--metrics FILE.json]\n"
+       "                              [--unit UNIT] [--mapping MAP.json]\n\n"
+       "Solves every frame's joint rotations and root position with Ceres so that the clip's canonical\n"
+       "joints stay where they are, while heels and toes stay locked during contact, no foot goes below\n"
+       "the floor and bone lengths stay exactly the skeleton's. OUT keeps IN's hierarchy, joint names,\n"
+       "offsets, channel layout and frame rate; it is written atomically.\n\n"
+       "  --contacts FILE   per-frame contact tracks (JSON, see core/ik/contact_file.h); default: the\n"
+       "                    tracks saved beside the clip (IN.bvh.contacts.json) if any, else detected\n"
+       "  --metrics FILE    write foot skate, floor penetration, bone error, residual and jerk before\n"
+       "                    and after clean-up as JSON\n"
+       "  --unit UNIT       the file's length unit (default: guessed; see info)\n"
+       "  --mapping FILE    joint-mapping JSON for a rig the automatic mapping cannot read\n",
+       runCleanup},
+      {"eval", "evaluate a style network on held-out clips (JSON report)",
+       "usage: motionstyle-cli eval --ae AE --net NET --style CLIP.bvh [--style LABEL=CLIP.bvh ...] CLIPS...\n"
+       "                            [--json FILE]\n\n"
+       "For each clip (files or folders): the autoencoder's reconstruction error (normalised MSE, mean joint\n"
+       "error in cm), the content distance (eq. 4) and style distance (eq. 5, against the paired style clip)\n"
+       "before and after stylizing, bone-length error and foot skate (cm/s of feet labelled in contact) of\n"
+       "the raw output, and run time; plus frame-weighted means. Use clips the network never trained on\n"
+       "(train-* --holdout N lists them). Pairing as for train-style.\n\n"
+       "  --json FILE   write the report to FILE (atomically) and print a summary; default: JSON on stdout\n"
+       "  --unit UNIT   length unit of the clips (default: guessed)\n",
+       runEval},
   };
   return table;
 }

@@ -26,9 +26,12 @@ const std::vector<Command>& commands();
 
 int runInfo(const Args& args);
 int runConvert(const Args& args);
+int runTrainAutoencoder(const Args& args);
+int runTrainStyle(const Args& args);
+int runStylize(const Args& args);
+int runTransfer(const Args& args);
+int runEval(const Args& args);
 
-// The output step of stylize and transfer (command_stylize.cpp): a positions-only BVH of the 21
-// canonical joints at the clip's feature rate, until the IK clean-up replaces it.
-void writePositionsClip(const style::StylizedClip& clip, const std::filesystem::path& output);
+int runCleanup(const Args& args);
 
 }  // namespace motionstyle::cli

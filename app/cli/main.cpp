@@ -15,7 +15,8 @@ void printUsage(std::ostream& out) {
   for (const auto& command : motionstyle::cli::commands())
     out << "  " << command.name << std::string(14 - std::string(command.name).size(), ' ') << command.summary << "\n";
   out << "\nRun 'motionstyle-cli <command> --help' for a command's options.\n"
-         "Exit codes: 0 ok, 2 bad input (message names the file and line), 1 internal error.\n";
+         "Exit codes: 0 ok, 2 bad input (message names the file and line), 1 internal error,\n"
+         "130 interrupted (Ctrl-C; a training run keeps its last checkpoint).\n";
 }
 
 }  // namespace

@@ -24,32 +24,50 @@ double wrapAngle(double angle) {
   return std::remainder(angle, 2.0 * std::numbers::pi);
 }
 
-// Canonical joints of every frame in reference space (Y-up, reference cm), not yet floored:
-// frames x 63.
-Eigen::MatrixXd referenceJointPositions(const Eigen::MatrixXd& file_positions, const FeatureAnchor& anchor) {
-  Eigen::MatrixXd reference(file_positions.rows(), file_positions.cols());
-  const double factor = anchor.scale * anchor.convention.cm_per_unit;
-  for (Eigen::Index f = 0; f < file_positions.rows(); ++f)
-    for (int c = 0; c < kJoints; ++c)
-      reference.row(f).segment<3>(3 * c) =
-          (factor * (anchor.convention.axes * file_positions.row(f).segment<3>(3 * c).transpose())).transpose();
-  return reference;
+// Canonical joints of every frame in reference space (Y-up, reference cm), not yet floored, from their
+// file-space positions (both frames x 63), in place. Column by column: contiguous, vectorised.
+void toReferenceSpace(Eigen::MatrixXd& positions, const FeatureAnchor& anchor) {
+  const Eigen::Matrix3d to_reference = anchor.scale * anchor.convention.cm_per_unit * anchor.convention.axes;
+  const Eigen::Index frames = positions.rows();
+  for (int c = 0; c < kJoints; ++c) {
+    double* x = positions.col(3 * c).data();
+    double* y = positions.col(3 * c + 1).data();
+    double* z = positions.col(3 * c + 2).data();
+    for (Eigen::Index f = 0; f < frames; ++f) {
+      const double px = x[f], py = y[f], pz = z[f];
+      x[f] = to_reference(0, 0) * px + to_reference(0, 1) * py + to_reference(0, 2) * pz;
+      y[f] = to_reference(1, 0) * px + to_reference(1, 1) * py + to_reference(1, 2) * pz;
+      z[f] = to_reference(2, 0) * px + to_reference(2, 1) * py + to_reference(2, 2) * pz;
+    }
+  }
+}
+
+// The up axis and unit of the clip. detectSpaceConvention reads the mean feet-to-head vector over the
+// frames it is given, so one row holding the canonical joints' mean positions (file space) stands for
+// all frames, without the forward kinematics of the joints no feature uses.
+SpaceConvention detectConvention(const Skeleton& skeleton, const Eigen::MatrixXd& file_positions,
+                                 const JointMapping& mapping, const std::optional<std::string>& unit) {
+  const Eigen::RowVectorXd mean = file_positions.colwise().mean();
+  Eigen::MatrixXd mean_positions = Eigen::MatrixXd::Zero(1, 3 * skeleton.jointCount());
+  for (int c = 0; c < kJoints; ++c)
+    mean_positions.middleCols<3>(3 * mapping.joints[static_cast<size_t>(c)]) = mean.segment<3>(3 * c);
+  return detectSpaceConvention(skeleton, mean_positions, mapping, unit);
 }
 
 }  // namespace
 
 Eigen::MatrixXd canonicalJointPositions(const Motion& motion, const JointMapping& mapping) {
-  const Eigen::MatrixXd all = worldPositions(motion);
-  Eigen::MatrixXd canonical(all.rows(), 3 * kJoints);
-  for (int c = 0; c < kJoints; ++c) canonical.middleCols<3>(3 * c) = all.middleCols<3>(3 * mapping.joints[static_cast<size_t>(c)]);
-  return canonical;
+  return worldPositions(motion.skeleton, localPoses(motion), mapping.joints);
 }
 
 MotionFeatures extractFeatures(const Motion& motion, const JointMapping& mapping, const FeatureOptions& options) {
   if (!(options.fps > 0.0)) throw std::invalid_argument("extractFeatures: fps must be positive");
   const bool same_rate = std::abs(motion.fps() - options.fps) <= 1e-6 * options.fps;
-  const Motion resampled = same_rate ? motion : resampleMotion(motion, options.fps);
-  if (resampled.frameCount() < 2)
+  // Resampled as local transforms (what resampleMotion does before it returns to Euler angles), so that
+  // the only Euler -> quaternion conversion is the vectorised one in localPoses.
+  LocalPoses poses = localPoses(motion);
+  if (!same_rate) poses = resampleLocalPoses(poses, motion.frame_time, options.fps);
+  if (poses.frames < 2)
     throw InputError(motion.source, 0, "the clip is too short: it needs at least 2 frames at " +
                                            std::to_string(static_cast<int>(options.fps)) + " fps");
 
@@ -57,63 +75,70 @@ MotionFeatures extractFeatures(const Motion& motion, const JointMapping& mapping
   result.mapping = mapping;
   FeatureAnchor& anchor = result.anchor;
   anchor.fps = options.fps;
-  const Eigen::MatrixXd all_positions = worldPositions(resampled);
-  anchor.convention = detectSpaceConvention(resampled.skeleton, all_positions, mapping, options.unit);
-  anchor.scale = kReferenceSkeletalHeightCm / (skeletalHeight(resampled.skeleton, mapping) * anchor.convention.cm_per_unit);
-
-  Eigen::MatrixXd file_positions(all_positions.rows(), 3 * kJoints);
-  for (int c = 0; c < kJoints; ++c)
-    file_positions.middleCols<3>(3 * c) = all_positions.middleCols<3>(3 * mapping.joints[static_cast<size_t>(c)]);
-  Eigen::MatrixXd world = referenceJointPositions(file_positions, anchor);
+  Eigen::MatrixXd world = worldPositions(motion.skeleton, poses, mapping.joints);  // file space for now
+  anchor.convention = detectConvention(motion.skeleton, world, mapping, options.unit);
+  anchor.scale = kReferenceSkeletalHeightCm / (skeletalHeight(motion.skeleton, mapping) * anchor.convention.cm_per_unit);
+  toReferenceSpace(world, anchor);
   const Eigen::Index frames = world.rows();
 
   // Floor: a soft minimum (5th percentile) of the lowest foot joint per frame.
-  Eigen::VectorXd lowest_foot(frames);
-  for (Eigen::Index f = 0; f < frames; ++f) {
-    double lowest = INFINITY;
-    for (CanonicalJoint foot : kContactJoint) lowest = std::min(lowest, world(f, 3 * index(foot) + 1));
-    lowest_foot[f] = lowest;
-  }
+  Eigen::VectorXd lowest_foot = Eigen::VectorXd::Constant(frames, INFINITY);
+  for (CanonicalJoint foot : kContactJoint) lowest_foot = lowest_foot.cwiseMin(world.col(3 * index(foot) + 1));
   anchor.floor_height = quantile(lowest_foot, 0.05);
   for (int c = 0; c < kJoints; ++c) world.col(3 * c + 1).array() -= anchor.floor_height;
 
   // Root: hips on the floor, smoothed. Facing: across hips + shoulders, crossed with up, smoothed.
-  Eigen::MatrixXd root(frames, 2), facing(frames, 2);
-  auto joint = [&](Eigen::Index f, CanonicalJoint c) -> Eigen::Vector3d {
-    return world.row(f).segment<3>(3 * index(c)).transpose();
-  };
+  // Column-major frames x 2, so each smoothed signal is contiguous.
   using C = CanonicalJoint;
-  for (Eigen::Index f = 0; f < frames; ++f) {
-    const Eigen::Vector3d hips = joint(f, C::Hips);
-    root.row(f) << hips.x(), hips.z();
-    const Eigen::Vector3d across = (joint(f, C::LeftHip) - joint(f, C::RightHip)) +
-                                   (joint(f, C::LeftUpperArm) - joint(f, C::RightUpperArm));
-    facing.row(f) << -across.z(), across.x();  // across x up, (x, z) components
-  }
+  auto column = [&](C joint, int axis) { return world.col(3 * index(joint) + axis); };
+  Eigen::MatrixXd root(frames, 2), facing(frames, 2);
+  root.col(0) = column(C::Hips, 0);
+  root.col(1) = column(C::Hips, 2);
+  // across = (left - right hip) + (left - right upper arm); facing (x, z) = (-across.z, across.x).
+  auto across = [&](int axis) -> Eigen::VectorXd {
+    return (column(C::LeftHip, axis) - column(C::RightHip, axis)) +
+           (column(C::LeftUpperArm, axis) - column(C::RightUpperArm, axis));
+  };
+  facing.col(0) = -across(2);
+  facing.col(1) = across(0);
   root = gaussianSmoothRows(root, options.root_smoothing_frames);
   facing = gaussianSmoothRows(facing, options.facing_smoothing_frames);
 
-  Eigen::VectorXd heading(frames);
+  // Heading, unwrapped, and its cosine and sine (the facing direction normalised: no sin/cos calls).
+  Eigen::VectorXd heading(frames), heading_cos(frames), heading_sin(frames);
   for (Eigen::Index f = 0; f < frames; ++f) {
-    heading[f] = std::atan2(facing(f, 0), facing(f, 1));
+    const double x = facing(f, 0), z = facing(f, 1);
+    heading[f] = std::atan2(x, z);
+    const double length = std::sqrt(x * x + z * z);
+    if (length > 0.0 && std::isfinite(length)) {
+      heading_cos[f] = z / length;
+      heading_sin[f] = x / length;
+    } else {
+      heading_cos[f] = std::cos(heading[f]);
+      heading_sin[f] = std::sin(heading[f]);
+    }
     if (f > 0) heading[f] = heading[f - 1] + wrapAngle(heading[f] - heading[f - 1]);  // unwrap
   }
 
+  // Joints in the root frame: rotated by -heading about +Y, i.e. local x = cos dx - sin dz and
+  // local z = sin dx + cos dz.
   result.values.resize(kFeatureCount, frames);
   for (Eigen::Index f = 0; f < frames; ++f) {
+    const double cos_h = heading_cos[f], sin_h = heading_sin[f];
+    const double root_x = root(f, 0), root_z = root(f, 1);
+    double* out = result.values.col(f).data();
     for (int c = 0; c < kJoints; ++c) {
-      const Eigen::Vector3d p = joint(f, static_cast<CanonicalJoint>(c));
-      const Eigen::Vector2d local = rotateY(-heading[f], p.x() - root(f, 0), p.z() - root(f, 1));
-      result.values.col(f).segment<3>(3 * c) << local.x(), p.y(), local.y();
+      const double dx = world(f, 3 * c) - root_x, dz = world(f, 3 * c + 2) - root_z;
+      out[3 * c] = cos_h * dx - sin_h * dz;
+      out[3 * c + 1] = world(f, 3 * c + 1);
+      out[3 * c + 2] = sin_h * dx + cos_h * dz;
     }
-    const Eigen::Index next = f + 1 < frames ? f + 1 : f;
     const Eigen::Index step_from = f + 1 < frames ? f : f - 1;  // the last frame repeats the one before
-    const Eigen::Index step_to = f + 1 < frames ? next : f;
-    const Eigen::Vector2d velocity = rotateY(-heading[step_from], root(step_to, 0) - root(step_from, 0),
-                                             root(step_to, 1) - root(step_from, 1));
-    result.values(kSidewaysVelocity, f) = velocity.x();
-    result.values(kForwardVelocity, f) = velocity.y();
-    result.values(kTurningVelocity, f) = heading[step_to] - heading[step_from];
+    const Eigen::Index step_to = step_from + 1;
+    const double dx = root(step_to, 0) - root(step_from, 0), dz = root(step_to, 1) - root(step_from, 1);
+    out[kSidewaysVelocity] = heading_cos[step_from] * dx - heading_sin[step_from] * dz;
+    out[kForwardVelocity] = heading_sin[step_from] * dx + heading_cos[step_from] * dz;
+    out[kTurningVelocity] = heading[step_to] - heading[step_from];
   }
   anchor.start_root = root.row(0).transpose();
   anchor.start_heading = heading[0];

@@ -1,6 +1,7 @@
 #include "features/signal_filters.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -9,18 +10,39 @@ namespace motionstyle {
 Eigen::MatrixXd gaussianSmoothRows(const Eigen::MatrixXd& signal, double sigma_frames) {
   if (sigma_frames <= 0.0 || signal.rows() < 2) return signal;
   const auto radius = static_cast<Eigen::Index>(std::ceil(3.0 * sigma_frames));
-  Eigen::VectorXd kernel(2 * radius + 1);
+  const Eigen::Index taps = 2 * radius + 1;
+  std::vector<double> kernel(static_cast<size_t>(taps));
+  double kernel_sum = 0.0;
   for (Eigen::Index k = -radius; k <= radius; ++k) {
     const double x = static_cast<double>(k) / sigma_frames;
-    kernel[k + radius] = std::exp(-0.5 * x * x);
+    kernel[static_cast<size_t>(k + radius)] = std::exp(-0.5 * x * x);
+    kernel_sum += kernel[static_cast<size_t>(k + radius)];
   }
-  kernel /= kernel.sum();
+  for (double& weight : kernel) weight /= kernel_sum;
+
+  // Each column (contiguous, the matrix being column-major) is copied once with `radius` repeats of its
+  // first and last values on either side, so that the convolution needs no clamping. Outputs are then
+  // computed a block of kBlock frames at a time, the block's sums held in registers while the taps are
+  // added in order k = -radius .. radius (the same order for every frame), each tap one vector
+  // multiply-add over the block.
+  constexpr Eigen::Index kBlock = 8;
   const Eigen::Index frames = signal.rows();
-  Eigen::MatrixXd smoothed = Eigen::MatrixXd::Zero(frames, signal.cols());
-  for (Eigen::Index t = 0; t < frames; ++t) {
-    for (Eigen::Index k = -radius; k <= radius; ++k) {
-      const Eigen::Index source = std::clamp<Eigen::Index>(t + k, 0, frames - 1);
-      smoothed.row(t) += kernel[k + radius] * signal.row(source);
+  Eigen::MatrixXd smoothed(frames, signal.cols());
+  std::vector<double> padded(static_cast<size_t>(frames + 2 * radius + kBlock), 0.0);  // + kBlock: last block's reads
+  for (Eigen::Index column = 0; column < signal.cols(); ++column) {
+    const double* in = signal.col(column).data();
+    std::fill_n(padded.begin(), radius, in[0]);
+    std::copy_n(in, frames, padded.begin() + radius);
+    std::fill_n(padded.begin() + radius + frames, radius, in[frames - 1]);
+    double* out = smoothed.col(column).data();
+    for (Eigen::Index first = 0; first < frames; first += kBlock) {
+      std::array<double, kBlock> sums{};
+      const double* window = padded.data() + first;
+      for (Eigen::Index k = 0; k < taps; ++k) {
+        const double weight = kernel[static_cast<size_t>(k)];
+        for (size_t i = 0; i < static_cast<size_t>(kBlock); ++i) sums[i] += weight * window[k + static_cast<Eigen::Index>(i)];
+      }
+      std::copy_n(sums.begin(), std::min(kBlock, frames - first), out + first);
     }
   }
   return smoothed;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -80,6 +81,112 @@ void checkFixedTranslation(const Joint& joint, const JointChannels& channels, co
   }
 }
 
+// Local rotations of joint j over all frames when its three rotation axes are A, B and the remaining
+// one, D (known at compile time: the composition is then straight-line code). With half-angle cosines
+// c and sines s per channel: (c0 + s0 e_A)(c1 + s1 e_B) = c0 c1 + s0 c1 e_A + c0 s1 e_B + s0 s1 e_A e_B,
+// where e_A e_B = sigma e_D (sigma = +1 when A, B, D is cyclic), then times (c2 + s2 e_D).
+template <int A, int B>
+void threeAxisRotations(LocalPoses& poses, int j, const double* const cosines[3], const double* const sines[3]) {
+  constexpr int D = 3 - A - B;
+  constexpr double sigma = B == (A + 1) % 3 ? 1.0 : -1.0;
+  for (int f = 0; f < poses.frames; ++f) {
+    Eigen::Quaterniond q;
+    q.w() = cosines[0][f] * cosines[1][f];
+    q.vec()[A] = sines[0][f] * cosines[1][f];
+    q.vec()[B] = cosines[0][f] * sines[1][f];
+    q.vec()[D] = sigma * sines[0][f] * sines[1][f];
+    poses.rotation(f, j) = composeAxisRotation(q, D, cosines[2][f], sines[2][f]);
+  }
+}
+
+// Any other axis layout (0, 1 or 2 axes): channel by channel.
+void generalRotations(LocalPoses& poses, int j, const RotationAxes& axes, const double* const cosines[3],
+                      const double* const sines[3]) {
+  for (int f = 0; f < poses.frames; ++f) {
+    Eigen::Quaterniond q = Eigen::Quaterniond::Identity();
+    for (int n = 0; n < axes.count; ++n)
+      q = composeAxisRotation(q, axes.axis[static_cast<size_t>(n)], cosines[n][f], sines[n][f]);
+    poses.rotation(f, j) = q;
+  }
+}
+
+void jointRotations(LocalPoses& poses, int j, const RotationAxes& axes, const double* const cosines[3],
+                    const double* const sines[3]) {
+  if (axes.count == 3) {
+    const int first = axes.axis[0], second = axes.axis[1];
+    if (first == 0 && second == 1) return threeAxisRotations<0, 1>(poses, j, cosines, sines);
+    if (first == 0 && second == 2) return threeAxisRotations<0, 2>(poses, j, cosines, sines);
+    if (first == 1 && second == 0) return threeAxisRotations<1, 0>(poses, j, cosines, sines);
+    if (first == 1 && second == 2) return threeAxisRotations<1, 2>(poses, j, cosines, sines);
+    if (first == 2 && second == 0) return threeAxisRotations<2, 0>(poses, j, cosines, sines);
+    if (first == 2 && second == 1) return threeAxisRotations<2, 1>(poses, j, cosines, sines);
+  }
+  generalRotations(poses, j, axes, cosines, sines);
+}
+
+// Forward kinematics over a block of frames at a time, one joint at a time, in structure-of-arrays form:
+// every operation is a loop over the block's frames, which the compiler turns into vector instructions
+// (and no value is stored and reloaded at another width, which stalls per-frame scalar code).
+constexpr int kFkBlock = 8;
+using FkLane = std::array<double, kFkBlock>;
+
+struct FkStep {
+  int joint, parent;
+  bool needs_rotation;  // some visited joint is its child
+};
+
+// World rotation (quaternion and row-major matrix) and position of one joint over a block of frames.
+struct FkBlock {
+  FkLane qw, qx, qy, qz;
+  std::array<FkLane, 9> m;
+  FkLane px, py, pz;
+};
+
+void forwardKinematicsStep(const LocalPoses& poses, const FkStep& step, int first, int count,
+                           FkBlock* blocks) {
+  FkBlock& out = blocks[static_cast<size_t>(step.joint)];
+  // Local transforms of the block's frames (lanes past the clip's end repeat its last frame).
+  FkLane lw, lx, ly, lz, tx, ty, tz;
+  for (size_t i = 0; i < static_cast<size_t>(kFkBlock); ++i) {
+    const int frame = first + std::min(static_cast<int>(i), count - 1);
+    const Eigen::Quaterniond& q = poses.rotation(frame, step.joint);
+    const Eigen::Vector3d& t = poses.translation(frame, step.joint);
+    lw[i] = q.w(), lx[i] = q.x(), ly[i] = q.y(), lz[i] = q.z();
+    tx[i] = t.x(), ty[i] = t.y(), tz[i] = t.z();
+  }
+  if (step.parent < 0) {
+    out.px = tx, out.py = ty, out.pz = tz;
+    out.qw = lw, out.qx = lx, out.qy = ly, out.qz = lz;
+  } else {
+    const FkBlock& parent = blocks[static_cast<size_t>(step.parent)];
+    const auto& m = parent.m;
+    for (size_t i = 0; i < static_cast<size_t>(kFkBlock); ++i) {
+      out.px[i] = parent.px[i] + (m[0][i] * tx[i] + m[1][i] * ty[i] + m[2][i] * tz[i]);
+      out.py[i] = parent.py[i] + (m[3][i] * tx[i] + m[4][i] * ty[i] + m[5][i] * tz[i]);
+      out.pz[i] = parent.pz[i] + (m[6][i] * tx[i] + m[7][i] * ty[i] + m[8][i] * tz[i]);
+    }
+    if (!step.needs_rotation) return;  // a leaf of the visited tree: its position is all that is wanted
+    for (size_t i = 0; i < static_cast<size_t>(kFkBlock); ++i) {  // world = parent world * local
+      const double aw = parent.qw[i], ax = parent.qx[i], ay = parent.qy[i], az = parent.qz[i];
+      out.qw[i] = aw * lw[i] - ax * lx[i] - ay * ly[i] - az * lz[i];
+      out.qx[i] = aw * lx[i] + ax * lw[i] + ay * lz[i] - az * ly[i];
+      out.qy[i] = aw * ly[i] + ay * lw[i] + az * lx[i] - ax * lz[i];
+      out.qz[i] = aw * lz[i] + az * lw[i] + ax * ly[i] - ay * lx[i];
+    }
+  }
+  if (!step.needs_rotation) return;
+  for (size_t i = 0; i < static_cast<size_t>(kFkBlock); ++i) {  // as Eigen's toRotationMatrix
+    const double w = out.qw[i], x = out.qx[i], y = out.qy[i], z = out.qz[i];
+    const double tx2 = 2 * x, ty2 = 2 * y, tz2 = 2 * z;
+    const double twx = tx2 * w, twy = ty2 * w, twz = tz2 * w;
+    const double txx = tx2 * x, txy = ty2 * x, txz = tz2 * x;
+    const double tyy = ty2 * y, tyz = tz2 * y, tzz = tz2 * z;
+    out.m[0][i] = 1 - (tyy + tzz), out.m[1][i] = txy - twz, out.m[2][i] = txz + twy;
+    out.m[3][i] = txy + twz, out.m[4][i] = 1 - (txx + tzz), out.m[5][i] = tyz - twx;
+    out.m[6][i] = txz - twy, out.m[7][i] = tyz + twx, out.m[8][i] = 1 - (txx + tyy);
+  }
+}
+
 }  // namespace
 
 LocalPoses localPoses(const Motion& motion) {
@@ -92,22 +199,42 @@ LocalPoses localPoses(const Motion& motion) {
   const size_t total = static_cast<size_t>(poses.frames) * static_cast<size_t>(poses.joints);
   poses.rotations.resize(total);
   poses.translations.resize(total);
-  for (int f = 0; f < poses.frames; ++f) {
-    const double* row = motion.values.row(f).data();  // row-major: a frame line is contiguous
-    for (int j = 0; j < poses.joints; ++j) {
-      const Joint& joint = skeleton.joints[static_cast<size_t>(j)];
-      const JointChannels& resolved = channels[static_cast<size_t>(j)];
-      Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();
-      for (int n = 0; n < resolved.rotation_axes.count; ++n)
-        rotation = rotation * axisRotation(resolved.rotation_axes.axis[static_cast<size_t>(n)],
-                                           row[resolved.rotation_column[static_cast<size_t>(n)]]);
-      Eigen::Vector3d translation = joint.offset;
-      for (int axis = 0; axis < 3; ++axis) {
-        const int column = resolved.position_column[static_cast<size_t>(axis)];
-        if (column >= 0) translation[axis] = row[column];
-      }
-      poses.rotation(f, j) = rotation;
-      poses.translation(f, j) = translation;
+  const auto frames = static_cast<size_t>(poses.frames);
+
+  // Every rotation angle of the clip, one contiguous run of frames per rotation channel, so that their
+  // half-angle sines and cosines come from one vectorised pass (libm's sin and cos, twice per angle,
+  // used to dominate the whole feature pipeline).
+  size_t rotation_channels = 0;
+  for (const JointChannels& resolved : channels) rotation_channels += static_cast<size_t>(resolved.rotation_axes.count);
+  Eigen::ArrayXd angles(static_cast<Eigen::Index>(rotation_channels * frames));  // uninitialised: all written
+  Eigen::ArrayXd sines(angles.size()), cosines(angles.size());
+  for (size_t f = 0; f < frames; ++f) {
+    const double* row = motion.values.row(static_cast<Eigen::Index>(f)).data();  // row-major: contiguous
+    size_t channel = 0;
+    for (const JointChannels& resolved : channels)
+      for (int n = 0; n < resolved.rotation_axes.count; ++n, ++channel)
+        angles[static_cast<Eigen::Index>(channel * frames + f)] = row[resolved.rotation_column[static_cast<size_t>(n)]];
+  }
+  const auto count = static_cast<size_t>(angles.size());
+  halfAngleSinCos({angles.data(), count}, {sines.data(), count}, {cosines.data(), count});
+
+  size_t channel = 0;
+  for (int j = 0; j < poses.joints; ++j) {
+    const Joint& joint = skeleton.joints[static_cast<size_t>(j)];
+    const JointChannels& resolved = channels[static_cast<size_t>(j)];
+    const double* joint_cosines[3] = {nullptr, nullptr, nullptr};
+    const double* joint_sines[3] = {nullptr, nullptr, nullptr};
+    for (int n = 0; n < resolved.rotation_axes.count; ++n, ++channel) {
+      joint_cosines[n] = cosines.data() + channel * frames;
+      joint_sines[n] = sines.data() + channel * frames;
+    }
+    jointRotations(poses, j, resolved.rotation_axes, joint_cosines, joint_sines);
+    const std::array<int, 3>& column = resolved.position_column;
+    for (int f = 0; f < poses.frames; ++f) {
+      const double* row = motion.values.row(f).data();
+      double* translation = poses.translation(f, j).data();  // written in place: no temporary to reload
+      for (size_t axis = 0; axis < 3; ++axis)
+        translation[axis] = column[axis] >= 0 ? row[column[axis]] : joint.offset[static_cast<Eigen::Index>(axis)];
     }
   }
   return poses;
@@ -157,34 +284,48 @@ void setLocalPoses(const LocalPoses& poses, Motion& motion) {
 }
 
 Eigen::MatrixXd worldPositions(const Skeleton& skeleton, const LocalPoses& poses) {
+  std::vector<int> every_joint(static_cast<size_t>(std::max(skeleton.jointCount(), 0)));
+  for (size_t j = 0; j < every_joint.size(); ++j) every_joint[j] = static_cast<int>(j);
+  return worldPositions(skeleton, poses, every_joint);
+}
+
+Eigen::MatrixXd worldPositions(const Skeleton& skeleton, const LocalPoses& poses, std::span<const int> wanted) {
   checkPoses(skeleton, poses);
   const int joint_count = poses.joints;
-  Eigen::MatrixXd positions(poses.frames, 3 * joint_count);
-  // Scratch reused across frames: world rotation (as a matrix, cheaper to apply than a quaternion) and
-  // world position of every joint of the current frame.
-  std::vector<Eigen::Matrix3d> world_rotation(static_cast<size_t>(joint_count));
-  std::vector<Eigen::Vector3d> world_position(static_cast<size_t>(joint_count));
-  std::vector<int> parent(static_cast<size_t>(joint_count));
-  for (int j = 0; j < joint_count; ++j) parent[static_cast<size_t>(j)] = skeleton.joints[static_cast<size_t>(j)].parent;
+  for (const int joint : wanted)
+    if (joint < 0 || joint >= joint_count)
+      throw std::invalid_argument("worldPositions: wanted joint " + std::to_string(joint) + " is not in the skeleton (" +
+                                  std::to_string(joint_count) + " joints)");
+  // The joints forward kinematics must visit: the wanted ones and their ancestors, in skeleton order
+  // (parents first). Only those with a visited child need a world rotation.
+  std::vector<char> visited(static_cast<size_t>(joint_count), 0), has_child(static_cast<size_t>(joint_count), 0);
+  for (int joint : wanted)
+    for (int j = joint; j >= 0 && !visited[static_cast<size_t>(j)]; j = skeleton.joints[static_cast<size_t>(j)].parent)
+      visited[static_cast<size_t>(j)] = 1;
+  std::vector<FkStep> steps;
+  for (int j = 0; j < joint_count; ++j) {
+    if (!visited[static_cast<size_t>(j)]) continue;
+    const int parent = skeleton.joints[static_cast<size_t>(j)].parent;
+    if (parent >= 0) has_child[static_cast<size_t>(parent)] = 1;
+    steps.push_back({j, parent, false});
+  }
+  for (FkStep& step : steps) step.needs_rotation = has_child[static_cast<size_t>(step.joint)] != 0;
 
-  for (int f = 0; f < poses.frames; ++f) {
-    const size_t base = poses.at(f, 0);
-    for (size_t j = 0; j < static_cast<size_t>(joint_count); ++j) {
-      const Eigen::Matrix3d local = poses.rotations[base + j].toRotationMatrix();
-      const Eigen::Vector3d& translation = poses.translations[base + j];
-      const int p = parent[j];
-      if (p < 0) {
-        world_rotation[j] = local;
-        world_position[j] = translation;
-      } else {
-        const auto pj = static_cast<size_t>(p);
-        world_position[j].noalias() = world_position[pj] + world_rotation[pj] * translation;
-        world_rotation[j].noalias() = world_rotation[pj] * local;
+  Eigen::MatrixXd positions(poses.frames, 3 * static_cast<Eigen::Index>(wanted.size()));
+  const std::unique_ptr<FkBlock[]> blocks(new FkBlock[static_cast<size_t>(joint_count)]);  // uninitialised scratch
+  for (int first = 0; first < poses.frames; first += kFkBlock) {
+    const int count = std::min(kFkBlock, poses.frames - first);
+    for (const FkStep& step : steps) forwardKinematicsStep(poses, step, first, count, blocks.get());
+    Eigen::Index column = 0;
+    for (const int joint : wanted) {  // column-major: each coordinate is a contiguous run of frames
+      const FkBlock& block = blocks[static_cast<size_t>(joint)];
+      for (const FkLane* lane : {&block.px, &block.py, &block.pz}) {
+        double* out = positions.col(column++).data() + first;
+        if (count == kFkBlock)
+          std::copy_n(lane->begin(), kFkBlock, out);  // a fixed-size copy: two vector moves
+        else
+          std::copy_n(lane->begin(), count, out);
       }
-      const Eigen::Index column = 3 * static_cast<Eigen::Index>(j);
-      positions(f, column) = world_position[j].x();
-      positions(f, column + 1) = world_position[j].y();
-      positions(f, column + 2) = world_position[j].z();
     }
   }
   return positions;

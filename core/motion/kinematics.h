@@ -13,6 +13,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <span>
 #include <vector>
 
 #include "motion/motion.h"
@@ -51,9 +52,16 @@ void setLocalPoses(const LocalPoses& poses, Motion& motion);
 // World positions of every joint (file units, file axes), frames x (3 * jointCount):
 // row f = x0 y0 z0 x1 y1 z1 ... Rotations must be unit quaternions. std::invalid_argument when the
 // poses do not match the skeleton or a parent does not precede its child. Allocates only the result
-// and one frame of scratch.
+// and per-joint scratch (the overload below with every joint wanted).
 Eigen::MatrixXd worldPositions(const Skeleton& skeleton, const LocalPoses& poses);
 inline Eigen::MatrixXd worldPositions(const Motion& motion) { return worldPositions(motion.skeleton, localPoses(motion)); }
+
+// World positions (file units, file axes) of the `wanted` joints only (indices into skeleton.joints,
+// repeats allowed), frames x (3 * wanted.size()): row f = x y z of wanted[0], then wanted[1], ...
+// Forward kinematics visits only the wanted joints and their ancestors, a block of frames at a time
+// (vectorised), so asking for a few joints costs a fraction of the full call. Rotations must be unit
+// quaternions. std::invalid_argument as above, and for a wanted index outside the skeleton.
+Eigen::MatrixXd worldPositions(const Skeleton& skeleton, const LocalPoses& poses, std::span<const int> wanted);
 
 // World rotation of every joint (joint frame -> world), same indexing as LocalPoses.
 std::vector<Eigen::Quaterniond> worldRotations(const Skeleton& skeleton, const LocalPoses& poses);

@@ -1,5 +1,6 @@
 #include "motion/resample.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -90,30 +91,63 @@ Motion resampleMotion(const Motion& motion, double target_fps) {
     return result;
   }
 
-  const LocalPoses source = localPoses(motion);
-  LocalPoses target;
-  target.frames = static_cast<int>(frames);
-  target.joints = source.joints;
-  target.rotations.resize(schedule.size() * static_cast<size_t>(source.joints));
-  target.translations.resize(target.rotations.size());
-  for (int k = 0; k < target.frames; ++k) {
-    const ResampleSample sample = schedule[static_cast<size_t>(k)];
-    for (int j = 0; j < source.joints; ++j) {
-      if (sample.fraction == 0.0) {
-        target.rotation(k, j) = source.rotation(sample.index, j);
-        target.translation(k, j) = source.translation(sample.index, j);
-        continue;
-      }
-      // Eigen's slerp takes the shortest path (it flips the second quaternion when the dot is negative).
-      target.rotation(k, j) = source.rotation(sample.index, j).slerp(sample.fraction, source.rotation(sample.index + 1, j));
-      target.translation(k, j) = (1.0 - sample.fraction) * source.translation(sample.index, j) +
-                                 sample.fraction * source.translation(sample.index + 1, j);
-    }
-  }
+  const LocalPoses target = resampleLocalPoses(localPoses(motion), motion.frame_time, target_fps);
   // Seed Euler continuity with the source's first frame, which output frame 0 coincides with.
   result.values = motion.values.topRows(1);
   setLocalPoses(target, result);
   return result;
+}
+
+LocalPoses resampleLocalPoses(const LocalPoses& poses, double source_frame_time, double target_fps) {
+  const size_t expected = static_cast<size_t>(std::max(poses.frames, 0)) * static_cast<size_t>(std::max(poses.joints, 0));
+  if (poses.joints < 1 || poses.rotations.size() != expected || poses.translations.size() != expected)
+    throw std::invalid_argument("resampleLocalPoses: poses of " + std::to_string(poses.frames) + " frames x " +
+                                std::to_string(poses.joints) + " joints hold " + std::to_string(poses.rotations.size()) +
+                                " rotations and " + std::to_string(poses.translations.size()) + " translations");
+  const std::vector<ResampleSample> schedule = resampleSchedule(poses.frames, source_frame_time, target_fps);
+  if (decimationStep(source_frame_time, target_fps) == 1) return poses;
+
+  LocalPoses target;
+  target.frames = static_cast<int>(schedule.size());
+  target.joints = poses.joints;
+  target.rotations.resize(schedule.size() * static_cast<size_t>(poses.joints));
+  target.translations.resize(target.rotations.size());
+  const auto joints = static_cast<size_t>(poses.joints);
+  Eigen::ArrayXd inverse_norm(poses.joints);  // scratch of the midpoint normalisation
+  for (int k = 0; k < target.frames; ++k) {
+    const ResampleSample sample = schedule[static_cast<size_t>(k)];
+    const size_t from = poses.at(sample.index, 0), to = target.at(k, 0);
+    if (sample.fraction == 0.0) {
+      std::copy_n(poses.rotations.begin() + static_cast<std::ptrdiff_t>(from), joints,
+                  target.rotations.begin() + static_cast<std::ptrdiff_t>(to));
+      std::copy_n(poses.translations.begin() + static_cast<std::ptrdiff_t>(from), joints,
+                  target.translations.begin() + static_cast<std::ptrdiff_t>(to));
+      continue;
+    }
+    const size_t next = from + joints;  // frame index + 1 (a fraction > 0 never samples the last frame)
+    if (sample.fraction == 0.5) {
+      // Normalised in a separate pass over all joints: the square roots and divisions then go
+      // through vector instructions instead of one latency chain per joint.
+      for (size_t j = 0; j < joints; ++j) {
+        const Eigen::Vector4d& a = poses.rotations[from + j].coeffs();
+        const Eigen::Vector4d& b = poses.rotations[next + j].coeffs();
+        Eigen::Vector4d& sum = target.rotations[to + j].coeffs();
+        sum = a.dot(b) < 0.0 ? Eigen::Vector4d(a - b) : Eigen::Vector4d(a + b);
+        inverse_norm[static_cast<Eigen::Index>(j)] = sum.squaredNorm();
+        target.translations[to + j] = 0.5 * poses.translations[from + j] + 0.5 * poses.translations[next + j];
+      }
+      inverse_norm = inverse_norm.sqrt().inverse();  // exact sqrt and division (rsqrt may be approximate)
+      for (size_t j = 0; j < joints; ++j) target.rotations[to + j].coeffs() *= inverse_norm[static_cast<Eigen::Index>(j)];
+      continue;
+    }
+    for (size_t j = 0; j < joints; ++j) {
+      // Eigen's slerp takes the shortest path (it flips the second quaternion when the dot is negative).
+      target.rotations[to + j] = poses.rotations[from + j].slerp(sample.fraction, poses.rotations[next + j]);
+      target.translations[to + j] =
+          (1.0 - sample.fraction) * poses.translations[from + j] + sample.fraction * poses.translations[next + j];
+    }
+  }
+  return target;
 }
 
 Eigen::MatrixXd resampleRowsLinear(const Eigen::MatrixXd& rows, double source_frame_time, double target_fps) {

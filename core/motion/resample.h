@@ -25,6 +25,7 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "motion/kinematics.h"
 #include "motion/motion.h"
 
 namespace motionstyle {
@@ -46,6 +47,17 @@ std::vector<ResampleSample> resampleSchedule(int source_frames, double source_fr
 // frame time becomes 1 / target_fps. A target rate within 1e-5 relative of the source's returns an
 // identical copy (frame time included). Validates the motion (Motion::validate).
 Motion resampleMotion(const Motion& motion, double target_fps);
+
+// The same resampling on local transforms, without going through Euler angles: rotations slerped along
+// the shortest path (the midpoint of an exact 2x subdivision is the normalised sum of the two
+// sign-aligned quaternions, which is what slerp gives at 1/2, without its transcendentals), translations
+// linear, a fraction of 0 a copy. Same schedule as resampleMotion (resampleSchedule), so that
+// localPoses(resampleMotion(m, fps)) equals resampleLocalPoses(localPoses(m), m.frame_time, fps) to
+// rounding (1e-12 rad, 1e-12 relative), except on joints with two rotation channels, to which
+// resampleMotion gives the projection of the slerp. source_frame_time in seconds, target in frames per
+// second; translations keep their units. std::invalid_argument as resampleSchedule, and for poses whose
+// arrays do not match frames x joints.
+LocalPoses resampleLocalPoses(const LocalPoses& poses, double source_frame_time, double target_fps);
 
 // Linear resampling of a per-frame matrix (one ROW per frame, e.g. world positions or features) with
 // the same timing rules. Do not use it for angles (they wrap) or quaternions (use slerp).

@@ -1,6 +1,9 @@
 #include "motion/rotation.h"
 
+#include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -13,6 +16,71 @@ constexpr double kRadiansPerDegree = std::numbers::pi / 180.0;
 // |cos(middle angle)| below this counts as gimbal lock: only there do the first and third angles trade
 // off freely without moving the rotation by more than ~1e-12 rad.
 constexpr double kGimbalLockCosine = 1e-12;
+
+// sin and cos of HALF an angle given in degrees, branch-free so that loops over it vectorise.
+// The half angle h is split as h = 90 q + r with q whole and |r| <= 45 (+ rounding): q comes from the
+// 1.5 * 2^52 rounding trick (its low bits are q mod 4), and r = h - 90 q is EXACT in floating point
+// (90 q is an integer, a multiple of h's ulp, and |r| <= |h|). Then sin/cos of r (in radians, at most
+// pi/4) by Taylor series: the first omitted terms, x^19/19! and x^18/18!, are below 1e-17, under half an
+// ulp. Valid for angles below 2^50 degrees; larger ones go through halfAngleSinCosLarge.
+struct SinCos {
+  double sin, cos;
+};
+
+constexpr double kRoundingShifter = 0x1.8p52;
+constexpr double kLargeHalfAngle = 0x1p50;  // degrees
+
+// Taylor coefficients (-1)^n / (2n + first)!, n = 0 .. N - 1: sin uses first = 3 (x^3 .. x^17 after x),
+// cos uses first = 2 (x^2 .. x^16 after 1).
+template <size_t N>
+constexpr std::array<double, N> taylorCoefficients(int first) {
+  std::array<double, N> coefficients{};
+  double factorial = 1.0;  // exact: 17! < 2^53
+  for (int k = 2; k < first; ++k) factorial *= k;
+  for (size_t n = 0; n < N; ++n) {
+    const int power = first + 2 * static_cast<int>(n);
+    factorial *= power;
+    if (n > 0) factorial *= power - 1;
+    coefficients[n] = (n % 2 == 0 ? -1.0 : 1.0) / factorial;
+  }
+  return coefficients;
+}
+constexpr std::array<double, 8> kSineTaylor = taylorCoefficients<8>(3);
+constexpr std::array<double, 8> kCosineTaylor = taylorCoefficients<8>(2);
+
+// sum_n coefficients[n] z^n, by Horner's rule.
+template <size_t N>
+inline double horner(const std::array<double, N>& coefficients, double z) {
+  double sum = coefficients[N - 1];
+  for (size_t n = N - 1; n-- > 0;) sum = sum * z + coefficients[n];
+  return sum;
+}
+
+inline SinCos halfAngleSinCosSmall(double degrees) {
+  const double half = 0.5 * degrees;
+  const double shifted = half * (1.0 / 90.0) + kRoundingShifter;
+  const double quadrant = shifted - kRoundingShifter;
+  const auto quadrant_bits = std::bit_cast<std::uint64_t>(shifted);
+  const double x = (half - 90.0 * quadrant) * kRadiansPerDegree;
+  const double z = x * x;
+  const double s = x + x * z * horner(kSineTaylor, z);
+  const double c = 1.0 + z * horner(kCosineTaylor, z);
+  // h = r + 90 q: quadrant 1 gives (cos r, -sin r), 2 gives (-sin r, -cos r), 3 gives (-cos r, sin r).
+  const bool swap = (quadrant_bits & 1u) != 0;
+  const std::uint64_t sin_sign = (quadrant_bits & 2u) << 62;
+  const std::uint64_t cos_sign = ((quadrant_bits + 1u) & 2u) << 62;
+  const double sine = swap ? c : s;
+  const double cosine = swap ? s : c;
+  return {std::bit_cast<double>(std::bit_cast<std::uint64_t>(sine) ^ sin_sign),
+          std::bit_cast<double>(std::bit_cast<std::uint64_t>(cosine) ^ cos_sign)};
+}
+
+// Any finite angle: whole turns (720 degrees of the full angle) removed exactly first.
+SinCos halfAngleSinCosLarge(double degrees) { return halfAngleSinCosSmall(std::fmod(degrees, 720.0)); }
+
+SinCos halfAngleSinCosOf(double degrees) {
+  return std::abs(degrees) < kLargeHalfAngle ? halfAngleSinCosSmall(degrees) : halfAngleSinCosLarge(degrees);
+}
 
 // Maps degrees into (-180, 180].
 double wrapPrincipal(double degrees) {
@@ -207,16 +275,45 @@ RotationAxes RotationAxes::of(const std::vector<ChannelType>& channels) {
 }
 
 Eigen::Quaterniond axisRotation(int axis, double degrees) {
-  const double half = 0.5 * degrees * kRadiansPerDegree;
-  Eigen::Quaterniond q(std::cos(half), 0.0, 0.0, 0.0);
-  q.vec()[axis] = std::sin(half);
+  const SinCos half = halfAngleSinCosOf(degrees);
+  Eigen::Quaterniond q(half.cos, 0.0, 0.0, 0.0);
+  q.vec()[axis] = half.sin;
   return q;
+}
+
+void halfAngleSinCos(std::span<const double> degrees, std::span<double> sines, std::span<double> cosines) {
+  if (sines.size() != degrees.size() || cosines.size() != degrees.size())
+    throw std::invalid_argument("halfAngleSinCos: " + std::to_string(degrees.size()) + " angles but " +
+                                std::to_string(sines.size()) + " sines and " + std::to_string(cosines.size()) +
+                                " cosines");
+  const size_t n = degrees.size();
+  bool large = false;
+  for (size_t i = 0; i < n; ++i) large |= !(std::abs(degrees[i]) < kLargeHalfAngle);  // also NaN
+  if (large) {
+    for (size_t i = 0; i < n; ++i) {
+      const SinCos value = halfAngleSinCosOf(degrees[i]);
+      sines[i] = value.sin;
+      cosines[i] = value.cos;
+    }
+    return;
+  }
+  const double* in = degrees.data();
+  double* sin_out = sines.data();
+  double* cos_out = cosines.data();
+  for (size_t i = 0; i < n; ++i) {
+    const SinCos value = halfAngleSinCosSmall(in[i]);
+    sin_out[i] = value.sin;
+    cos_out[i] = value.cos;
+  }
 }
 
 Eigen::Quaterniond eulerToQuaternion(const Eigen::Vector3d& degrees, const RotationAxes& axes) {
   checkAxes(axes);
   Eigen::Quaterniond q = Eigen::Quaterniond::Identity();
-  for (int n = 0; n < axes.count; ++n) q = q * axisRotation(axes.axis[n], degrees[n]);
+  for (int n = 0; n < axes.count; ++n) {
+    const SinCos half = halfAngleSinCosOf(degrees[n]);
+    q = composeAxisRotation(q, axes.axis[static_cast<size_t>(n)], half.cos, half.sin);
+  }
   return q;
 }
 

@@ -50,6 +50,11 @@ expect 0 '"unit"' "$cli" info --json "$data/cmu_131_01.bvh"
 expect 0 "wrote" "$cli" convert "$data/cmu_131_01.bvh" "$work/cmu60.bvh" --fps 60
 expect 0 "360 at 60 fps" "$cli" info "$work/cmu60.bvh"
 
+expect 2 "garbage.bvh:1:" "$cli" cleanup "$work/garbage.bvh" --out "$work/clean.bvh"
+expect 0 "foot skate" "$cli" cleanup "$data/zombie.bvh" --out "$work/clean.bvh" --metrics "$work/clean.json"
+expect 0 "27 (+7 end sites)" "$cli" info "$work/clean.bvh"
+grep -q '"cleaned"' "$work/clean.json" || { echo "FAIL: no cleaned metrics"; failures=$((failures + 1)); }
+
 # A failed convert never leaves a half-written output: the old file survives.
 printf 'precious\n' >"$work/keep.bvh"
 expect 2 "" "$cli" convert "$work/garbage.bvh" "$work/keep.bvh"

@@ -57,6 +57,39 @@ void expectRoundTrip(const std::string& name) {
 TEST(Representation, RoundTripCmuWalk) { expectRoundTrip("cmu_131_01.bvh"); }
 TEST(Representation, RoundTripZombieZUp) { expectRoundTrip("zombie.bvh"); }
 
+TEST(Representation, CanonicalJointPositionsAreTheMappedColumnsOfForwardKinematics) {
+  const Motion motion = readBvh(test::fixture("zombie.bvh"));
+  const JointMapping mapping = mapJoints(motion.skeleton);
+  const Eigen::MatrixXd canonical = canonicalJointPositions(motion, mapping);
+  const Eigen::MatrixXd all = worldPositions(motion);
+  ASSERT_EQ(canonical.rows(), all.rows());
+  ASSERT_EQ(canonical.cols(), 3 * kCanonicalJointCount);
+  for (int c = 0; c < kCanonicalJointCount; ++c)
+    EXPECT_LT((canonical.middleCols<3>(3 * c) - all.middleCols<3>(3 * mapping.joints[static_cast<size_t>(c)])).cwiseAbs().maxCoeff(),
+              1e-10)
+        << "canonical joint " << c;
+}
+
+// extractFeatures resamples local transforms (resampleLocalPoses); going through resampleMotion's Euler
+// angles first must give the same features and anchor, to rounding: 30 -> 60 fps (zombie, the
+// midpoint path) and 120 -> 60 fps (CMU, decimation).
+TEST(Representation, ResamplingInsideEqualsResamplingTheMotionFirst) {
+  for (const std::string name : {"zombie.bvh", "cmu_131_01.bvh"}) {
+    const Motion motion = readBvh(test::fixture(name));
+    const JointMapping mapping = mapJoints(motion.skeleton, name);
+    const MotionFeatures inside = extractFeatures(motion, mapping);
+    const MotionFeatures first = extractFeatures(resampleMotion(motion, kDefaultFeatureFps), mapping);
+    ASSERT_EQ(inside.frameCount(), first.frameCount()) << name;
+    EXPECT_LT((inside.values - first.values).cwiseAbs().maxCoeff(), 1e-9) << name;
+    EXPECT_EQ(inside.contacts, first.contacts) << name;
+    EXPECT_NEAR(inside.anchor.scale, first.anchor.scale, 1e-12) << name;
+    EXPECT_NEAR(inside.anchor.floor_height, first.anchor.floor_height, 1e-9) << name;
+    EXPECT_NEAR(inside.anchor.start_heading, first.anchor.start_heading, 1e-12) << name;
+    EXPECT_LT((inside.anchor.start_root - first.anchor.start_root).cwiseAbs().maxCoeff(), 1e-9) << name;
+    EXPECT_EQ(inside.anchor.convention.up_axis, first.anchor.convention.up_axis) << name;
+  }
+}
+
 TEST(Representation, FeaturesAreInvariantToWhereTheClipIsOnTheFloor) {
   // Turning the whole clip about the up axis and moving it on the floor changes only the anchor.
   Motion motion = readBvh(test::fixture("cmu_131_01.bvh"));

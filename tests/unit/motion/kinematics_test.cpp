@@ -7,6 +7,7 @@
 #include <limits>
 #include <numbers>
 #include <stdexcept>
+#include <vector>
 
 #include "motion/kinematics.h"
 #include "motion/rotation.h"
@@ -93,6 +94,19 @@ TEST(KinematicsInvalid, WorldQueriesRejectPosesOfAnotherShape) {
   Skeleton misordered = m.skeleton;
   misordered.joints[1].parent = 2;
   EXPECT_THROW(worldPositions(misordered, poses), std::invalid_argument);
+}
+
+TEST(KinematicsInvalid, PartialWorldPositionsRejectUnknownJointsAndPosesOfAnotherShape) {
+  const Motion m = handChain();
+  const LocalPoses poses = localPoses(m);
+  EXPECT_THROW(worldPositions(m.skeleton, poses, std::vector<int>{0, 4}), std::invalid_argument);
+  EXPECT_THROW(worldPositions(m.skeleton, poses, std::vector<int>{-1}), std::invalid_argument);
+  LocalPoses short_translations = poses;
+  short_translations.translations.pop_back();
+  EXPECT_THROW(worldPositions(m.skeleton, short_translations, std::vector<int>{3}), std::invalid_argument);
+  Skeleton misordered = m.skeleton;
+  misordered.joints[1].parent = 2;
+  EXPECT_THROW(worldPositions(misordered, poses, std::vector<int>{3}), std::invalid_argument);
 }
 
 TEST(KinematicsInvalid, SetLocalPosesRejectsWhatTheChannelsCannotHoldAndLeavesTheMotionUnchanged) {
@@ -209,6 +223,37 @@ TEST(ForwardKinematics, WorldRotationsAgreeWithWorldPositions) {
       EXPECT_LT(rotationDistance(rotations[poses.at(f, j)], rotations[poses.at(f, p)] * poses.rotation(f, j)), 1e-12);
     }
   }
+}
+
+TEST(ForwardKinematics, PartialWorldPositionsMatchTheIndependentProductForAnySelection) {
+  // 21 frames: two whole blocks of 8 and a partial one. Selections: every joint, leaves only (their
+  // ancestors are visited but not returned), a joint twice, out of order, none.
+  const Motion m = test::randomMotion(test::mixedSkeleton(), 21, 23, 40.0);
+  const LocalPoses poses = localPoses(m);
+  const Eigen::MatrixXd full = referenceWorldPositions(m);
+  std::vector<int> every(static_cast<size_t>(m.skeleton.jointCount()));
+  for (size_t j = 0; j < every.size(); ++j) every[j] = static_cast<int>(j);
+  const int leaf = m.skeleton.find("C_YXZ_End"), other_leaf = m.skeleton.find("K_NoChannels_End");
+  const int middle = m.skeleton.find("E_ZXY");
+  for (const std::vector<int>& wanted : {every, std::vector<int>{leaf, other_leaf}, std::vector<int>{middle, 0, middle},
+                                         std::vector<int>{other_leaf, leaf, middle}, std::vector<int>{}}) {
+    const Eigen::MatrixXd partial = worldPositions(m.skeleton, poses, wanted);
+    ASSERT_EQ(partial.rows(), full.rows());
+    ASSERT_EQ(partial.cols(), 3 * static_cast<Eigen::Index>(wanted.size()));
+    for (size_t n = 0; n < wanted.size(); ++n) {
+      const auto column = 3 * static_cast<Eigen::Index>(n);
+      EXPECT_LT((partial.middleCols<3>(column) - full.middleCols<3>(3 * wanted[n])).cwiseAbs().maxCoeff(), 1e-10)
+          << "joint " << wanted[n];
+    }
+  }
+}
+
+TEST(ForwardKinematics, PartialWorldPositionsOfZeroFramesAreEmpty) {
+  Motion m = handChain();
+  m.values.resize(0, 12);
+  const Eigen::MatrixXd world = worldPositions(m.skeleton, localPoses(m), std::vector<int>{3, 1});
+  EXPECT_EQ(world.rows(), 0);
+  EXPECT_EQ(world.cols(), 6);
 }
 
 TEST(ForwardKinematics, ZeroFramesGiveAnEmptyResult) {

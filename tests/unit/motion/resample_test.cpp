@@ -3,11 +3,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
-#include <tuple>
 #include <stdexcept>
+#include <tuple>
+#include <utility>
+#include <vector>
 
 #include "motion/kinematics.h"
 #include "motion/resample.h"
@@ -49,6 +52,27 @@ TEST(ResampleInvalid, RejectsEmptyAndInvalidMotions) {
   EXPECT_THROW(resampleRowsLinear(Eigen::MatrixXd(0, 3), 1.0 / 30.0, 60.0), std::invalid_argument);
   EXPECT_THROW(resampleRowsLinear(Eigen::MatrixXd::Zero(4, 3), 0.0, 60.0), std::invalid_argument);
   EXPECT_THROW(resampleSchedule(4, 1.0 / 30.0, std::numeric_limits<double>::quiet_NaN()), std::invalid_argument);
+}
+
+TEST(ResampleInvalid, ResampleLocalPosesRejectsPosesOfAnotherShapeAndBadRates) {
+  const LocalPoses poses = localPoses(mixedAt(30.0, 5, 1));
+  LocalPoses short_rotations = poses;
+  short_rotations.rotations.pop_back();
+  EXPECT_THROW(resampleLocalPoses(short_rotations, 1.0 / 30.0, 60.0), std::invalid_argument);
+  LocalPoses no_joints = poses;
+  no_joints.joints = 0;
+  EXPECT_THROW(resampleLocalPoses(no_joints, 1.0 / 30.0, 60.0), std::invalid_argument);
+  LocalPoses negative = poses;
+  negative.frames = -5;
+  EXPECT_THROW(resampleLocalPoses(negative, 1.0 / 30.0, 60.0), std::invalid_argument);
+  LocalPoses empty = poses;
+  empty.frames = 0;
+  empty.rotations.clear();
+  empty.translations.clear();
+  EXPECT_THROW(resampleLocalPoses(empty, 1.0 / 30.0, 60.0), std::invalid_argument);
+  EXPECT_THROW(resampleLocalPoses(poses, 0.0, 60.0), std::invalid_argument);
+  EXPECT_THROW(resampleLocalPoses(poses, 1.0 / 30.0, std::numeric_limits<double>::quiet_NaN()), std::invalid_argument);
+  EXPECT_THROW(resampleLocalPoses(poses, 1.0 / 30.0, 30.0 * 101.0), std::invalid_argument);
 }
 
 // ---- timing --------------------------------------------------------------------------------------
@@ -209,6 +233,55 @@ TEST(ResampleMotion, WorldPositionsAgreeAtSharedTimes) {
           << source_fps << " -> " << target_fps << " shared frame " << k;
     EXPECT_GE(shared, 5);
   }
+}
+
+// resampleLocalPoses must be resampleMotion without the trip through Euler angles: same frames, same
+// rotations (to rounding) and translations, for subdivision (its midpoint shortcut), a non-integer
+// ratio (slerp), decimation (copies) and the same rate. Two-axis joints are left out: resampleMotion
+// projects their slerp onto the two axes (TwoAxisJointsGetTheProjectionOfTheSlerp).
+TEST(ResampleLocalPoses, EqualsTheLocalPosesOfTheResampledMotion) {
+  for (const auto& [source_fps, target_fps] :
+       {std::pair{30.0, 60.0}, std::pair{30.0, 120.0}, std::pair{120.0, 50.0}, std::pair{120.0, 60.0}, std::pair{30.0, 30.0}}) {
+    const Motion m = mixedAt(source_fps, 37, 9);
+    const LocalPoses direct = resampleLocalPoses(localPoses(m), m.frame_time, target_fps);
+    const LocalPoses via_motion = localPoses(resampleMotion(m, target_fps));
+    ASSERT_EQ(direct.frames, via_motion.frames) << source_fps << " -> " << target_fps;
+    ASSERT_EQ(direct.joints, via_motion.joints);
+    const int two_axes = m.skeleton.find("H_TwoAxes");
+    double worst_rotation = 0.0, worst_translation = 0.0;
+    for (int f = 0; f < direct.frames; ++f) {
+      for (int j = 0; j < direct.joints; ++j) {
+        if (j == two_axes) continue;
+        worst_rotation = std::max(worst_rotation, rotationDistance(direct.rotation(f, j), via_motion.rotation(f, j)));
+        worst_translation =
+            std::max(worst_translation, (direct.translation(f, j) - via_motion.translation(f, j)).cwiseAbs().maxCoeff());
+        ASSERT_NEAR(direct.rotation(f, j).norm(), 1.0, 1e-15);
+      }
+    }
+    EXPECT_LT(worst_rotation, 1e-12) << source_fps << " -> " << target_fps;
+    EXPECT_LT(worst_translation, 1e-12) << source_fps << " -> " << target_fps;
+  }
+}
+
+TEST(ResampleLocalPoses, MidpointIsTheSlerpAtOneHalfAlsoBetweenOppositeSigns) {
+  // Two frames of two joints; joint 1's second quaternion is stored negated (the same rotation), which
+  // the midpoint must treat as the short way, as slerp does.
+  LocalPoses poses;
+  poses.frames = 2;
+  poses.joints = 2;
+  const Eigen::Quaterniond a = eulerToQuaternion(Eigen::Vector3d(10, 70, -30), EulerOrder::ZXY);
+  const Eigen::Quaterniond b = eulerToQuaternion(Eigen::Vector3d(40, 20, 100), EulerOrder::ZXY);
+  poses.rotations = {a, b, b, Eigen::Quaterniond(-a.coeffs())};
+  poses.translations = {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 2, 3), Eigen::Vector3d(4, 6, 8), Eigen::Vector3d(-1, 0, 1)};
+  const LocalPoses up = resampleLocalPoses(poses, 1.0 / 30.0, 60.0);
+  ASSERT_EQ(up.frames, 3);
+  EXPECT_LT((up.rotation(1, 0).coeffs() - a.slerp(0.5, b).coeffs()).cwiseAbs().maxCoeff(), 1e-15);
+  EXPECT_LT(rotationDistance(up.rotation(1, 1), b.slerp(0.5, a)), 1e-15);
+  EXPECT_LT(rotationDistance(up.rotation(1, 1), up.rotation(1, 0)), 1e-15);  // b..a is a..b backwards
+  EXPECT_EQ(up.translation(1, 0), Eigen::Vector3d(2, 3, 4));
+  EXPECT_EQ(up.translation(1, 1), Eigen::Vector3d(0, 1, 2));
+  EXPECT_EQ(up.rotation(0, 0).coeffs(), a.coeffs());  // fraction 0: copies
+  EXPECT_EQ(up.rotation(2, 1).coeffs(), (-a.coeffs()).eval());
 }
 
 TEST(ResampleRowsLinear, ReproducesALinearSignalAtTheNewTimes) {

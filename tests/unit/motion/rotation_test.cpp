@@ -57,6 +57,12 @@ TEST(RotationInvalid, RejectsZeroAndNonFiniteQuaternions) {
                std::invalid_argument);
 }
 
+TEST(RotationInvalid, HalfAngleSinCosRejectsSpansOfDifferentSizes) {
+  std::vector<double> degrees(3, 10.0), sines(3), cosines(2);
+  EXPECT_THROW(halfAngleSinCos(degrees, sines, cosines), std::invalid_argument);
+  EXPECT_THROW(halfAngleSinCos(degrees, cosines, sines), std::invalid_argument);
+}
+
 // ---- convention ----------------------------------------------------------------------------------
 
 TEST(RotationConvention, ChannelsComposeInFileOrderRightHanded) {
@@ -289,6 +295,75 @@ TEST(RotationDistance, MeasuresTheAngleBetweenRotations) {
   EXPECT_NEAR(rotationDistance(axisRotation(2, 10.0), axisRotation(2, 40.0)), 30.0 * kRadians, 1e-12);
   EXPECT_NEAR(rotationDistance(axisRotation(0, 170.0), axisRotation(0, -170.0)), 20.0 * kRadians, 1e-12);
   EXPECT_NEAR(rotationDistance(axisRotation(1, 1e-7), Eigen::Quaterniond::Identity()), 1e-7 * kRadians, 1e-20);
+}
+
+// ---- batch half angles (the localPoses fast path) -----------------------------------------------
+
+// sin and cos of half of `degrees`, in long double with the whole turns removed exactly first.
+std::pair<long double, long double> referenceHalfAngle(double degrees) {
+  const long double half = std::fmod(static_cast<long double>(degrees), 720.0L) / 2.0L *
+                           (3.14159265358979323846264338327950288L / 180.0L);
+  return {std::sin(half), std::cos(half)};
+}
+
+TEST(HalfAngleSinCos, WithinAnUlpOfTheTrueValuesForAnyFiniteAngle) {
+  std::vector<double> degrees = {0.0, -0.0, 1e-300, 90.0, -90.0, 180.0, 360.0, 540.0, -720.0, 1e17, -3e20, 1e300};
+  for (int k = -64; k <= 64; ++k)  // the reduction's boundaries (half angles at multiples of 45 degrees) and beyond
+    for (double nudge : {-1e-9, 0.0, 1e-9}) degrees.push_back(90.0 * k + nudge);
+  std::mt19937 rng(41);
+  std::uniform_real_distribution<double> moderate(-5000.0, 5000.0), wide(-1e9, 1e9);
+  for (int n = 0; n < 2000; ++n) degrees.push_back(n % 2 ? moderate(rng) : wide(rng));
+  std::vector<double> sines(degrees.size()), cosines(degrees.size());
+  halfAngleSinCos(degrees, sines, cosines);
+  for (size_t n = 0; n < degrees.size(); ++n) {
+    const auto [sine, cosine] = referenceHalfAngle(degrees[n]);
+    EXPECT_NEAR(sines[n], static_cast<double>(sine), 2.5e-16) << degrees[n];
+    EXPECT_NEAR(cosines[n], static_cast<double>(cosine), 2.5e-16) << degrees[n];
+  }
+  // Exact at whole quarter turns of the half angle, since the reduction happens in degrees (in radians,
+  // cos(pi / 2) would be 6e-17).
+  EXPECT_EQ(sines[5], 1.0);    // 180 degrees
+  EXPECT_EQ(cosines[5], 0.0);
+  EXPECT_EQ(sines[6], 0.0);    // 360
+  EXPECT_EQ(cosines[6], -1.0);
+  EXPECT_EQ(sines[7], -1.0);   // 540
+  EXPECT_EQ(cosines[7], 0.0);
+  EXPECT_EQ(cosines[8], 1.0);  // -720
+}
+
+TEST(HalfAngleSinCos, NonFiniteAnglesGiveNaN) {
+  const std::vector<double> degrees = {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()};
+  std::vector<double> sines(2), cosines(2);
+  halfAngleSinCos(degrees, sines, cosines);
+  for (size_t n = 0; n < 2; ++n) {
+    EXPECT_TRUE(std::isnan(sines[n]));
+    EXPECT_TRUE(std::isnan(cosines[n]));
+  }
+}
+
+TEST(HalfAngleSinCos, AxisRotationAndEulerToQuaternionUseTheSameValues) {
+  const std::vector<double> degrees = {-250.0, 33.3, 179.0};
+  std::vector<double> sines(3), cosines(3);
+  halfAngleSinCos(degrees, sines, cosines);
+  for (size_t n = 0; n < degrees.size(); ++n) {
+    const Eigen::Quaterniond q = axisRotation(1, degrees[n]);
+    EXPECT_EQ(q.w(), cosines[n]);
+    EXPECT_EQ(q.y(), sines[n]);
+  }
+}
+
+TEST(ComposeAxisRotation, EqualsTheProductWithTheAxisQuaternion) {
+  std::mt19937 rng(42);
+  std::uniform_real_distribution<double> angle(-400.0, 400.0);
+  for (int n = 0; n < 200; ++n) {
+    const Eigen::Quaterniond q = eulerToQuaternion(Eigen::Vector3d(angle(rng), angle(rng), angle(rng)), EulerOrder::YZX);
+    const int axis = n % 3;
+    const double degrees = angle(rng);
+    const Eigen::Quaterniond expected = q * axisRotation(axis, degrees);
+    const Eigen::Quaterniond half = axisRotation(axis, degrees);
+    const Eigen::Quaterniond composed = composeAxisRotation(q, axis, half.w(), half.vec()[axis]);
+    EXPECT_LT((composed.coeffs() - expected.coeffs()).cwiseAbs().maxCoeff(), 1e-15) << "axis " << axis;
+  }
 }
 
 }  // namespace

@@ -1,0 +1,56 @@
+// motionstyle-cli eval: the JSON evaluation report of a style network on clips it never trained on.
+#include <iostream>
+
+#include "cli_args.h"
+#include "commands.h"
+#include "common/atomic_file.h"
+#include "style/evaluation.h"
+#include "style/motion_dataset.h"
+#include "style/style_pairing.h"
+#include "style/training.h"
+
+namespace motionstyle::cli {
+
+int runEval(const Args& args) {
+  const ParsedArgs parsed = parseArgs(args, {{"ae"}, {"net"}, {"style", true, true}, {"json"}, {"unit"}});
+  if (parsed.positional.empty()) throw UsageError("eval needs the clips to evaluate (files or folders)");
+  style::DatasetOptions dataset;
+  if (auto unit = parsed.value("unit")) dataset.features.unit = *unit;
+  const std::filesystem::path ae_file = parsed.required("ae");
+  const std::filesystem::path net_file = parsed.required("net");
+  const nn::AutoencoderModel autoencoder = style::loadCompatibleAutoencoder(ae_file, dataset.features);
+  const nn::StyleModel network = style::loadCompatibleStyleModel(net_file, dataset.features);
+
+  std::vector<style::StyleSource> sources;
+  for (const std::string& style : parsed.values("style")) sources.push_back(style::parseStyleSource(style));
+  if (sources.empty()) throw UsageError("eval needs --style CLIP.bvh (the style clip to measure against)");
+  style::DatasetOptions style_options = dataset;
+  style_options.minimum_frames = network.loss_network.shape().width;
+  std::vector<style::MotionClip> styles;
+  for (const style::StyleSource& source : sources) styles.push_back(style::loadMotionClip(source.file, style_options));
+
+  std::vector<std::filesystem::path> inputs(parsed.positional.begin(), parsed.positional.end());
+  const std::vector<style::MotionClip> clips = style::loadMotionClips(inputs, dataset);
+  std::vector<std::string> labels;
+  for (const style::MotionClip& clip : clips) labels.push_back(clip.labels.content);
+  const std::vector<int> pairing = style::pairStyles(labels, sources);
+
+  style::EvaluationReport report = style::evaluateStyleNetwork(autoencoder, network, clips, styles, pairing);
+  report.autoencoder_file = ae_file.string();
+  report.network_file = net_file.string();
+  const std::string json = style::evaluationJson(report);
+  if (auto file = parsed.value("json")) {
+    writeFileAtomically(*file, json);
+    const style::ClipEvaluation& m = report.mean;
+    std::cout << "evaluated " << clips.size() << " clip(s), " << m.frames << " frames: style distance "
+              << m.style_distance_before << " -> " << m.style_distance_after << ", content distance "
+              << m.content_distance_before << " -> " << m.content_distance_after << ", reconstruction "
+              << m.reconstruction_joint_error_cm << " cm, bone error " << m.bone_error_cm_output
+              << " cm, foot skate " << m.foot_skate_cm_s_output << " cm/s\nwrote " << *file << "\n";
+  } else {
+    std::cout << json;
+  }
+  return 0;
+}
+
+}  // namespace motionstyle::cli

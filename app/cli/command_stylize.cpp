@@ -1,0 +1,80 @@
+// motionstyle-cli stylize: a content clip through a trained style network (T, then the manifold
+// projection), written as BVH.
+//
+// Two steps:
+//   1. stylizedTargets(): the clip's canonical joints in the style, in the clip's file space, with the
+//      content's foot contacts, at the representation's 60 fps;
+//   2. writeStylizedOutput() (stylized_output.h): the IK clean-up onto the input's own skeleton, or
+//      with --no-cleanup the raw canonical positions.
+#include <chrono>
+#include <iostream>
+
+#include "bvh/bvh_writer.h"
+#include "cli_args.h"
+#include "commands.h"
+#include "common/errors.h"
+#include "style/motion_dataset.h"
+#include "style/position_clip.h"
+#include "style/stylizer.h"
+#include "style/training.h"
+#include "stylized_output.h"
+
+namespace motionstyle::cli {
+namespace {
+
+struct StylizeRequest {
+  std::filesystem::path network;
+  std::optional<std::filesystem::path> autoencoder;  // checked against the network's own loss network
+  std::filesystem::path input;
+  double strength = 1.0;
+  style::DatasetOptions dataset;
+};
+
+bool sameLossNetwork(const nn::Autoencoder<float>& a, const nn::Autoencoder<float>& b) {
+  return a.shape() == b.shape() && a.encoder.weight.value == b.encoder.weight.value &&
+         a.encoder.bias.value == b.encoder.bias.value && a.decoder.weight.value == b.decoder.weight.value;
+}
+
+style::StylizedClip stylizedTargets(const StylizeRequest& request, double& seconds) {
+  nn::StyleModel model = style::loadCompatibleStyleModel(request.network, request.dataset.features);
+  if (request.autoencoder) {
+    const nn::AutoencoderModel autoencoder = style::loadCompatibleAutoencoder(*request.autoencoder, request.dataset.features);
+    if (!sameLossNetwork(autoencoder.network, model.loss_network))
+      throw InputError(request.network.string(), 0,
+                       "this style network was trained against another loss network than " +
+                           request.autoencoder->string() + " (it embeds its own; omit --ae to use it)");
+  }
+  const style::MotionClip clip = style::loadMotionClip(request.input, request.dataset);
+  const style::Stylizer stylizer(std::move(model));
+  const auto start = std::chrono::steady_clock::now();
+  style::StylizedClip result = stylizer.stylize(clip.features, request.strength);
+  seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace
+
+int runStylize(const Args& args) {
+  std::vector<OptionSpec> specs = {{"ae"}, {"net"}, {"out"}, {"strength"}, {"unit"}};
+  for (const OptionSpec& spec : outputOptionSpecs()) specs.push_back(spec);
+  const ParsedArgs parsed = parseArgs(args, specs);
+  const OutputOptions output_options = outputOptions(parsed);
+  if (parsed.positional.size() != 1) throw UsageError("stylize needs exactly one input clip IN.bvh");
+  StylizeRequest request;
+  request.network = parsed.required("net");
+  if (auto ae = parsed.value("ae")) request.autoencoder = *ae;
+  request.input = parsed.positional[0];
+  request.strength = parsed.number("strength", 1.0);
+  if (!(request.strength >= 0.0 && request.strength <= 1.0)) throw UsageError("--strength must be in [0, 1]");
+  if (auto unit = parsed.value("unit")) request.dataset.features.unit = *unit;
+  const std::filesystem::path output = parsed.required("out");
+
+  double seconds = 0;
+  const style::StylizedClip clip = stylizedTargets(request, seconds);
+  std::cout << "stylized " << clip.frameCount() << " frames (60 fps) at strength " << request.strength << " in "
+            << seconds * 1000.0 << " ms\n";
+  writeStylizedOutput(request.input, clip, output_options, output, std::cout);
+  return 0;
+}
+
+}  // namespace motionstyle::cli

@@ -1,0 +1,48 @@
+// motionstyle-cli train-ae: trains the loss network (autoencoder) on a motion database.
+#include <iostream>
+
+#include "cli_args.h"
+#include "commands.h"
+#include "progress_bar.h"
+#include "style/training.h"
+
+namespace motionstyle::cli {
+
+int runTrainAutoencoder(const Args& args) {
+  std::vector<OptionSpec> specs = trainingOptionSpecs();
+  specs.push_back({"data", true, true});
+  specs.push_back({"sparsity"});
+  specs.push_back({"dropout"});
+  const ParsedArgs parsed = parseArgs(args, specs);
+
+  style::AutoencoderTrainingConfig config;
+  config.settings = trainingSettings(parsed, 1e-3);
+  for (const std::string& data : parsed.values("data")) config.data.emplace_back(data);
+  for (const std::string& data : parsed.positional) config.data.emplace_back(data);  // --data A B C
+  if (config.data.empty()) throw UsageError("train-ae needs --data DIR (folders or .bvh files)");
+  config.shape.hidden = parsed.integer("hidden", config.shape.hidden);
+  if (config.shape.hidden < 1 || config.shape.hidden > 4096) throw UsageError("--hidden must be in [1, 4096]");
+  config.sparsity = parsed.number("sparsity", config.sparsity);
+  config.dropout = parsed.number("dropout", config.dropout);
+  if (config.sparsity < 0) throw UsageError("--sparsity must be >= 0");
+  if (config.dropout < 0 || config.dropout >= 1) throw UsageError("--dropout must be in [0, 1)");
+
+  InterruptGuard guard;
+  ProgressBar bar(std::cout, ProgressBar::stdoutIsTerminal());
+  TrainingReporter reporter(bar);
+  style::TrainingCallbacks callbacks;
+  callbacks.progress = [&](const style::TrainingProgress& p) { reporter(p); };
+  callbacks.log = [&](const std::string& text) { bar.line(text); };
+  callbacks.cancel = guard.flag();
+  try {
+    const style::AutoencoderTrainingResult result = style::trainAutoencoder(config, callbacks);
+    return reportTraining(result, config.settings, guard, bar);
+  } catch (const style::TrainingDiverged& error) {
+    bar.finish();
+    std::cerr << "error: " << error.what() << "\nthe last good checkpoint (if any) is kept: "
+              << config.settings.checkpointPath().string() << "\n";
+    return 1;
+  }
+}
+
+}  // namespace motionstyle::cli

@@ -1,0 +1,82 @@
+// motionstyle-cli train-style: trains one style network against a loss network.
+#include <iostream>
+#include <sstream>
+
+#include "cli_args.h"
+#include "commands.h"
+#include "progress_bar.h"
+#include "style/training.h"
+
+namespace motionstyle::cli {
+namespace {
+
+// "content=1,style=100,foot=F,bone=B,traj=R": any subset, any order; unnamed terms keep the
+// nn::LossWeights defaults (style_loss.h).
+nn::LossWeights parseWeights(const std::string& text) {
+  nn::LossWeights weights;
+  std::stringstream items(text);
+  std::string item;
+  while (std::getline(items, item, ',')) {
+    const std::size_t equals = item.find('=');
+    if (equals == std::string::npos) throw UsageError("--weights expects NAME=VALUE pairs, got '" + item + "'");
+    const std::string name = item.substr(0, equals);
+    double value = 0;
+    try {
+      std::size_t used = 0;
+      value = std::stod(item.substr(equals + 1), &used);
+      if (used != item.size() - equals - 1) throw std::invalid_argument(item);
+    } catch (const std::exception&) {
+      throw UsageError("--weights: '" + item + "' is not NAME=NUMBER");
+    }
+    if (!(value >= 0.0) || !std::isfinite(value)) throw UsageError("--weights: " + name + " must be finite and >= 0");
+    if (name == "content") weights.content = value;
+    else if (name == "style") weights.style = value;
+    else if (name == "foot") weights.foot = value;
+    else if (name == "bone") weights.bone = value;
+    else if (name == "traj" || name == "trajectory") weights.trajectory = value;
+    else throw UsageError("--weights: unknown term '" + name + "' (content, style, foot, bone, traj)");
+  }
+  return weights;
+}
+
+}  // namespace
+
+int runTrainStyle(const Args& args) {
+  std::vector<OptionSpec> specs = trainingOptionSpecs();
+  specs.push_back({"ae"});
+  specs.push_back({"content", true, true});
+  specs.push_back({"style", true, true});
+  specs.push_back({"weights"});
+  const ParsedArgs parsed = parseArgs(args, specs);
+
+  style::StyleTrainingConfig config;
+  config.settings = trainingSettings(parsed, 1e-3);
+  config.autoencoder = parsed.required("ae");
+  for (const std::string& content : parsed.values("content")) config.content.emplace_back(content);
+  for (const std::string& content : parsed.positional) config.content.emplace_back(content);  // --content A B
+  if (config.content.empty()) throw UsageError("train-style needs --content DIR (folders or .bvh files)");
+  for (const std::string& style : parsed.values("style")) config.styles.push_back(style::parseStyleSource(style));
+  if (config.styles.empty()) throw UsageError("train-style needs --style CLIP.bvh (or --style LABEL=CLIP.bvh)");
+  if (auto weights = parsed.value("weights")) config.weights = parseWeights(*weights);
+  config.shape.hidden = parsed.integer("hidden", config.shape.hidden);
+  if (config.shape.hidden < 1 || config.shape.hidden > 4096) throw UsageError("--hidden must be in [1, 4096]");
+
+  InterruptGuard guard;
+  ProgressBar bar(std::cout, ProgressBar::stdoutIsTerminal());
+  TrainingReporter reporter(bar);
+  style::TrainingCallbacks callbacks;
+  callbacks.progress = [&](const style::TrainingProgress& p) { reporter(p); };
+  callbacks.log = [&](const std::string& text) { bar.line(text); };
+  callbacks.cancel = guard.flag();
+  try {
+    const style::StyleTrainingResult result = style::trainStyleNetwork(config, callbacks);
+    return reportTraining(result, config.settings, guard, bar);
+  } catch (const style::TrainingDiverged& error) {
+    bar.finish();
+    std::cerr << "error: " << error.what() << "\nthe last good checkpoint (if any) is kept: "
+              << config.settings.checkpointPath().string() << "\n";
+    return 1;
+  }
+}
+
+}  // namespace motionstyle::cli

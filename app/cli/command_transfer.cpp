@@ -1,0 +1,78 @@
+// motionstyle-cli transfer: the optimisation method (Holden et al. 2016) for one content clip and one
+// style clip, no trained style network needed. Output as stylize (positions-only until the IK clean-up).
+#include <iostream>
+
+#include "cli_args.h"
+#include "commands.h"
+#include "stylized_output.h"
+#include "progress_bar.h"
+#include "style/motion_dataset.h"
+#include "style/optimization_transfer.h"
+#include "style/training.h"
+
+namespace motionstyle::cli {
+
+
+int runTransfer(const Args& args) {
+  const ParsedArgs parsed = parseArgs(args, {{"ae"},
+                                             {"style"},
+                                             {"out"},
+                                             {"iterations"},
+                                             {"constraint-iterations"},
+                                             {"style-weight"},
+                                             {"lr"},
+                                             {"noise-start", false},
+                                             {"unit"},
+                                             {"no-cleanup", false},
+                                             {"metrics"},
+                                             {"fps"}});
+  const OutputOptions output_options = outputOptions(parsed);
+  if (parsed.positional.size() != 1) throw UsageError("transfer needs exactly one input clip IN.bvh");
+  style::OptimizationOptions options;
+  options.iterations = parsed.integer("iterations", options.iterations);
+  options.constraint_iterations = parsed.integer("constraint-iterations", options.constraint_iterations);
+  options.style_weight = parsed.number("style-weight", options.style_weight);
+  options.learning_rate = parsed.number("lr", options.learning_rate);
+  options.start_from_noise = parsed.has("noise-start");
+  if (options.iterations < 0 || options.iterations > 100000 || options.constraint_iterations < 0 ||
+      options.constraint_iterations > 100000)
+    throw UsageError("--iterations and --constraint-iterations must be in [0, 100000]");
+  if (!(options.style_weight >= 0.0)) throw UsageError("--style-weight must be >= 0");
+  if (!(options.learning_rate > 0.0)) throw UsageError("--lr must be > 0");
+  style::DatasetOptions dataset;
+  if (auto unit = parsed.value("unit")) dataset.features.unit = *unit;
+  const std::filesystem::path output = parsed.required("out");
+
+  const nn::AutoencoderModel autoencoder = style::loadCompatibleAutoencoder(parsed.required("ae"), dataset.features);
+  const std::filesystem::path style_file = parsed.required("style");
+  const style::MotionClip content = style::loadMotionClip(parsed.positional[0], dataset);
+  const style::MotionClip style_clip = style::loadMotionClip(style_file, dataset);
+
+  InterruptGuard guard;
+  ProgressBar bar(std::cout, ProgressBar::stdoutIsTerminal());
+  const int total = options.iterations + options.constraint_iterations;
+  style::OptimizationCallbacks callbacks;
+  callbacks.cancel = guard.flag();
+  callbacks.progress = [&](const style::OptimizationProgress& p) {
+    const int done = (p.stage == "style" ? 0 : options.iterations) + p.iteration;
+    const double eta = p.elapsed_seconds / done * (total - done);
+    bar.update(static_cast<double>(done) / total,
+               p.stage + " " + std::to_string(p.iteration) + "/" + std::to_string(p.iterations) + "  ETA " +
+                   formatDuration(eta) + "  " +
+                   formatLosses(p.total, {{"content", p.content}, {"style", p.style}, {"foot", p.foot},
+                                          {"bone", p.bone}, {"trajectory", p.trajectory}}),
+               done == total);
+  };
+  const style::OptimizationResult result =
+      style::optimizeStyleTransfer(autoencoder, content.features, style_clip.features, style_file.string(), options, callbacks);
+  bar.finish();
+  if (result.cancelled) {
+    std::cout << "interrupted: nothing written\n";
+    return kInterruptedExitCode;
+  }
+  std::cout << "optimised in " << formatDuration(result.seconds) << "\n";
+  writeStylizedOutput(parsed.positional[0], result.clip, output_options, output, std::cout);
+  return 0;
+}
+
+}  // namespace motionstyle::cli

@@ -1,0 +1,73 @@
+#include "stylized_output.h"
+
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+#include "bvh/bvh_reader.h"
+#include "bvh/bvh_writer.h"
+#include "common/atomic_file.h"
+#include "ik/metrics.h"
+#include "motion/kinematics.h"
+#include "motion/resample.h"
+#include "style/position_clip.h"
+#include "style/stylized_cleanup.h"
+
+namespace motionstyle::cli {
+
+std::vector<OptionSpec> outputOptionSpecs() { return {{"no-cleanup", false}, {"metrics"}, {"fps"}}; }
+
+OutputOptions outputOptions(const ParsedArgs& parsed) {
+  OutputOptions options;
+  options.cleanup = !parsed.has("no-cleanup");
+  if (auto metrics = parsed.value("metrics")) options.metrics = *metrics;
+  options.fps = parsed.number("fps", 0.0);
+  if (parsed.has("fps") && !(options.fps > 0.0 && options.fps <= 1000.0)) throw UsageError("--fps must be in (0, 1000]");
+  return options;
+}
+
+void writeStylizedOutput(const std::filesystem::path& content_file, const style::StylizedClip& stylized,
+                         const OutputOptions& options, const std::filesystem::path& output, std::ostream& log) {
+  if (!options.cleanup) {
+    Motion positions = style::canonicalPositionsMotion(stylized.world_positions, stylized.fps, output.string());
+    if (options.fps > 0.0) positions = resampleMotion(positions, options.fps);
+    writeBvh(positions, output);
+    if (options.metrics) {
+      MetricsInput raw(stylized.world_positions, identityCanonicalJoints());
+      raw.contacts = (stylized.contacts.transpose().array() > 0.5).cast<int>().matrix();
+      raw.up = stylized.anchor.convention.fileUp();
+      raw.floor_height = style::fileFloorHeight(stylized.anchor);
+      raw.cm_per_unit = stylized.anchor.convention.cm_per_unit;
+      raw.fps = stylized.fps;
+      nlohmann::ordered_json json;
+      json["raw"] = nlohmann::json::parse(metricsToJson(computeMetrics(raw)));
+      writeFileAtomically(*options.metrics, json.dump(2) + "\n");
+    }
+    log << "wrote " << output.string() << ": " << positions.frameCount() << " frames at " << positions.fps()
+        << " fps (raw positions of the 21 canonical joints; no clean-up)\n";
+    return;
+  }
+  const Motion content = readBvh(content_file);
+  const JointMapping mapping = mapJoints(content.skeleton, content_file.string());
+  const style::StylizedCleanup cleaned = style::cleanUpStylizedClip(content, mapping, stylized, {}, options.fps);
+  writeBvh(cleaned.motion, output);
+  if (options.metrics) {
+    nlohmann::ordered_json json;
+    json["raw"] = nlohmann::json::parse(metricsToJson(cleaned.raw));
+    json["cleaned"] = nlohmann::json::parse(metricsToJson(cleaned.cleaned));
+    json["cleanup"] = {{"seconds", cleaned.report.seconds},
+                       {"iterations", cleaned.report.total_iterations},
+                       {"warnings", cleaned.report.warnings}};
+    writeFileAtomically(*options.metrics, json.dump(2) + "\n");
+  }
+  for (const std::string& warning : cleaned.report.warnings) log << "warning: " << warning << "\n";
+  char figures[256];
+  std::snprintf(figures, sizeof figures,
+                "foot skate %.2f -> %.2f cm/s, floor penetration %.2f -> %.2f cm, bone error %.3f -> %.1e cm",
+                cleaned.raw.foot_skate_cm_s, cleaned.cleaned.foot_skate_cm_s, cleaned.raw.penetration_max_cm,
+                cleaned.cleaned.penetration_max_cm, cleaned.raw.bone_error_mean_cm, cleaned.cleaned.bone_error_max_cm);
+  log << "wrote " << output.string() << ": " << cleaned.motion.frameCount() << " frames at " << cleaned.motion.fps()
+      << " fps on the input's skeleton (" << content.skeleton.jointCount() << " joints), cleaned in "
+      << cleaned.report.seconds << " s\n  " << figures << "\n";
+}
+
+}  // namespace motionstyle::cli

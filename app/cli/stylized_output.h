@@ -1,0 +1,39 @@
+#pragma once
+// The output step shared by stylize and transfer: the stylized targets become OUT.bvh.
+// By default through the IK clean-up, on the content's own skeleton at its own frame rate;
+// with --no-cleanup as the raw positions of the 21 canonical joints (60 fps). --metrics writes the
+// quality figures (before and after clean-up) as JSON.
+
+#include <filesystem>
+#include <optional>
+#include <ostream>
+
+#include "cli_args.h"
+#include "style/stylizer.h"
+
+// The --help lines of those options (a literal, so command tables can concatenate it).
+#define MOTIONSTYLE_OUTPUT_OPTIONS_HELP                                                                   \
+  "  --no-cleanup    skip the IK clean-up: OUT holds the raw positions of the 21 canonical joints at\n" \
+  "                  60 fps (default: a clean clip on IN's own skeleton and frame rate, feet locked\n"   \
+  "                  during contact, bone lengths exact, feet on the floor)\n"                          \
+  "  --metrics FILE  write quality figures (foot skate, floor penetration, bone error, residual,\n"    \
+  "                  jerk) of the raw output and of the cleaned clip as JSON\n"                          \
+  "  --fps N         output frame rate (default: IN's own)\n"
+
+namespace motionstyle::cli {
+
+struct OutputOptions {
+  bool cleanup = true;
+  std::optional<std::filesystem::path> metrics;  // JSON report
+  double fps = 0.0;                              // output frame rate; 0 = the content's own
+};
+
+// Reads --no-cleanup, --metrics FILE and --fps N from parsed arguments (declare them with outputOptionSpecs).
+OutputOptions outputOptions(const ParsedArgs& parsed);
+std::vector<OptionSpec> outputOptionSpecs();
+
+// content_file: the clip that was stylized (read again for its full skeleton).
+void writeStylizedOutput(const std::filesystem::path& content_file, const style::StylizedClip& stylized,
+                         const OutputOptions& options, const std::filesystem::path& output, std::ostream& log);
+
+}  // namespace motionstyle::cli

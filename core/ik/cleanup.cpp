@@ -1,0 +1,277 @@
+// Clean-up orchestration: validation, contact locks and rest heights, the Ceres solve
+// (cleanup_solver.cpp), the output Motion and the report's warnings.
+
+#include "ik/cleanup.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "ik/cleanup_model.h"
+#include "ik/cleanup_solver.h"
+#include "ik/cleanup_warnings.h"
+#include "ik/contacts.h"
+#include "motion/kinematics.h"
+
+namespace motionstyle {
+namespace {
+
+using ik_detail::CleanupModel;
+
+void requireWeight(double value, const char* name) {
+  if (!std::isfinite(value) || value < 0.0)
+    throw std::invalid_argument(std::string("cleanup options: ") + name + " must be finite and >= 0");
+}
+
+double median(std::vector<double> values) {
+  const size_t middle = values.size() / 2;
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(middle), values.end());
+  return values[middle];
+}
+
+// Height above the floor of each contact joint while the CONTENT clip has that foot planted (its own
+// detected contacts), file units. A joint never planted in the content keeps the low-percentile
+// estimate, which is what detection itself assumes.
+std::array<double, kContactCount> contactRestHeights(const CleanupInput& input, const Eigen::MatrixXd& content_world) {
+  const std::array<int, kContactCount> feet = contactJoints(input.mapping);
+  const double body_height = restPoseBodyHeight(input.content.skeleton, input.up);
+  std::array<double, kContactCount> rest =
+      estimateRestHeights(content_world, feet, input.up, input.floor_height, body_height);
+  const ContactLabels planted =
+      detectContacts(content_world, feet, input.up, input.floor_height, input.content.fps(), body_height);
+  for (size_t label = 0; label < kContactCount; ++label) {
+    std::vector<double> heights;
+    for (Eigen::Index f = 0; f < planted.rows(); ++f)
+      if (planted(f, static_cast<Eigen::Index>(label)) != 0)
+        heights.push_back(input.up.dot(content_world.block<1, 3>(f, 3 * feet[label]).transpose()) - input.floor_height);
+    if (!heights.empty()) rest[label] = std::max(0.0, median(heights));
+  }
+  return rest;
+}
+
+double smoothstep(double x) {
+  x = std::clamp(x, 0.0, 1.0);
+  return x * x * (3.0 - 2.0 * x);
+}
+
+struct ContactLocks {
+  std::vector<std::array<Eigen::Vector3d, kContactCount>> positions;  // per frame, file units
+  Eigen::MatrixXd weights;                                            // frames x 4
+  int segments = 0;
+};
+
+struct LockSegment {
+  int label = 0;
+  ContactSegment frames;
+  Eigen::Vector3d lock = Eigen::Vector3d::Zero();  // file units
+};
+
+// Heel and toe locks of one foot that are active together must sit as far apart as the foot is long,
+// or the solver, unable to meet both, moves the toe when the heel lock lets go (a visible skate).
+// The later of two overlapping segments is moved along the floor to the foot's length from the
+// earlier one; segments are visited in start order so chains of overlaps stay consistent.
+void makeFootLocksConsistent(std::vector<LockSegment>& segments, int heel, int toe, double horizontal_length,
+                             const Eigen::Vector3d& up) {
+  std::vector<LockSegment*> foot;
+  for (LockSegment& segment : segments)
+    if (segment.label == heel || segment.label == toe) foot.push_back(&segment);
+  std::sort(foot.begin(), foot.end(), [](const LockSegment* a, const LockSegment* b) {
+    return a->frames.first < b->frames.first;
+  });
+  for (size_t i = 0; i < foot.size(); ++i) {
+    LockSegment& later = *foot[i];
+    const LockSegment* anchor = nullptr;
+    int best_overlap = 0;
+    for (size_t j = 0; j < i; ++j) {
+      if (foot[j]->label == later.label) continue;
+      const int overlap = std::min(foot[j]->frames.last, later.frames.last) -
+                          std::max(foot[j]->frames.first, later.frames.first) + 1;
+      if (overlap > best_overlap) {
+        best_overlap = overlap;
+        anchor = foot[j];
+      }
+    }
+    if (!anchor) continue;
+    Eigen::Vector3d along = later.lock - anchor->lock;
+    const double height = up.dot(along);
+    along -= height * up;
+    if (along.norm() < 1e-9) continue;  // no direction to keep: leave it
+    later.lock = anchor->lock + along.normalized() * horizontal_length + height * up;
+  }
+}
+
+// One lock point per contact segment: the median of the targets over the segment (per axis, on the
+// floor plane), at floor + rest height. Its weight is full inside the segment; on either side the
+// lock's share of the pull ramps down (CleanupOptions::contact_blend_seconds); where two ramps meet,
+// the nearer segment wins.
+ContactLocks contactLocks(const CleanupInput& input, const CleanupOptions& options,
+                          const std::array<double, kContactCount>& rest, const Eigen::MatrixXd& content_world) {
+  const int frames = static_cast<int>(input.targets.rows());
+  const Eigen::Vector3d& up = input.up;
+  std::vector<LockSegment> segments;
+  for (int label = 0; label < kContactCount; ++label) {
+    const int column = 3 * index(kContactJoint[static_cast<size_t>(label)]);
+    for (const ContactSegment& range : contactSegments(input.contacts, label)) {
+      LockSegment segment{label, range, {}};
+      for (int axis = 0; axis < 3; ++axis) {
+        std::vector<double> values;
+        for (int f = range.first; f <= range.last; ++f) {
+          const Eigen::Vector3d p = input.targets.block<1, 3>(f, column).transpose();
+          values.push_back((p - up.dot(p) * up)[axis]);
+        }
+        segment.lock[axis] = median(values);
+      }
+      segment.lock = segment.lock - up.dot(segment.lock) * up + (input.floor_height + rest[static_cast<size_t>(label)]) * up;
+      segments.push_back(segment);
+    }
+  }
+
+  // The foot's length on the content skeleton (ankle to toe), as it lies when both are planted.
+  for (const auto& [heel, toe] : {std::pair{0, 1}, std::pair{2, 3}}) {
+    const int ankle = input.mapping[kContactJoint[static_cast<size_t>(heel)]];
+    const int ball = input.mapping[kContactJoint[static_cast<size_t>(toe)]];
+    std::vector<double> lengths;
+    for (Eigen::Index f = 0; f < content_world.rows(); ++f)
+      lengths.push_back((content_world.block<1, 3>(f, 3 * ankle) - content_world.block<1, 3>(f, 3 * ball)).norm());
+    const double length = median(lengths);
+    const double drop = rest[static_cast<size_t>(heel)] - rest[static_cast<size_t>(toe)];
+    makeFootLocksConsistent(segments, heel, toe, std::sqrt(std::max(0.0, length * length - drop * drop)), up);
+  }
+
+  ContactLocks locks;
+  locks.positions.assign(static_cast<size_t>(frames), {});
+  locks.weights = Eigen::MatrixXd::Zero(frames, kContactCount);
+  locks.segments = static_cast<int>(segments.size());
+  const int blend = std::max(1, static_cast<int>(std::lround(options.contact_blend_seconds * input.content.fps())));
+  for (const LockSegment& segment : segments) {
+    const ContactSegment& range = segment.frames;
+    for (int f = std::max(0, range.first - blend); f <= std::min(frames - 1, range.last + blend); ++f) {
+      const int distance = f < range.first ? range.first - f : (f > range.last ? f - range.last : 0);
+      const double share = smoothstep(1.0 - distance / static_cast<double>(blend + 1));
+      const double weight = share >= 1.0 ? options.contact_weight
+                                         : std::min(options.contact_weight,
+                                                    options.position_weight * std::sqrt(share / (1.0 - share)));
+      if (weight > locks.weights(f, segment.label)) {
+        locks.weights(f, segment.label) = weight;
+        locks.positions[static_cast<size_t>(f)][static_cast<size_t>(segment.label)] = segment.lock;
+      }
+    }
+  }
+  return locks;
+}
+
+}  // namespace
+
+void CleanupOptions::validate() const {
+  requireWeight(position_weight, "position_weight");
+  requireWeight(contact_weight, "contact_weight");
+  requireWeight(floor_weight, "floor_weight");
+  requireWeight(root_smoothness_weight, "root_smoothness_weight");
+  requireWeight(rotation_smoothness_weight, "rotation_smoothness_weight");
+  requireWeight(prior_weight_mapped, "prior_weight_mapped");
+  requireWeight(prior_weight_unmapped, "prior_weight_unmapped");
+  requireWeight(unreachable_warning_cm, "unreachable_warning_cm");
+  requireWeight(residual_warning_cm, "residual_warning_cm");
+  if (!std::isfinite(contact_blend_seconds) || contact_blend_seconds < 0.0)
+    throw std::invalid_argument("cleanup options: contact_blend_seconds must be finite and >= 0");
+  if (window_frames < 1) throw std::invalid_argument("cleanup options: window_frames must be >= 1");
+  if (window_overlap < 0 || window_overlap >= window_frames)
+    throw std::invalid_argument("cleanup options: window_overlap must lie in [0, window_frames)");
+  if (max_iterations < 1) throw std::invalid_argument("cleanup options: max_iterations must be >= 1");
+  if (!std::isfinite(max_total_seconds) || !(max_total_seconds > 0.0))
+    throw std::invalid_argument("cleanup options: max_total_seconds must be positive");
+  if (threads < 1) throw std::invalid_argument("cleanup options: threads must be >= 1");
+}
+
+void CleanupInput::validate() const {
+  content.validate();
+  const Skeleton& skeleton = content.skeleton;
+  for (size_t c = 0; c < mapping.joints.size(); ++c) {
+    const int joint = mapping.joints[c];
+    if (joint < 0 || joint >= skeleton.jointCount())
+      throw std::invalid_argument("cleanup: mapping of canonical joint " + std::to_string(c) + " is " +
+                                  std::to_string(joint) + ", outside the skeleton's 0.." +
+                                  std::to_string(skeleton.jointCount() - 1));
+  }
+  mapping.validate(skeleton);
+  const int frames = content.frameCount();
+  if (frames == 0) throw std::invalid_argument("cleanup: the content clip has no frames");
+  if (targets.rows() != frames || targets.cols() != 3 * kCanonicalJointCount)
+    throw std::invalid_argument("cleanup: targets are " + std::to_string(targets.rows()) + " x " +
+                                std::to_string(targets.cols()) + ", expected " + std::to_string(frames) +
+                                " frames x 63 (the content's frame count)");
+  if (contacts.rows() != frames || contacts.cols() != kContactCount)
+    throw std::invalid_argument("cleanup: contacts are " + std::to_string(contacts.rows()) + " x " +
+                                std::to_string(contacts.cols()) + ", expected " + std::to_string(frames) +
+                                " frames x 4 (the content's frame count)");
+  for (Eigen::Index f = 0; f < frames; ++f) {
+    if (!targets.row(f).allFinite())
+      throw std::invalid_argument("cleanup: target positions of frame " + std::to_string(f) + " are not finite");
+    for (Eigen::Index label = 0; label < kContactCount; ++label)
+      if (contacts(f, label) != 0 && contacts(f, label) != 1)
+        throw std::invalid_argument("cleanup: contact label " + std::to_string(contacts(f, label)) + " at frame " +
+                                    std::to_string(f) + " (expected 0 or 1)");
+  }
+  if (!up.allFinite() || std::abs(up.norm() - 1.0) > 1e-6)
+    throw std::invalid_argument("cleanup: the up axis must be a unit vector");
+  if (!std::isfinite(floor_height)) throw std::invalid_argument("cleanup: the floor height must be finite");
+  if (!std::isfinite(cm_per_unit) || !(cm_per_unit > 0.0))
+    throw std::invalid_argument("cleanup: cm_per_unit must be positive and finite");
+}
+
+Motion cleanupMotion(const CleanupInput& input, const CleanupOptions& options, CleanupReport* report) {
+  const auto start_time = std::chrono::steady_clock::now();
+  options.validate();
+  input.validate();
+  const Motion& content = input.content;
+  const LocalPoses content_poses = localPoses(content);
+  const Eigen::MatrixXd content_world = worldPositions(content.skeleton, content_poses);
+  const CleanupModel model = ik_detail::buildCleanupModel(content.skeleton, input.mapping.joints);
+
+  const std::array<double, kContactCount> rest = contactRestHeights(input, content_world);
+  const ContactLocks locks = contactLocks(input, options, rest, content_world);
+
+  const ik_detail::SolverInput solver_input{model,         content_poses, content_world, input.targets,
+                                            locks.positions, locks.weights,
+                                            {input.cm_per_unit, input.up, input.floor_height},
+                                            options.max_total_seconds};
+  const ik_detail::SolverOutput solved = ik_detail::solveCleanup(solver_input, options);
+
+  // The solved rotations and root positions replace the content's; everything else stays.
+  LocalPoses poses = content_poses;
+  const int unknowns = model.unknownCount();
+  for (int f = 0; f < poses.frames; ++f) {
+    if (model.root_translation_free) poses.translation(f, 0) = solved.root_positions[static_cast<size_t>(f)];
+    for (int u = 0; u < unknowns; ++u)
+      poses.rotation(f, model.unknown_joints[static_cast<size_t>(u)]) =
+          solved.rotations[static_cast<size_t>(f) * static_cast<size_t>(unknowns) + static_cast<size_t>(u)];
+  }
+  Motion result = content;
+  setLocalPoses(poses, result);
+
+  if (report) {
+    *report = CleanupReport{};
+    report->final_costs = solved.costs;
+    report->frames = poses.frames;
+    report->solves = solved.solves;
+    report->total_iterations = solved.total_iterations;
+    report->solves_at_iteration_cap = solved.solves_at_iteration_cap;
+    report->frames_unsolved = solved.frames_unsolved;
+    report->unknown_rotations = unknowns;
+    report->contact_segments = locks.segments;
+    report->contact_rest_heights = rest;
+    const Eigen::MatrixXd world = worldPositions(content.skeleton, poses);
+    ik_detail::addCleanupWarnings(input, options, content_poses, world, *report);
+    if (solved.frames_unsolved > 0)
+      report->warnings.push_back("time budget of " + ik_detail::formatFixed(options.max_total_seconds, 2) +
+                                 " s exhausted: the last " + std::to_string(solved.frames_unsolved) +
+                                 " frames were not optimised (warm start only)");
+    report->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+  }
+  return result;
+}
+
+}  // namespace motionstyle

@@ -1,0 +1,128 @@
+#pragma once
+// Clean-up: turns target joint positions (e.g. the style network's output, converted back into the
+// clip's file space by the caller) into a clean clip on the user's OWN skeleton:
+//   - bone lengths exact BY CONSTRUCTION (only rotations and the root position are solved; every other
+//     joint keeps the content's per-frame local translation),
+//   - heels and toes locked to one world position during each labelled contact (blended in and out),
+//   - foot joints kept above the floor, and at their rest height above it during contact,
+//   - joints outside the 21 canonical ones (fingers, clavicles, extra spine, twist) following the
+//     content clip's own rotations.
+// Everything happens in the clip's FILE SPACE (file length units, file axes), because that is what is
+// exported. Thresholds, weights and reported figures are in centimetres via `cm_per_unit`.
+//
+// Rotations solved as quaternions with Ceres (cleanup_solver.cpp); Ceres never appears in this header.
+
+#include <Eigen/Core>
+#include <array>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "features/feature_layout.h"
+#include "mapping/joint_mapping.h"
+#include "motion/motion.h"
+
+namespace motionstyle {
+
+struct CleanupOptions {
+  // --- Cost weights. Each residual is (weight x error), errors in cm or radians, so the weights do not
+  // depend on the file's unit. Ceres minimises the sum of squared residuals.
+  double position_weight = 1.0;         // mapped joint world position vs target, per cm
+  double contact_weight = 20.0;         // heel/toe vs its contact lock position, per cm
+  double floor_weight = 20.0;           // foot joint below the floor (one-sided), per cm of depth
+  double root_smoothness_weight = 0.5;  // root position second difference (per frame), per cm
+  double rotation_smoothness_weight = 5.0;  // solved rotation second difference (per frame), per radian
+  double prior_weight_mapped = 2.0;     // rotation vs the content's, joints that are canonical joints, per rad
+  double prior_weight_unmapped = 20.0;  // rotation vs the content's, other joints (clavicles, ...), per rad
+
+  // --- Contacts. Inside a contact segment the lock has contact_weight. Over contact_blend_seconds
+  // before and after it (rounded to frames, at least 1) the lock's share of the pull on the joint,
+  // a = w_lock^2 / (w_lock^2 + position_weight^2), ramps with a smoothstep between 0 and 1, so the
+  // joint glides between its lock and its targets instead of popping.
+  double contact_blend_seconds = 0.06;
+  bool lock_contacts = true;
+  bool keep_above_floor = true;
+
+  // --- Strategy and bounds.
+  // window_frames = 1 (default): each frame solved alone, warm-started from the previous frame's
+  // solution, whose two predecessors enter the smoothness terms as constants. window_frames > 1:
+  // overlapping windows of that many frames solved jointly, advancing by window_frames - window_overlap.
+  // Measured on the damaged CMU / zombie fixtures (240 frames, one core): per-frame ~2000 frames/s,
+  // skate 0.11 / 0.05 cm/s, residual 1.46 / 1.76 cm; windows of 4/1, 8/2, 16/4 frames were 3-9x slower
+  // (550-220 frames/s) for the same skate and residual (+-0.01 cm) and 10-18 % less jerk.
+  int window_frames = 1;
+  int window_overlap = 0;
+  int max_iterations = 25;       // Levenberg-Marquardt iterations per solve (frame or window), >= 1
+  double max_total_seconds = 60.0;  // wall-clock budget for the whole clip; the rest is left as warm start
+  int threads = 1;               // Ceres threads per solve (per-frame problems are small: 1 is fastest)
+
+  // --- Warnings.
+  double unreachable_warning_cm = 1.0;  // a limb whose targets are further apart than it can reach
+  double residual_warning_cm = 10.0;    // a mapped joint left further than this from its target
+
+  // Throws std::invalid_argument for a negative or non-finite weight, an empty window, an overlap not
+  // smaller than the window, max_iterations < 1, a non-positive budget or threads < 1.
+  void validate() const;
+};
+
+struct CleanupInput {
+  CleanupInput(const Motion& content_, const JointMapping& mapping_, Eigen::MatrixXd targets_,
+               Eigen::MatrixXi contacts_, const Eigen::Vector3d& up_ = Eigen::Vector3d::UnitY(),
+               double floor_height_ = 0.0, double cm_per_unit_ = 1.0)
+      : content(content_), mapping(mapping_), targets(std::move(targets_)), contacts(std::move(contacts_)),
+        up(up_), floor_height(floor_height_), cm_per_unit(cm_per_unit_) {}
+
+  const Motion& content;         // the user's clip: skeleton (kept whole), frame time, per-frame values
+  const JointMapping& mapping;   // joints[c] = index into content.skeleton.joints of canonical joint c
+  // frames x 63: world positions of the 21 canonical joints (feature order), FILE units and axes.
+  Eigen::MatrixXd targets;
+  // frames x 4 (ContactLabel order: left heel = LeftAnkle, left toe, right heel, right toe), 0 or 1.
+  Eigen::MatrixXi contacts;
+  Eigen::Vector3d up = Eigen::Vector3d::UnitY();  // unit vector in file space (+Y, +Z, ...)
+  double floor_height = 0.0;    // file units along `up`
+  double cm_per_unit = 1.0;     // centimetres per file unit, > 0
+
+  // Throws std::invalid_argument naming the first problem: an invalid content clip or mapping, a
+  // mapping index out of range, frame counts that differ (content, targets, contacts), a column count
+  // other than 63 / 4, a non-finite target, a contact value other than 0/1, an up vector that is not
+  // unit length, a non-finite floor, a non-positive cm_per_unit, or an empty clip.
+  void validate() const;
+};
+
+struct CleanupTermCosts {  // 0.5 x sum of squared residuals over all frames (Ceres' convention)
+  double position = 0.0;
+  double contact = 0.0;
+  double floor = 0.0;
+  double smoothness = 0.0;
+  double prior = 0.0;
+  double total() const { return position + contact + floor + smoothness + prior; }
+};
+
+struct CleanupReport {
+  CleanupTermCosts final_costs;
+  int frames = 0;
+  int solves = 0;                  // Ceres solves (frames or windows)
+  int total_iterations = 0;        // summed over solves
+  int solves_at_iteration_cap = 0;  // solves that stopped at max_iterations
+  int frames_unsolved = 0;         // frames left at their warm start because the time budget ran out
+  double seconds = 0.0;            // wall clock of cleanupMotion
+  int unknown_rotations = 0;       // joints whose rotation is solved (per frame)
+  int contact_segments = 0;        // over the four contact tracks
+  // Height above the floor of each contact joint during contact (ContactLabel order), file units,
+  // derived from the content clip; the lock height is floor_height + this.
+  std::array<double, kContactCount> contact_rest_heights{};
+  // Residual of the result on the mapped joints vs the targets, cm.
+  double mean_position_residual_cm = 0.0;
+  double max_position_residual_cm = 0.0;
+  // Human-readable, e.g. "targets unreachable: left arm stretched by 12.0 cm at frames 40-60".
+  std::vector<std::string> warnings;
+};
+
+// Solves the clip. Returns a Motion on content's skeleton (same hierarchy, names, offsets, channel
+// layout, frame time and source) whose values are the solved rotations (degrees, each joint's own Euler
+// order) and root positions (file units). Throws std::invalid_argument from the validate steps.
+// `report` may be null. Never hangs: every solve is capped in iterations and by the time budget;
+// unreachable targets give a best-effort result and a warning.
+Motion cleanupMotion(const CleanupInput& input, const CleanupOptions& options, CleanupReport* report);
+
+}  // namespace motionstyle

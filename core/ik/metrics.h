@@ -1,0 +1,99 @@
+#pragma once
+// Quality metrics of a clip, one module for the CLI (--metrics FILE.json), the GUI's quality track and
+// the tests. All figures are in centimetres and seconds (cm, cm/s, cm/s^3) via cm_per_unit and fps, so
+// they compare across rigs and frame rates.
+//
+// Inputs are world positions in the clip's own space (file units and axes) of either
+//   - every joint of a skeleton (worldPositions(motion)), with `canonical_joints` = the mapping, or
+//   - just the 21 canonical joints (frames x 63, e.g. raw network output converted to file space),
+//     with `canonical_joints` = identityCanonicalJoints().
+//
+// Definitions:
+//   foot skate        mean horizontal speed (cm/s) of each contact joint over the steps t -> t+1 where it
+//                     is labelled in contact at both t and t+1 (0 when there is no such step);
+//   floor penetration depth below the floor (cm) of the four contact joints, max over all frames and
+//                     mean over the samples that are below it;
+//   bone error        | |p_joint - p_parent| - reference length | (cm), mean and max over bones and frames;
+//   position residual |p_canonical - target| (cm) over the 21 canonical joints, mean and max;
+//   jerk              mean |p(t+3) - 3 p(t+2) + 3 p(t+1) - p(t)| * fps^3 (cm/s^3) over canonical joints.
+
+#include <Eigen/Core>
+#include <array>
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "features/feature_layout.h"
+#include "mapping/joint_mapping.h"
+#include "motion/motion.h"
+
+namespace motionstyle {
+
+// One bone: joint indices into the positions' joints, reference length in file units.
+struct BoneReference {
+  int joint = 0;
+  int parent = 0;
+  double length = 0.0;
+};
+
+// Every bone of a full skeleton (non-root joints, End Sites included) whose length is fixed by its
+// OFFSET, i.e. joints without position channels; indices are skeleton joint indices.
+std::vector<BoneReference> skeletonBones(const Skeleton& skeleton);
+
+// The 20 canonical bones (joint c, its canonical parent) of a content clip, for positions that hold
+// only the canonical joints (frames x 63): each length is the median over the content's frames of the
+// distance between the two mapped joints (chains through extra joints, e.g. the spine, may bend
+// slightly). content_world: frames x 3J world positions of the content clip, file units.
+std::vector<BoneReference> canonicalBones(const Eigen::MatrixXd& content_world, const JointMapping& mapping);
+
+std::array<int, kCanonicalJointCount> identityCanonicalJoints();
+
+struct MetricsInput {
+  MetricsInput(const Eigen::MatrixXd& positions_, const std::array<int, kCanonicalJointCount>& canonical_joints_,
+               std::vector<BoneReference> bones_ = {})
+      : positions(positions_), canonical_joints(canonical_joints_), bones(std::move(bones_)) {}
+
+  const Eigen::MatrixXd& positions;  // frames x 3J world positions, file units
+  std::array<int, kCanonicalJointCount> canonical_joints{};  // joint index in `positions` per canonical joint
+  std::vector<BoneReference> bones;  // may be empty: no bone figures
+  Eigen::MatrixXi contacts;          // frames x 4 (ContactLabel order), 0/1; empty: no skate figure
+  Eigen::MatrixXd targets;           // frames x 63 canonical targets, file units; empty: no residual
+  Eigen::Vector3d up = Eigen::Vector3d::UnitY();
+  double floor_height = 0.0;         // file units along up
+  double cm_per_unit = 1.0;
+  double fps = 60.0;
+
+  // Throws std::invalid_argument on a column count that is not 3 x joints, an index out of range,
+  // contacts or targets whose frame count differs or whose values are bad, a non-unit up, or a
+  // non-positive cm_per_unit or fps.
+  void validate() const;
+};
+
+struct ClipMetrics {
+  int frames = 0;
+  double foot_skate_cm_s = 0.0;
+  int contact_steps = 0;                 // (joint, t -> t+1) pairs the skate figure averages
+  double penetration_max_cm = 0.0;
+  double penetration_mean_cm = 0.0;      // over penetrating samples; 0 when none
+  int penetrating_samples = 0;
+  double bone_error_mean_cm = 0.0;
+  double bone_error_max_cm = 0.0;
+  bool has_residual = false;
+  double residual_mean_cm = 0.0;
+  double residual_max_cm = 0.0;
+  double jerk_mean_cm_s3 = 0.0;
+  // Per-frame tracks for the GUI (length `frames`): the mean skate of the joints in contact over the
+  // step from this frame to the next (cm/s, 0 when none), and the largest bone error (cm).
+  std::vector<double> skate_track_cm_s;
+  std::vector<double> bone_error_track_cm;
+};
+
+ClipMetrics computeMetrics(const MetricsInput& input);
+
+// {"frames": ..., "foot_skate_cm_s": ..., ...}; `include_tracks` adds the per-frame tracks.
+std::string metricsToJson(const ClipMetrics& metrics, bool include_tracks = false);
+// Written atomically (WriteError on failure).
+void writeMetricsJson(const ClipMetrics& metrics, const std::filesystem::path& file, bool include_tracks = false);
+
+}  // namespace motionstyle

@@ -1,0 +1,65 @@
+#include "nn/adam.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+
+namespace motionstyle::nn {
+
+void AdamOptions::validate() const {
+  const bool ok = std::isfinite(learning_rate) && learning_rate > 0.0 && std::isfinite(beta1) &&
+                  beta1 >= 0.0 && beta1 < 1.0 && std::isfinite(beta2) && beta2 >= 0.0 && beta2 < 1.0 &&
+                  std::isfinite(epsilon) && epsilon > 0.0;
+  if (!ok) throw std::invalid_argument("AdamOptions: need lr > 0, 0 <= beta1, beta2 < 1, eps > 0");
+}
+
+template <typename S>
+Adam<S>::Adam(std::vector<Parameter<S>*> parameters, AdamOptions options)
+    : parameters_(std::move(parameters)), options_(options) {
+  options_.validate();
+  for (const Parameter<S>* p : parameters_) {
+    if (p == nullptr) throw std::invalid_argument("Adam: null parameter");
+    first_moment_.push_back(Mat<S>::Zero(p->value.rows(), p->value.cols()));
+    second_moment_.push_back(Mat<S>::Zero(p->value.rows(), p->value.cols()));
+  }
+}
+
+template <typename S>
+void Adam<S>::setLearningRate(double learning_rate) {
+  AdamOptions changed = options_;
+  changed.learning_rate = learning_rate;
+  changed.validate();
+  options_ = changed;
+}
+
+template <typename S>
+void Adam<S>::step() {
+  ++steps_;
+  const double correction1 = 1.0 - std::pow(options_.beta1, static_cast<double>(steps_));
+  const double correction2 = 1.0 - std::pow(options_.beta2, static_cast<double>(steps_));
+  const S b1 = static_cast<S>(options_.beta1);
+  const S b2 = static_cast<S>(options_.beta2);
+  const S step_size = static_cast<S>(options_.learning_rate / correction1);
+  const S inv_sqrt_c2 = static_cast<S>(1.0 / std::sqrt(correction2));
+  const S eps = static_cast<S>(options_.epsilon);
+  for (std::size_t i = 0; i < parameters_.size(); ++i) {
+    Parameter<S>& p = *parameters_[i];
+    if (p.grad.rows() != p.value.rows() || p.grad.cols() != p.value.cols() ||
+        first_moment_[i].rows() != p.value.rows() || first_moment_[i].cols() != p.value.cols())
+      throw std::invalid_argument("Adam: parameter " + p.name + " changed shape");
+    first_moment_[i] = b1 * first_moment_[i] + (S(1) - b1) * p.grad;
+    second_moment_[i] = b2 * second_moment_[i] + (S(1) - b2) * p.grad.cwiseAbs2();
+    p.value.array() -= step_size * first_moment_[i].array() /
+                       (second_moment_[i].array().sqrt() * inv_sqrt_c2 + eps);
+  }
+}
+
+template <typename S>
+void Adam<S>::zeroGrad() {
+  for (Parameter<S>* p : parameters_) p->zeroGrad();
+}
+
+template class Adam<float>;
+template class Adam<double>;
+
+}  // namespace motionstyle::nn

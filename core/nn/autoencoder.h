@@ -1,0 +1,89 @@
+#pragma once
+// The loss network L: the paper's one-layer convolutional autoencoder (Holden et al. 2016).
+//
+//   encode (eq. 1):  H  = ReLU(MaxPool2(Conv(X; W0, b0)))          W0: hidden x (features*width)
+//   decode (eq. 2):  X~ = Conv(AverageDepool2(H) - b0; W~0)         W~0: features x (hidden*width),
+//                                                                    no bias; b0 is the ENCODER's bias
+//   loss   (eq. 3):  mean((X~ - X)^2) + alpha * mean(|w| over W0 and W~0)
+//
+// X is normalised frames, features x (B*frames) (tensor.h). Default sizes: 66 features, 256 hidden
+// units, width 25. Odd windows: repeated last frame in, cropped out (layers.h), so H has
+// evenFrames(frames) / 2 columns per window and the reconstruction has the input's length.
+// The L1 term regularises the weights only (not b0): a bias has no sparsity to encourage. It is a
+// mean over weights, so alpha is independent of the layer sizes; see kDefaultSparsity.
+// Training may drop input values (dropout 0.25 like the 2016 code) to make the manifold denoising.
+
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include "features/feature_layout.h"
+#include "nn/conv1d.h"
+#include "nn/layers.h"
+
+namespace motionstyle::nn {
+
+struct AutoencoderShape {
+  int features = kFeatureCount;
+  int hidden = 256;
+  int width = 25;
+  bool operator==(const AutoencoderShape&) const = default;
+};
+
+// alpha for eq. 3 on the MEAN |w|. With Glorot-initialised 66x256x25 weights mean|w| ~ 0.014 and a
+// trained reconstruction MSE of a few 0.01 on normalised data, 0.1 makes the penalty ~5-10% of the
+// loss: it prunes weights without dominating the reconstruction.
+constexpr double kDefaultSparsity = 0.1;
+constexpr double kDefaultInputDropout = 0.25;
+
+struct ReconstructionTerms {
+  double mse = 0;        // mean squared reconstruction error, normalised units
+  double sparsity = 0;   // mean |w| (unweighted)
+  double total = 0;      // mse + alpha * sparsity
+};
+
+template <typename S>
+class Autoencoder {
+ public:
+  explicit Autoencoder(const AutoencoderShape& shape = {});
+
+  // He-uniform W0 (ReLU follows), Glorot-uniform W~0, b0 = 0; deterministic in `seed`.
+  void initialise(std::uint32_t seed);
+  const AutoencoderShape& shape() const { return shape_; }
+
+  // Inference, no caches. encode: features x (B*frames) -> hidden x (B*evenFrames(frames)/2).
+  Mat<S> encode(const Mat<S>& x, int frames) const;
+  // decode: hidden x (B*pooled) -> features x (B*2*pooled).
+  Mat<S> decode(const Mat<S>& hidden, int pooled_frames) const;
+  // Manifold projection: decode(encode(x)) cropped back to `frames` per window.
+  Mat<S> project(const Mat<S>& x, int frames) const;
+
+  // The encoder as a differentiable function of its input with FROZEN weights (the loss network while
+  // training the transformation network). encodeBackward returns dLoss/dx and touches no gradient.
+  Mat<S> encodeForward(const Mat<S>& x, int frames);
+  Mat<S> encodeBackward(const Mat<S>& grad_hidden);
+
+  // One training pass of eq. 3 on x (normalised, features x (B*frames)): forward, loss, backward,
+  // ADDING into the gradients of W0, b0 (through both eq. 1 and eq. 2) and W~0. dropout_rate in
+  // [0, 1) applies inverted dropout to the input (rng required when > 0); the target is the clean x.
+  ReconstructionTerms accumulateReconstruction(const Mat<S>& x, int frames, S alpha, S dropout_rate = S(0),
+                                               std::mt19937* rng = nullptr);
+  // The same loss without gradients or dropout (validation).
+  ReconstructionTerms evaluateReconstruction(const Mat<S>& x, int frames, S alpha) const;
+
+  std::vector<Parameter<S>*> parameters() { return {&encoder.weight, &encoder.bias, &decoder.weight}; }
+  void zeroGrad();
+
+  Conv1d<S> encoder;  // W0, b0
+  Conv1d<S> decoder;  // W~0 (no bias)
+
+ private:
+  AutoencoderShape shape_;
+  // Caches of encodeForward / accumulateReconstruction.
+  MaxPool2<S> pool_;
+  Relu<S> relu_;
+  Dropout<S> dropout_;
+  int frames_ = 0;
+};
+
+}  // namespace motionstyle::nn

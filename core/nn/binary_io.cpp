@@ -1,0 +1,147 @@
+#include "nn/binary_io.h"
+
+#include <array>
+#include <cstring>
+
+#include "common/errors.h"
+
+namespace motionstyle::nn {
+namespace {
+
+std::array<std::uint32_t, 256> makeCrcTable() {
+  std::array<std::uint32_t, 256> table{};
+  for (std::uint32_t i = 0; i < 256; ++i) {
+    std::uint32_t c = i;
+    for (int k = 0; k < 8; ++k) c = (c & 1u) != 0 ? 0xEDB88320u ^ (c >> 1) : c >> 1;
+    table[i] = c;
+  }
+  return table;
+}
+
+std::uint64_t loadLittleEndian(std::string_view bytes, int count) {
+  std::uint64_t v = 0;
+  for (int i = count - 1; i >= 0; --i) v = (v << 8) | static_cast<unsigned char>(bytes[static_cast<std::size_t>(i)]);
+  return v;
+}
+
+}  // namespace
+
+std::uint32_t crc32(std::string_view bytes) {
+  static const std::array<std::uint32_t, 256> table = makeCrcTable();
+  std::uint32_t c = 0xFFFFFFFFu;
+  for (char ch : bytes) c = table[(c ^ static_cast<unsigned char>(ch)) & 0xFFu] ^ (c >> 8);
+  return c ^ 0xFFFFFFFFu;
+}
+
+std::string contentHash(std::string_view bytes) {
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  for (char ch : bytes) {
+    h ^= static_cast<unsigned char>(ch);
+    h *= 0x100000001b3ull;
+  }
+  static const char* digits = "0123456789abcdef";
+  std::string out = "fnv1a64:";
+  for (int shift = 60; shift >= 0; shift -= 4) out.push_back(digits[(h >> shift) & 0xFu]);
+  return out;
+}
+
+void ByteWriter::u32(std::uint32_t v) {
+  for (int i = 0; i < 4; ++i) bytes_.push_back(static_cast<char>((v >> (8 * i)) & 0xFFu));
+}
+
+void ByteWriter::u64(std::uint64_t v) {
+  for (int i = 0; i < 8; ++i) bytes_.push_back(static_cast<char>((v >> (8 * i)) & 0xFFu));
+}
+
+void ByteWriter::f64(double v) {
+  std::uint64_t bits = 0;
+  std::memcpy(&bits, &v, sizeof bits);
+  u64(bits);
+}
+
+void ByteWriter::str(std::string_view s) {
+  u32(static_cast<std::uint32_t>(s.size()));
+  bytes_.append(s);
+}
+
+void ByteWriter::f64Vector(const Eigen::VectorXd& v) {
+  u32(static_cast<std::uint32_t>(v.size()));
+  for (Eigen::Index i = 0; i < v.size(); ++i) f64(v(i));
+}
+
+void ByteWriter::tensor(const std::string& name, const Mat<float>& m) {
+  str(name);
+  u32(static_cast<std::uint32_t>(m.rows()));
+  u32(static_cast<std::uint32_t>(m.cols()));
+  for (Eigen::Index i = 0; i < m.size(); ++i) {
+    std::uint32_t bits = 0;
+    std::memcpy(&bits, m.data() + i, sizeof bits);
+    u32(bits);
+  }
+}
+
+void ByteReader::fail(const std::string& detail) const { throw InputError(file_, 0, detail); }
+
+void ByteReader::need(std::size_t count, const char* what) const {
+  if (count > remaining())
+    fail(std::string("truncated or corrupt network file: ") + what + " needs " + std::to_string(count) +
+         " bytes at offset " + std::to_string(position_) + ", only " + std::to_string(remaining()) + " left");
+}
+
+std::string_view ByteReader::take(std::size_t count, const char* what) {
+  need(count, what);
+  const std::string_view out = bytes_.substr(position_, count);
+  position_ += count;
+  return out;
+}
+
+std::uint8_t ByteReader::u8(const char* what) { return static_cast<std::uint8_t>(take(1, what)[0]); }
+
+std::uint32_t ByteReader::u32(const char* what) {
+  return static_cast<std::uint32_t>(loadLittleEndian(take(4, what), 4));
+}
+
+std::uint64_t ByteReader::u64(const char* what) { return loadLittleEndian(take(8, what), 8); }
+
+double ByteReader::f64(const char* what) {
+  const std::uint64_t bits = u64(what);
+  double v = 0;
+  std::memcpy(&v, &bits, sizeof v);
+  return v;
+}
+
+std::string ByteReader::str(const char* what, std::uint32_t max_length) {
+  const std::uint32_t length = u32(what);
+  if (length > max_length)
+    fail(std::string("corrupt network file: ") + what + " claims " + std::to_string(length) + " bytes");
+  return std::string(take(length, what));
+}
+
+Eigen::VectorXd ByteReader::f64Vector(const char* what) {
+  const std::uint32_t count = u32(what);
+  need(static_cast<std::size_t>(count) * 8, what);  // before allocating
+  Eigen::VectorXd v(count);
+  for (std::uint32_t i = 0; i < count; ++i) v(i) = f64(what);
+  return v;
+}
+
+ByteReader::Tensor ByteReader::tensor() {
+  Tensor t;
+  t.name = str("tensor name", 256);
+  const std::uint32_t rows = u32("tensor rows");
+  const std::uint32_t cols = u32("tensor cols");
+  const std::uint64_t count = static_cast<std::uint64_t>(rows) * cols;
+  if (count * 4 > remaining())  // 64-bit: no overflow for 32-bit rows and cols
+    fail("truncated or corrupt network file: tensor '" + t.name + "' of " + std::to_string(rows) + " x " +
+         std::to_string(cols) + " needs " + std::to_string(count * 4) + " bytes, only " +
+         std::to_string(remaining()) + " left");
+  t.value.resize(rows, cols);
+  const std::string_view data = take(static_cast<std::size_t>(count) * 4, "tensor data");
+  for (std::uint64_t i = 0; i < count; ++i) {
+    const auto bits = static_cast<std::uint32_t>(loadLittleEndian(data.substr(static_cast<std::size_t>(i) * 4, 4), 4));
+    std::memcpy(t.value.data() + i, &bits, sizeof bits);
+  }
+  return t;
+}
+
+}  // namespace motionstyle::nn

@@ -1,0 +1,137 @@
+#include "nn/compute_pool.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <stdexcept>
+#include <string>
+
+namespace motionstyle::nn {
+namespace {
+
+thread_local bool t_inside_task = false;
+
+struct InsideTask {
+  InsideTask() { t_inside_task = true; }
+  ~InsideTask() { t_inside_task = false; }
+};
+
+}  // namespace
+
+ComputePool::ComputePool(int threads) : thread_count_(std::max(1, threads)) {
+  workers_.reserve(static_cast<std::size_t>(thread_count_ - 1));
+  for (int w = 1; w < thread_count_; ++w) workers_.emplace_back([this, w] { workerLoop(w); });
+}
+
+ComputePool::~ComputePool() {
+  {
+    std::lock_guard<std::mutex> lock(state_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  for (std::thread& worker : workers_) worker.join();
+}
+
+void ComputePool::runParts(int first, int stride) {
+  for (int part = first; part < parts_; part += stride) {
+    try {
+      (*task_)(part);
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(state_);
+      if (!error_) error_ = std::current_exception();
+    }
+  }
+}
+
+void ComputePool::workerLoop(int worker) {
+  long seen = 0;
+  for (;;) {
+    {
+      std::unique_lock<std::mutex> lock(state_);
+      wake_.wait(lock, [&] { return stop_ || generation_ != seen; });
+      if (stop_) return;
+      seen = generation_;
+    }
+    {
+      InsideTask inside;
+      runParts(worker, thread_count_);
+    }
+    {
+      std::lock_guard<std::mutex> lock(state_);
+      --pending_;
+    }
+    done_.notify_one();
+  }
+}
+
+void ComputePool::run(int parts, const std::function<void(int)>& task) {
+  if (parts <= 0) return;
+  std::unique_lock<std::mutex> busy(busy_, std::try_to_lock);
+  if (parts == 1 || thread_count_ == 1 || t_inside_task || !busy.owns_lock()) {
+    for (int part = 0; part < parts; ++part) task(part);
+    return;
+  }
+  {
+    std::lock_guard<std::mutex> lock(state_);
+    task_ = &task;
+    parts_ = parts;
+    pending_ = thread_count_ - 1;
+    error_ = nullptr;
+    ++generation_;
+  }
+  wake_.notify_all();
+  {
+    InsideTask inside;
+    runParts(0, thread_count_);
+  }
+  std::exception_ptr error;
+  {
+    std::unique_lock<std::mutex> lock(state_);
+    done_.wait(lock, [&] { return pending_ == 0; });
+    error = error_;
+    error_ = nullptr;
+    task_ = nullptr;
+  }
+  if (error) std::rethrow_exception(error);
+}
+
+void ComputePool::parallelRanges(int count, int align, int min_chunk,
+                                 const std::function<void(int, int)>& range) {
+  if (count <= 0) return;
+  align = std::max(1, align);
+  const int max_parts = std::max(1, count / std::max(1, min_chunk));
+  const int parts = std::min(thread_count_, max_parts);
+  if (parts <= 1) {
+    range(0, count);
+    return;
+  }
+  // Boundaries at multiples of `align`, as even as that allows.
+  std::vector<int> bounds(static_cast<std::size_t>(parts) + 1, count);
+  bounds[0] = 0;
+  for (int p = 1; p < parts; ++p) {
+    const long ideal = static_cast<long>(count) * p / parts;
+    bounds[static_cast<std::size_t>(p)] =
+        std::min(count, static_cast<int>((ideal + align / 2) / align * align));
+  }
+  run(parts, [&](int p) {
+    const int begin = bounds[static_cast<std::size_t>(p)];
+    const int end = bounds[static_cast<std::size_t>(p) + 1];
+    if (end > begin) range(begin, end);
+  });
+}
+
+ComputePool& computePool() {
+  static ComputePool pool([] {
+    int threads = static_cast<int>(std::thread::hardware_concurrency());
+    if (const char* env = std::getenv("MOTIONSTYLE_NN_THREADS")) {
+      try {
+        threads = std::stoi(env);
+      } catch (const std::exception&) {
+        // A malformed override is ignored: the default is always safe.
+      }
+    }
+    return std::clamp(threads, 1, 8);
+  }());
+  return pool;
+}
+
+}  // namespace motionstyle::nn

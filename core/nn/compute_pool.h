@@ -1,0 +1,63 @@
+#pragma once
+// A tiny fixed thread pool for splitting one matrix product (or any loop over columns) across cores.
+//
+// Why our own: Eigen parallelises its matrix products only through OpenMP, which the project does not
+// link. The networks need exactly one pattern: "split these columns into N parts and wait", so a pool
+// of N-1 persistent workers plus the calling thread is all there is. Persistent threads matter: a
+// 240-frame stylize takes a few milliseconds, so spawning threads per layer would be visible.
+//
+// Reentrancy: one parallel region at a time. If another thread is already inside run() (e.g. the GUI
+// stylizes while a training thread runs), the second caller runs every part itself, serially: correct,
+// never deadlocks, just slower. Calling run() from inside a task also runs serially.
+
+#include <condition_variable>
+#include <exception>
+#include <functional>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace motionstyle::nn {
+
+class ComputePool {
+ public:
+  // threads >= 1 is the total parallelism including the calling thread (threads - 1 workers).
+  explicit ComputePool(int threads);
+  ~ComputePool();
+  ComputePool(const ComputePool&) = delete;
+  ComputePool& operator=(const ComputePool&) = delete;
+
+  int threadCount() const { return thread_count_; }
+
+  // Calls task(part) once for every part in [0, parts) and returns when all are done. Parts are spread
+  // over the workers and the calling thread. The first exception thrown by a task is rethrown here
+  // (after every part has finished).
+  void run(int parts, const std::function<void(int)>& task);
+
+  // Splits [0, count) into at most threadCount() contiguous ranges whose starts are multiples of
+  // `align` (>= 1), each at least `min_chunk` long, and calls range(begin, end) for each in parallel.
+  void parallelRanges(int count, int align, int min_chunk, const std::function<void(int, int)>& range);
+
+ private:
+  void workerLoop(int worker);
+  void runParts(int first, int stride);
+
+  int thread_count_;
+  std::vector<std::thread> workers_;
+  std::mutex busy_;  // held by the caller for the whole parallel region
+  std::mutex state_;
+  std::condition_variable wake_;
+  std::condition_variable done_;
+  const std::function<void(int)>* task_ = nullptr;
+  int parts_ = 0;
+  long generation_ = 0;
+  int pending_ = 0;
+  bool stop_ = false;
+  std::exception_ptr error_;
+};
+
+// The process-wide pool used by the networks: min(hardware threads, 8) threads, created on first use.
+// MOTIONSTYLE_NN_THREADS=<n> in the environment overrides the count (n >= 1), read once.
+ComputePool& computePool();
+
+}  // namespace motionstyle::nn

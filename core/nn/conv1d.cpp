@@ -1,0 +1,157 @@
+#include "nn/conv1d.h"
+
+#include <stdexcept>
+
+#include "nn/compute_pool.h"
+
+namespace motionstyle::nn {
+namespace {
+
+// Below this many output columns per thread, splitting costs more than it saves.
+constexpr int kMinColumnsPerThread = 48;
+
+// Copies the valid outputs (window b, frame t at padded-output column b*(frames+pad) + t) into a
+// compact out x (B*frames) matrix.
+template <typename S>
+Mat<S> compactWindows(const Mat<S>& full, int windows, int frames, int pad) {
+  if (windows == 1) return full.leftCols(frames);
+  Mat<S> out(full.rows(), static_cast<Eigen::Index>(windows) * frames);
+  for (int b = 0; b < windows; ++b)
+    out.middleCols(static_cast<Eigen::Index>(b) * frames, frames) =
+        full.middleCols(static_cast<Eigen::Index>(b) * (frames + pad), frames);
+  return out;
+}
+
+}  // namespace
+
+int checkBatch(const char* what, Eigen::Index rows, Eigen::Index cols, int channels, int frames) {
+  if (frames < 1) throw std::invalid_argument(std::string(what) + ": frames per window must be >= 1");
+  if (rows != channels)
+    throw std::invalid_argument(std::string(what) + ": expected " + std::to_string(channels) +
+                                " channels, got " + std::to_string(rows));
+  if (cols < frames || cols % frames != 0)
+    throw std::invalid_argument(std::string(what) + ": " + std::to_string(cols) +
+                                " columns is not a whole number of windows of " +
+                                std::to_string(frames) + " frames");
+  return static_cast<int>(cols / frames);
+}
+
+template <typename S>
+void correlatePadded(const Mat<S>& weight, const S* padded, Eigen::Index channels, int width, S* out,
+                     Eigen::Index count, bool parallel) {
+  const Eigen::Index rows = weight.rows();
+  auto range = [&](int begin, int end) {
+    Eigen::Map<Mat<S>> y(out + rows * begin, rows, end - begin);
+    y.noalias() = weight * slidingColumns(padded + channels * begin, channels, width, end - begin);
+  };
+  if (parallel)
+    computePool().parallelRanges(static_cast<int>(count), 1, kMinColumnsPerThread, range);
+  else
+    range(0, static_cast<int>(count));
+}
+
+template <typename S>
+void padWindows(const Mat<S>& x, int frames, int pad, Mat<S>& padded) {
+  const Eigen::Index windows = x.cols() / frames;
+  padded.setZero(x.rows(), pad + windows * (frames + pad));
+  for (Eigen::Index b = 0; b < windows; ++b)
+    padded.middleCols(pad + b * (frames + pad), frames) = x.middleCols(b * frames, frames);
+}
+
+template <typename S>
+Conv1d<S>::Conv1d(const std::string& name, int in_channels, int out_channels, int width, bool has_bias)
+    : in_(in_channels), out_(out_channels), width_(width), has_bias_(has_bias) {
+  if (in_channels < 1 || out_channels < 1)
+    throw std::invalid_argument("Conv1d " + name + ": channel counts must be >= 1");
+  if (width < 1 || width % 2 == 0)
+    throw std::invalid_argument("Conv1d " + name + ": width must be odd and >= 1, got " +
+                                std::to_string(width));
+  weight.name = name + ".weight";
+  weight.resize(out_channels, static_cast<Eigen::Index>(in_channels) * width);
+  bias.name = name + ".bias";
+  if (has_bias) bias.resize(out_channels, 1);
+}
+
+template <typename S>
+Mat<S> Conv1d<S>::run(const Mat<S>& padded, int windows, int frames) const {
+  const int pad = width_ / 2;
+  const Eigen::Index count = static_cast<Eigen::Index>(windows) * (frames + pad) - pad;
+  Mat<S> full(out_, count);
+  correlatePadded(weight.value, padded.data(), in_, width_, full.data(), count);
+  Mat<S> y = compactWindows(full, windows, frames, pad);
+  if (has_bias_) y.colwise() += bias.value.col(0);
+  return y;
+}
+
+template <typename S>
+Mat<S> Conv1d<S>::apply(const Mat<S>& x, int frames) const {
+  const int windows = checkBatch(weight.name.c_str(), x.rows(), x.cols(), in_, frames);
+  Mat<S> padded;
+  padWindows(x, frames, width_ / 2, padded);
+  return run(padded, windows, frames);
+}
+
+template <typename S>
+Mat<S> Conv1d<S>::forward(const Mat<S>& x, int frames) {
+  windows_ = checkBatch(weight.name.c_str(), x.rows(), x.cols(), in_, frames);
+  frames_ = frames;
+  padWindows(x, frames, width_ / 2, padded_input_);
+  return run(padded_input_, windows_, frames_);
+}
+
+template <typename S>
+Mat<S> Conv1d<S>::backward(const Mat<S>& grad_out, Gradients wanted) {
+  if (frames_ == 0) throw std::logic_error("Conv1d " + weight.name + ": backward() before forward()");
+  checkBatch(weight.name.c_str(), grad_out.rows(), grad_out.cols(), out_, frames_);
+  if (grad_out.cols() != static_cast<Eigen::Index>(windows_) * frames_)
+    throw std::invalid_argument("Conv1d " + weight.name + ": gradient batch differs from forward()");
+  const int pad = width_ / 2;
+  const Eigen::Index count = static_cast<Eigen::Index>(windows_) * (frames_ + pad) - pad;
+  Mat<S> padded_grad;  // dY in the padded layout: zero in the gaps, so gap outputs contribute nothing
+  padWindows(grad_out, frames_, pad, padded_grad);
+
+  if (wanted != Gradients::InputOnly) {
+    const auto dy = padded_grad.middleCols(pad, count);
+    const auto columns = slidingColumns(padded_input_.data(), in_, width_, count);
+    Mat<S>& dw = weight.grad;
+    computePool().parallelRanges(static_cast<int>(dw.cols()), 1, 64, [&](int begin, int end) {
+      dw.middleCols(begin, end - begin).noalias() +=
+          dy * columns.middleRows(begin, end - begin).transpose();
+    });
+    if (has_bias_) bias.grad.col(0) += grad_out.rowwise().sum();
+  }
+  if (wanted == Gradients::ParametersOnly) return Mat<S>();
+
+  // dx[t] = sum_k W_k^T dy[t + K/2 - k]: a correlation of dY with the kernel flipped in time and
+  // transposed per tap (block i of `flipped` is W_{K-1-i}^T).
+  Mat<S> flipped(in_, static_cast<Eigen::Index>(out_) * width_);
+  for (int i = 0; i < width_; ++i)
+    flipped.middleCols(static_cast<Eigen::Index>(i) * out_, out_) =
+        weight.value.middleCols(static_cast<Eigen::Index>(width_ - 1 - i) * in_, in_).transpose();
+  Mat<S> full(in_, count);
+  correlatePadded(flipped, padded_grad.data(), out_, width_, full.data(), count);
+  return compactWindows(full, windows_, frames_, pad);
+}
+
+template <typename S>
+void Conv1d<S>::zeroGrad() {
+  weight.zeroGrad();
+  if (has_bias_) bias.zeroGrad();
+}
+
+template <typename S>
+std::vector<Parameter<S>*> Conv1d<S>::parameters() {
+  if (has_bias_) return {&weight, &bias};
+  return {&weight};
+}
+
+template class Conv1d<float>;
+template class Conv1d<double>;
+template void correlatePadded<float>(const Mat<float>&, const float*, Eigen::Index, int, float*,
+                                     Eigen::Index, bool);
+template void correlatePadded<double>(const Mat<double>&, const double*, Eigen::Index, int, double*,
+                                      Eigen::Index, bool);
+template void padWindows<float>(const Mat<float>&, int, int, Mat<float>&);
+template void padWindows<double>(const Mat<double>&, int, int, Mat<double>&);
+
+}  // namespace motionstyle::nn

@@ -1,0 +1,174 @@
+#include "nn/fast_stylizer.h"
+
+#include <stdexcept>
+#include <string>
+
+#include "nn/compute_pool.h"
+
+namespace motionstyle::nn {
+namespace {
+
+// Columns per thread below which splitting a product is not worth a synchronisation.
+constexpr int kMinColumnsPerThread = 32;
+
+int floorDiv(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+
+// Resizes to rows x cols filled with zeros, but only when the shape changes: the zero padding columns
+// are never written afterwards, so a same-shape call needs no clearing and no allocation.
+void ensureZeroed(Mat<float>& m, Eigen::Index rows, Eigen::Index cols) {
+  if (m.rows() != rows || m.cols() != cols) m.setZero(rows, cols);
+}
+
+void requireClip(const Mat<float>& x, int features) {
+  if (x.rows() != features || x.cols() < 1)
+    throw std::invalid_argument("FastStylizer: expected a clip of " + std::to_string(features) +
+                                " x frames (frames >= 1), got " + std::to_string(x.rows()) + " x " +
+                                std::to_string(x.cols()));
+}
+
+}  // namespace
+
+FastStylizer::Layer FastStylizer::copyLayer(const Conv1d<float>& conv) {
+  Layer layer;
+  layer.weight = conv.weight.value;
+  if (conv.hasBias()) layer.bias = conv.bias.value.col(0);
+  layer.in = conv.inChannels();
+  layer.out = conv.outChannels();
+  layer.width = conv.width();
+  return layer;
+}
+
+FastStylizer::FastStylizer(const Autoencoder<float>& autoencoder) {
+  features_ = autoencoder.shape().features;
+  hidden_ = autoencoder.shape().hidden;
+  encoder_ = copyLayer(autoencoder.encoder);
+  encoder_bias_ = encoder_.bias;
+  buildPolyphase(autoencoder);
+}
+
+FastStylizer::FastStylizer(const Transformer<float>& transformer, const Autoencoder<float>& autoencoder)
+    : FastStylizer(autoencoder) {
+  if (transformer.shape().features != features_)
+    throw std::invalid_argument("FastStylizer: the transformation network has " +
+                                std::to_string(transformer.shape().features) +
+                                " features, the autoencoder " + std::to_string(features_));
+  has_transformer_ = true;
+  residual_ = transformer.shape().residual;
+  t1_ = copyLayer(transformer.conv1);
+  t2_ = copyLayer(transformer.conv2);
+  t3_ = copyLayer(transformer.conv3);
+}
+
+void FastStylizer::buildPolyphase(const Autoencoder<float>& autoencoder) {
+  // Output frame t = 2s + phase reads depooled frame u = t + k - pad = 2 * pooled + (u mod 2), so tap k
+  // lands on pooled frame s + floorDiv(phase + k - pad, 2). Taps landing on the same pooled frame add.
+  const int width = autoencoder.decoder.width();
+  const int pad = width / 2;
+  const int first = floorDiv(-pad, 2);
+  const int last = floorDiv(1 + pad, 2);
+  phase_taps_ = last - first + 1;
+  phase_left_ = -first;
+  phase_right_ = last;
+  const Mat<float>& w = autoencoder.decoder.weight.value;  // features x (hidden * width)
+  polyphase_.setZero(2 * features_, static_cast<Eigen::Index>(hidden_) * phase_taps_);
+  for (int phase = 0; phase < 2; ++phase)
+    for (int k = 0; k < width; ++k) {
+      const int m = floorDiv(phase + k - pad, 2) - first;
+      polyphase_.block(static_cast<Eigen::Index>(phase) * features_, static_cast<Eigen::Index>(m) * hidden_,
+                       features_, hidden_) += w.middleCols(static_cast<Eigen::Index>(k) * hidden_, hidden_);
+    }
+}
+
+void FastStylizer::convolve(const Layer& layer, const Mat<float>& in, Mat<float>& out, int frames, bool relu) {
+  // `in` is padded by layer.width/2; `out` by its own consumer's padding (its extra columns / 2).
+  const Eigen::Index out_pad = (out.cols() - frames) / 2;
+  computePool().parallelRanges(frames, 1, kMinColumnsPerThread, [&](int begin, int end) {
+    Eigen::Map<Mat<float>> y(out.data() + out.rows() * (out_pad + begin), layer.out, end - begin);
+    y.noalias() = layer.weight * slidingColumns(in.data() + static_cast<Eigen::Index>(layer.in) * begin,
+                                                layer.in, layer.width, end - begin);
+    if (layer.bias.size() > 0) y.colwise() += layer.bias;
+    if (relu) y = y.cwiseMax(0.0f);
+  });
+}
+
+void FastStylizer::projectPadded(int frames, Mat<float>& out) {
+  const int even = frames + frames % 2;
+  const int pooled = even / 2;
+  const Eigen::Index enc_pad = encoder_.width / 2;
+  if (frames % 2 == 1) encoder_input_.col(enc_pad + frames) = encoder_input_.col(enc_pad + frames - 1);
+
+  // Encoder (eq. 1) + max-pool + ReLU, then "- b0" for the decoder (eq. 2), per column range.
+  ensureZeroed(encoded_, hidden_, even);
+  ensureZeroed(pooled_, hidden_, pooled + phase_left_ + phase_right_);
+  computePool().parallelRanges(even, 2, 2 * kMinColumnsPerThread, [&](int begin, int end) {
+    auto e = encoded_.middleCols(begin, end - begin);
+    e.noalias() = encoder_.weight * slidingColumns(encoder_input_.data() + static_cast<Eigen::Index>(features_) * begin,
+                                                   features_, encoder_.width, end - begin);
+    for (int s = begin / 2; s < end / 2; ++s)
+      pooled_.col(phase_left_ + s) =
+          (encoded_.col(2 * s).cwiseMax(encoded_.col(2 * s + 1)) + encoder_bias_).cwiseMax(0.0f) - encoder_bias_;
+  });
+
+  // Polyphase decoder: column s of the (2*features) x pooled product is frames 2s and 2s+1.
+  out.resize(features_, frames);
+  float* destination = out.data();
+  if (frames % 2 == 1) {
+    if (decoded_.rows() != features_ || decoded_.cols() != even) decoded_.resize(features_, even);
+    destination = decoded_.data();
+  }
+  computePool().parallelRanges(pooled, 1, kMinColumnsPerThread / 2, [&](int begin, int end) {
+    Eigen::Map<Mat<float>> y(destination + static_cast<Eigen::Index>(2 * features_) * begin, 2 * features_, end - begin);
+    y.noalias() = polyphase_ * slidingColumns(pooled_.data() + static_cast<Eigen::Index>(hidden_) * begin, hidden_,
+                                              phase_taps_, end - begin);
+  });
+  if (frames % 2 == 1) out = decoded_.leftCols(frames);
+}
+
+void FastStylizer::project(const Mat<float>& x, Mat<float>& out) {
+  requireClip(x, features_);
+  const int frames = static_cast<int>(x.cols());
+  const Eigen::Index enc_pad = encoder_.width / 2;
+  ensureZeroed(encoder_input_, features_, frames + frames % 2 + 2 * enc_pad);
+  encoder_input_.middleCols(enc_pad, frames) = x;
+  projectPadded(frames, out);
+}
+
+void FastStylizer::stylize(const Mat<float>& x, Mat<float>& out) {
+  if (!has_transformer_) throw std::invalid_argument("FastStylizer: stylize() needs a transformation network");
+  requireClip(x, features_);
+  const int frames = static_cast<int>(x.cols());
+  ensureZeroed(input_, features_, frames + 2 * (t1_.width / 2));
+  ensureZeroed(hidden1_, t1_.out, frames + 2 * (t2_.width / 2));
+  ensureZeroed(hidden2_, t2_.out, frames + 2 * (t3_.width / 2));
+  const Eigen::Index enc_pad = encoder_.width / 2;
+  ensureZeroed(encoder_input_, features_, frames + frames % 2 + 2 * enc_pad);
+  input_.middleCols(t1_.width / 2, frames) = x;
+  convolve(t1_, input_, hidden1_, frames, true);
+  convolve(t2_, hidden1_, hidden2_, frames, true);
+  // The encoder input has an extra column for odd clips: write T's output at its padding offset.
+  {
+    const Eigen::Index out_pad = enc_pad;
+    computePool().parallelRanges(frames, 1, kMinColumnsPerThread, [&](int begin, int end) {
+      Eigen::Map<Mat<float>> y(encoder_input_.data() + features_ * (out_pad + begin), features_, end - begin);
+      y.noalias() = t3_.weight * slidingColumns(hidden2_.data() + static_cast<Eigen::Index>(t3_.in) * begin, t3_.in,
+                                                t3_.width, end - begin);
+      y.colwise() += t3_.bias;
+      if (residual_) y += x.middleCols(begin, end - begin);
+    });
+  }
+  projectPadded(frames, out);
+}
+
+Mat<float> FastStylizer::stylize(const Mat<float>& x) {
+  Mat<float> out;
+  stylize(x, out);
+  return out;
+}
+
+Mat<float> FastStylizer::project(const Mat<float>& x) {
+  Mat<float> out;
+  project(x, out);
+  return out;
+}
+
+}  // namespace motionstyle::nn

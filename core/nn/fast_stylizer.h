@@ -1,0 +1,82 @@
+#pragma once
+// Fast float32 inference: stylize(x) = project(T(x)) and project(x) = decode(encode(x)) for ONE clip of
+// any length (features x frames, normalised), whole-clip and fully convolutional: no windows, so no
+// seams, and exactly the reference forward pass (Transformer::apply, Autoencoder::project) up to
+// float rounding, including the odd-length rule (last frame repeated through the pool, cropped after).
+//
+// Where the speed comes from (see tests/bench/nn for figures):
+//  - every convolution is ONE matrix product over the whole clip on a strided, zero-copy im2col view
+//    of a padded buffer (conv1d.h), written straight into the next layer's padded buffer; bias, ReLU
+//    and max-pool run on the same thread right after its slice of the product, while it is in cache;
+//  - the two cores split every product by columns (compute_pool.h), one synchronisation per layer;
+//  - the decoder is POLYPHASE: after average depooling, output frames 2s and 2s+1 only see pooled
+//    frames s-6..s+6 (width 25), each through a kernel that sums pairs of taps. The two phase kernels
+//    are stacked into one (2*features) x (hidden*13) matrix whose product with the pooled hidden units
+//    is, column for column, the interleaved output: half the multiplications of the plain decoder
+//    and no depooled buffer;
+//  - the decoder's "Depool(H) - b0" becomes "H - b0" before the product (depool repeats values);
+//  - buffers persist across calls: same-length calls allocate nothing of ours.
+// Not thread-safe (scratch buffers): use one instance per thread.
+
+#include "nn/autoencoder.h"
+#include "nn/transformer.h"
+
+namespace motionstyle::nn {
+
+class FastStylizer {
+ public:
+  // Projection only (no transformation network).
+  explicit FastStylizer(const Autoencoder<float>& autoencoder);
+  // Style transfer: transformer then the autoencoder's projection. The feature counts must match
+  // (std::invalid_argument otherwise).
+  FastStylizer(const Transformer<float>& transformer, const Autoencoder<float>& autoencoder);
+
+  bool hasTransformer() const { return has_transformer_; }
+
+  // x: features x frames (frames >= 1), normalised. out: features x frames. Throws
+  // std::invalid_argument on a shape mismatch or if stylize() is called without a transformer.
+  void stylize(const Mat<float>& x, Mat<float>& out);
+  void project(const Mat<float>& x, Mat<float>& out);
+  Mat<float> stylize(const Mat<float>& x);
+  Mat<float> project(const Mat<float>& x);
+
+  // The decoder's two phase kernels stacked (tests compare them with the plain decoder).
+  const Mat<float>& polyphaseKernel() const { return polyphase_; }
+
+ private:
+  struct Layer {
+    Mat<float> weight;  // out x (in*width), tap-major
+    Vec<float> bias;    // out (may be empty)
+    int in = 0;
+    int out = 0;
+    int width = 1;
+  };
+  static Layer copyLayer(const Conv1d<float>& conv);
+  void buildPolyphase(const Autoencoder<float>& autoencoder);
+  // Runs the projection on the (even-length) padded buffer input_to_encoder_, writing `frames` columns.
+  void projectPadded(int frames, Mat<float>& out);
+  void convolve(const Layer& layer, const Mat<float>& in, Mat<float>& out, int frames, bool relu);
+
+  bool has_transformer_ = false;
+  bool residual_ = false;
+  Layer t1_, t2_, t3_, encoder_;
+  int features_ = 0;
+  int hidden_ = 0;
+  Mat<float> polyphase_;    // (2*features) x (hidden*taps)
+  int phase_taps_ = 0;      // taps of each phase kernel (13 for width 25)
+  int phase_left_ = 0;      // pooled frames of zero padding before the clip (6)
+  int phase_right_ = 0;     // ... and after (6)
+  Vec<float> encoder_bias_;
+
+  // Scratch, reused across calls. Column-major, zero-padded by width/2 frames each side where a
+  // convolution reads them.
+  Mat<float> input_;         // features x (T + 2 pad)
+  Mat<float> hidden1_;       // T's hidden layers, hidden_t x (T + 2 pad)
+  Mat<float> hidden2_;
+  Mat<float> encoder_input_; // features x (Te + 2 pad), Te = even length
+  Mat<float> encoded_;       // hidden x Te (pre-pool)
+  Mat<float> pooled_;        // hidden x (Te/2 + left + right), holds H - b0
+  Mat<float> decoded_;       // features x Te when the clip is odd
+};
+
+}  // namespace motionstyle::nn

@@ -1,0 +1,83 @@
+// describe(): the human-readable summary of a network file (`motionstyle-cli info NET`).
+
+#include <iomanip>
+#include <sstream>
+
+#include "nn/binary_io.h"
+#include "nn/network_file.h"
+
+namespace motionstyle::nn {
+namespace {
+
+Eigen::Index parameterCount(std::vector<Parameter<float>*> parameters) {
+  Eigen::Index count = 0;
+  for (const Parameter<float>* p : parameters) count += p->value.size();
+  return count;
+}
+
+void describeMetadata(std::ostringstream& out, const NetworkMetadata& m, bool style) {
+  const RepresentationInfo& r = m.representation;
+  out << "  representation: " << r.feature_count << " features, joint set '" << r.joint_set << "', " << r.fps
+      << " fps, reference body height " << r.reference_body_height_cm << " cm\n";
+  const TrainingConfig& t = m.training;
+  out << "  training: " << t.epochs << " epochs, learning rate " << t.learning_rate << ", seed " << t.seed << ", batch "
+      << t.batch_windows << " x " << t.window_frames << " frames\n";
+  if (style)
+    out << "  loss weights: content " << t.weights.content << ", style " << t.weights.style << ", foot "
+        << t.weights.foot << ", bone " << t.weights.bone << ", trajectory " << t.weights.trajectory << "\n";
+  else
+    out << "  sparsity (alpha) " << t.sparsity << ", input dropout " << t.dropout << "\n";
+  if (!m.style_clips.empty()) {
+    out << "  style clips:\n";
+    for (const StyleClipRef& clip : m.style_clips) out << "    " << clip.name << "  " << clip.content_hash << "\n";
+  }
+  const LossHistory& h = m.loss_history;
+  if (!h.epochs.empty()) {
+    out << "  loss history: " << h.epochs.size() << " epochs\n";
+    auto row = [&](const char* label, const std::vector<double>& values) {
+      out << "    " << label;
+      for (std::size_t i = 0; i < values.size() && i < h.terms.size(); ++i) out << "  " << h.terms[i] << " " << values[i];
+      out << "\n";
+    };
+    row("first:", h.epochs.front());
+    row("last: ", h.epochs.back());
+  }
+  for (const auto& [key, value] : m.properties) out << "  " << key << ": " << value << "\n";
+}
+
+}  // namespace
+
+std::string describe(const AutoencoderModel& model) {
+  std::ostringstream out;
+  const AutoencoderShape& s = model.network.shape();
+  out << "MotionStyle network (format " << kNetworkFormatVersion << "): autoencoder (loss network)\n";
+  out << "  architecture: " << s.features << " features -> conv width " << s.width << " -> " << s.hidden
+      << " hidden units, max-pool 2 (decoder: average depool, conv back to " << s.features << ")\n";
+  Autoencoder<float> copy = model.network;
+  out << "  parameters: " << parameterCount(copy.parameters()) << "\n";
+  describeMetadata(out, model.metadata, false);
+  return out.str();
+}
+
+std::string describe(const StyleModel& model) {
+  std::ostringstream out;
+  const TransformerShape& t = model.transformer.shape();
+  const AutoencoderShape& s = model.loss_network.shape();
+  out << "MotionStyle network (format " << kNetworkFormatVersion << "): style (transformation network)\n";
+  out << "  transformation: " << t.features << " -> " << t.hidden << " -> " << t.hidden << " -> " << t.features
+      << ", conv width " << t.width << (t.residual ? ", residual (output = input + T(input))" : ", plain") << "\n";
+  out << "  loss network: " << s.features << " features -> " << s.hidden << " hidden units, width " << s.width << "\n";
+  Transformer<float> tc = model.transformer;
+  Autoencoder<float> ac = model.loss_network;
+  out << "  parameters: " << parameterCount(tc.parameters()) << " + " << parameterCount(ac.parameters())
+      << " (loss network)\n";
+  describeMetadata(out, model.metadata, true);
+  return out.str();
+}
+
+std::string describeNetworkFile(const std::filesystem::path& file) {
+  const NetworkKind kind = networkFileKind(file);
+  return kind == NetworkKind::Style ? describe(loadStyleModel(file)) : describe(loadAutoencoder(file));
+}
+
+}  // namespace motionstyle::nn

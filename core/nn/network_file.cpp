@@ -1,0 +1,373 @@
+#include "nn/network_file.h"
+
+#include <cmath>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+
+#include "common/atomic_file.h"
+#include "common/errors.h"
+#include "nn/binary_io.h"
+
+namespace motionstyle::nn {
+namespace {
+
+constexpr std::string_view kMagic = "MSTYLNET";
+constexpr std::size_t kHeaderBytes = 8 + 4 + 4 + 8;  // magic, version, kind, body size
+constexpr std::size_t kCrcBytes = 4;
+constexpr std::uintmax_t kMaxFileBytes = 256u << 20;  // a default style file is ~7 MB
+constexpr std::uint32_t kMaxDimension = 4096;
+constexpr std::uint32_t kMaxWidth = 255;
+
+const char* kindName(NetworkKind kind) {
+  return kind == NetworkKind::Autoencoder ? "autoencoder (loss network)" : "style (transformation network)";
+}
+
+// ---------------------------------------------------------------- writing
+
+void writeConvTensors(ByteWriter& w, const Conv1d<float>& conv) {
+  w.tensor(conv.weight.name, conv.weight.value);
+  if (conv.hasBias()) w.tensor(conv.bias.name, conv.bias.value);
+}
+
+void requireWritable(const Normalisation& normalisation, const NetworkMetadata& metadata) {
+  normalisation.validate();
+  if (metadata.representation.feature_count != kFeatureCount)
+    throw std::invalid_argument("network file: representation.feature_count must be " + std::to_string(kFeatureCount));
+  for (const auto& epoch : metadata.loss_history.epochs)
+    if (epoch.size() != metadata.loss_history.terms.size())
+      throw std::invalid_argument("network file: every loss-history epoch needs one value per term");
+}
+
+std::string serialise(NetworkKind kind, const Normalisation& normalisation, const NetworkMetadata& m,
+                      const Autoencoder<float>& ae, const Transformer<float>* transformer) {
+  requireWritable(normalisation, m);
+  ByteWriter body;
+  const RepresentationInfo& r = m.representation;
+  body.f64(r.fps);
+  body.str(r.joint_set);
+  body.f64(r.reference_body_height_cm);
+  body.u32(static_cast<std::uint32_t>(r.feature_count));
+  body.f64Vector(normalisation.mean);
+  body.f64Vector(normalisation.std);
+  const TrainingConfig& t = m.training;
+  body.u32(static_cast<std::uint32_t>(t.epochs));
+  body.f64(t.learning_rate);
+  body.u64(t.seed);
+  body.u32(static_cast<std::uint32_t>(t.batch_windows));
+  body.u32(static_cast<std::uint32_t>(t.window_frames));
+  for (double v : {t.weights.content, t.weights.style, t.weights.foot, t.weights.bone, t.weights.trajectory})
+    body.f64(v);
+  body.f64(t.sparsity);
+  body.f64(t.dropout);
+  body.u32(static_cast<std::uint32_t>(m.style_clips.size()));
+  for (const StyleClipRef& clip : m.style_clips) {
+    body.str(clip.name);
+    body.str(clip.content_hash);
+  }
+  body.u32(static_cast<std::uint32_t>(m.loss_history.terms.size()));
+  for (const std::string& term : m.loss_history.terms) body.str(term);
+  body.u32(static_cast<std::uint32_t>(m.loss_history.epochs.size()));
+  for (const auto& epoch : m.loss_history.epochs)
+    for (double v : epoch) body.f64(v);
+  body.u32(static_cast<std::uint32_t>(m.properties.size()));
+  for (const auto& [key, value] : m.properties) {
+    body.str(key);
+    body.str(value);
+  }
+  // Architecture, then tensors.
+  body.u32(static_cast<std::uint32_t>(ae.shape().features));
+  body.u32(static_cast<std::uint32_t>(ae.shape().hidden));
+  body.u32(static_cast<std::uint32_t>(ae.shape().width));
+  if (transformer != nullptr) {
+    body.u32(static_cast<std::uint32_t>(transformer->shape().features));
+    body.u32(static_cast<std::uint32_t>(transformer->shape().hidden));
+    body.u32(static_cast<std::uint32_t>(transformer->shape().width));
+    body.u8(transformer->shape().residual ? 1 : 0);
+  }
+  body.u32(transformer != nullptr ? 9u : 3u);
+  if (transformer != nullptr) {
+    writeConvTensors(body, transformer->conv1);
+    writeConvTensors(body, transformer->conv2);
+    writeConvTensors(body, transformer->conv3);
+  }
+  writeConvTensors(body, ae.encoder);
+  writeConvTensors(body, ae.decoder);
+
+  ByteWriter file;
+  file.raw(kMagic);
+  file.u32(kNetworkFormatVersion);
+  file.u32(static_cast<std::uint32_t>(kind));
+  file.u64(body.bytes().size());
+  file.raw(body.bytes());
+  file.u32(crc32(file.bytes()));
+  return std::move(file.bytes());
+}
+
+// ---------------------------------------------------------------- reading
+
+struct Parsed {
+  NetworkKind kind{};
+  NetworkMetadata metadata;
+  Normalisation normalisation;
+  AutoencoderShape ae_shape;
+  TransformerShape t_shape;
+  std::vector<ByteReader::Tensor> tensors;
+};
+
+// Header, size, version and CRC; returns the kind and leaves `reader` at the body.
+NetworkKind readHeader(std::string_view bytes, ByteReader& reader) {
+  if (bytes.size() < kHeaderBytes + kCrcBytes)
+    reader.fail("truncated network file: " + std::to_string(bytes.size()) + " bytes, a network file has at least " +
+                std::to_string(kHeaderBytes + kCrcBytes));
+  if (bytes.substr(0, kMagic.size()) != kMagic) reader.fail("not a MotionStyle network file (wrong magic)");
+  reader.take(kMagic.size(), "magic");
+  const std::uint32_t version = reader.u32("format version");
+  if (version == 0) reader.fail("corrupt network file: format version 0");
+  if (version > kNetworkFormatVersion)
+    reader.fail("network file format version " + std::to_string(version) +
+                " is newer than this build supports (up to " + std::to_string(kNetworkFormatVersion) +
+                "): update MotionStyle");
+  const std::uint32_t kind = reader.u32("kind");
+  const std::uint64_t body_size = reader.u64("body size");
+  const std::uint64_t expected = kHeaderBytes + body_size + kCrcBytes;
+  if (body_size > bytes.size() || expected > bytes.size())
+    reader.fail("truncated network file: the header announces " + std::to_string(expected) + " bytes, the file has " +
+                std::to_string(bytes.size()));
+  if (expected < bytes.size())
+    reader.fail("corrupt network file: " + std::to_string(bytes.size() - expected) + " unexpected trailing bytes");
+  ByteReader crc_reader(bytes.substr(bytes.size() - kCrcBytes), reader.file());
+  if (crc_reader.u32("CRC") != crc32(bytes.substr(0, bytes.size() - kCrcBytes)))
+    reader.fail("corrupt network file: CRC-32 mismatch (the file was damaged or truncated)");
+  if (kind != static_cast<std::uint32_t>(NetworkKind::Autoencoder) && kind != static_cast<std::uint32_t>(NetworkKind::Style))
+    reader.fail("corrupt network file: unknown kind " + std::to_string(kind));
+  return static_cast<NetworkKind>(kind);
+}
+
+std::uint32_t readCount(ByteReader& r, const char* what, std::size_t min_bytes_each) {
+  const std::uint32_t count = r.u32(what);
+  if (static_cast<std::uint64_t>(count) * min_bytes_each > r.remaining())
+    r.fail(std::string("truncated or corrupt network file: ") + what + " claims " + std::to_string(count) + " entries");
+  return count;
+}
+
+int readDimension(ByteReader& r, const char* what, std::uint32_t max) {
+  const std::uint32_t v = r.u32(what);
+  if (v < 1 || v > max) r.fail(std::string("corrupt network file: ") + what + " = " + std::to_string(v));
+  return static_cast<int>(v);
+}
+
+void readMetadata(ByteReader& r, Parsed& p) {
+  RepresentationInfo& rep = p.metadata.representation;
+  rep.fps = r.f64("fps");
+  rep.joint_set = r.str("joint set", 256);
+  rep.reference_body_height_cm = r.f64("reference body height");
+  rep.feature_count = static_cast<int>(r.u32("feature count"));
+  p.normalisation.mean = r.f64Vector("normalisation mean");
+  p.normalisation.std = r.f64Vector("normalisation std");
+  TrainingConfig& t = p.metadata.training;
+  t.epochs = static_cast<int>(r.u32("epochs"));
+  t.learning_rate = r.f64("learning rate");
+  t.seed = r.u64("seed");
+  t.batch_windows = static_cast<int>(r.u32("batch windows"));
+  t.window_frames = static_cast<int>(r.u32("window frames"));
+  for (double* v : {&t.weights.content, &t.weights.style, &t.weights.foot, &t.weights.bone, &t.weights.trajectory})
+    *v = r.f64("loss weight");
+  t.sparsity = r.f64("sparsity");
+  t.dropout = r.f64("dropout");
+  const std::uint32_t clips = readCount(r, "style clip count", 8);
+  for (std::uint32_t i = 0; i < clips; ++i) {
+    StyleClipRef clip;
+    clip.name = r.str("style clip name");
+    clip.content_hash = r.str("style clip hash", 256);
+    p.metadata.style_clips.push_back(std::move(clip));
+  }
+  const std::uint32_t terms = readCount(r, "loss term count", 4);
+  for (std::uint32_t i = 0; i < terms; ++i) p.metadata.loss_history.terms.push_back(r.str("loss term", 256));
+  const std::uint32_t epochs = r.u32("loss history epochs");
+  if (static_cast<std::uint64_t>(epochs) * terms * 8 > r.remaining() || (terms == 0 && epochs != 0))
+    r.fail("truncated or corrupt network file: loss history claims " + std::to_string(epochs) + " epochs");
+  for (std::uint32_t e = 0; e < epochs; ++e) {
+    std::vector<double> values(terms);
+    for (double& v : values) v = r.f64("loss value");
+    p.metadata.loss_history.epochs.push_back(std::move(values));
+  }
+  const std::uint32_t properties = readCount(r, "property count", 8);
+  for (std::uint32_t i = 0; i < properties; ++i) {
+    std::string key = r.str("property key", 4096);
+    std::string value = r.str("property value");
+    p.metadata.properties.emplace_back(std::move(key), std::move(value));
+  }
+}
+
+// What this build can use: the 66-value canonical representation with matching statistics.
+void validateRepresentation(const ByteReader& r, const Parsed& p) {
+  const RepresentationInfo& rep = p.metadata.representation;
+  if (rep.feature_count != kFeatureCount || rep.joint_set != kCanonicalJointSetName)
+    r.fail("network file uses a different representation (" + std::to_string(rep.feature_count) + " features, joint set '" +
+           rep.joint_set + "'); this build uses " + std::to_string(kFeatureCount) + " features of '" +
+           std::string(kCanonicalJointSetName) + "'");
+  if (!std::isfinite(rep.fps) || rep.fps <= 0 || !std::isfinite(rep.reference_body_height_cm) ||
+      rep.reference_body_height_cm <= 0)
+    r.fail("corrupt network file: fps and reference body height must be finite and positive");
+  try {
+    p.normalisation.validate();
+  } catch (const std::invalid_argument& e) {
+    r.fail(std::string("corrupt network file: ") + e.what());
+  }
+  if (p.ae_shape.features != rep.feature_count)
+    r.fail("network file: the autoencoder has " + std::to_string(p.ae_shape.features) + " features, the representation " +
+           std::to_string(rep.feature_count));
+}
+
+void readArchitecture(ByteReader& r, Parsed& p) {
+  p.ae_shape.features = readDimension(r, "autoencoder features", kMaxDimension);
+  p.ae_shape.hidden = readDimension(r, "autoencoder hidden units", kMaxDimension);
+  p.ae_shape.width = readDimension(r, "autoencoder width", kMaxWidth);
+  std::uint64_t floats = 2ull * p.ae_shape.features * p.ae_shape.hidden * p.ae_shape.width + p.ae_shape.hidden;
+  if (p.kind == NetworkKind::Style) {
+    p.t_shape.features = readDimension(r, "transformer features", kMaxDimension);
+    p.t_shape.hidden = readDimension(r, "transformer hidden units", kMaxDimension);
+    p.t_shape.width = readDimension(r, "transformer width", kMaxWidth);
+    const std::uint8_t residual = r.u8("transformer residual flag");
+    if (residual > 1) r.fail("corrupt network file: residual flag " + std::to_string(residual));
+    p.t_shape.residual = residual == 1;
+    const std::uint64_t f = static_cast<std::uint64_t>(p.t_shape.features);
+    const std::uint64_t h = static_cast<std::uint64_t>(p.t_shape.hidden);
+    floats += (2 * f * h + h * h) * static_cast<std::uint64_t>(p.t_shape.width) + 2 * h + f;
+  }
+  if (p.ae_shape.width % 2 == 0 || (p.kind == NetworkKind::Style && p.t_shape.width % 2 == 0))
+    r.fail("corrupt network file: convolution widths must be odd");
+  // Before any network is allocated: the declared architecture must fit in the bytes that remain.
+  if (floats * 4 > r.remaining())
+    r.fail("truncated or corrupt network file: the architecture needs " + std::to_string(floats * 4) +
+           " bytes of weights, only " + std::to_string(r.remaining()) + " left");
+}
+
+void assignConv(ByteReader& r, std::vector<ByteReader::Tensor>& tensors, std::size_t& next, Conv1d<float>& conv) {
+  for (Parameter<float>* param : conv.parameters()) {
+    if (next >= tensors.size()) r.fail("network file: missing tensor " + param->name);
+    ByteReader::Tensor& t = tensors[next++];
+    if (t.name != param->name || t.value.rows() != param->value.rows() || t.value.cols() != param->value.cols())
+      r.fail("network file: tensor '" + t.name + "' " + std::to_string(t.value.rows()) + " x " +
+             std::to_string(t.value.cols()) + " where '" + param->name + "' " + std::to_string(param->value.rows()) +
+             " x " + std::to_string(param->value.cols()) + " was expected");
+    if (!t.value.allFinite()) r.fail("network file: tensor '" + t.name + "' has non-finite values");
+    param->value = std::move(t.value);
+    param->zeroGrad();
+  }
+}
+
+Parsed parse(std::string_view bytes, const std::string& source, NetworkKind wanted) {
+  ByteReader r(bytes.substr(0, bytes.size() >= kCrcBytes ? bytes.size() - kCrcBytes : 0), source);
+  ByteReader header_reader(bytes, source);
+  Parsed p;
+  p.kind = readHeader(bytes, header_reader);
+  if (p.kind != wanted)
+    r.fail(std::string("this file holds a ") + kindName(p.kind) + " network, not the expected " + kindName(wanted) +
+           " network");
+  r.take(kHeaderBytes, "header");
+  readMetadata(r, p);
+  readArchitecture(r, p);
+  validateRepresentation(r, p);
+  const std::uint32_t count = readCount(r, "tensor count", 12);
+  for (std::uint32_t i = 0; i < count; ++i) p.tensors.push_back(r.tensor());
+  if (r.remaining() != 0) r.fail("corrupt network file: " + std::to_string(r.remaining()) + " unread bytes");
+  return p;
+}
+
+std::string readWholeFile(const std::filesystem::path& file) {
+  std::error_code error;
+  const std::uintmax_t size = std::filesystem::file_size(file, error);
+  if (error) throw InputError(file.string(), 0, "cannot read network file: " + error.message());
+  if (size > kMaxFileBytes)
+    throw InputError(file.string(), 0, "not a network file: " + std::to_string(size) + " bytes is too large");
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError(file.string(), 0, "cannot open network file");
+  std::string bytes(static_cast<std::size_t>(size), '\0');
+  in.read(bytes.data(), static_cast<std::streamsize>(size));
+  if (static_cast<std::uintmax_t>(in.gcount()) != size) throw InputError(file.string(), 0, "cannot read network file");
+  return bytes;
+}
+
+}  // namespace
+
+std::string serialiseAutoencoder(const AutoencoderModel& model) {
+  return serialise(NetworkKind::Autoencoder, model.normalisation, model.metadata, model.network, nullptr);
+}
+
+std::string serialiseStyleModel(const StyleModel& model) {
+  if (model.transformer.shape().features != model.loss_network.shape().features)
+    throw std::invalid_argument("StyleModel: transformer and loss network feature counts differ");
+  return serialise(NetworkKind::Style, model.normalisation, model.metadata, model.loss_network, &model.transformer);
+}
+
+void saveAutoencoder(const AutoencoderModel& model, const std::filesystem::path& file) {
+  writeFileAtomically(file, serialiseAutoencoder(model));
+}
+
+void saveStyleModel(const StyleModel& model, const std::filesystem::path& file) {
+  writeFileAtomically(file, serialiseStyleModel(model));
+}
+
+AutoencoderModel parseAutoencoder(std::string_view bytes, const std::string& source_name) {
+  Parsed p = parse(bytes, source_name, NetworkKind::Autoencoder);
+  ByteReader r(std::string_view(), source_name);  // for messages
+  AutoencoderModel model{Autoencoder<float>(p.ae_shape), std::move(p.normalisation), std::move(p.metadata)};
+  std::size_t next = 0;
+  assignConv(r, p.tensors, next, model.network.encoder);
+  assignConv(r, p.tensors, next, model.network.decoder);
+  if (next != p.tensors.size()) r.fail("network file: unexpected extra tensors");
+  return model;
+}
+
+StyleModel parseStyleModel(std::string_view bytes, const std::string& source_name) {
+  Parsed p = parse(bytes, source_name, NetworkKind::Style);
+  ByteReader r(std::string_view(), source_name);
+  if (p.t_shape.features != p.ae_shape.features)
+    r.fail("network file: transformer and loss network feature counts differ");
+  StyleModel model{Transformer<float>(p.t_shape), Autoencoder<float>(p.ae_shape), std::move(p.normalisation),
+                   std::move(p.metadata)};
+  std::size_t next = 0;
+  assignConv(r, p.tensors, next, model.transformer.conv1);
+  assignConv(r, p.tensors, next, model.transformer.conv2);
+  assignConv(r, p.tensors, next, model.transformer.conv3);
+  assignConv(r, p.tensors, next, model.loss_network.encoder);
+  assignConv(r, p.tensors, next, model.loss_network.decoder);
+  if (next != p.tensors.size()) r.fail("network file: unexpected extra tensors");
+  return model;
+}
+
+AutoencoderModel loadAutoencoder(const std::filesystem::path& file) {
+  return parseAutoencoder(readWholeFile(file), file.string());
+}
+
+StyleModel loadStyleModel(const std::filesystem::path& file) { return parseStyleModel(readWholeFile(file), file.string()); }
+
+NetworkKind networkFileKind(const std::filesystem::path& file) {
+  const std::string bytes = readWholeFile(file);
+  ByteReader header(bytes, file.string());
+  const NetworkKind kind = readHeader(bytes, header);
+  if (kind == NetworkKind::Style)
+    parseStyleModel(bytes, file.string());
+  else
+    parseAutoencoder(bytes, file.string());
+  return kind;
+}
+
+void checkCompatible(const RepresentationInfo& actual, const RepresentationInfo& expected, const std::string& file) {
+  std::ostringstream differences;
+  if (actual.feature_count != expected.feature_count)
+    differences << " features " << actual.feature_count << " (expected " << expected.feature_count << ");";
+  if (actual.joint_set != expected.joint_set)
+    differences << " joint set '" << actual.joint_set << "' (expected '" << expected.joint_set << "');";
+  if (std::abs(actual.fps - expected.fps) > 1e-6 * expected.fps)
+    differences << " " << actual.fps << " fps (expected " << expected.fps << ");";
+  if (std::abs(actual.reference_body_height_cm - expected.reference_body_height_cm) > 1e-6 * expected.reference_body_height_cm)
+    differences << " reference height " << actual.reference_body_height_cm << " cm (expected "
+                << expected.reference_body_height_cm << ");";
+  const std::string text = differences.str();
+  if (!text.empty()) throw InputError(file, 0, "network trained on another representation:" + text);
+}
+
+}  // namespace motionstyle::nn

@@ -1,0 +1,116 @@
+#pragma once
+// Network files: the trained loss network (autoencoder) and per-style networks, with everything needed
+// to use and to trust them. Binary, little-endian, versioned, CRC-protected; the byte-level
+// specification is core/nn/NETWORK_FORMAT.md. Saved atomically (writeFileAtomically). Loading a
+// truncated, corrupt, foreign, future-version or mismatched file throws InputError naming the file,
+// never crashes and never allocates more than the file's own size justifies.
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "nn/autoencoder.h"
+#include "nn/losses.h"
+#include "nn/style_loss.h"
+#include "nn/transformer.h"
+
+namespace motionstyle::nn {
+
+constexpr std::uint32_t kNetworkFormatVersion = 1;
+// The joint set this build's 66-value representation uses (feature_layout.h).
+inline constexpr std::string_view kCanonicalJointSetName = "canonical-21";
+
+enum class NetworkKind : std::uint32_t { Autoencoder = 1, Style = 2 };
+
+// The representation the network was trained on. A network only makes sense on frames built the same
+// way: checkCompatible() compares.
+struct RepresentationInfo {
+  double fps = kDefaultFeatureFps;                          // frames per second of the frames
+  std::string joint_set = std::string(kCanonicalJointSetName);
+  double reference_body_height_cm = kReferenceSkeletalHeightCm;  // skeletal height characters are scaled to
+  int feature_count = kFeatureCount;                        // values per frame
+  bool operator==(const RepresentationInfo&) const = default;
+};
+
+// How the network was trained (informative; reproducibility).
+struct TrainingConfig {
+  int epochs = 0;
+  double learning_rate = 1e-3;
+  std::uint64_t seed = 0;
+  int batch_windows = 16;    // windows per batch
+  int window_frames = 240;   // frames per window
+  LossWeights weights;       // style networks (eq. 10)
+  double sparsity = kDefaultSparsity;   // autoencoder alpha (eq. 3)
+  double dropout = kDefaultInputDropout;  // autoencoder input dropout
+  bool operator==(const TrainingConfig&) const = default;
+};
+
+struct StyleClipRef {
+  std::string name;          // e.g. the BVH file name
+  std::string content_hash;  // contentHash() of the file's bytes (binary_io.h)
+  bool operator==(const StyleClipRef&) const = default;
+};
+
+// Loss per epoch and term: epochs[e][i] is term terms[i] after epoch e.
+struct LossHistory {
+  std::vector<std::string> terms;
+  std::vector<std::vector<double>> epochs;
+  bool operator==(const LossHistory&) const = default;
+};
+
+struct NetworkMetadata {
+  RepresentationInfo representation;
+  TrainingConfig training;
+  std::vector<StyleClipRef> style_clips;                       // style networks: the clip(s) of the style
+  LossHistory loss_history;
+  std::vector<std::pair<std::string, std::string>> properties;  // free-form: "created", "tool_version", ...
+  bool operator==(const NetworkMetadata&) const = default;
+};
+
+struct AutoencoderModel {
+  Autoencoder<float> network;
+  Normalisation normalisation;  // 66 + 66: x_n = (x - mean) / std
+  NetworkMetadata metadata;
+};
+
+// A style network is self-contained: it embeds the loss network it was trained against, which is also
+// the one whose projection cleans its output (the two must not be mixed up).
+struct StyleModel {
+  Transformer<float> transformer;
+  Autoencoder<float> loss_network;
+  Normalisation normalisation;
+  NetworkMetadata metadata;
+};
+
+// Serialise to bytes (the exact file content) / save atomically. Throws std::invalid_argument when
+// the model is internally inconsistent (e.g. normalisation of the wrong size), WriteError on I/O.
+std::string serialiseAutoencoder(const AutoencoderModel& model);
+std::string serialiseStyleModel(const StyleModel& model);
+void saveAutoencoder(const AutoencoderModel& model, const std::filesystem::path& file);
+void saveStyleModel(const StyleModel& model, const std::filesystem::path& file);
+
+// Parse bytes (source_name names them in errors) / load a file. InputError on anything wrong, incl.
+// a file of the other kind, a feature count or joint set this build does not use, shapes that do
+// not match the declared architecture, non-finite weights or statistics.
+AutoencoderModel parseAutoencoder(std::string_view bytes, const std::string& source_name);
+StyleModel parseStyleModel(std::string_view bytes, const std::string& source_name);
+AutoencoderModel loadAutoencoder(const std::filesystem::path& file);
+StyleModel loadStyleModel(const std::filesystem::path& file);
+
+// The kind of a network file after full validation (for a CLI that accepts either).
+NetworkKind networkFileKind(const std::filesystem::path& file);
+
+// Throws InputError (naming `file`) listing every field of `actual` that differs from `expected`.
+void checkCompatible(const RepresentationInfo& actual, const RepresentationInfo& expected,
+                     const std::string& file);
+
+// Human-readable summary (used by `motionstyle-cli info NET`).
+std::string describe(const AutoencoderModel& model);
+std::string describe(const StyleModel& model);
+// Loads either kind and describes it (InputError as for loading).
+std::string describeNetworkFile(const std::filesystem::path& file);
+
+}  // namespace motionstyle::nn

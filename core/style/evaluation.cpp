@@ -1,0 +1,177 @@
+#include "style/evaluation.h"
+
+#include <chrono>
+#include <nlohmann/json.hpp>
+
+#include "nn/losses.h"
+#include "nn/style_loss.h"
+#include "style/stylizer.h"
+
+namespace motionstyle::style {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+nn::Mat<float> normalised(const Eigen::MatrixXd& features, const nn::Normalisation& n) {
+  return ((features.colwise() - n.mean).array().colwise() / n.std.array()).matrix().cast<float>();
+}
+
+bool sameWeights(const nn::Autoencoder<float>& a, const nn::Autoencoder<float>& b) {
+  return a.shape() == b.shape() && a.encoder.weight.value == b.encoder.weight.value &&
+         a.encoder.bias.value == b.encoder.bias.value && a.decoder.weight.value == b.decoder.weight.value;
+}
+
+// The per-clip figures weighted by frames into `sum`.
+void accumulate(ClipEvaluation& sum, const ClipEvaluation& clip) {
+  const double w = clip.frames;
+  sum.frames += clip.frames;
+  sum.reconstruction_mse += w * clip.reconstruction_mse;
+  sum.reconstruction_joint_error_cm += w * clip.reconstruction_joint_error_cm;
+  sum.content_distance_before += w * clip.content_distance_before;
+  sum.content_distance_after += w * clip.content_distance_after;
+  sum.style_distance_before += w * clip.style_distance_before;
+  sum.style_distance_after += w * clip.style_distance_after;
+  sum.bone_error_cm_content += w * clip.bone_error_cm_content;
+  sum.bone_error_cm_output += w * clip.bone_error_cm_output;
+  sum.foot_skate_cm_s_content += w * clip.foot_skate_cm_s_content;
+  sum.foot_skate_cm_s_output += w * clip.foot_skate_cm_s_output;
+  sum.stylize_seconds += clip.stylize_seconds;
+}
+
+nlohmann::json clipJson(const ClipEvaluation& c) {
+  const auto ratio = [](double after, double before) { return before > 0 ? after / before : 0.0; };
+  return {{"file", c.file},
+          {"style_clip", c.style_clip},
+          {"frames", c.frames},
+          {"reconstruction", {{"mse_normalised", c.reconstruction_mse}, {"joint_error_cm", c.reconstruction_joint_error_cm}}},
+          {"content_distance",
+           {{"before", c.content_distance_before}, {"after", c.content_distance_after}}},
+          {"style_distance",
+           {{"before", c.style_distance_before},
+            {"after", c.style_distance_after},
+            {"ratio", ratio(c.style_distance_after, c.style_distance_before)}}},
+          {"bone_error_cm", {{"content", c.bone_error_cm_content}, {"output", c.bone_error_cm_output}}},
+          {"foot_skate_cm_s", {{"content", c.foot_skate_cm_s_content}, {"output", c.foot_skate_cm_s_output}}},
+          {"stylize_seconds", c.stylize_seconds}};
+}
+
+}  // namespace
+
+double boneLengthError(const Eigen::MatrixXd& features, const Eigen::VectorXd& bone_lengths) {
+  if (features.cols() == 0) return 0.0;
+  double sum = 0.0;
+  for (int c = 1; c < kCanonicalJointCount; ++c) {
+    const int parent = kCanonicalParent[static_cast<std::size_t>(c)];
+    const Eigen::RowVectorXd lengths = (features.middleRows<3>(3 * c) - features.middleRows<3>(3 * parent)).colwise().norm();
+    sum += (lengths.array() - bone_lengths[c - 1]).abs().sum();
+  }
+  return sum / (static_cast<double>(features.cols()) * nn::kBoneCount);
+}
+
+double footSkate(const Eigen::MatrixXd& features, const Eigen::MatrixXd& contacts, const FeatureAnchor& anchor) {
+  const Eigen::MatrixXd world = referenceWorldPositions(features, anchor);
+  double sum = 0.0;
+  long count = 0;
+  for (int label = 0; label < kContactCount; ++label) {
+    const int joint = index(kContactJoint[static_cast<std::size_t>(label)]);
+    for (Eigen::Index t = 0; t + 1 < world.rows(); ++t) {
+      if (contacts(label, t) < 0.5 || contacts(label, t + 1) < 0.5) continue;
+      const double dx = world(t + 1, 3 * joint) - world(t, 3 * joint);
+      const double dz = world(t + 1, 3 * joint + 2) - world(t, 3 * joint + 2);
+      sum += std::sqrt(dx * dx + dz * dz) * anchor.fps;
+      ++count;
+    }
+  }
+  return count > 0 ? sum / static_cast<double>(count) : 0.0;
+}
+
+EvaluationReport evaluateStyleNetwork(const nn::AutoencoderModel& autoencoder, const nn::StyleModel& network,
+                                      const std::vector<MotionClip>& clips, const std::vector<MotionClip>& styles,
+                                      const std::vector<int>& pairing) {
+  if (pairing.size() != clips.size()) throw std::invalid_argument("evaluateStyleNetwork: one pairing per clip");
+  const auto started = Clock::now();
+  EvaluationReport report;
+  report.autoencoder_matches_network = sameWeights(autoencoder.network, network.loss_network);
+  const Stylizer stylizer(network);
+  const nn::Autoencoder<float>& loss = network.loss_network;
+  const nn::Normalisation& norm = network.normalisation;
+  std::vector<nn::Mat<float>> style_grams;
+  for (const MotionClip& style : styles) style_grams.push_back(nn::styleGram(loss, normalised(style.features.values, norm)));
+
+  for (std::size_t i = 0; i < clips.size(); ++i) {
+    const MotionClip& clip = clips[i];
+    const Eigen::MatrixXd& content = clip.features.values;
+    const int frames = clip.frameCount();
+    const int pooled = nn::evenFrames(frames) / 2;
+    ClipEvaluation e;
+    e.file = clip.file.string();
+    e.style_clip = styles.at(static_cast<std::size_t>(pairing[i])).file.filename().string();
+    e.frames = frames;
+
+    const Eigen::MatrixXd reconstructed = projectFeatures(autoencoder, content);
+    const nn::Mat<float> content_ae = normalised(content, autoencoder.normalisation);
+    e.reconstruction_mse = static_cast<double>(
+        nn::meanSquaredError<float>(normalised(reconstructed, autoencoder.normalisation), content_ae, 0.0f, nullptr));
+    double joint_error = 0.0;
+    for (int c = 0; c < kCanonicalJointCount; ++c)
+      joint_error += (reconstructed.middleRows<3>(3 * c) - content.middleRows<3>(3 * c)).colwise().norm().sum();
+    e.reconstruction_joint_error_cm = joint_error / (static_cast<double>(frames) * kCanonicalJointCount);
+
+    const auto t0 = Clock::now();
+    const Eigen::MatrixXd output = stylizer.stylizeFeatures(content, 1.0);
+    e.stylize_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+
+    const nn::Mat<float> h_content = loss.encode(normalised(content, norm), frames);
+    const nn::Mat<float> h_projected = loss.encode(normalised(projectFeatures({loss, norm, {}}, content), norm), frames);
+    const nn::Mat<float> h_output = loss.encode(normalised(output, norm), frames);
+    e.content_distance_before = static_cast<double>(nn::meanSquaredError<float>(h_projected, h_content, 0.0f, nullptr));
+    e.content_distance_after = static_cast<double>(nn::meanSquaredError<float>(h_output, h_content, 0.0f, nullptr));
+    const std::vector<nn::Mat<float>> gram = {style_grams[static_cast<std::size_t>(pairing[i])]};
+    e.style_distance_before = static_cast<double>(nn::styleLoss<float>(h_content, pooled, gram, 0.0f, nullptr));
+    e.style_distance_after = static_cast<double>(nn::styleLoss<float>(h_output, pooled, gram, 0.0f, nullptr));
+
+    e.bone_error_cm_content = boneLengthError(content, clip.bone_lengths);
+    e.bone_error_cm_output = boneLengthError(output, clip.bone_lengths);
+    e.foot_skate_cm_s_content = footSkate(content, clip.features.contacts, clip.features.anchor);
+    e.foot_skate_cm_s_output = footSkate(output, clip.features.contacts, clip.features.anchor);
+    accumulate(report.mean, e);
+    report.clips.push_back(std::move(e));
+  }
+  ClipEvaluation& mean = report.mean;
+  mean.file = "mean";
+  if (mean.frames > 0) {
+    const double n = mean.frames;
+    for (double* v : {&mean.reconstruction_mse, &mean.reconstruction_joint_error_cm, &mean.content_distance_before,
+                      &mean.content_distance_after, &mean.style_distance_before, &mean.style_distance_after,
+                      &mean.bone_error_cm_content, &mean.bone_error_cm_output, &mean.foot_skate_cm_s_content,
+                      &mean.foot_skate_cm_s_output})
+      *v /= n;
+    report.stylize_frames_per_second = mean.stylize_seconds > 0 ? n / mean.stylize_seconds : 0.0;
+  }
+  report.seconds = std::chrono::duration<double>(Clock::now() - started).count();
+  return report;
+}
+
+std::string evaluationJson(const EvaluationReport& report) {
+  nlohmann::json json;
+  json["format"] = "motionstyle-evaluation";
+  json["version"] = 1;
+  json["autoencoder"] = report.autoencoder_file;
+  json["network"] = report.network_file;
+  json["autoencoder_matches_network"] = report.autoencoder_matches_network;
+  json["units"] = {{"distances", "unweighted eq. 4 / eq. 5 means (normalised hidden units)"},
+                   {"lengths", "reference cm"},
+                   {"foot_skate", "reference cm per second"}};
+  nlohmann::json summary = clipJson(report.mean);
+  summary.erase("file");
+  summary.erase("style_clip");
+  summary["clips"] = report.clips.size();
+  summary["stylize_frames_per_second"] = report.stylize_frames_per_second;
+  json["summary"] = summary;
+  json["clips"] = nlohmann::json::array();
+  for (const ClipEvaluation& clip : report.clips) json["clips"].push_back(clipJson(clip));
+  json["seconds"] = report.seconds;
+  return json.dump(2) + "\n";
+}
+
+}  // namespace motionstyle::style

@@ -1,0 +1,218 @@
+// trainStyleNetwork: one transformation network T per style (eq. 4-10) against a frozen loss network.
+#include <chrono>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+
+#include "common/errors.h"
+#include "nn/binary_io.h"
+#include "style/cancellation.h"
+#include "style/training.h"
+#include "style/training_loop.h"
+
+namespace motionstyle::style {
+namespace {
+
+// Windows of hidden units L(I) per content window, computed once: the content target of eq. 4 never
+// changes while T trains (the biggest saving of the training loop after the GEMMs themselves).
+nn::Mat<float> encodeAllWindows(const nn::Autoencoder<float>& loss_network, const WindowSet& windows,
+                                const TrainingCallbacks& callbacks, std::chrono::steady_clock::time_point started) {
+  const int pooled = nn::evenFrames(windows.frames) / 2;
+  nn::Mat<float> hidden(loss_network.shape().hidden, static_cast<Eigen::Index>(windows.count()) * pooled);
+  constexpr int kChunk = 8;
+  for (int first = 0; first < windows.count(); first += kChunk) {
+    throwIfCancelled(callbacks.cancel);
+    if (callbacks.progress) {
+      TrainingProgress progress;
+      progress.phase = TrainingProgress::Phase::Loading;
+      progress.message = "encoding content window " + std::to_string(first + 1) + " of " + std::to_string(windows.count());
+      progress.elapsed_seconds = secondsSince(started);
+      callbacks.progress(progress);
+    }
+    const int count = std::min(kChunk, windows.count() - first);
+    hidden.middleCols(static_cast<Eigen::Index>(first) * pooled, static_cast<Eigen::Index>(count) * pooled) =
+        nn::contentHidden(loss_network,
+                          nn::Mat<float>(windows.values.middleCols(static_cast<Eigen::Index>(first) * windows.frames,
+                                                                   static_cast<Eigen::Index>(count) * windows.frames)),
+                          windows.frames);
+  }
+  return hidden;
+}
+
+std::string fileHash(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  return nn::contentHash(bytes.str());
+}
+
+std::vector<std::string> settingsParts(const StyleTrainingConfig& config, const std::vector<std::string>& style_hashes,
+                                       const std::vector<int>& pairing, const nn::AutoencoderModel& loss) {
+  std::vector<std::string> parts = {"style", "hidden=" + std::to_string(config.shape.hidden),
+                                    "width=" + std::to_string(config.shape.width),
+                                    "residual=" + std::to_string(config.shape.residual)};
+  const nn::LossWeights& w = config.weights;
+  for (double v : {w.content, w.style, w.foot, w.bone, w.trajectory}) parts.push_back(std::to_string(v));
+  parts.insert(parts.end(), style_hashes.begin(), style_hashes.end());
+  for (int p : pairing) parts.push_back(std::to_string(p));
+  parts.push_back(nn::contentHash(nn::serialiseAutoencoder(nn::AutoencoderModel{loss.network, loss.normalisation, {}})));
+  return parts;
+}
+
+}  // namespace
+
+StyleTrainingResult trainStyleNetwork(const StyleTrainingConfig& config, const TrainingCallbacks& callbacks) {
+  config.validate();
+  const TrainingSettings& settings = config.settings;
+  const auto started = std::chrono::steady_clock::now();
+  StyleTrainingResult result;
+  result.model.transformer = nn::Transformer<float>(config.shape);
+
+  const nn::AutoencoderModel loss = config.autoencoder_model
+                                        ? *config.autoencoder_model
+                                        : loadCompatibleAutoencoder(config.autoencoder, settings.dataset.features);
+  const FeatureStatistics statistics = toStatistics(loss.normalisation);
+
+  // Style clips: every one must cover the loss network's filter (25 frames at 60 fps).
+  DatasetOptions style_options = settings.dataset;
+  style_options.minimum_frames = loss.network.shape().width;
+  std::vector<MotionClip> style_clips;
+  std::vector<std::string> style_hashes;
+  for (const StyleSource& source : config.styles) {
+    style_clips.push_back(loadMotionClip(source.file, style_options));
+    style_hashes.push_back(fileHash(source.file));
+  }
+
+  TrainingClips data;
+  try {
+    data = loadTrainingClips(config.content, config.content_clips, settings, callbacks, "content", started);
+  } catch (const OperationCancelled&) {
+    result.status = TrainingStatus::Cancelled;
+    result.seconds = secondsSince(started);
+    return result;
+  }
+  result.training_files = data.training_files;
+  result.held_out_files = data.held_out_files;
+  std::vector<std::string> labels;
+  for (const MotionClip& clip : data.clips) labels.push_back(clip.labels.content);
+  result.pairing = pairStyles(labels, config.styles);
+  if (callbacks.log) {
+    std::map<std::string, std::pair<int, int>> table;  // label -> (clips, style)
+    for (std::size_t i = 0; i < labels.size(); ++i) {
+      auto& entry = table[labels[i]];
+      ++entry.first;
+      entry.second = result.pairing[i];
+    }
+    for (const auto& [label, entry] : table)
+      callbacks.log("pairing: " + (label.empty() ? std::string("(no label)") : label) + " (" +
+                    std::to_string(entry.first) + " clips) -> " +
+                    config.styles[static_cast<std::size_t>(entry.second)].file.filename().string());
+  }
+
+  // Targets computed once: style Gram matrices per style clip, L(I) per content window.
+  std::vector<nn::Mat<float>> style_grams;
+  for (const MotionClip& clip : style_clips) {
+    Eigen::MatrixXd values = clip.features.values;
+    statistics.normalize(values);
+    style_grams.push_back(nn::styleGram(loss.network, nn::Mat<float>(values.cast<float>())));
+  }
+  const WindowSet windows = makeWindows(data.clips, statistics, settings.windows);
+  nn::Mat<float> content_hidden;
+  try {
+    content_hidden = encodeAllWindows(loss.network, windows, callbacks, started);
+  } catch (const OperationCancelled&) {
+    result.status = TrainingStatus::Cancelled;
+    result.seconds = secondsSince(started);
+    return result;
+  }
+  if (callbacks.log)
+    callbacks.log(std::to_string(windows.count()) + " windows of " + std::to_string(windows.frames) + " frames");
+
+  nn::StyleModel& model = result.model;
+  model.loss_network = loss.network;
+  model.normalisation = loss.normalisation;
+  std::vector<EpochRecord> history;
+  std::vector<nn::Parameter<float>*> parameters = model.transformer.parameters();
+  ResumableAdam optimiser(parameters, nn::AdamOptions{settings.learning_rate});
+  const std::uint64_t fingerprint = dataFingerprint(data, settings, settingsParts(config, style_hashes, result.pairing, loss));
+  int first_epoch = 1;
+  if (settings.resume) {
+    const LoadedCheckpoint checkpoint = readCheckpoint(settings.checkpointPath());
+    nn::StyleModel resumed = nn::parseStyleModel(checkpoint.network_bytes, settings.checkpointPath().string());
+    if (!(resumed.transformer.shape() == config.shape))
+      throw InputError(settings.checkpointPath().string(), 0, "the checkpoint's network has another shape");
+    model.transformer = std::move(resumed.transformer);
+    parameters = model.transformer.parameters();
+    optimiser = ResumableAdam(parameters, nn::AdamOptions{settings.learning_rate});
+    first_epoch = restoreFromState(checkpoint.state, nn::NetworkKind::Style, fingerprint, settings.checkpointPath(),
+                                   optimiser, history);
+    if (callbacks.log) callbacks.log("resuming after epoch " + std::to_string(first_epoch - 1));
+  } else if (!settings.init.empty()) {
+    nn::StyleModel initial = loadCompatibleStyleModel(settings.init, settings.dataset.features);
+    if (!(initial.transformer.shape() == config.shape))
+      throw InputError(settings.init.string(), 0, "the --init network has another shape than requested");
+    model.transformer = std::move(initial.transformer);
+    parameters = model.transformer.parameters();
+    optimiser = ResumableAdam(parameters, nn::AdamOptions{settings.learning_rate});
+    if (callbacks.log) callbacks.log("warm start from " + settings.init.string());
+  } else {
+    model.transformer.initialise(settings.seed);
+  }
+
+  nn::Autoencoder<float> loss_network = loss.network;  // forward caches are per instance
+  const nn::Normalisation normalisation = loss.normalisation;
+  const int frames = windows.frames;
+  const int pooled = nn::evenFrames(frames) / 2;
+  LoopSetup setup;
+  setup.settings = &settings;
+  setup.window_count = windows.count();
+  setup.first_epoch = first_epoch;
+  setup.parameters = parameters;
+  setup.optimiser = &optimiser;
+  setup.started = started;
+  setup.micro_step = [&](const std::vector<int>& indices, std::mt19937&) {
+    nn::StyleBatch<float> batch;
+    batch.frames = frames;
+    batch.content = gatherWindows(windows.values, frames, indices);
+    batch.contacts = gatherWindows(windows.contacts, frames, indices);
+    batch.content_hidden = gatherWindows(content_hidden, pooled, indices);
+    batch.bone_lengths.resize(windows.bone_lengths.rows(), static_cast<Eigen::Index>(indices.size()));
+    for (std::size_t i = 0; i < indices.size(); ++i) {
+      batch.bone_lengths.col(static_cast<Eigen::Index>(i)) = windows.bone_lengths.col(indices[i]);
+      const int clip = windows.clip_index[static_cast<std::size_t>(indices[i])];
+      batch.style_grams.push_back(style_grams[static_cast<std::size_t>(result.pairing[static_cast<std::size_t>(clip)])]);
+    }
+    const nn::StyleLossTerms terms = nn::accumulateStyleLoss(model.transformer, loss_network, batch, normalisation, config.weights);
+    return StepLosses{terms.total,
+                      {{"content", terms.content}, {"style", terms.style}, {"foot", terms.foot}, {"bone", terms.bone},
+                       {"trajectory", terms.trajectory}}};
+  };
+  const auto metadata = [&](const std::vector<EpochRecord>& so_far) {
+    nn::NetworkMetadata m = trainingMetadata(settings, so_far, data);
+    m.training.weights = config.weights;
+    m.training.sparsity = loss.metadata.training.sparsity;
+    m.training.dropout = loss.metadata.training.dropout;
+    for (std::size_t i = 0; i < config.styles.size(); ++i)
+      m.style_clips.push_back({config.styles[i].file.filename().string(), style_hashes[i]});
+    for (const auto& [label, style] : styleLabelTable(config.styles))
+      m.properties.emplace_back("style_for_" + (label.empty() ? std::string("unlabelled") : label),
+                                config.styles[static_cast<std::size_t>(style)].file.filename().string());
+    return m;
+  };
+  setup.end_epoch = [&](const std::vector<EpochRecord>& so_far) {
+    model.metadata = metadata(so_far);
+    saveCheckpoint(settings, nn::serialiseStyleModel(model), nn::NetworkKind::Style, optimiser, so_far, fingerprint);
+    if (callbacks.style_snapshot) callbacks.style_snapshot(model);
+  };
+
+  result.status = runTrainingLoop(setup, history, callbacks);
+  result.history = history;
+  result.epochs_completed = history.empty() ? 0 : history.back().epoch;
+  model.metadata = metadata(history);
+  if (result.status == TrainingStatus::Completed && !settings.output.empty()) nn::saveStyleModel(model, settings.output);
+  result.seconds = secondsSince(started);
+  return result;
+}
+
+}  // namespace motionstyle::style

@@ -1,0 +1,35 @@
+#pragma once
+// The last step of stylize / transfer: the stylized canonical joint positions become a clean clip on
+// the content's OWN skeleton through the Ceres IK clean-up (ik/cleanup.h), with the quality metrics
+// before (raw network output) and after (the cleaned clip).
+//
+// Rates: the stylized clip is at the representation's 60 fps. The content is resampled to that rate for
+// the solve (so its rotations warm-start and prior each frame), and the cleaned clip is resampled to
+// `output_fps` (default: the content's own rate) for export. Metrics are computed at 60 fps, in cm.
+
+#include "ik/cleanup.h"
+#include "ik/metrics.h"
+#include "mapping/joint_mapping.h"
+#include "motion/motion.h"
+#include "style/stylizer.h"
+
+namespace motionstyle::style {
+
+struct StylizedCleanup {
+  Motion motion;          // content's skeleton, hierarchy, names, offsets and channel layout; output rate
+  CleanupReport report;
+  ClipMetrics raw;        // the network's output (21 canonical joints) judged by the CONTENT's contacts
+  ClipMetrics cleaned;    // the cleaned clip's canonical joints by `contacts`, bones of the whole skeleton
+  Eigen::MatrixXi contacts;  // frames x 4 at 60 fps: the labels the clean-up locked (see the .cpp)
+};
+
+// content: the user's clip at its own rate (the one whose features were stylized); mapping: its
+// canonical joints. output_fps <= 0 keeps the content's rate. Throws std::invalid_argument when the
+// stylized clip does not belong to the content (frame counts disagree after resampling).
+StylizedCleanup cleanUpStylizedClip(const Motion& content, const JointMapping& mapping, const StylizedClip& stylized,
+                                    const CleanupOptions& options = {}, double output_fps = 0.0);
+
+// The floor height along the file's up axis, in file units, of a clip whose features have this anchor.
+double fileFloorHeight(const FeatureAnchor& anchor);
+
+}  // namespace motionstyle::style

@@ -1,0 +1,62 @@
+#pragma once
+// Stylize: the transformation network T, then the manifold projection through the loss network L
+// (decode(encode(.)), paper "Manifold Projection"), over a whole clip of any length at once: the
+// networks are fully convolutional, so there is no 240-frame limit and there are no seams. Runs on the
+// float32 fast path (nn/fast_stylizer.h).
+//
+// Strength s in [0, 1] blends in the representation's own units (cm, cm/frame, rad/frame):
+//   result = content + s * (L(T(content)) - content)
+// so s = 0 returns the content's features exactly (bit for bit) and s = 1 the fully styled motion.
+//
+// The output is at the representation's rate (60 fps), with the CONTENT's foot contacts (the paper's
+// foot loss teaches T to respect them; the IK clean-up locks them).
+
+#include <Eigen/Core>
+#include <memory>
+#include <mutex>
+
+#include "features/representation.h"
+#include "nn/fast_stylizer.h"
+#include "nn/network_file.h"
+
+namespace motionstyle::style {
+
+// A stylized clip: the targets for the output step (IK clean-up, or the positions-only BVH).
+struct StylizedClip {
+  Eigen::MatrixXd features;         // 66 x frames, representation units (feature_layout.h)
+  Eigen::MatrixXd contacts;         // 4 x frames, 0/1, the content's labels
+  Eigen::MatrixXd world_positions;  // frames x 63: the 21 canonical joints in the content clip's FILE
+                                    // space (file units and axes), canonicalWorldPositions()
+  FeatureAnchor anchor;             // the content's: maps features back to file space
+  double fps = kDefaultFeatureFps;  // frames per second of all of the above
+
+  int frameCount() const { return static_cast<int>(features.cols()); }
+};
+
+class Stylizer {
+ public:
+  // Throws std::invalid_argument if the model is inconsistent (feature counts, normalisation).
+  explicit Stylizer(nn::StyleModel model);
+
+  const nn::StyleModel& model() const { return model_; }
+
+  // features: 66 x frames (frames >= 1) in representation units. Returns the same shape and units.
+  // Throws std::invalid_argument for a strength outside [0, 1] or NaN, or a wrong shape; InputError is
+  // not used here (the features come from extractFeatures, already validated). Thread-safe (one call
+  // at a time runs the fast path; others wait).
+  Eigen::MatrixXd stylizeFeatures(const Eigen::MatrixXd& features, double strength) const;
+
+  // The whole clip: features, contacts and world positions in the clip's file space.
+  StylizedClip stylize(const MotionFeatures& content, double strength) const;
+
+ private:
+  nn::StyleModel model_;
+  mutable std::mutex mutex_;
+  mutable std::unique_ptr<nn::FastStylizer> fast_;
+};
+
+// L(x) = decode(encode(x)) of a clip in representation units (66 x frames): the autoencoder's
+// reconstruction, used by eval and as the "projection only" preview. float32 fast path.
+Eigen::MatrixXd projectFeatures(const nn::AutoencoderModel& autoencoder, const Eigen::MatrixXd& features);
+
+}  // namespace motionstyle::style

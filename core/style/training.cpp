@@ -1,0 +1,87 @@
+// Shared pieces of the training API: settings validation, the representation stamp, model loading.
+#include "style/training.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "nn/compute_pool.h"
+
+namespace motionstyle::style {
+
+std::filesystem::path TrainingSettings::checkpointPath() const {
+  if (!checkpoint.empty()) return checkpoint;
+  std::filesystem::path path = output;
+  path += ".checkpoint";
+  return path;
+}
+
+void TrainingSettings::validate() const {
+  if (epochs < 1) throw std::invalid_argument("epochs must be >= 1");
+  if (batch_size < 1) throw std::invalid_argument("batch size must be >= 1");
+  if (!std::isfinite(learning_rate) || learning_rate <= 0) throw std::invalid_argument("learning rate must be > 0");
+  if (threads < 0) throw std::invalid_argument("threads must be >= 0");
+  if (threads > 0 && threads != nn::computePool().threadCount())
+    throw std::invalid_argument("threads = " + std::to_string(threads) + " but the nn compute pool runs " +
+                                std::to_string(nn::computePool().threadCount()) +
+                                " (set MOTIONSTYLE_NN_THREADS before the first network runs)");
+  if (output.empty() && checkpoint.empty())
+    throw std::invalid_argument("an output path (or at least a checkpoint path) is required");
+  if (resume && !init.empty()) throw std::invalid_argument("--resume and --init exclude each other");
+  if (holdout_every < 0 || holdout_every == 1) throw std::invalid_argument("hold-out must be 0 (none) or every N >= 2");
+  windows.validate();
+}
+
+void AutoencoderTrainingConfig::validate() const {
+  settings.validate();
+  if (data.empty() && clips.empty()) throw std::invalid_argument("no training data (folders, files or clips)");
+  if (!std::isfinite(sparsity) || sparsity < 0) throw std::invalid_argument("sparsity must be >= 0");
+  if (!std::isfinite(dropout) || dropout < 0 || dropout >= 1) throw std::invalid_argument("dropout must be in [0, 1)");
+  if (shape.features != kFeatureCount) throw std::invalid_argument("the autoencoder must take 66 features");
+  if (shape.hidden < 1 || shape.width < 1 || shape.width % 2 == 0)
+    throw std::invalid_argument("autoencoder hidden units must be >= 1 and the width odd");
+}
+
+void StyleTrainingConfig::validate() const {
+  settings.validate();
+  if (autoencoder.empty() && !autoencoder_model) throw std::invalid_argument("no loss network (--ae) given");
+  if (content.empty() && content_clips.empty()) throw std::invalid_argument("no content clips given");
+  if (styles.empty()) throw std::invalid_argument("no style clip given");
+  weights.validate();
+  if (shape.features != kFeatureCount) throw std::invalid_argument("the transformation network must take 66 features");
+  if (shape.hidden < 1 || shape.width < 1 || shape.width % 2 == 0)
+    throw std::invalid_argument("transformation network hidden units must be >= 1 and the width odd");
+}
+
+nn::RepresentationInfo currentRepresentation(const FeatureOptions& options) {
+  nn::RepresentationInfo info;
+  info.fps = options.fps;
+  info.joint_set = std::string(nn::kCanonicalJointSetName);
+  info.reference_body_height_cm = kReferenceSkeletalHeightCm;
+  info.feature_count = kFeatureCount;
+  return info;
+}
+
+nn::AutoencoderModel loadCompatibleAutoencoder(const std::filesystem::path& file, const FeatureOptions& options) {
+  nn::AutoencoderModel model = nn::loadAutoencoder(file);
+  nn::checkCompatible(model.metadata.representation, currentRepresentation(options), file.string());
+  return model;
+}
+
+nn::StyleModel loadCompatibleStyleModel(const std::filesystem::path& file, const FeatureOptions& options) {
+  nn::StyleModel model = nn::loadStyleModel(file);
+  nn::checkCompatible(model.metadata.representation, currentRepresentation(options), file.string());
+  return model;
+}
+
+nn::Normalisation toNormalisation(const FeatureStatistics& statistics) {
+  return {statistics.mean, statistics.std};
+}
+
+FeatureStatistics toStatistics(const nn::Normalisation& normalisation) {
+  FeatureStatistics statistics;
+  statistics.mean = normalisation.mean;
+  statistics.std = normalisation.std;
+  return statistics;
+}
+
+}  // namespace motionstyle::style

@@ -1,0 +1,176 @@
+#pragma once
+// The training API shared by the CLI (train-ae, train-style) and the GUI's worker thread.
+//
+//   trainAutoencoder:  the loss network L (eq. 1-3) on windows of a motion database.
+//   trainStyleNetwork: one transformation network T per style (eq. 4-10) against a trained L.
+//
+// Both run on the calling thread (the GUI calls them from a worker) and use the nn compute pool for
+// both cores. Data: 240-frame windows at 60 fps with a step of 120 (training_windows.h), shuffled
+// every epoch with a seeded std::mt19937; float32 networks; Adam.
+//
+// Guarantees:
+//   - Progress: `progress` is called after every optimisation step, when data loading advances and
+//     when an epoch closes (with the epoch's mean losses). On this project's data a step takes well
+//     under a second, so callers that draw (a terminal bar, a curve) should throttle themselves.
+//   - Cancellation: `cancel` is polled between files while loading, and between MICRO-BATCHES inside
+//     a step (each step is split into micro-batches of at most 4 windows whose gradients are combined
+//     as the batch mean), so it takes effect well within 1 s. A cancelled run returns status Cancelled;
+//     the step in flight is discarded; the checkpoint of the last completed epoch is left as it was;
+//     no output file is written.
+//   - Checkpoint: after every epoch the network and the optimiser state are written atomically to the
+//     checkpoint path (a network file plus a ".state" sidecar, checkpoint.h). `resume` continues from
+//     it and reproduces uninterrupted training exactly (same seed, thread count and data).
+//   - Determinism: the same config (seed, data, batch) and the same nn thread count give bit-identical
+//     networks. Per-epoch shuffles and dropout masks come from std::seed_seq{seed, epoch, purpose}.
+//   - Divergence: a non-finite loss or weight stops training with TrainingDiverged; the last good
+//     checkpoint is kept (nothing is written after the divergence).
+// Errors: InputError for bad data (style/motion_dataset.h), std::invalid_argument for a bad config,
+// WriteError when a checkpoint or the output cannot be written (the earlier files stay intact).
+
+#include <atomic>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "nn/network_file.h"
+#include "style/motion_dataset.h"
+#include "style/style_pairing.h"
+#include "style/training_windows.h"
+
+namespace motionstyle::style {
+
+class TrainingDiverged : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct NamedLoss {
+  std::string name;  // "mse", "sparsity" (autoencoder); "content", "style", "foot", "bone", "trajectory"
+  double value = 0;  // UNWEIGHTED term
+};
+
+struct TrainingProgress {
+  enum class Phase { Loading, Training, EpochEnd };
+  Phase phase = Phase::Loading;
+  std::string message;             // e.g. "loading clip 12 of 40"; empty while training
+  int epoch = 0;                   // 1-based epoch in progress (or just closed, for EpochEnd)
+  int epochs = 0;                  // total epochs of the run
+  int step = 0;                    // 1-based step within the epoch (EpochEnd: steps_per_epoch)
+  int steps_per_epoch = 0;
+  double total = 0;                // weighted total loss of the step (EpochEnd: mean over the epoch)
+  std::vector<NamedLoss> terms;    // the step's unweighted terms (EpochEnd: means over the epoch)
+  double elapsed_seconds = 0;      // since this call of trainX started
+  double eta_seconds = -1;         // estimated remaining seconds, -1 when unknown (first step)
+};
+
+struct EpochRecord {
+  int epoch = 0;  // 1-based
+  double total = 0;
+  std::vector<NamedLoss> terms;  // means over the epoch's steps
+  double seconds = 0;            // wall time of the epoch
+};
+
+struct TrainingCallbacks {
+  std::function<void(const TrainingProgress&)> progress;  // may be empty
+  std::function<void(const std::string&)> log;            // notes and warnings (skipped files, pairing)
+  const std::atomic<bool>* cancel = nullptr;               // set to true from any thread to stop
+  // After every epoch's checkpoint, a copy of the model so far (the GUI's live preview). May be empty.
+  std::function<void(const nn::AutoencoderModel&)> autoencoder_snapshot;
+  std::function<void(const nn::StyleModel&)> style_snapshot;
+};
+
+enum class TrainingStatus { Completed, Cancelled };
+
+// What every training run shares.
+struct TrainingSettings {
+  int epochs = 100;
+  int batch_size = 16;            // windows per step
+  double learning_rate = 1e-3;    // Adam
+  std::uint32_t seed = 1;
+  // Total nn threads (both cores by default). 0 = the compute pool as it is; any other value must equal
+  // nn::computePool().threadCount() (the pool is process-wide: the CLI sets MOTIONSTYLE_NN_THREADS
+  // before first use), else std::invalid_argument.
+  int threads = 0;
+  std::filesystem::path output;      // the trained network file, written atomically at the end
+  std::filesystem::path checkpoint;  // default: output + ".checkpoint"
+  bool resume = false;               // continue from `checkpoint` (its epoch count must be < epochs)
+  std::filesystem::path init;        // warm start from this network file (not with resume)
+  WindowOptions windows;
+  DatasetOptions dataset;
+  int holdout_every = 0;             // splitHoldout(): every N-th file is kept out of training
+
+  std::filesystem::path checkpointPath() const;
+  void validate() const;  // std::invalid_argument naming the bad field
+};
+
+struct TrainingResult {
+  TrainingStatus status = TrainingStatus::Completed;
+  int epochs_completed = 0;           // including resumed ones
+  std::vector<EpochRecord> history;   // every completed epoch, resumed ones included
+  std::vector<std::filesystem::path> training_files;
+  std::vector<std::filesystem::path> held_out_files;
+  double seconds = 0;
+};
+
+// ---- Loss network -------------------------------------------------------------------------------
+
+struct AutoencoderTrainingConfig {
+  TrainingSettings settings;
+  std::vector<std::filesystem::path> data;  // folders and/or files (ignored when `clips` is not empty)
+  std::vector<MotionClip> clips;            // preloaded clips (the GUI's library)
+  nn::AutoencoderShape shape;
+  double sparsity = nn::kDefaultSparsity;       // alpha of eq. 3 (mean |w|)
+  double dropout = nn::kDefaultInputDropout;    // input dropout rate in [0, 1)
+
+  void validate() const;
+};
+
+struct AutoencoderTrainingResult : TrainingResult {
+  // The trained network with its normalisation (computed over the training clips) and metadata; when
+  // cancelled, the weights after the last completed step (the checkpoint file holds the last epoch's).
+  nn::AutoencoderModel model;
+};
+
+AutoencoderTrainingResult trainAutoencoder(const AutoencoderTrainingConfig& config,
+                                           const TrainingCallbacks& callbacks = {});
+
+// ---- Transformation network ---------------------------------------------------------------------
+
+struct StyleTrainingConfig {
+  TrainingSettings settings;
+  std::filesystem::path autoencoder;        // the loss network file (with its normalisation)
+  std::optional<nn::AutoencoderModel> autoencoder_model;  // preloaded loss network (wins over the path)
+  std::vector<std::filesystem::path> content;  // content folders/files (ignored when content_clips set)
+  std::vector<MotionClip> content_clips;       // preloaded content
+  std::vector<StyleSource> styles;             // style clips and their pairing (style_pairing.h)
+  nn::LossWeights weights;                     // content 1, style 100, foot/bone/trajectory 0.01
+  nn::TransformerShape shape;
+
+  void validate() const;
+};
+
+struct StyleTrainingResult : TrainingResult {
+  nn::StyleModel model;      // transformer + the loss network it was trained against + normalisation
+  std::vector<int> pairing;  // per training clip: index into config.styles
+};
+
+// The representation this build's features use (fps from the options, 21 canonical joints, the
+// reference skeletal height, 66 values): written into network files and checked when loading them.
+nn::RepresentationInfo currentRepresentation(const FeatureOptions& options = {});
+
+// Loads a network file and checks it was made for currentRepresentation(options): InputError naming the
+// file otherwise (a network for a different representation).
+nn::AutoencoderModel loadCompatibleAutoencoder(const std::filesystem::path& file, const FeatureOptions& options = {});
+nn::StyleModel loadCompatibleStyleModel(const std::filesystem::path& file, const FeatureOptions& options = {});
+
+// nn::Normalisation <-> FeatureStatistics (the same numbers).
+nn::Normalisation toNormalisation(const FeatureStatistics& statistics);
+FeatureStatistics toStatistics(const nn::Normalisation& normalisation);
+
+StyleTrainingResult trainStyleNetwork(const StyleTrainingConfig& config, const TrainingCallbacks& callbacks = {});
+
+}  // namespace motionstyle::style

@@ -1,0 +1,102 @@
+#pragma once
+// The epoch/step loop shared by trainAutoencoder and trainStyleNetwork (internal to core/style):
+// shuffling, batches split into micro-batches, gradient averaging, the optimiser step, divergence and
+// cancellation checks, progress, and the end-of-epoch hook (checkpoint).
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <random>
+#include <vector>
+
+#include "nn/tensor.h"
+#include "style/training.h"
+#include "style/training_state.h"
+
+namespace motionstyle::style {
+
+// Windows per micro-batch: a step over 16 windows is computed as 4 micro-batches of 4 so that the
+// cancellation flag is seen every ~0.1 s even on a loaded machine (a whole 16 x 240 autoencoder step
+// is ~20 GFLOP). The step's gradient is the window-weighted mean of the micro-batch gradients.
+constexpr int kMicroBatchWindows = 4;
+
+// A generator seeded from (seed, epoch, purpose) with std::seed_seq, whose algorithm the standard fixes:
+// an epoch's shuffle and dropout do not depend on earlier epochs, so resuming reproduces them.
+std::mt19937 epochGenerator(std::uint32_t seed, int epoch, std::uint32_t purpose);
+
+// Fisher-Yates over 0..count-1 with draws straight from the generator (std::shuffle's algorithm is
+// library-specific).
+std::vector<int> shuffledIndices(int count, std::mt19937& rng);
+
+// Sums fraction * grad over micro-batches, then hands the total back to the parameters.
+class GradientAccumulator {
+ public:
+  explicit GradientAccumulator(std::vector<nn::Parameter<float>*> parameters);
+  void begin();                  // zero the sum and the parameters' gradients
+  void add(float fraction);      // sum += fraction * grad; grad = 0
+  void finish();                 // grad = sum
+ private:
+  std::vector<nn::Parameter<float>*> parameters_;
+  std::vector<nn::Mat<float>> sum_;
+};
+
+bool parametersFinite(const std::vector<nn::Parameter<float>*>& parameters);
+
+struct StepLosses {
+  double total = 0;
+  std::vector<NamedLoss> terms;
+};
+
+struct LoopSetup {
+  const TrainingSettings* settings = nullptr;
+  int window_count = 0;
+  int first_epoch = 1;  // 1-based; > 1 when resuming
+  std::vector<nn::Parameter<float>*> parameters;
+  ResumableAdam* optimiser = nullptr;
+  // Adds the gradient of the loss over `windows` (one micro-batch) into the parameters' gradients
+  // (unscaled) and returns its unweighted terms and weighted total. `rng` is the epoch's generator for
+  // stochastic layers (dropout).
+  std::function<StepLosses(const std::vector<int>& windows, std::mt19937& rng)> micro_step;
+  // Called after each completed epoch (history already appended): checkpoint, snapshot.
+  std::function<void(const std::vector<EpochRecord>& history)> end_epoch;
+  std::chrono::steady_clock::time_point started;
+};
+
+// Runs epochs first_epoch..settings->epochs. Returns Completed or Cancelled; throws TrainingDiverged.
+TrainingStatus runTrainingLoop(const LoopSetup& setup, std::vector<EpochRecord>& history,
+                               const TrainingCallbacks& callbacks);
+
+double secondsSince(std::chrono::steady_clock::time_point start);
+
+// Loads `inputs` (or takes `preloaded`), applies the hold-out split and reports loading progress and
+// skipped files through the callbacks. `what` names the data in messages ("training", "content").
+struct TrainingClips {
+  std::vector<MotionClip> clips;
+  std::vector<std::filesystem::path> training_files;
+  std::vector<std::filesystem::path> held_out_files;
+};
+TrainingClips loadTrainingClips(const std::vector<std::filesystem::path>& inputs,
+                                const std::vector<MotionClip>& preloaded, const TrainingSettings& settings,
+                                const TrainingCallbacks& callbacks, const std::string& what,
+                                std::chrono::steady_clock::time_point started);
+
+// Metadata shared by both network kinds: representation, training settings, loss history, properties.
+nn::NetworkMetadata trainingMetadata(const TrainingSettings& settings, const std::vector<EpochRecord>& history,
+                                     const TrainingClips& data);
+
+// The fingerprint of the data and settings a checkpoint must match to be resumed.
+std::uint64_t dataFingerprint(const TrainingClips& data, const TrainingSettings& settings,
+                              const std::vector<std::string>& extra);
+
+// Writes the checkpoint (network bytes + state) and logs where.
+void saveCheckpoint(const TrainingSettings& settings, const std::string& network_bytes, nn::NetworkKind kind,
+                    const ResumableAdam& optimiser, const std::vector<EpochRecord>& history,
+                    std::uint64_t data_fingerprint);
+
+// Restores the optimiser and history from a checkpoint state, after checking kind and fingerprint.
+// Returns the first epoch to run.
+int restoreFromState(const TrainingState& state, nn::NetworkKind kind, std::uint64_t data_fingerprint,
+                     const std::filesystem::path& checkpoint, ResumableAdam& optimiser,
+                     std::vector<EpochRecord>& history);
+
+}  // namespace motionstyle::style

@@ -1,0 +1,134 @@
+// Acceptance on the real fixtures: CMU 131_01 (120 fps, Y-up, CMU unit) and zombie (30 fps, Z-up,
+// inches). Damage = 2 cm smooth noise + 0.3 cm jitter per joint, 6 cm/s foot sliding during contact,
+// +-3 % bone lengths (ik_test_support.h).
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <string>
+
+#include "bvh/bvh_reader.h"
+#include "ik/cleanup.h"
+#include "ik/contacts.h"
+#include "ik/metrics.h"
+#include "ik_test_support.h"
+#include "mapping/joint_mapping.h"
+#include "test_paths.h"
+
+namespace motionstyle {
+namespace {
+
+struct Fixture {
+  const char* file;
+  Eigen::Vector3d up;
+  double cm_per_unit;
+};
+
+void PrintTo(const Fixture& fixture, std::ostream* out) { *out << fixture.file; }
+
+class CleanupRealClip : public ::testing::TestWithParam<Fixture> {
+ protected:
+  void SetUp() override {
+    clip = readBvh(test::fixture(GetParam().file));
+    mapping = mapJoints(clip.skeleton, clip.source);
+    up = GetParam().up;
+    cm = GetParam().cm_per_unit;
+    world = worldPositions(clip);
+    const std::array<int, kContactCount> feet = contactJoints(mapping);
+    floor = estimateFloorHeight(world, feet, up);
+    contacts = detectContacts(world, feet, up, floor, clip.fps(), restPoseBodyHeight(clip.skeleton, up));
+    clean_targets = test::canonicalPositions(world, mapping);
+  }
+
+  Motion clean(const Eigen::MatrixXd& targets, CleanupReport& report) const {
+    return cleanupMotion(CleanupInput{clip, mapping, targets, contacts, up, floor, cm}, {}, &report);
+  }
+
+  ClipMetrics metricsOf(const Eigen::MatrixXd& result_world, const Eigen::MatrixXd& targets) const {
+    MetricsInput input{result_world, mapping.joints, skeletonBones(clip.skeleton)};
+    input.contacts = contacts;
+    input.targets = targets;
+    input.up = up;
+    input.floor_height = floor;
+    input.cm_per_unit = cm;
+    input.fps = clip.fps();
+    return computeMetrics(input);
+  }
+
+  Motion clip;
+  JointMapping mapping;
+  Eigen::Vector3d up;
+  double cm = 1.0;
+  double floor = 0.0;
+  Eigen::MatrixXd world;
+  Eigen::MatrixXi contacts;
+  Eigen::MatrixXd clean_targets;
+};
+
+TEST_P(CleanupRealClip, DamagedTargetsComeOutClean) {
+  ASSERT_GT(contacts.sum(), clip.frameCount() / 2) << "the fixture should have plenty of foot contact";
+  const Eigen::MatrixXd damaged = test::damageTargets(clean_targets, contacts, clip.fps(), cm, up, {});
+  MetricsInput damaged_input{damaged, identityCanonicalJoints(), canonicalBones(world, mapping)};
+  damaged_input.contacts = contacts;
+  damaged_input.up = up;
+  damaged_input.floor_height = floor;
+  damaged_input.cm_per_unit = cm;
+  damaged_input.fps = clip.fps();
+  const ClipMetrics target_metrics = computeMetrics(damaged_input);
+
+  CleanupReport report;
+  const Motion result = clean(damaged, report);
+  const ClipMetrics m = metricsOf(worldPositions(result), damaged);
+  std::printf("[ figures  ] %s: targets skate %.2f cm/s, bone error max %.2f cm | result skate %.3f cm/s, "
+              "penetration max %.3f cm, residual mean %.2f max %.2f cm, bone error max %.1e cm, %.2f s, "
+              "%d iterations over %d solves, %zu warnings\n",
+              GetParam().file, target_metrics.foot_skate_cm_s, target_metrics.bone_error_max_cm, m.foot_skate_cm_s,
+              m.penetration_max_cm, m.residual_mean_cm, m.residual_max_cm, m.bone_error_max_cm, report.seconds,
+              report.total_iterations, report.solves, report.warnings.size());
+  // The damage is real: the targets' feet move during contact (slide plus per-frame jitter) and their
+  // bones are off by centimetres.
+  EXPECT_GT(target_metrics.foot_skate_cm_s, 3.0);
+  EXPECT_GT(target_metrics.bone_error_max_cm, 1.0);
+  EXPECT_LE(m.foot_skate_cm_s, 0.5);
+  EXPECT_LE(m.penetration_max_cm, 0.5);
+  EXPECT_LE(m.residual_mean_cm, 2.0);
+  EXPECT_LE(m.bone_error_max_cm, 1e-4);
+  EXPECT_EQ(report.frames_unsolved, 0);
+}
+
+TEST_P(CleanupRealClip, CleanClipChangesLittle) {
+  CleanupReport report;
+  const Motion result = clean(clean_targets, report);
+  const ClipMetrics m = metricsOf(worldPositions(result), clean_targets);
+  std::printf("[ figures  ] %s clean: mean change %.3f cm, max %.2f cm, skate %.3f cm/s\n", GetParam().file,
+              m.residual_mean_cm, m.residual_max_cm, m.foot_skate_cm_s);
+  EXPECT_LE(m.residual_mean_cm, 1.0);  // targets = the clip itself: the residual is the change
+  EXPECT_LE(m.foot_skate_cm_s, 0.5);
+}
+
+TEST_P(CleanupRealClip, StretchedLegWarnsAndStaysBounded) {
+  Eigen::MatrixXd stretched = clean_targets;
+  const int ankle = index(CanonicalJoint::RightAnkle), toe = index(CanonicalJoint::RightToe);
+  const int first = clip.frameCount() / 4, last = first + clip.frameCount() / 10;
+  for (int f = first; f <= last; ++f)
+    for (int c : {ankle, toe}) stretched.block<1, 3>(f, 3 * c) -= (15.0 / cm) * up.transpose();  // 15 cm down
+  CleanupReport report;
+  const Motion result = clean(stretched, report);
+  EXPECT_TRUE(result.values.allFinite());
+  bool found = false;
+  for (const std::string& warning : report.warnings)
+    found = found || warning.find("targets unreachable: right leg stretched by") != std::string::npos;
+  EXPECT_TRUE(found);
+  EXPECT_LT(report.seconds, 30.0);
+  EXPECT_EQ(report.frames_unsolved, 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Fixtures, CleanupRealClip,
+                         ::testing::Values(Fixture{"cmu_131_01.bvh", Eigen::Vector3d::UnitY(), 2.54 / 0.45},
+                                           Fixture{"zombie.bvh", Eigen::Vector3d::UnitZ(), 2.54}),
+                         [](const ::testing::TestParamInfo<Fixture>& param_info) {
+                           const std::string file = param_info.param.file;
+                           return file.substr(0, file.find('.'));
+                         });
+
+}  // namespace
+}  // namespace motionstyle

@@ -1,0 +1,202 @@
+// Clean-up properties on a hand-built humanoid (cm, Y-up): exact bones, little change to clean input,
+// locked contacts, the floor, unmapped joints untouched, unreachable targets, bounded time, Z-up.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "ik/cleanup.h"
+#include "ik/metrics.h"
+#include "ik_test_support.h"
+#include "motion/rotation.h"
+
+namespace motionstyle {
+namespace {
+
+class CleanupHumanoid : public ::testing::Test {
+ protected:
+  static constexpr int kFrames = 90;
+  Motion clip = test::makeHumanoidClip(kFrames, 60.0);
+  JointMapping mapping = test::humanoidMapping(clip.skeleton);
+  Eigen::MatrixXd world = worldPositions(clip);
+  Eigen::MatrixXd targets = test::canonicalPositions(world, mapping);
+  Eigen::MatrixXi no_contacts = Eigen::MatrixXi::Zero(kFrames, kContactCount);
+
+  CleanupInput input(const Eigen::MatrixXd& t, const Eigen::MatrixXi& c, double floor = -50.0) const {
+    return CleanupInput{clip, mapping, t, c, Eigen::Vector3d::UnitY(), floor, 1.0};
+  }
+  static double meanDistanceCm(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+    double sum = 0.0;
+    for (Eigen::Index f = 0; f < a.rows(); ++f)
+      for (Eigen::Index j = 0; j < a.cols() / 3; ++j) sum += (a.block<1, 3>(f, 3 * j) - b.block<1, 3>(f, 3 * j)).norm();
+    return sum / static_cast<double>(a.rows() * (a.cols() / 3));
+  }
+};
+
+TEST_F(CleanupHumanoid, CleanTargetsReturnTheContentClip) {
+  CleanupReport report;
+  const Motion result = cleanupMotion(input(targets, no_contacts), {}, &report);
+  EXPECT_EQ(result.skeleton.jointCount(), clip.skeleton.jointCount());
+  EXPECT_EQ(result.skeleton.channelCount(), clip.skeleton.channelCount());
+  EXPECT_EQ(result.frame_time, clip.frame_time);
+  EXPECT_EQ(result.frameCount(), kFrames);
+  EXPECT_LT(meanDistanceCm(worldPositions(result), world), 1e-3);
+  EXPECT_EQ(report.frames, kFrames);
+  EXPECT_EQ(report.solves, kFrames);
+  EXPECT_EQ(report.unknown_rotations, 18);  // hips, 3 per leg, spine, chest, neck, 4 per arm
+  EXPECT_TRUE(report.warnings.empty());
+  EXPECT_LT(report.max_position_residual_cm, 0.01);
+}
+
+TEST_F(CleanupHumanoid, BonesStayExactAndUnmappedJointsKeepTheirRotations) {
+  const Eigen::MatrixXd damaged = test::damageTargets(targets, no_contacts, 60.0, 1.0, Eigen::Vector3d::UnitY(), {});
+  const Motion result = cleanupMotion(input(damaged, no_contacts), {}, nullptr);
+  const Eigen::MatrixXd result_world = worldPositions(result);
+  const ClipMetrics m = computeMetrics(MetricsInput{result_world, mapping.joints, skeletonBones(clip.skeleton)});
+  EXPECT_LT(m.bone_error_max_cm, 1e-9);
+  const LocalPoses before = localPoses(clip), after = localPoses(result);
+  for (const char* name : {"LeftThumb", "RightThumb", "Head", "LeftToeBase"}) {
+    const int joint = clip.skeleton.find(name);
+    for (int f = 0; f < kFrames; ++f)
+      ASSERT_LT(rotationDistance(before.rotation(f, joint), after.rotation(f, joint)), 1e-9) << name << " frame " << f;
+  }
+  // The damage (2 cm smooth noise, 3 % bones) is partly absorbed: closer to the damaged targets than
+  // the clean clip is, and within a few cm of both.
+  const Eigen::MatrixXd result_canonical = test::canonicalPositions(result_world, mapping);
+  EXPECT_LT(meanDistanceCm(result_canonical, damaged), meanDistanceCm(targets, damaged));
+  EXPECT_LT(meanDistanceCm(result_canonical, targets), 3.0);
+}
+
+TEST_F(CleanupHumanoid, ContactsLockTheFootAtTheFloorPlusItsRestHeight) {
+  // The left foot is labelled planted over frames 20-70 while the targets keep it moving.
+  Eigen::MatrixXi contacts = no_contacts;
+  contacts.block(20, 0, 51, 2).setOnes();
+  CleanupReport report;
+  const Motion result = cleanupMotion(input(targets, contacts, 0.0), {}, &report);
+  const Eigen::MatrixXd result_world = worldPositions(result);
+  MetricsInput metrics{result_world, mapping.joints};
+  metrics.contacts = contacts;
+  metrics.fps = 60.0;
+  EXPECT_LT(computeMetrics(metrics).foot_skate_cm_s, 0.1);
+  // The targets' own skate was much larger.
+  const Eigen::MatrixXd canonical_targets = targets;
+  MetricsInput target_metrics{canonical_targets, identityCanonicalJoints()};
+  target_metrics.contacts = contacts;
+  target_metrics.fps = 60.0;
+  EXPECT_GT(computeMetrics(target_metrics).foot_skate_cm_s, 3.0);
+  const int ankle = mapping[CanonicalJoint::LeftAnkle];
+  for (int f = 20; f <= 70; ++f)
+    EXPECT_NEAR(result_world(f, 3 * ankle + 1), report.contact_rest_heights[0], 0.05) << "frame " << f;
+  EXPECT_EQ(report.contact_segments, 2);
+}
+
+TEST_F(CleanupHumanoid, FeetStayAboveTheFloor) {
+  Eigen::MatrixXd lowered = targets;
+  for (int c = 0; c < kCanonicalJointCount; ++c) lowered.col(3 * c + 1).array() -= 12.0;  // toes ~10 cm under
+  const Motion result = cleanupMotion(input(lowered, no_contacts, 0.0), {}, nullptr);
+  const Eigen::MatrixXd result_world = worldPositions(result);
+  const ClipMetrics m = computeMetrics(MetricsInput{result_world, mapping.joints});
+  EXPECT_LT(m.penetration_max_cm, 0.1);
+  // Without the floor term the toes would go under.
+  CleanupOptions no_floor;
+  no_floor.keep_above_floor = false;
+  const Eigen::MatrixXd free_world = worldPositions(cleanupMotion(input(lowered, no_contacts, 0.0), no_floor, nullptr));
+  EXPECT_GT(computeMetrics(MetricsInput{free_world, mapping.joints}).penetration_max_cm, 5.0);
+}
+
+TEST_F(CleanupHumanoid, UnreachableTargetsGiveAWarningAndABestEffortResult) {
+  Eigen::MatrixXd stretched = targets;
+  const int wrist = index(CanonicalJoint::LeftWrist), shoulder = index(CanonicalJoint::LeftUpperArm);
+  for (int f = 10; f <= 20; ++f) {
+    const Eigen::Vector3d direction =
+        (stretched.block<1, 3>(f, 3 * wrist) - stretched.block<1, 3>(f, 3 * shoulder)).transpose().normalized();
+    stretched.block<1, 3>(f, 3 * wrist) += 30.0 * direction.transpose();
+  }
+  CleanupReport report;
+  const Motion result = cleanupMotion(input(stretched, no_contacts), {}, &report);
+  EXPECT_TRUE(result.values.allFinite());
+  bool found = false;
+  for (const std::string& warning : report.warnings)
+    found = found || (warning.find("targets unreachable: left arm stretched by") != std::string::npos &&
+                      warning.find("frames 10-20") != std::string::npos);
+  EXPECT_TRUE(found);
+  EXPECT_LT(report.seconds, 10.0);
+  // Best effort: the arm points at the target, fully extended.
+  const Eigen::MatrixXd result_world = worldPositions(result);
+  const int f = 15;
+  const Eigen::Vector3d base = result_world.block<1, 3>(f, 3 * mapping[CanonicalJoint::LeftUpperArm]).transpose();
+  const Eigen::Vector3d hand = result_world.block<1, 3>(f, 3 * mapping[CanonicalJoint::LeftWrist]).transpose();
+  EXPECT_GT((hand - base).norm(), 52.0);  // upper arm 28 + forearm 25 = 53 cm
+}
+
+TEST_F(CleanupHumanoid, TheTimeBudgetBoundsTheSolve) {
+  CleanupOptions options;
+  options.max_total_seconds = 1e-9;
+  CleanupReport report;
+  const Motion result = cleanupMotion(input(targets, no_contacts), options, &report);
+  EXPECT_EQ(result.frameCount(), kFrames);
+  EXPECT_TRUE(result.values.allFinite());
+  EXPECT_GT(report.frames_unsolved, 0);
+  ASSERT_FALSE(report.warnings.empty());
+  EXPECT_NE(report.warnings.back().find("time budget"), std::string::npos);
+}
+
+TEST_F(CleanupHumanoid, ZUpFileGivesTheSameClip) {
+  // The same clip with every offset, root position and rotation turned so that +Y becomes +Z.
+  const Eigen::Quaterniond turn(Eigen::AngleAxisd(M_PI / 2.0, Eigen::Vector3d::UnitX()));
+  Motion z_up = clip;
+  for (Joint& joint : z_up.skeleton.joints) joint.offset = turn * joint.offset;
+  LocalPoses poses = localPoses(clip);
+  for (size_t i = 0; i < poses.rotations.size(); ++i) {
+    poses.rotations[i] = turn * poses.rotations[i] * turn.conjugate();
+    poses.translations[i] = turn * poses.translations[i];
+  }
+  setLocalPoses(poses, z_up);
+  const Eigen::MatrixXd damaged = test::damageTargets(targets, no_contacts, 60.0, 1.0, Eigen::Vector3d::UnitY(), {});
+  Eigen::MatrixXd z_targets = damaged;
+  for (Eigen::Index f = 0; f < damaged.rows(); ++f)
+    for (int c = 0; c < kCanonicalJointCount; ++c)
+      z_targets.block<1, 3>(f, 3 * c) = (turn * Eigen::Vector3d(damaged.block<1, 3>(f, 3 * c).transpose())).transpose();
+
+  const Eigen::MatrixXd y_result = worldPositions(cleanupMotion(input(damaged, no_contacts, 0.0), {}, nullptr));
+  const Motion z_motion = cleanupMotion(
+      CleanupInput{z_up, mapping, z_targets, no_contacts, Eigen::Vector3d::UnitZ(), 0.0, 1.0}, {}, nullptr);
+  const Eigen::MatrixXd z_result = worldPositions(z_motion);
+  double worst = 0.0;
+  for (Eigen::Index f = 0; f < y_result.rows(); ++f)
+    for (Eigen::Index j = 0; j < y_result.cols() / 3; ++j)
+      worst = std::max(worst, (turn * Eigen::Vector3d(y_result.block<1, 3>(f, 3 * j).transpose()) -
+                               z_result.block<1, 3>(f, 3 * j).transpose()).norm());
+  EXPECT_LT(worst, 1e-3);
+}
+
+TEST(CleanupPositionChannels, EveryJointsPerFrameTranslationIsKept) {
+  const Motion clip = test::makeHumanoidClip(40, 30.0, /*position_channels_everywhere=*/true);
+  const JointMapping mapping = test::humanoidMapping(clip.skeleton);
+  const Eigen::MatrixXd targets = test::canonicalPositions(worldPositions(clip), mapping);
+  const Eigen::MatrixXi contacts = Eigen::MatrixXi::Zero(40, kContactCount);
+  const Eigen::MatrixXd damaged = test::damageTargets(targets, contacts, 30.0, 1.0, Eigen::Vector3d::UnitY(), {});
+  const Motion result =
+      cleanupMotion(CleanupInput{clip, mapping, damaged, contacts, Eigen::Vector3d::UnitY(), -50.0, 1.0}, {}, nullptr);
+  const LocalPoses before = localPoses(clip), after = localPoses(result);
+  for (int f = 0; f < 40; ++f)
+    for (int j = 1; j < clip.skeleton.jointCount(); ++j)
+      ASSERT_LT((before.translation(f, j) - after.translation(f, j)).norm(), 1e-9);
+}
+
+TEST_F(CleanupHumanoid, WindowedSolveAgreesWithPerFrameSolve) {
+  const Eigen::MatrixXd damaged = test::damageTargets(targets, no_contacts, 60.0, 1.0, Eigen::Vector3d::UnitY(), {});
+  CleanupOptions windowed;
+  windowed.window_frames = 6;
+  windowed.window_overlap = 2;
+  CleanupReport report;
+  const Eigen::MatrixXd a = worldPositions(cleanupMotion(input(damaged, no_contacts), {}, nullptr));
+  const Eigen::MatrixXd b = worldPositions(cleanupMotion(input(damaged, no_contacts), windowed, &report));
+  EXPECT_LT(meanDistanceCm(a, b), 0.5);
+  EXPECT_LT(report.solves, kFrames / 3);
+  const ClipMetrics m = computeMetrics(MetricsInput{b, mapping.joints, skeletonBones(clip.skeleton)});
+  EXPECT_LT(m.bone_error_max_cm, 1e-9);
+}
+
+}  // namespace
+}  // namespace motionstyle

@@ -1,0 +1,98 @@
+// The float32 inference path against the double reference forward pass.
+
+#include <gtest/gtest.h>
+
+#include <random>
+#include <stdexcept>
+
+#include "gradient_check.h"
+#include "nn/fast_stylizer.h"
+
+namespace motionstyle::nn {
+namespace {
+
+using test::MatD;
+
+template <typename To, typename From>
+void copyWeights(Conv1d<To>& to, const Conv1d<From>& from) {
+  to.weight.value = from.weight.value.template cast<To>();
+  if (from.hasBias()) to.bias.value = from.bias.value.template cast<To>();
+}
+
+struct Networks {
+  Transformer<float> t;
+  Autoencoder<float> ae;
+  Transformer<double> t_ref;
+  Autoencoder<double> ae_ref;
+  explicit Networks(bool residual)
+      : t({kFeatureCount, 128, 25, residual}), t_ref({kFeatureCount, 128, 25, residual}) {
+    t.initialise(1);
+    ae.initialise(2);
+    std::mt19937 rng(3);
+    ae.encoder.bias.value = test::randomMatrix(256, 1, rng, 0.1).cast<float>();
+    for (Conv1d<float>* c : {&t.conv1, &t.conv2, &t.conv3}) c->bias.value = test::randomMatrix(c->outChannels(), 1, rng, 0.1).cast<float>();
+    copyWeights(t_ref.conv1, t.conv1);
+    copyWeights(t_ref.conv2, t.conv2);
+    copyWeights(t_ref.conv3, t.conv3);
+    copyWeights(ae_ref.encoder, ae.encoder);
+    copyWeights(ae_ref.decoder, ae.decoder);
+  }
+};
+
+double relativeMaxError(const MatD& actual, const MatD& expected) {
+  return (actual - expected).cwiseAbs().maxCoeff() / expected.cwiseAbs().maxCoeff();
+}
+
+TEST(FastStylizerInvalid, RejectsBadClipsAndMissingTransformer) {
+  Autoencoder<float> ae;
+  FastStylizer projection_only(ae);
+  EXPECT_THROW(projection_only.stylize(Mat<float>::Zero(kFeatureCount, 10)), std::invalid_argument);
+  EXPECT_THROW(projection_only.project(Mat<float>::Zero(kFeatureCount - 1, 10)), std::invalid_argument);
+  EXPECT_THROW(projection_only.project(Mat<float>::Zero(kFeatureCount, 0)), std::invalid_argument);
+  Transformer<float> small({12, 8, 5, false});
+  EXPECT_THROW(FastStylizer(small, ae), std::invalid_argument);
+}
+
+TEST(FastStylizer, MatchesTheDoubleReferenceForAnyLength) {
+  for (bool residual : {true, false}) {
+    Networks n(residual);
+    FastStylizer fast(n.t, n.ae);
+    std::mt19937 rng(4);
+    for (int frames : {1, 2, 3, 24, 25, 240, 241, 1001}) {
+      const MatD x = test::randomMatrix(kFeatureCount, frames, rng);
+      const MatD expected = n.ae_ref.project(n.t_ref.apply(x, frames), frames);
+      const MatD actual = fast.stylize(x.cast<float>()).cast<double>();
+      ASSERT_EQ(actual.cols(), frames);
+      EXPECT_LT(relativeMaxError(actual, expected), 1e-4) << frames << (residual ? " residual" : "");
+    }
+  }
+}
+
+TEST(FastStylizer, PolyphaseDecoderEqualsThePlainDecoder) {
+  Networks n(true);
+  FastStylizer fast(n.ae);
+  ASSERT_EQ(fast.polyphaseKernel().cols(), 256 * 13);  // 13 taps per phase instead of 25
+  std::mt19937 rng(5);
+  for (int frames : {1, 6, 7, 100, 481}) {
+    const MatD x = test::randomMatrix(kFeatureCount, frames, rng);
+    const MatD plain = n.ae.project(x.cast<float>(), frames).cast<double>();
+    const MatD reference = n.ae_ref.project(x, frames);
+    const MatD polyphase = fast.project(x.cast<float>()).cast<double>();
+    EXPECT_LT(relativeMaxError(polyphase, reference), 1e-5) << frames;
+    EXPECT_LT(relativeMaxError(plain, reference), 1e-5) << frames;
+  }
+}
+
+TEST(FastStylizer, ReusedBuffersGiveTheSameResultAcrossLengths) {
+  Networks n(true);
+  FastStylizer fast(n.t, n.ae);
+  std::mt19937 rng(6);
+  const Mat<float> a = test::randomMatrix(kFeatureCount, 241, rng).cast<float>();
+  const Mat<float> b = test::randomMatrix(kFeatureCount, 60, rng).cast<float>();
+  const Mat<float> first = fast.stylize(a);
+  fast.stylize(b);
+  EXPECT_EQ(fast.stylize(a), first);  // deterministic, and no stale padding from the shorter clip
+}
+
+}  // namespace
+}  // namespace motionstyle::nn

@@ -1,0 +1,267 @@
+// The two networks end to end, the full eq. 10 objective and Adam.
+
+#include <gtest/gtest.h>
+
+#include <random>
+#include <stdexcept>
+
+#include "gradient_check.h"
+#include "loss_fixtures.h"
+#include "nn/adam.h"
+#include "nn/autoencoder.h"
+#include "nn/style_loss.h"
+#include "nn/transformer.h"
+
+namespace motionstyle::nn {
+namespace {
+
+using test::checkGradient;
+using test::kGradientTolerance;
+using test::MatD;
+using test::randomMatrix;
+
+StyleBatch<double> randomStyleBatch(const Autoencoder<double>& ae, int windows, int frames, std::mt19937& rng,
+                                    bool per_window_style) {
+  StyleBatch<double> batch;
+  batch.frames = frames;
+  batch.content = randomMatrix(ae.shape().features, static_cast<Eigen::Index>(windows) * frames, rng);
+  batch.contacts = test::randomContacts(batch.content.cols(), rng);
+  batch.bone_lengths = test::randomBoneLengths(windows, rng);
+  batch.content_hidden = contentHidden(ae, batch.content, frames);
+  const int styles = per_window_style ? windows : 1;
+  for (int s = 0; s < styles; ++s)
+    batch.style_grams.push_back(styleGram(ae, randomMatrix(ae.shape().features, 13 + s, rng)));
+  return batch;
+}
+
+LossWeights testWeights() {
+  LossWeights w;
+  w.content = 1.0;
+  w.style = 0.5;
+  w.foot = 0.01;
+  w.bone = 0.01;
+  w.trajectory = 0.1;
+  return w;
+}
+
+TEST(NetworksInvalid, MismatchedShapesThrow) {
+  Autoencoder<double> ae({6, 8, 3});
+  EXPECT_THROW(ae.encode(MatD::Zero(5, 8), 4), std::invalid_argument);
+  EXPECT_THROW(ae.decode(MatD::Zero(7, 4), 2), std::invalid_argument);
+  EXPECT_THROW(ae.encodeBackward(MatD::Zero(8, 2)), std::logic_error);
+  std::mt19937 rng(1);
+  EXPECT_THROW(ae.accumulateReconstruction(MatD::Zero(6, 8), 4, 0.1, 0.25, nullptr), std::invalid_argument);
+  Transformer<double> t({6, 5, 3, false});
+  EXPECT_THROW(t.apply(MatD::Zero(7, 8), 4), std::invalid_argument);
+
+  Autoencoder<double> loss_net({kFeatureCount, 8, 3});
+  loss_net.initialise(1);
+  Transformer<double> tt({kFeatureCount, 5, 3, true});
+  const Normalisation norm = test::randomNormalisation(rng);
+  StyleBatch<double> batch = randomStyleBatch(loss_net, 2, 4, rng, false);
+  EXPECT_NO_THROW(evaluateStyleLoss(tt, loss_net, batch, norm, LossWeights{}));
+  auto broken = batch;
+  broken.contacts = MatD::Zero(kContactCount, 7);
+  EXPECT_THROW(accumulateStyleLoss(tt, loss_net, broken, norm, LossWeights{}), std::invalid_argument);
+  broken = batch;
+  broken.bone_lengths = MatD::Zero(kBoneCount, 3);
+  EXPECT_THROW(accumulateStyleLoss(tt, loss_net, broken, norm, LossWeights{}), std::invalid_argument);
+  broken = batch;
+  broken.content_hidden = MatD::Zero(8, 3);
+  EXPECT_THROW(accumulateStyleLoss(tt, loss_net, broken, norm, LossWeights{}), std::invalid_argument);
+  broken = batch;
+  broken.style_grams.push_back(broken.style_grams[0]);
+  broken.style_grams.push_back(broken.style_grams[0]);
+  EXPECT_THROW(accumulateStyleLoss(tt, loss_net, broken, norm, LossWeights{}), std::invalid_argument);
+  LossWeights negative;
+  negative.style = -1.0;
+  EXPECT_THROW(accumulateStyleLoss(tt, loss_net, batch, norm, negative), std::invalid_argument);
+  AdamOptions bad;
+  bad.beta1 = 1.0;
+  std::vector<Parameter<double>*> none;
+  EXPECT_THROW(Adam<double>(none, bad), std::invalid_argument);
+}
+
+TEST(Autoencoder, OutputHasTheInputLengthForOddAndEvenWindows) {
+  Autoencoder<double> ae({5, 7, 5});
+  ae.initialise(3);
+  std::mt19937 rng(2);
+  for (int frames : {1, 2, 3, 8, 9, 30, 31}) {
+    const MatD x = randomMatrix(5, 2 * frames, rng);
+    EXPECT_EQ(ae.encode(x, frames).cols(), 2 * evenFrames(frames) / 2);
+    const MatD y = ae.project(x, frames);
+    EXPECT_EQ(y.rows(), 5);
+    EXPECT_EQ(y.cols(), 2 * frames);
+  }
+}
+
+TEST(Autoencoder, OddWindowEqualsTheEvenWindowWithItsLastFrameRepeated) {
+  Autoencoder<double> ae({4, 6, 5});
+  ae.initialise(4);
+  std::mt19937 rng(3);
+  const MatD x = randomMatrix(4, 7, rng);
+  MatD padded(4, 8);
+  padded << x, x.col(6);
+  EXPECT_LT((ae.project(x, 7) - ae.project(padded, 8).leftCols(7)).cwiseAbs().maxCoeff(), 1e-12);
+}
+
+TEST(AutoencoderGradient, ReconstructionLossWrtW0b0AndDecoderWeights) {
+  std::mt19937 rng(4);
+  struct Case {
+    AutoencoderShape shape;
+    int windows, frames, samples;
+    double dropout;
+  };
+  for (const Case& c : {Case{{5, 6, 3}, 2, 6, 0, 0.0}, Case{{4, 7, 5}, 3, 5, 0, 0.25},
+                        Case{{kFeatureCount, 256, 25}, 2, 9, 40, 0.25}}) {
+    Autoencoder<double> ae(c.shape);
+    ae.initialise(5);
+    ae.encoder.bias.value = randomMatrix(c.shape.hidden, 1, rng, 0.1);
+    const MatD x = randomMatrix(c.shape.features, static_cast<Eigen::Index>(c.windows) * c.frames, rng);
+    const double alpha = 0.1;
+    auto run = [&](Autoencoder<double>& net) {
+      std::mt19937 mask(77);  // the same dropout mask for the analytic and every numeric evaluation
+      return net.accumulateReconstruction(x, c.frames, alpha, c.dropout, &mask).total;
+    };
+    ae.zeroGrad();
+    run(ae);
+    auto loss = [&] {
+      Autoencoder<double> probe = ae;
+      return run(probe);
+    };
+    for (Parameter<double>* p : ae.parameters()) {
+      const MatD analytic = p->grad;
+      const auto result = checkGradient(p->value, analytic, loss, c.samples, rng);
+      EXPECT_LT(result.max_error, kGradientTolerance) << p->name << " hidden " << c.shape.hidden;
+      EXPECT_GT(analytic.cwiseAbs().maxCoeff(), 0.0) << p->name;
+    }
+  }
+}
+
+TEST(AutoencoderGradient, FrozenEncoderGradientWrtInput) {
+  std::mt19937 rng(5);
+  Autoencoder<double> ae({kFeatureCount, 256, 25});
+  ae.initialise(6);
+  ae.encoder.bias.value = randomMatrix(256, 1, rng, 0.1);
+  for (int frames : {8, 7}) {
+    MatD x = randomMatrix(kFeatureCount, 2 * frames, rng);
+    const MatD r = randomMatrix(256, 2 * evenFrames(frames) / 2, rng);
+    ae.zeroGrad();
+    const MatD h = ae.encodeForward(x, frames);
+    EXPECT_LT((h - ae.encode(x, frames)).cwiseAbs().maxCoeff(), 1e-12);
+    const MatD dx = ae.encodeBackward(r);
+    EXPECT_EQ(ae.encoder.weight.grad.cwiseAbs().maxCoeff(), 0.0);  // frozen: no parameter gradient
+    auto loss = [&] { return ae.encode(x, frames).cwiseProduct(r).sum(); };
+    EXPECT_LT(checkGradient(x, dx, loss, 60, rng).max_error, kGradientTolerance) << frames;
+  }
+}
+
+TEST(TransformerGradient, TotalStyleLossWrtEveryParameter) {
+  std::mt19937 rng(7);
+  Autoencoder<double> ae({kFeatureCount, 256, 25});
+  ae.initialise(8);
+  ae.encoder.bias.value = randomMatrix(256, 1, rng, 0.05);
+  const Normalisation norm = test::randomNormalisation(rng);
+  const LossWeights weights = testWeights();
+  for (bool residual : {true, false}) {
+    Transformer<double> t({kFeatureCount, 128, 25, residual});
+    t.initialise(9);
+    for (Parameter<double>* p : t.parameters())
+      if (p->value.cols() == 1) p->value = randomMatrix(p->value.rows(), 1, rng, 0.05);
+    const StyleBatch<double> batch = randomStyleBatch(ae, 2, 8, rng, !residual);
+    t.zeroGrad();
+    const StyleLossTerms terms = accumulateStyleLoss(t, ae, batch, norm, weights);
+    const StyleLossTerms evaluated = evaluateStyleLoss(t, ae, batch, norm, weights);
+    EXPECT_NEAR(terms.total, evaluated.total, 1e-10 * std::abs(evaluated.total));
+    for (double term : {terms.content, terms.style, terms.foot, terms.bone, terms.trajectory})
+      EXPECT_GT(term, 0.0);
+    EXPECT_EQ(ae.encoder.weight.grad.cwiseAbs().maxCoeff(), 0.0);  // the loss network stays frozen
+    auto loss = [&] { return evaluateStyleLoss(t, ae, batch, norm, weights).total; };
+    for (Parameter<double>* p : t.parameters()) {
+      const MatD analytic = p->grad;
+      const auto result = checkGradient(p->value, analytic, loss, 25, rng);
+      EXPECT_LT(result.max_error, kGradientTolerance) << p->name << (residual ? " residual" : " plain");
+    }
+  }
+}
+
+TEST(Transformer, OutputHasTheInputLengthAndResidualStartsNearIdentity) {
+  Transformer<double> t;
+  t.initialise(10);
+  std::mt19937 rng(8);
+  for (int frames : {1, 5, 24, 25}) {
+    const MatD x = randomMatrix(kFeatureCount, frames, rng);
+    const MatD y = t.apply(x, frames);
+    EXPECT_EQ(y.cols(), frames);
+    // Residual, output layer scaled down at init: the output starts close to the input.
+    EXPECT_LT((y - x).norm(), 0.5 * x.norm()) << frames;
+  }
+}
+
+TEST(Determinism, SameSeedSameWeightsOtherSeedOtherWeights) {
+  Autoencoder<float> a;
+  Autoencoder<float> b;
+  a.initialise(42);
+  b.initialise(42);
+  EXPECT_EQ(a.encoder.weight.value, b.encoder.weight.value);
+  EXPECT_EQ(a.decoder.weight.value, b.decoder.weight.value);
+  b.initialise(43);
+  EXPECT_NE(a.encoder.weight.value, b.encoder.weight.value);
+  Transformer<float> ta;
+  Transformer<float> tb;
+  ta.initialise(1);
+  tb.initialise(1);
+  EXPECT_EQ(ta.conv2.weight.value, tb.conv2.weight.value);
+  EXPECT_EQ(ta.conv3.weight.value, tb.conv3.weight.value);
+}
+
+TEST(Adam, ConvergesOnAQuadraticAndUsesBiasCorrection) {
+  // f(w) = sum_i c_i (w_i - t_i)^2 with very different curvatures.
+  Parameter<double> w;
+  w.resize(4, 1);
+  // Dynamic-size vectors: GCC 12 misreports AVX-512 loads of fixed-size ones mixed with blocks.
+  const Eigen::VectorXd target = (Eigen::VectorXd(4) << 1.0, -2.0, 0.5, 3.0).finished();
+  const Eigen::VectorXd curvature = (Eigen::VectorXd(4) << 1.0, 10.0, 0.1, 100.0).finished();
+  AdamOptions options;
+  options.learning_rate = 0.05;
+  Adam<double> adam({&w}, options);
+  // First step: bias correction makes it exactly lr * sign(g) (up to eps).
+  adam.zeroGrad();
+  w.grad.col(0) = 2.0 * curvature.cwiseProduct(w.value.col(0) - target);
+  adam.step();
+  for (int i = 0; i < 4; ++i) EXPECT_NEAR(std::abs(w.value(i, 0)), 0.05, 1e-6);
+  for (int step = 0; step < 3000; ++step) {
+    adam.zeroGrad();
+    w.grad.col(0) = 2.0 * curvature.cwiseProduct(w.value.col(0) - target);
+    if (step > 2000) adam.setLearningRate(0.001);
+    adam.step();
+  }
+  EXPECT_LT((w.value.col(0) - target).cwiseAbs().maxCoeff(), 1e-3);
+  EXPECT_EQ(adam.stepCount(), 3001);
+  EXPECT_THROW(adam.setLearningRate(-1.0), std::invalid_argument);
+}
+
+TEST(Training, AFewAdamStepsReduceBothLosses) {
+  std::mt19937 rng(9);
+  // A smooth synthetic signal: the autoencoder can learn it and the loss must fall.
+  const int frames = 32;
+  MatD x(kFeatureCount, 2 * frames);
+  for (Eigen::Index t = 0; t < x.cols(); ++t)
+    for (int f = 0; f < kFeatureCount; ++f) x(f, t) = std::sin(0.2 * static_cast<double>(t) + f);
+  Autoencoder<double> ae({kFeatureCount, 32, 9});
+  ae.initialise(11);
+  Adam<double> adam(ae.parameters(), AdamOptions{3e-3});
+  double first = 0;
+  double last = 0;
+  for (int step = 0; step < 40; ++step) {
+    adam.zeroGrad();
+    const double loss = ae.accumulateReconstruction(x, frames, 0.01).total;
+    if (step == 0) first = loss;
+    last = loss;
+    adam.step();
+  }
+  EXPECT_LT(last, 0.5 * first);
+}
+
+}  // namespace
+}  // namespace motionstyle::nn

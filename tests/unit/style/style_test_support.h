@@ -1,0 +1,117 @@
+#pragma once
+// Helpers shared by the core/style tests: temporary folders, the committed fixtures as clips, and tiny
+// networks so that training runs take a fraction of a second.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "bvh/bvh_reader.h"
+#include "bvh/bvh_writer.h"
+#include "nn/network_file.h"
+#include "style/motion_dataset.h"
+#include "style/training.h"
+#include "test_paths.h"
+
+namespace motionstyle::test {
+
+// A fresh folder under the system temp dir, removed when the object goes away.
+class TempDir {
+ public:
+  TempDir() {
+    std::random_device entropy;
+    path_ = std::filesystem::temp_directory_path() /
+            ("motionstyle-style-test-" + std::to_string(entropy()) + std::to_string(entropy()));
+    std::filesystem::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+  std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+inline void writeText(const std::filesystem::path& file, const std::string& text) {
+  std::filesystem::create_directories(file.parent_path());
+  std::ofstream(file, std::ios::binary) << text;
+}
+
+inline std::string readBytes(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// The first `frames` frames of a fixture, written to `file` (a short clip for the length rules).
+inline void writeTrimmedFixture(const std::string& fixture_name, int frames, const std::filesystem::path& file) {
+  Motion motion = readBvh(fixture(fixture_name));
+  motion.values.conservativeResize(frames, Eigen::NoChange);
+  writeBvh(motion, file);
+}
+
+inline const std::vector<style::MotionClip>& fixtureClips() {
+  static const std::vector<style::MotionClip> clips = {style::loadMotionClip(fixture("cmu_131_01.bvh")),
+                                                       style::loadMotionClip(fixture("zombie.bvh"))};
+  return clips;
+}
+
+// Small shapes: 16 hidden units, width 5; windows of 60 frames with a step of 30.
+inline nn::AutoencoderShape tinyAutoencoderShape() { return {kFeatureCount, 16, 5}; }
+inline nn::TransformerShape tinyTransformerShape() { return {kFeatureCount, 8, 5, true}; }
+
+inline style::TrainingSettings tinySettings(const std::filesystem::path& output, int epochs) {
+  style::TrainingSettings settings;
+  settings.epochs = epochs;
+  settings.batch_size = 8;
+  settings.learning_rate = 3e-3;
+  settings.seed = 7;
+  settings.output = output;
+  settings.windows = {60, 30};
+  return settings;
+}
+
+inline style::AutoencoderTrainingConfig tinyAutoencoderConfig(const std::filesystem::path& output, int epochs) {
+  style::AutoencoderTrainingConfig config;
+  config.settings = tinySettings(output, epochs);
+  config.clips = fixtureClips();
+  config.shape = tinyAutoencoderShape();
+  return config;
+}
+
+// An untrained but valid tiny loss network with statistics of the fixtures, saved to `file`.
+inline nn::AutoencoderModel tinyAutoencoderModel(std::uint32_t seed = 3) {
+  nn::AutoencoderModel model{nn::Autoencoder<float>(tinyAutoencoderShape()), {}, {}};
+  model.network.initialise(seed);
+  std::vector<Eigen::MatrixXd> values;
+  for (const auto& clip : fixtureClips()) values.push_back(clip.features.values);
+  model.normalisation = style::toNormalisation(computeFeatureStatistics(values));
+  model.metadata.representation = style::currentRepresentation();
+  return model;
+}
+
+inline nn::StyleModel tinyStyleModel(std::uint32_t seed = 5) {
+  const nn::AutoencoderModel loss = tinyAutoencoderModel();
+  nn::StyleModel model{nn::Transformer<float>(tinyTransformerShape()), loss.network, loss.normalisation, {}};
+  model.transformer.initialise(seed);
+  model.metadata.representation = style::currentRepresentation();
+  return model;
+}
+
+// Every weight of a network, in parameter order (takes a copy: parameters() is not const).
+template <typename Network>
+std::vector<float> weightsOf(Network network) {
+  std::vector<float> all;
+  for (const auto* p : network.parameters()) all.insert(all.end(), p->value.data(), p->value.data() + p->value.size());
+  return all;
+}
+
+}  // namespace motionstyle::test

@@ -1,0 +1,170 @@
+// Stylization (strength, any length, no seams), the optimisation method and the evaluation figures.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <nlohmann/json.hpp>
+
+#include "style/evaluation.h"
+#include "style/optimization_transfer.h"
+#include "style/stylizer.h"
+#include "style_test_support.h"
+
+namespace motionstyle {
+namespace {
+
+// A clip of `frames` frames made by repeating the fixtures' features end to end.
+Eigen::MatrixXd longFeatures(int frames) {
+  Eigen::MatrixXd out(kFeatureCount, frames);
+  int filled = 0;
+  while (filled < frames)
+    for (const auto& clip : test::fixtureClips()) {
+      const int take = std::min(clip.frameCount(), frames - filled);
+      out.middleCols(filled, take) = clip.features.values.leftCols(take);
+      filled += take;
+      if (filled == frames) break;
+    }
+  return out;
+}
+
+TEST(Stylizer, StrengthZeroReturnsTheContentExactly) {
+  const style::Stylizer stylizer(test::tinyStyleModel());
+  const MotionFeatures& content = test::fixtureClips()[0].features;
+  const style::StylizedClip clip = stylizer.stylize(content, 0.0);
+  EXPECT_EQ(clip.features, content.values);
+  EXPECT_EQ(clip.contacts, content.contacts);
+  EXPECT_EQ(clip.world_positions, canonicalWorldPositions(content.values, content.anchor));
+  EXPECT_EQ(clip.fps, 60.0);
+}
+
+TEST(Stylizer, StrengthBlendsLinearlyInFeatureSpace) {
+  const style::Stylizer stylizer(test::tinyStyleModel());
+  const Eigen::MatrixXd& content = test::fixtureClips()[0].features.values;
+  const Eigen::MatrixXd full = stylizer.stylizeFeatures(content, 1.0);
+  const Eigen::MatrixXd half = stylizer.stylizeFeatures(content, 0.5);
+  EXPECT_GT((full - content).cwiseAbs().maxCoeff(), 1e-3);  // the network does something
+  EXPECT_TRUE(half.isApprox(0.5 * (content + full), 1e-9));
+}
+
+TEST(Stylizer, OutputHasTheInputLengthForOddAndLongClips) {
+  const style::Stylizer stylizer(test::tinyStyleModel());
+  for (int frames : {1, 2, 25, 301, 1000}) {
+    const Eigen::MatrixXd content = longFeatures(frames);
+    const Eigen::MatrixXd out = stylizer.stylizeFeatures(content, 1.0);
+    EXPECT_EQ(out.cols(), frames);
+    EXPECT_EQ(out.rows(), kFeatureCount);
+    EXPECT_TRUE(out.allFinite());
+  }
+}
+
+// Fully convolutional: stylizing a long clip or its two halves differs only within the receptive field
+// of the cut. With the full-size networks (width 25) the field is T's 3 x 12 frames plus the
+// autoencoder's ~3 x 12 (encode, pool, decode): 120 frames of margin is ample.
+TEST(Stylizer, NoSeamsAwayFromACut) {
+  nn::StyleModel model{nn::Transformer<float>(), nn::Autoencoder<float>(), test::tinyAutoencoderModel().normalisation, {}};
+  model.transformer.initialise(21);
+  model.loss_network.initialise(22);
+  model.metadata.representation = style::currentRepresentation();
+  const style::Stylizer stylizer(model);
+  const Eigen::MatrixXd content = longFeatures(1000);
+  const Eigen::MatrixXd whole = stylizer.stylizeFeatures(content, 1.0);
+  const Eigen::MatrixXd first = stylizer.stylizeFeatures(content.leftCols(500), 1.0);
+  const Eigen::MatrixXd second = stylizer.stylizeFeatures(content.rightCols(500), 1.0);
+  const double scale = whole.cwiseAbs().maxCoeff();
+  EXPECT_LT((whole.leftCols(380) - first.leftCols(380)).cwiseAbs().maxCoeff(), 1e-4 * scale);
+  EXPECT_LT((whole.rightCols(380) - second.rightCols(380)).cwiseAbs().maxCoeff(), 1e-4 * scale);
+  // ... and near the cut the halves do differ (the test can fail).
+  EXPECT_GT((whole.middleCols(495, 5) - first.rightCols(5)).cwiseAbs().maxCoeff(), 1e-4 * scale);
+}
+
+TEST(OptimizationTransfer, ReducesTheStyleDistanceAndKeepsTheLength) {
+  const nn::AutoencoderModel ae = test::tinyAutoencoderModel();
+  const auto& content = test::fixtureClips()[0];
+  const auto& style_clip = test::fixtureClips()[1];
+  style::OptimizationOptions options;
+  options.iterations = 100;
+  options.constraint_iterations = 20;
+  options.style_weight = 1.0;
+  int calls = 0;
+  style::OptimizationCallbacks callbacks;
+  callbacks.progress = [&](const style::OptimizationProgress&) { ++calls; };
+  const style::OptimizationResult result =
+      style::optimizeStyleTransfer(ae, content.features, style_clip.features, "zombie.bvh", options, callbacks);
+  ASSERT_FALSE(result.cancelled);
+  EXPECT_EQ(calls, 120);
+  ASSERT_EQ(result.clip.frameCount(), content.frameCount());
+  EXPECT_EQ(result.clip.world_positions.rows(), content.frameCount());
+
+  const auto gramDistance = [&](const Eigen::MatrixXd& features) {
+    const auto normalise = [&](const Eigen::MatrixXd& x) {
+      return nn::Mat<float>(((x.colwise() - ae.normalisation.mean).array().colwise() / ae.normalisation.std.array())
+                                .matrix()
+                                .cast<float>());
+    };
+    const nn::Mat<float> h = ae.network.encode(normalise(features), static_cast<int>(features.cols()));
+    const nn::Mat<float> target = nn::styleGram(ae.network, normalise(style_clip.features.values));
+    return static_cast<double>(nn::styleLoss<float>(h, static_cast<int>(h.cols()), {target}, 0.0f, nullptr));
+  };
+  EXPECT_LT(gramDistance(result.clip.features), gramDistance(content.features.values));
+}
+
+TEST(OptimizationTransfer, ZeroIterationsGiveTheProjectionAndCancellationStops) {
+  const nn::AutoencoderModel ae = test::tinyAutoencoderModel();
+  const auto& content = test::fixtureClips()[0].features;
+  style::OptimizationOptions none;
+  none.iterations = 0;
+  none.constraint_iterations = 0;
+  const auto projected = style::optimizeStyleTransfer(ae, content, test::fixtureClips()[1].features, "z", none);
+  EXPECT_TRUE(projected.clip.features.isApprox(style::projectFeatures(ae, content.values), 1e-5));
+
+  std::atomic<bool> cancel{false};
+  style::OptimizationCallbacks callbacks;
+  callbacks.cancel = &cancel;
+  int calls = 0;
+  callbacks.progress = [&](const style::OptimizationProgress&) {
+    if (++calls == 5) cancel = true;
+  };
+  const auto cancelled =
+      style::optimizeStyleTransfer(ae, content, test::fixtureClips()[1].features, "z", {}, callbacks);
+  EXPECT_TRUE(cancelled.cancelled);
+  EXPECT_EQ(calls, 5);
+  EXPECT_EQ(cancelled.clip.frameCount(), 0);
+}
+
+TEST(Evaluation, FootSkateAndBoneErrorMeasureKnownMotion) {
+  // Every joint at the root, the root moving forward 1 cm per frame at 60 fps, feet always in contact:
+  // each foot slides at 60 cm/s; every bone has length 0 against target 1 cm.
+  Eigen::MatrixXd features = Eigen::MatrixXd::Zero(kFeatureCount, 30);
+  features.row(kForwardVelocity).setOnes();
+  FeatureAnchor anchor;
+  anchor.fps = 60.0;
+  EXPECT_NEAR(style::footSkate(features, Eigen::MatrixXd::Ones(kContactCount, 30), anchor), 60.0, 1e-9);
+  EXPECT_EQ(style::footSkate(features, Eigen::MatrixXd::Zero(kContactCount, 30), anchor), 0.0);
+  EXPECT_NEAR(style::boneLengthError(features, Eigen::VectorXd::Ones(nn::kBoneCount)), 1.0, 1e-12);
+}
+
+TEST(Evaluation, ReportHasEveryFigure) {
+  const nn::StyleModel network = test::tinyStyleModel();
+  const nn::AutoencoderModel ae{network.loss_network, network.normalisation, network.metadata};
+  const auto& clips = test::fixtureClips();
+  const style::EvaluationReport report = style::evaluateStyleNetwork(ae, network, {clips[0]}, {clips[1]}, {0});
+  ASSERT_EQ(report.clips.size(), 1u);
+  EXPECT_TRUE(report.autoencoder_matches_network);
+  const style::ClipEvaluation& e = report.clips[0];
+  EXPECT_EQ(e.frames, clips[0].frameCount());
+  EXPECT_GT(e.reconstruction_mse, 0.0);
+  EXPECT_GT(e.reconstruction_joint_error_cm, 0.0);
+  EXPECT_GT(e.style_distance_before, 0.0);
+  EXPECT_GT(e.content_distance_after, 0.0);
+  EXPECT_LT(e.bone_error_cm_content, 1.0);  // the content's bones barely vary
+  EXPECT_GT(e.stylize_seconds, 0.0);
+  const auto json = nlohmann::json::parse(style::evaluationJson(report));
+  EXPECT_EQ(json["format"], "motionstyle-evaluation");
+  for (const char* key : {"reconstruction", "content_distance", "style_distance", "bone_error_cm", "foot_skate_cm_s"}) {
+    EXPECT_TRUE(json["summary"].contains(key)) << key;
+    EXPECT_TRUE(json["clips"][0].contains(key)) << key;
+  }
+  EXPECT_NEAR(json["summary"]["style_distance"]["before"].get<double>(), e.style_distance_before, 1e-12);
+}
+
+}  // namespace
+}  // namespace motionstyle

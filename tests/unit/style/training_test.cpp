@@ -1,0 +1,238 @@
+// Properties of the training API on the committed fixtures with tiny networks: the loss goes down,
+// runs are deterministic, cancellation is prompt, resume reproduces uninterrupted training, divergence
+// stops with an error and keeps the last good checkpoint.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <thread>
+
+#include "common/errors.h"
+#include "nn/adam.h"
+#include "nn/init.h"
+#include "style/training_state.h"
+#include "style_test_support.h"
+
+namespace motionstyle {
+namespace {
+
+using test::TempDir;
+
+TEST(ResumableAdam, MatchesNnAdamBitForBit) {
+  nn::Parameter<float> a, b;
+  a.resize(7, 5);
+  std::mt19937 rng(4);
+  for (Eigen::Index i = 0; i < a.value.size(); ++i) a.value.data()[i] = static_cast<float>(nn::symmetricUniform(rng));
+  b = a;
+  nn::Adam<float> reference({&a}, {0.01});
+  style::ResumableAdam ours({&b}, {0.01});
+  for (int step = 0; step < 20; ++step) {
+    nn::Mat<float> grad(7, 5);
+    for (Eigen::Index i = 0; i < grad.size(); ++i) grad.data()[i] = static_cast<float>(nn::symmetricUniform(rng));
+    a.grad = grad;
+    b.grad = grad;
+    reference.step();
+    ours.step();
+  }
+  EXPECT_EQ(a.value, b.value);
+}
+
+TEST(TrainAutoencoder, LossDecreasesAndTheOutputLoads) {
+  TempDir dir;
+  std::vector<style::TrainingProgress> calls;
+  style::TrainingCallbacks callbacks;
+  callbacks.progress = [&](const style::TrainingProgress& p) { calls.push_back(p); };
+  const auto result = style::trainAutoencoder(test::tinyAutoencoderConfig(dir / "ae.net", 4), callbacks);
+  ASSERT_EQ(result.status, style::TrainingStatus::Completed);
+  ASSERT_EQ(result.history.size(), 4u);
+  EXPECT_LT(result.history.back().total, 0.8 * result.history.front().total);
+  ASSERT_EQ(result.history.front().terms.size(), 2u);
+  EXPECT_EQ(result.history.front().terms[0].name, "mse");
+
+  const nn::AutoencoderModel loaded = style::loadCompatibleAutoencoder(dir / "ae.net");
+  EXPECT_EQ(loaded.network.encoder.weight.value, result.model.network.encoder.weight.value);
+  EXPECT_EQ(loaded.metadata.loss_history.epochs.size(), 4u);
+  EXPECT_EQ(loaded.metadata.training.epochs, 4);
+
+  // Progress: one call per step and one per epoch end, in order, with a finite ETA after the first step.
+  int epoch_ends = 0, steps = 0;
+  for (const auto& p : calls) {
+    if (p.phase == style::TrainingProgress::Phase::EpochEnd) ++epoch_ends;
+    if (p.phase == style::TrainingProgress::Phase::Training) {
+      ++steps;
+      EXPECT_GE(p.eta_seconds, 0.0);
+      EXPECT_GE(p.step, 1);
+      EXPECT_LE(p.step, p.steps_per_epoch);
+    }
+  }
+  EXPECT_EQ(epoch_ends, 4);
+  EXPECT_EQ(steps, 4 * calls.back().steps_per_epoch);
+}
+
+TEST(TrainAutoencoder, SameSeedGivesIdenticalWeightsAndAnotherSeedDoesNot) {
+  TempDir dir;
+  auto config = test::tinyAutoencoderConfig(dir / "a.net", 2);
+  auto first = style::trainAutoencoder(config);
+  config.settings.output = dir / "b.net";
+  auto second = style::trainAutoencoder(config);
+  EXPECT_EQ(test::weightsOf(first.model.network), test::weightsOf(second.model.network));
+  config.settings.seed = 8;
+  config.settings.output = dir / "c.net";
+  auto third = style::trainAutoencoder(config);
+  EXPECT_NE(test::weightsOf(first.model.network), test::weightsOf(third.model.network));
+}
+
+TEST(TrainAutoencoder, ResumeAfterAnEpochOrACancelledStepEqualsUninterruptedTraining) {
+  TempDir dir;
+  auto config = test::tinyAutoencoderConfig(dir / "straight.net", 3);
+  const auto straight = style::trainAutoencoder(config);
+
+  // Stopped at an epoch boundary, resumed.
+  config.settings.output = dir / "split.net";
+  config.settings.epochs = 1;
+  ASSERT_EQ(style::trainAutoencoder(config).status, style::TrainingStatus::Completed);
+  config.settings.epochs = 3;
+  config.settings.resume = true;
+  const auto resumed = style::trainAutoencoder(config);
+  EXPECT_EQ(test::weightsOf(straight.model.network), test::weightsOf(resumed.model.network));
+  EXPECT_EQ(resumed.history.size(), 3u);
+  EXPECT_EQ(resumed.history[0].total, straight.history[0].total);
+
+  // Cancelled in the middle of epoch 2 (deterministically, from the progress callback), then resumed.
+  config.settings.output = dir / "cancelled.net";
+  config.settings.resume = false;
+  std::atomic<bool> cancel{false};
+  style::TrainingCallbacks callbacks;
+  callbacks.cancel = &cancel;
+  callbacks.progress = [&](const style::TrainingProgress& p) {
+    if (p.phase == style::TrainingProgress::Phase::Training && p.epoch == 2 && p.step == 2) cancel = true;
+  };
+  const auto cancelled = style::trainAutoencoder(config, callbacks);
+  EXPECT_EQ(cancelled.status, style::TrainingStatus::Cancelled);
+  EXPECT_EQ(cancelled.epochs_completed, 1);
+  EXPECT_FALSE(std::filesystem::exists(dir / "cancelled.net"));
+  config.settings.resume = true;
+  const auto finished = style::trainAutoencoder(config);
+  EXPECT_EQ(test::weightsOf(straight.model.network), test::weightsOf(finished.model.network));
+}
+
+TEST(TrainAutoencoder, CancellationTakesEffectWithinOneSecond) {
+  TempDir dir;
+  // Full-size networks and windows (256 hidden units, width 25, 240 frames): the slowest steps there are.
+  style::AutoencoderTrainingConfig config;
+  config.settings = test::tinySettings(dir / "ae.net", 1000);
+  config.settings.windows = {};
+  config.settings.batch_size = 16;
+  config.clips = test::fixtureClips();
+  std::atomic<bool> cancel{false};
+  std::atomic<int> steps{0};
+  style::TrainingCallbacks callbacks;
+  callbacks.cancel = &cancel;
+  callbacks.progress = [&](const style::TrainingProgress& p) {
+    if (p.phase == style::TrainingProgress::Phase::Training) ++steps;
+  };
+  std::chrono::steady_clock::time_point returned;
+  style::AutoencoderTrainingResult result;
+  std::thread worker([&] {
+    result = style::trainAutoencoder(config, callbacks);
+    returned = std::chrono::steady_clock::now();
+  });
+  while (steps.load() < 1) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  std::this_thread::sleep_for(std::chrono::milliseconds(150));  // mid-step, most likely
+  const auto requested = std::chrono::steady_clock::now();
+  cancel = true;
+  worker.join();
+  const double latency = std::chrono::duration<double>(returned - requested).count();
+  RecordProperty("cancel_latency_ms", std::to_string(static_cast<int>(latency * 1000)));
+  EXPECT_EQ(result.status, style::TrainingStatus::Cancelled);
+  EXPECT_LT(latency, 1.0);
+  EXPECT_FALSE(std::filesystem::exists(dir / "ae.net"));
+}
+
+TEST(TrainAutoencoder, DivergenceStopsWithAnErrorAndKeepsTheLastGoodCheckpoint) {
+  TempDir dir;
+  auto config = test::tinyAutoencoderConfig(dir / "ae.net", 1);
+  config.settings.checkpoint = dir / "shared.checkpoint";
+  ASSERT_EQ(style::trainAutoencoder(config).status, style::TrainingStatus::Completed);
+  const std::string checkpoint = test::readBytes(config.settings.checkpointPath());
+  config.settings.learning_rate = 1e35;  // the first step sends weights to ~1e35: the next loss is infinite
+  config.settings.output = dir / "diverged.net";
+  EXPECT_THROW(style::trainAutoencoder(config), style::TrainingDiverged);
+  EXPECT_EQ(test::readBytes(config.settings.checkpointPath()), checkpoint);
+  EXPECT_FALSE(std::filesystem::exists(dir / "diverged.net"));
+}
+
+TEST(TrainAutoencoder, HoldoutKeepsFilesOutOfTraining) {
+  TempDir dir;
+  auto config = test::tinyAutoencoderConfig(dir / "ae.net", 1);
+  config.clips.clear();
+  std::filesystem::create_directories(dir / "data");
+  std::filesystem::copy_file(test::fixture("cmu_131_01.bvh"), dir / "data/a_walk.bvh");
+  std::filesystem::copy_file(test::fixture("zombie.bvh"), dir / "data/b_zombie.bvh");
+  config.data = {dir / "data"};
+  config.settings.holdout_every = 2;
+  const auto result = style::trainAutoencoder(config);
+  ASSERT_EQ(result.training_files.size(), 1u);
+  ASSERT_EQ(result.held_out_files.size(), 1u);
+  EXPECT_EQ(result.held_out_files[0].filename(), "b_zombie.bvh");
+}
+
+style::StyleTrainingConfig tinyStyleConfig(const TempDir& dir, int epochs) {
+  nn::saveAutoencoder(test::tinyAutoencoderModel(), dir / "ae.net");
+  style::StyleTrainingConfig config;
+  config.settings = test::tinySettings(dir / "style.net", epochs);
+  config.settings.learning_rate = 1e-3;
+  config.autoencoder = dir / "ae.net";
+  config.content_clips = test::fixtureClips();
+  config.styles = {{std::nullopt, test::fixture("zombie.bvh")}};
+  config.shape = test::tinyTransformerShape();
+  config.weights.style = 1.0;  // the tiny untrained loss network has small Gram matrices
+  return config;
+}
+
+TEST(TrainStyleNetwork, LossDecreasesAndTheFileRecordsTheStyle) {
+  TempDir dir;
+  std::vector<std::string> log;
+  style::TrainingCallbacks callbacks;
+  callbacks.log = [&](const std::string& line) { log.push_back(line); };
+  const auto result = style::trainStyleNetwork(tinyStyleConfig(dir, 4), callbacks);
+  ASSERT_EQ(result.status, style::TrainingStatus::Completed);
+  EXPECT_LT(result.history.back().total, result.history.front().total);
+  EXPECT_EQ(result.pairing, (std::vector<int>{0, 0}));  // "cmu" and "zombie" labels both use the default
+  const nn::StyleModel loaded = style::loadCompatibleStyleModel(dir / "style.net");
+  ASSERT_EQ(loaded.metadata.style_clips.size(), 1u);
+  EXPECT_EQ(loaded.metadata.style_clips[0].name, "zombie.bvh");
+  EXPECT_EQ(loaded.metadata.loss_history.terms.size(), 6u);  // total + 5 terms
+  EXPECT_EQ(loaded.loss_network.encoder.weight.value, test::tinyAutoencoderModel().network.encoder.weight.value);
+  bool pairing_logged = false;
+  for (const auto& line : log) pairing_logged = pairing_logged || line.find("pairing: zombie") != std::string::npos;
+  EXPECT_TRUE(pairing_logged);
+}
+
+TEST(TrainStyleNetwork, DeterministicResumableAndWarmStartable) {
+  TempDir dir;
+  auto config = tinyStyleConfig(dir, 2);
+  const auto first = style::trainStyleNetwork(config);
+  config.settings.output = dir / "again.net";
+  const auto second = style::trainStyleNetwork(config);
+  EXPECT_EQ(test::weightsOf(first.model.transformer), test::weightsOf(second.model.transformer));
+
+  config.settings.output = dir / "split.net";
+  config.settings.epochs = 1;
+  style::trainStyleNetwork(config);
+  config.settings.epochs = 2;
+  config.settings.resume = true;
+  const auto resumed = style::trainStyleNetwork(config);
+  EXPECT_EQ(test::weightsOf(first.model.transformer), test::weightsOf(resumed.model.transformer));
+
+  // Warm start: continues from the given network's weights, so its first epoch starts lower.
+  config.settings.resume = false;
+  config.settings.init = dir / "style.net";
+  config.settings.output = dir / "warm.net";
+  config.settings.epochs = 1;
+  const auto warm = style::trainStyleNetwork(config);
+  EXPECT_LT(warm.history.front().total, first.history.front().total);
+}
+
+}  // namespace
+}  // namespace motionstyle
