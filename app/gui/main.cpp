@@ -1,0 +1,66 @@
+// motionstyle: the desktop app.
+//   motionstyle [files...]            opens the given BVH clips
+//   motionstyle --screenshot out.png  renders once after loading, saves a PNG of the window, exits
+//                                     (exit code 0 on success, 1 if the PNG could not be written,
+//                                     2 if a clip failed to load)
+//   --demo                            reserved for a bundled demo scene (not available yet)
+#include <QApplication>
+#include <QCommandLineParser>
+#include <QTimer>
+
+#include <cstdio>
+
+#include "main_window.h"
+#include "skeleton_viewport.h"
+
+int main(int argc, char** argv) {
+  // VTK needs a 3.2 core-profile context: the default format must be set before QApplication exists.
+  motionstyle::SkeletonViewport::installDefaultSurfaceFormat();
+  QApplication app(argc, argv);
+  QApplication::setOrganizationName(QStringLiteral("MotionStyle"));
+  QApplication::setApplicationName(QStringLiteral("motionstyle"));
+  QApplication::setApplicationVersion(QStringLiteral(MOTIONSTYLE_VERSION));
+
+  QCommandLineParser parser;
+  parser.setApplicationDescription(QStringLiteral("Fast neural style transfer for motion data"));
+  parser.addHelpOption();
+  parser.addVersionOption();
+  const QCommandLineOption screenshot(QStringLiteral("screenshot"),
+                                      QStringLiteral("Save a PNG of the window after loading, then exit."),
+                                      QStringLiteral("file"));
+  const QCommandLineOption demo(QStringLiteral("demo"), QStringLiteral("Reserved: open the demo scene."));
+  parser.addOption(screenshot);
+  parser.addOption(demo);
+  parser.addPositionalArgument(QStringLiteral("files"), QStringLiteral("BVH clips to open."), QStringLiteral("[files...]"));
+  parser.process(app);
+
+  if (parser.isSet(demo)) std::fprintf(stderr, "motionstyle: --demo is reserved and not available yet\n");
+
+  const bool screenshot_mode = parser.isSet(screenshot);
+  motionstyle::MainWindow window(/*persist_settings=*/!screenshot_mode);
+  int load_failures = 0;
+  if (screenshot_mode) {
+    // No dialog may block an unattended run: report on stderr instead.
+    window.setErrorReporter([&load_failures](const QString& title, const QString& message) {
+      ++load_failures;
+      std::fprintf(stderr, "motionstyle: %s: %s\n", qPrintable(title), qPrintable(message));
+    });
+  }
+  window.show();
+  const QStringList files = parser.positionalArguments();
+  if (!files.isEmpty()) window.openFiles(files);
+
+  if (!screenshot_mode) return QApplication::exec();
+
+  // Let the window map and lay out, then grab it (grabbing renders the GL viewport itself).
+  int exit_code = 0;
+  QTimer::singleShot(200, &window, [&] {
+    const QString file = parser.value(screenshot);
+    if (!window.saveScreenshot(file)) exit_code = 1;
+    else if (load_failures > 0) exit_code = 2;
+    else std::fprintf(stdout, "motionstyle: wrote %s\n", qPrintable(file));
+    QApplication::exit(exit_code);
+  });
+  QApplication::exec();
+  return exit_code;
+}

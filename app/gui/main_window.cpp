@@ -1,0 +1,342 @@
+#include "main_window.h"
+
+#include <QActionGroup>
+#include <QApplication>
+#include <QCloseEvent>
+#include <QDir>
+#include <QDockWidget>
+#include <QDragEnterEvent>
+#include <QDropEvent>
+#include <QFileInfo>
+#include <QHeaderView>
+#include <QLabel>
+#include <QMenu>
+#include <QMenuBar>
+#include <QMessageBox>
+#include <QMimeData>
+#include <QProgressDialog>
+#include <QSettings>
+#include <QStatusBar>
+#include <QTreeWidget>
+#include <QUrl>
+
+#include <exception>
+#include <new>
+
+#include "common/errors.h"
+#include "skeleton_viewport.h"
+#include "timeline_widget.h"
+#include "track_view.h"
+
+namespace motionstyle {
+namespace {
+
+const char* const kGeometryKey = "mainWindow/geometry";
+const char* const kStateKey = "mainWindow/state";
+
+enum ClipColumn { kNameColumn, kRoleColumn, kFramesColumn, kFpsColumn, kJointsColumn, kColumnCount };
+
+bool isBvhPath(const QString& path) { return path.endsWith(QStringLiteral(".bvh"), Qt::CaseInsensitive); }
+
+}  // namespace
+
+MainWindow::MainWindow(bool persist_settings, QWidget* parent)
+    : QMainWindow(parent), persist_settings_(persist_settings) {
+  setWindowTitle(QStringLiteral("MotionStyle"));
+  setObjectName(QStringLiteral("MainWindow"));
+  setAcceptDrops(true);
+  reporter_ = [this](const QString& title, const QString& message) { QMessageBox::warning(this, title, message); };
+
+  viewport_ = new SkeletonViewport(this);
+  setCentralWidget(viewport_);
+  createDocks();
+  createMenus();
+
+  status_label_ = new QLabel(tr("Open a BVH clip (Ctrl+O) or drop files here"), this);
+  statusBar()->addWidget(status_label_, 1);
+
+  connect(timeline_, &TimelineWidget::frameChanged, viewport_, &SkeletonViewport::setFrame);
+
+  resize(1440, 900);
+  if (persist_settings_) {
+    const QSettings settings;
+    restoreGeometry(settings.value(kGeometryKey).toByteArray());
+    restoreState(settings.value(kStateKey).toByteArray());
+  }
+  rebuildRecentMenu();
+}
+
+MainWindow::~MainWindow() = default;
+
+void MainWindow::setErrorReporter(ErrorReporter reporter) { reporter_ = std::move(reporter); }
+
+void MainWindow::createDocks() {
+  timeline_ = new TimelineWidget(this);
+  TrackView* tracks = timeline_->trackView();
+  tracks->addBoolTrack(tr("Left foot"), QColor(240, 170, 60));
+  tracks->addBoolTrack(tr("Right foot"), QColor(90, 200, 220));
+  auto* timeline_dock = new QDockWidget(tr("Timeline"), this);
+  timeline_dock->setObjectName(QStringLiteral("TimelineDock"));
+  timeline_dock->setWidget(timeline_);
+  timeline_dock->setFeatures(QDockWidget::DockWidgetMovable | QDockWidget::DockWidgetFloatable |
+                             QDockWidget::DockWidgetClosable);
+  addDockWidget(Qt::BottomDockWidgetArea, timeline_dock);
+
+  clip_list_ = new QTreeWidget(this);
+  clip_list_->setObjectName(QStringLiteral("ClipList"));
+  clip_list_->setColumnCount(kColumnCount);
+  clip_list_->setHeaderLabels({tr("Clip"), tr("Role"), tr("Frames"), tr("FPS"), tr("Joints")});
+  clip_list_->setRootIsDecorated(false);
+  clip_list_->setAlternatingRowColors(true);
+  clip_list_->setSelectionMode(QAbstractItemView::SingleSelection);
+  clip_list_->setContextMenuPolicy(Qt::CustomContextMenu);
+  clip_list_->header()->setStretchLastSection(false);
+  clip_list_->header()->setSectionResizeMode(kNameColumn, QHeaderView::Stretch);
+  for (int column = kRoleColumn; column < kColumnCount; ++column)
+    clip_list_->header()->setSectionResizeMode(column, QHeaderView::ResizeToContents);
+  connect(clip_list_, &QTreeWidget::customContextMenuRequested, this, &MainWindow::showClipMenu);
+  auto* clips_dock = new QDockWidget(tr("Clips"), this);
+  clips_dock->setObjectName(QStringLiteral("ClipsDock"));
+  clips_dock->setWidget(clip_list_);
+  clips_dock->setMinimumWidth(300);
+  addDockWidget(Qt::LeftDockWidgetArea, clips_dock);
+  // The timeline spans the full width under both the clips list and the viewport.
+  setCorner(Qt::BottomLeftCorner, Qt::BottomDockWidgetArea);
+  setCorner(Qt::BottomRightCorner, Qt::BottomDockWidgetArea);
+}
+
+void MainWindow::createMenus() {
+  QMenu* file = menuBar()->addMenu(tr("&File"));
+  file->addAction(tr("&Open BVH..."), QKeySequence::Open, this, &MainWindow::browseFiles);
+  file->addAction(tr("Open &Folder..."), QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_O), this,
+                  &MainWindow::browseFolder);
+  recent_menu_ = file->addMenu(tr("&Recent Files"));
+  file->addSeparator();
+  file->addAction(tr("Save &Screenshot..."), QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_S), this,
+                  &MainWindow::browseScreenshot);
+  file->addSeparator();
+  QAction* quit = file->addAction(tr("&Quit"), QKeySequence::Quit, this, &QWidget::close);
+  quit->setMenuRole(QAction::QuitRole);
+
+  QMenu* view = menuBar()->addMenu(tr("&View"));
+  auto* layouts = new QActionGroup(this);
+  side_by_side_action_ = view->addAction(tr("&Side by Side"), QKeySequence(Qt::Key_1), this,
+                                         [this] { viewport_->setLayout(SkeletonViewport::Layout::SideBySide); });
+  overlay_action_ = view->addAction(tr("&Overlay"), QKeySequence(Qt::Key_2), this,
+                                    [this] { viewport_->setLayout(SkeletonViewport::Layout::Overlay); });
+  for (QAction* action : {side_by_side_action_, overlay_action_}) {
+    action->setCheckable(true);
+    layouts->addAction(action);
+  }
+  side_by_side_action_->setChecked(true);
+  view->addSeparator();
+  follow_action_ = view->addAction(tr("&Follow Camera"), QKeySequence(Qt::Key_C), this, [this](bool follow) {
+    viewport_->setCameraMode(follow ? SkeletonViewport::CameraMode::Follow : SkeletonViewport::CameraMode::Fixed);
+  });
+  follow_action_->setCheckable(true);
+  follow_action_->setChecked(viewport_->cameraMode() == SkeletonViewport::CameraMode::Follow);
+  view->addAction(tr("&Reset Camera"), QKeySequence(Qt::Key_F), viewport_, &SkeletonViewport::resetCamera);
+  QAction* paths = view->addAction(tr("Show &Trajectories"), QKeySequence(Qt::Key_T), viewport_,
+                                   &SkeletonViewport::setTrajectoriesVisible);
+  paths->setCheckable(true);
+  paths->setChecked(viewport_->trajectoriesVisible());
+  view->addSeparator();
+  for (QDockWidget* dock : findChildren<QDockWidget*>()) view->addAction(dock->toggleViewAction());
+
+  // Keep the menu's checks true when the viewport changes by itself (its own C key, for instance).
+  connect(viewport_, &SkeletonViewport::cameraModeChanged, this, [this](SkeletonViewport::CameraMode mode) {
+    follow_action_->setChecked(mode == SkeletonViewport::CameraMode::Follow);
+  });
+  connect(viewport_, &SkeletonViewport::layoutChanged, this, [this](SkeletonViewport::Layout layout) {
+    (layout == SkeletonViewport::Layout::SideBySide ? side_by_side_action_ : overlay_action_)->setChecked(true);
+  });
+
+  QMenu* help = menuBar()->addMenu(tr("&Help"));
+  help->addAction(tr("&About MotionStyle"), this, &MainWindow::showAbout);
+}
+
+int MainWindow::openFiles(const QStringList& paths) {
+  QStringList failures;
+  QStringList loaded;
+  for (const QString& path : paths) {
+    try {
+      clips_.push_back(loadClip(std::filesystem::path(path.toStdString())));
+      loaded << clips_.back().path;
+      if (content_ < 0) content_ = clipCount() - 1;
+      else if (style_ < 0) style_ = clipCount() - 1;
+    } catch (const InputError& error) {
+      failures << QString::fromStdString(error.what());
+    } catch (const std::bad_alloc&) {
+      failures << tr("%1: not enough memory to load this clip").arg(path);
+    } catch (const std::exception& error) {
+      failures << tr("%1: internal error: %2").arg(path, QString::fromStdString(error.what()));
+    }
+  }
+  if (!loaded.isEmpty()) {
+    rememberRecent(loaded);
+    setLastFolder(QFileInfo(loaded.back()).absolutePath());
+    refreshClipList();
+    rebuildFigures();
+  }
+  status_label_->setText(tr("Loaded %n clip(s)", nullptr, static_cast<int>(loaded.size())) +
+                         (failures.isEmpty() ? QString() : tr(", %n failed", nullptr, static_cast<int>(failures.size()))));
+  if (!failures.isEmpty())
+    report(failures.size() == 1 ? tr("Could not open the clip") : tr("Could not open %1 clips").arg(failures.size()),
+           failures.join(QStringLiteral("\n\n")));
+  return static_cast<int>(loaded.size());
+}
+
+int MainWindow::openFolder(const QString& folder) {
+  const QDir dir(folder);
+  if (!dir.exists()) {
+    report(tr("Could not open the folder"), tr("%1 does not exist.").arg(folder));
+    return 0;
+  }
+  QStringList files;
+  for (const QFileInfo& info : dir.entryInfoList({QStringLiteral("*.bvh"), QStringLiteral("*.BVH")}, QDir::Files, QDir::Name))
+    files << info.absoluteFilePath();
+  files.removeDuplicates();
+  setLastFolder(dir.absolutePath());
+  if (files.isEmpty()) {
+    report(tr("No clips found"), tr("%1 holds no .bvh files.").arg(dir.absolutePath()));
+    return 0;
+  }
+  // A large folder takes a while: load in batches behind a cancellable progress dialog.
+  QProgressDialog progress(tr("Loading clips..."), tr("Cancel"), 0, static_cast<int>(files.size()), this);
+  progress.setWindowModality(Qt::WindowModal);
+  progress.setMinimumDuration(500);
+  int loaded = 0;
+  for (qsizetype i = 0; i < files.size() && !progress.wasCanceled(); ++i) {
+    progress.setValue(static_cast<int>(i));
+    loaded += openFiles({files[i]});
+  }
+  progress.setValue(static_cast<int>(files.size()));
+  return loaded;
+}
+
+void MainWindow::setContentClip(int index) {
+  if (index < 0 || index >= clipCount()) return;
+  if (style_ == index) style_ = content_;
+  content_ = index;
+  refreshClipList();
+  rebuildFigures();
+}
+
+void MainWindow::setStyleClip(int index) {
+  if (index < 0 || index >= clipCount()) return;
+  if (content_ == index) content_ = style_;
+  style_ = index;
+  refreshClipList();
+  rebuildFigures();
+}
+
+void MainWindow::removeClip(int index) {
+  if (index < 0 || index >= clipCount()) return;
+  clips_.erase(clips_.begin() + index);
+  const auto shift = [index](int& role) { role = role == index ? -1 : (role > index ? role - 1 : role); };
+  shift(content_);
+  shift(style_);
+  if (content_ < 0 && style_ >= 0) std::swap(content_, style_);
+  refreshClipList();
+  rebuildFigures();
+}
+
+void MainWindow::rebuildFigures() {
+  std::vector<FigureData> figures;
+  const auto add = [&](int index, FigureRole role) {
+    if (index >= 0 && clip(index).frameCount() > 0) figures.push_back(figureFromClip(clip(index), role));
+  };
+  add(content_, FigureRole::Content);
+  add(style_, FigureRole::Style);
+  try {
+    viewport_->setFigures(std::move(figures));
+  } catch (const std::exception& error) {
+    report(tr("Could not show the clips"), QString::fromStdString(error.what()));
+    viewport_->clearFigures();
+  }
+  // The content clip sets the time base; the others hold their last frame when shorter.
+  timeline_->setFrameRate(content_ >= 0 ? clip(content_).fps() : 30.0);
+  timeline_->setFrameCount(viewport_->frameCount());
+  viewport_->setFrame(timeline_->frame());
+}
+
+void MainWindow::refreshClipList() {
+  clip_list_->clear();
+  for (int i = 0; i < clipCount(); ++i) {
+    const LoadedClip& c = clip(i);
+    auto* item = new QTreeWidgetItem(clip_list_);
+    item->setText(kNameColumn, c.name);
+    item->setToolTip(kNameColumn, c.path);
+    const bool is_content = i == content_;
+    const bool is_style = i == style_;
+    if (is_content || is_style) {
+      const FigureRole role = is_content ? FigureRole::Content : FigureRole::Style;
+      item->setText(kRoleColumn, figureRoleName(role));
+      item->setForeground(kRoleColumn, figureColor(role));
+    }
+    item->setText(kFramesColumn, QString::number(c.frameCount()));
+    item->setText(kFpsColumn, QString::number(c.fps(), 'g', 4));
+    item->setText(kJointsColumn, QString::number(c.animatedJointCount()));
+    for (int column = kFramesColumn; column < kColumnCount; ++column)
+      item->setTextAlignment(column, Qt::AlignRight | Qt::AlignVCenter);
+  }
+}
+
+void MainWindow::showClipMenu(const QPoint& position) {
+  QTreeWidgetItem* item = clip_list_->itemAt(position);
+  if (item == nullptr) return;
+  const int index = clip_list_->indexOfTopLevelItem(item);
+  QMenu menu(this);
+  menu.addAction(tr("Use as &Content"), this, [this, index] { setContentClip(index); });
+  menu.addAction(tr("Use as &Style"), this, [this, index] { setStyleClip(index); });
+  menu.addSeparator();
+  menu.addAction(tr("&Remove"), this, [this, index] { removeClip(index); });
+  menu.exec(clip_list_->viewport()->mapToGlobal(position));
+}
+
+bool MainWindow::saveScreenshot(const QString& file) {
+  const QImage image = grab().toImage();
+  if (image.isNull() || !image.save(file, "PNG")) {
+    report(tr("Could not save the screenshot"), tr("Writing %1 failed.").arg(file));
+    return false;
+  }
+  return true;
+}
+
+void MainWindow::report(const QString& title, const QString& message) {
+  if (reporter_) reporter_(title, message);
+}
+
+void MainWindow::closeEvent(QCloseEvent* event) {
+  if (persist_settings_) {
+    QSettings settings;
+    settings.setValue(kGeometryKey, saveGeometry());
+    settings.setValue(kStateKey, saveState());
+  }
+  QMainWindow::closeEvent(event);
+}
+
+void MainWindow::dragEnterEvent(QDragEnterEvent* event) {
+  for (const QUrl& url : event->mimeData()->urls()) {
+    if (url.isLocalFile() && (isBvhPath(url.toLocalFile()) || QFileInfo(url.toLocalFile()).isDir())) {
+      event->acceptProposedAction();
+      return;
+    }
+  }
+}
+
+void MainWindow::dropEvent(QDropEvent* event) {
+  QStringList files;
+  QStringList folders;
+  for (const QUrl& url : event->mimeData()->urls()) {
+    if (!url.isLocalFile()) continue;
+    const QString path = url.toLocalFile();
+    if (QFileInfo(path).isDir()) folders << path;
+    else if (isBvhPath(path)) files << path;
+  }
+  event->acceptProposedAction();
+  if (!files.isEmpty()) openFiles(files);
+  for (const QString& folder : folders) openFolder(folder);
+}
+
+}  // namespace motionstyle

@@ -1,0 +1,96 @@
+// MainWindow's file dialogs, recent-file list and remembered folder (QSettings), and About box.
+#include <QApplication>
+#include <QDir>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QMenu>
+#include <QMessageBox>
+#include <QSettings>
+
+#include "main_window.h"
+
+namespace motionstyle {
+namespace {
+
+const char* const kRecentFilesKey = "recentFiles";
+const char* const kLastFolderKey = "lastFolder";
+
+}  // namespace
+
+QStringList MainWindow::recentFiles() const {
+  if (!persist_settings_) return session_recent_;
+  return QSettings().value(kRecentFilesKey).toStringList();
+}
+
+void MainWindow::rememberRecent(const QStringList& files) {
+  QStringList recent = recentFiles();
+  for (const QString& file : files) {
+    recent.removeAll(file);
+    recent.prepend(file);
+  }
+  while (recent.size() > kMaxRecentFiles) recent.removeLast();
+  if (persist_settings_) QSettings().setValue(kRecentFilesKey, recent);
+  else session_recent_ = recent;
+  rebuildRecentMenu();
+}
+
+void MainWindow::rebuildRecentMenu() {
+  recent_menu_->clear();
+  const QStringList recent = recentFiles();
+  for (int i = 0; i < recent.size(); ++i) {
+    const QString& file = recent[i];
+    QAction* action = recent_menu_->addAction(QStringLiteral("&%1  %2").arg(i + 1).arg(QFileInfo(file).fileName()),
+                                              this, [this, file] { openFiles({file}); });
+    action->setToolTip(file);
+    action->setStatusTip(file);
+  }
+  if (!recent.isEmpty()) recent_menu_->addSeparator();
+  QAction* clear = recent_menu_->addAction(tr("&Clear List"), this, [this] {
+    if (persist_settings_) QSettings().remove(kRecentFilesKey);
+    session_recent_.clear();
+    rebuildRecentMenu();
+  });
+  clear->setEnabled(!recent.isEmpty());
+}
+
+QString MainWindow::lastFolder() const {
+  const QString folder = persist_settings_ ? QSettings().value(kLastFolderKey).toString() : QString();
+  return QDir(folder).exists() && !folder.isEmpty() ? folder : QDir::homePath();
+}
+
+void MainWindow::setLastFolder(const QString& folder) {
+  if (persist_settings_) QSettings().setValue(kLastFolderKey, folder);
+}
+
+void MainWindow::browseFiles() {
+  const QStringList files = QFileDialog::getOpenFileNames(this, tr("Open BVH clips"), lastFolder(),
+                                                          tr("BVH motion (*.bvh *.BVH);;All files (*)"));
+  if (!files.isEmpty()) openFiles(files);
+}
+
+void MainWindow::browseFolder() {
+  const QString folder = QFileDialog::getExistingDirectory(this, tr("Open a folder of BVH clips"), lastFolder());
+  if (!folder.isEmpty()) openFolder(folder);
+}
+
+void MainWindow::browseScreenshot() {
+  const QString file = QFileDialog::getSaveFileName(this, tr("Save screenshot"),
+                                                    QDir(lastFolder()).filePath(QStringLiteral("motionstyle.png")),
+                                                    tr("PNG image (*.png)"));
+  if (!file.isEmpty()) saveScreenshot(file);
+}
+
+void MainWindow::showAbout() {
+  QMessageBox::about(
+      this, tr("About MotionStyle"),
+      tr("<h3>MotionStyle %1</h3>"
+         "<p>Fast neural style transfer for motion capture, after Holden, Habibie, Kusajima and Komura, "
+         "<i>Fast Neural Style Transfer for Motion Data</i>, IEEE CG&amp;A 2017.</p>"
+         "<p>Load a content clip and a style clip (BVH), get the content performed in that style, clean "
+         "it up with IK and export it on your own skeleton.</p>"
+         "<p>Colours: <span style='color:#4cbd5c'>content</span>, <span style='color:#db4a45'>style</span>, "
+         "<span style='color:#4280eb'>output</span>.</p>")
+          .arg(QApplication::applicationVersion()));
+}
+
+}  // namespace motionstyle

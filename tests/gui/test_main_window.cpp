@@ -1,0 +1,187 @@
+// The main window end to end: opening clips through the menu's code path, the clips list, roles,
+// recent files, drag-and-drop, and bad input reported (injected reporter and the real message box)
+// without breaking the window.
+#include <QDropEvent>
+#include <QMessageBox>
+#include <QMimeData>
+#include <QSettings>
+#include <QTemporaryDir>
+#include <QTimer>
+#include <QTreeWidget>
+#include <QUrl>
+
+#include "bvh/bvh_reader.h"
+#include "gui_test_support.h"
+#include "main_window.h"
+#include "timeline_widget.h"
+
+using namespace motionstyle;
+
+namespace {
+
+struct Report {
+  QString title;
+  QString message;
+};
+
+QString writeFile(const QTemporaryDir& dir, const QString& name, const QByteArray& content) {
+  const QString path = dir.filePath(name);
+  QFile file(path);
+  if (!file.open(QIODevice::WriteOnly) || file.write(content) != content.size()) return {};
+  return path;
+}
+
+}  // namespace
+
+class MainWindowTest : public QObject {
+  Q_OBJECT
+
+  QTemporaryDir settings_dir_;
+  QTemporaryDir scratch_;
+
+ private slots:
+  void initTestCase() {
+    // Never touch the developer's own settings.
+    QVERIFY(settings_dir_.isValid() && scratch_.isValid());
+    QSettings::setPath(QSettings::NativeFormat, QSettings::UserScope, settings_dir_.path());
+    QSettings::setPath(QSettings::IniFormat, QSettings::UserScope, settings_dir_.path());
+    QCoreApplication::setOrganizationName(QStringLiteral("MotionStyleTests"));
+    QCoreApplication::setApplicationName(QStringLiteral("test_gui_main_window"));
+  }
+
+  void badBvhIsReportedAndTheWindowStaysUsable() {
+    MainWindow window;
+    std::vector<Report> reports;
+    window.setErrorReporter([&](const QString& title, const QString& message) { reports.push_back({title, message}); });
+    const QString garbage = writeFile(scratch_, QStringLiteral("garbage.bvh"), "this is not\n a BVH file\x01\x02\n");
+    const QString missing = scratch_.filePath(QStringLiteral("missing.bvh"));
+    QVERIFY(!garbage.isEmpty());
+
+    QCOMPARE(window.openFiles({garbage}), 0);
+    QCOMPARE(reports.size(), size_t{1});
+    QVERIFY2(reports[0].message.contains(QStringLiteral("garbage.bvh")), qPrintable(reports[0].message));
+    QCOMPARE(window.clipCount(), 0);
+    QCOMPARE(window.clipList()->topLevelItemCount(), 0);
+
+    // One report for several failures, and the good file among them still loads.
+    QCOMPARE(window.openFiles({missing, test::fixture(QStringLiteral("cmu_131_01.bvh")), garbage}), 1);
+    QCOMPARE(reports.size(), size_t{2});
+    QVERIFY(reports[1].message.contains(QStringLiteral("missing.bvh")));
+    QVERIFY(reports[1].message.contains(QStringLiteral("garbage.bvh")));
+    QCOMPARE(window.clipCount(), 1);
+    QVERIFY(!window.recentFiles().contains(garbage));
+  }
+
+  void badBvhShowsAMessageBoxByDefault() {
+    MainWindow window;
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    const QString garbage = writeFile(scratch_, QStringLiteral("broken.bvh"), "HIERARCHY\nROOT Hips\n{\n  OFFSET 0 0\n");
+    QString shown_text;
+    // The box is modal: look for it from the event loop it runs, then close it.
+    QTimer poll;
+    poll.setInterval(20);
+    connect(&poll, &QTimer::timeout, [&] {
+      for (QWidget* widget : QApplication::topLevelWidgets()) {
+        auto* box = qobject_cast<QMessageBox*>(widget);
+        if (box != nullptr && box->isVisible()) {
+          shown_text = box->text();
+          box->accept();
+        }
+      }
+    });
+    poll.start();
+    QCOMPARE(window.openFiles({garbage}), 0);
+    poll.stop();
+    QVERIFY2(shown_text.contains(QStringLiteral("broken.bvh")), qPrintable(shown_text));
+    // Still usable.
+    QCOMPARE(window.openFiles({test::fixture(QStringLiteral("cmu_131_01.bvh"))}), 1);
+  }
+
+  void openedClipsAreListedWithRolesAndShown() {
+    MainWindow window;
+    window.resize(1440, 900);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    QVERIFY(!test::saveScreenshot(window.grab().toImage(), QStringLiteral("main_window_empty")).isEmpty());
+
+    const QString cmu = test::fixture(QStringLiteral("cmu_131_01.bvh"));
+    const QString zombie = test::fixture(QStringLiteral("zombie.bvh"));
+    const Motion expected = readBvh(cmu.toStdString());
+    QCOMPARE(window.openFiles({cmu}), 1);
+    QTreeWidget* list = window.clipList();
+    QCOMPARE(list->topLevelItemCount(), 1);
+    QCOMPARE(list->topLevelItem(0)->text(0), QStringLiteral("cmu_131_01.bvh"));
+    QCOMPARE(list->topLevelItem(0)->text(1), QStringLiteral("Content"));
+    QCOMPARE(list->topLevelItem(0)->text(2).toInt(), expected.frameCount());
+    QCOMPARE(list->topLevelItem(0)->text(3).toDouble(), std::round(expected.fps() * 1000.0) / 1000.0);
+    QCOMPARE(window.viewport()->figureCount(), 1);
+    QCOMPARE(window.timeline()->frameCount(), expected.frameCount());
+    QCOMPARE(window.timeline()->frameRate(), expected.fps());
+
+    QCOMPARE(window.openFiles({zombie}), 1);
+    QCOMPARE(list->topLevelItemCount(), 2);
+    QCOMPARE(list->topLevelItem(1)->text(1), QStringLiteral("Style"));
+    QCOMPARE(window.viewport()->figureCount(), 2);
+    QCOMPARE(window.viewport()->figure(1).role, FigureRole::Style);
+    QCOMPARE(window.styleClip(), 1);
+
+    // Scrubbing the timeline poses the viewport.
+    window.timeline()->setFrame(240);
+    QCOMPARE(window.viewport()->currentFrame(), 240);
+    QVERIFY(!test::saveScreenshot(window.grab().toImage(), QStringLiteral("main_window_two_clips")).isEmpty());
+
+    // Swapping roles through the same slots the context menu uses.
+    window.setContentClip(1);
+    QCOMPARE(window.contentClip(), 1);
+    QCOMPARE(window.styleClip(), 0);
+    QCOMPARE(list->topLevelItem(1)->text(1), QStringLiteral("Content"));
+    QCOMPARE(window.timeline()->frameRate(), window.clip(1).fps());
+    window.removeClip(1);
+    QCOMPARE(window.clipCount(), 1);
+    QCOMPARE(window.contentClip(), 0);
+    QCOMPARE(window.styleClip(), -1);
+    QCOMPARE(window.viewport()->figureCount(), 1);
+
+    // Recent files are remembered across windows (QSettings), newest first.
+    const QStringList recent = MainWindow().recentFiles();
+    QCOMPARE(recent.value(0), QFileInfo(zombie).absoluteFilePath());
+    QCOMPARE(recent.value(1), QFileInfo(cmu).absoluteFilePath());
+  }
+
+  void droppedFilesAreOpened() {
+    MainWindow window;
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    QMimeData mime;
+    mime.setUrls({QUrl::fromLocalFile(test::fixture(QStringLiteral("zombie.bvh"))),
+                  QUrl::fromLocalFile(scratch_.filePath(QStringLiteral("notes.txt")))});
+    const QPoint centre = window.rect().center();
+    QDragEnterEvent enter(centre, Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
+    QApplication::sendEvent(&window, &enter);
+    QVERIFY(enter.isAccepted());
+    QDropEvent drop(centre, Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
+    QApplication::sendEvent(&window, &drop);
+    QCOMPARE(window.clipCount(), 1);  // the .txt is ignored
+    QCOMPARE(window.clip(0).name, QStringLiteral("zombie.bvh"));
+  }
+
+  void openFolderLoadsEveryClipInNameOrder() {
+    QTemporaryDir folder;
+    QFile::copy(test::fixture(QStringLiteral("zombie.bvh")), folder.filePath(QStringLiteral("b_zombie.bvh")));
+    QFile::copy(test::fixture(QStringLiteral("cmu_131_01.bvh")), folder.filePath(QStringLiteral("a_walk.BVH")));
+    writeFile(folder, QStringLiteral("readme.txt"), "not a clip");
+    MainWindow window;
+    std::vector<Report> reports;
+    window.setErrorReporter([&](const QString& title, const QString& message) { reports.push_back({title, message}); });
+    QCOMPARE(window.openFolder(folder.path()), 2);
+    QCOMPARE(window.clip(0).name, QStringLiteral("a_walk.BVH"));
+    QCOMPARE(window.clip(1).name, QStringLiteral("b_zombie.bvh"));
+    QVERIFY(reports.empty());
+    QCOMPARE(window.openFolder(folder.filePath(QStringLiteral("nope"))), 0);
+    QCOMPARE(reports.size(), size_t{1});
+  }
+};
+
+MOTIONSTYLE_GUI_TEST_MAIN(MainWindowTest)
+#include "test_main_window.moc"

@@ -1,0 +1,258 @@
+// Timeline, track view and playback clock: stepping, Home/End, shortcuts, wall-clock playback rate,
+// looping, track painting and scrubbing.
+#include <QElapsedTimer>
+#include <QSignalSpy>
+#include <QTest>
+
+#include "gui_test_support.h"
+#include "playback_clock.h"
+#include "timeline_widget.h"
+#include "track_view.h"
+
+using namespace motionstyle;
+
+class TimelineTest : public QObject {
+  Q_OBJECT
+
+ private slots:
+  void clockIgnoresInvalidRatesAndClampsEarlyTimes() {
+    PlaybackClock clock;
+    clock.setRate(-5.0, 0.0);  // invalid: the defaults stay
+    QCOMPARE(clock.fps(), 30.0);
+    QCOMPARE(clock.speed(), 1.0);
+    clock.setRate(120.0, 0.5);
+    clock.start(10, 100.0);
+    QCOMPARE(clock.frameAt(99.0), 10LL);  // before the start: the start frame
+    QCOMPARE(clock.frameAt(100.0), 10LL);
+    QCOMPARE(clock.frameAt(101.0), 70LL);  // 1 s * 120 fps * 0.5
+  }
+
+  void wrapFrameLoopsOrClamps() {
+    QCOMPARE(wrapFrame(0, 0, true), 0);
+    QCOMPARE(wrapFrame(12, 10, true), 2);
+    QCOMPARE(wrapFrame(-1, 10, true), 9);
+    QCOMPARE(wrapFrame(12, 10, false), 9);
+    QCOMPARE(wrapFrame(-3, 10, false), 0);
+  }
+
+  void formatsTimeAsMinutesSecondsMillis() {
+    QCOMPARE(TimelineWidget::formatTime(0.0), QStringLiteral("00:00.000"));
+    QCOMPARE(TimelineWidget::formatTime(61.5), QStringLiteral("01:01.500"));
+    QCOMPARE(TimelineWidget::formatTime(-2.0), QStringLiteral("00:00.000"));
+    QCOMPARE(TimelineWidget::formatTime(5.0 / 120.0), QStringLiteral("00:00.042"));
+  }
+
+  void emptyTimelineDoesNotPlay() {
+    TimelineWidget timeline;
+    timeline.play();
+    QVERIFY(!timeline.isPlaying());
+    timeline.stepForward();
+    QCOMPARE(timeline.frame(), 0);
+  }
+
+  void stepsClampAndWrap() {
+    TimelineWidget timeline;
+    timeline.setFrameCount(100);
+    timeline.setFrameRate(30.0);
+    QSignalSpy changed(&timeline, &TimelineWidget::frameChanged);
+    timeline.stepForward();
+    QCOMPARE(timeline.frame(), 1);
+    QCOMPARE(changed.count(), 1);
+    QCOMPARE(changed.last().at(0).toInt(), 1);
+    timeline.stepBackward();
+    timeline.stepBackward();  // looping (the default): wraps to the end
+    QCOMPARE(timeline.frame(), 99);
+    timeline.setLooping(false);
+    timeline.stepForward();
+    QCOMPARE(timeline.frame(), 99);
+    timeline.goToStart();
+    QCOMPARE(timeline.frame(), 0);
+    timeline.goToEnd();
+    QCOMPARE(timeline.frame(), 99);
+    timeline.setFrame(500);
+    QCOMPARE(timeline.frame(), 99);
+    timeline.setFrameCount(50);  // shrinking clamps the current frame
+    QCOMPARE(timeline.frame(), 49);
+    QCOMPARE(timeline.trackView()->frameCount(), 50);
+    QCOMPARE(timeline.trackView()->playhead(), 49);
+  }
+
+  void keyboardShortcutsDriveTheTransport() {
+    TimelineWidget timeline;
+    timeline.setFrameCount(100);
+    timeline.setFrameRate(30.0);
+    timeline.resize(900, 160);
+    timeline.show();
+    timeline.activateWindow();
+    QVERIFY(QTest::qWaitForWindowActive(&timeline));
+    QTest::keyClick(&timeline, Qt::Key_Right);
+    QTest::keyClick(&timeline, Qt::Key_Right);
+    QCOMPARE(timeline.frame(), 2);
+    QTest::keyClick(&timeline, Qt::Key_Left);
+    QCOMPARE(timeline.frame(), 1);
+    QTest::keyClick(&timeline, Qt::Key_End);
+    QCOMPARE(timeline.frame(), 99);
+    QTest::keyClick(&timeline, Qt::Key_Home);
+    QCOMPARE(timeline.frame(), 0);
+    QTest::keyClick(&timeline, Qt::Key_Space);
+    QVERIFY(timeline.isPlaying());
+    QTest::keyClick(&timeline, Qt::Key_Space);
+    QVERIFY(!timeline.isPlaying());
+  }
+
+  void playbackFollowsWallClock_data() {
+    QTest::addColumn<double>("fps");
+    QTest::addColumn<double>("speed");
+    QTest::newRow("30 fps, 1x") << 30.0 << 1.0;
+    QTest::newRow("120 fps, 0.5x") << 120.0 << 0.5;
+    QTest::newRow("30 fps, 2x") << 30.0 << 2.0;
+  }
+
+  void playbackFollowsWallClock() {
+    QFETCH(double, fps);
+    QFETCH(double, speed);
+    TimelineWidget timeline;
+    timeline.setFrameCount(10'000);
+    timeline.setFrameRate(fps);
+    timeline.setSpeed(speed);
+    QCOMPARE(timeline.speed(), speed);
+    // Every frame shown must be the one due at the moment it is shown, however late the event loop
+    // runs (a loaded machine skips frames, it must not slow the motion down).
+    QElapsedTimer wall;
+    std::vector<std::pair<double, int>> shown;  // (seconds since play, frame)
+    connect(&timeline, &TimelineWidget::frameChanged, this,
+            [&](int frame) { shown.emplace_back(static_cast<double>(wall.nsecsElapsed()) / 1e9, frame); });
+    wall.start();
+    timeline.play();
+    QTest::qWait(500);
+    timeline.pause();
+    QVERIFY2(shown.size() >= 5, qPrintable(QStringLiteral("only %1 frames shown in 0.5 s").arg(shown.size())));
+    for (const auto& [seconds, frame] : shown) {
+      const double due = seconds * fps * speed;
+      QVERIFY2(frame <= due + 1.0 && frame >= due - 1.5,
+               qPrintable(QStringLiteral("frame %1 shown at %2 s, due %3").arg(frame).arg(seconds).arg(due)));
+    }
+    const double elapsed = static_cast<double>(wall.nsecsElapsed()) / 1e9;
+    QVERIFY(timeline.frame() <= elapsed * fps * speed + 1.0);
+    QVERIFY(timeline.frame() >= 0.5 * elapsed * fps * speed);  // it did advance through the half second
+  }
+
+  void nonLoopingPlaybackStopsOnTheLastFrame() {
+    TimelineWidget timeline;
+    timeline.setFrameCount(6);
+    timeline.setFrameRate(60.0);
+    timeline.setLooping(false);
+    QSignalSpy playing(&timeline, &TimelineWidget::playingChanged);
+    timeline.play();
+    QTRY_VERIFY_WITH_TIMEOUT(!timeline.isPlaying(), 2000);
+    QCOMPARE(timeline.frame(), 5);
+    QCOMPARE(playing.count(), 2);  // started, stopped
+    timeline.play();               // at the end: replays from the start
+    QVERIFY(timeline.isPlaying());
+    QVERIFY(timeline.frame() < 5);
+  }
+
+  void loopingPlaybackWraps() {
+    TimelineWidget timeline;
+    timeline.setFrameCount(5);
+    timeline.setFrameRate(100.0);
+    QSignalSpy changed(&timeline, &TimelineWidget::frameChanged);
+    timeline.play();
+    QTest::qWait(300);  // ~30 frames through a 5-frame clip
+    timeline.pause();
+    QVERIFY(timeline.isLooping());
+    bool wrapped = false;
+    for (int i = 1; i < changed.count(); ++i)
+      wrapped = wrapped || changed.at(i).at(0).toInt() < changed.at(i - 1).at(0).toInt();
+    QVERIFY2(wrapped, "looping playback never went back to an earlier frame");
+  }
+
+  void speedIsClampedToTheSupportedRange() {
+    TimelineWidget timeline;
+    timeline.setSpeed(10.0);
+    QCOMPARE(timeline.speed(), 2.0);
+    timeline.setSpeed(0.0);
+    QCOMPARE(timeline.speed(), 0.25);
+  }
+
+  void trackPaintingEmitsOneEditPerStroke() {
+    TrackView tracks;
+    tracks.setFrameCount(100);
+    QCOMPARE(tracks.addBoolTrack(QStringLiteral("Left foot"), Qt::yellow), 0);
+    QCOMPARE(tracks.addBoolTrack(QStringLiteral("Right foot"), Qt::cyan, std::vector<bool>(100, true)), 1);
+    tracks.resize(84 + 6 + 500, tracks.sizeHint().height());  // 5 px per frame
+    tracks.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&tracks));
+    QSignalSpy edited(&tracks, &TrackView::trackEdited);
+
+    const int y0 = tracks.boolTrackRect(0).center().y();
+    const auto x = [&](int frame) { return static_cast<int>(tracks.xForFrame(frame)); };
+    QCOMPARE(tracks.frameAt(x(10)), 10);
+    QTest::mousePress(&tracks, Qt::LeftButton, Qt::NoModifier, QPoint(x(10), y0));
+    QTest::mouseMove(&tracks, QPoint(x(30), y0));  // a fast drag: frames in between are painted too
+    QTest::mouseMove(&tracks, QPoint(x(20), y0));
+    QTest::mouseRelease(&tracks, Qt::LeftButton, Qt::NoModifier, QPoint(x(20), y0));
+    QCOMPARE(edited.count(), 1);
+    QCOMPARE(edited.at(0).at(0).toInt(), 0);
+    QCOMPARE(edited.at(0).at(1).toInt(), 10);
+    QCOMPARE(edited.at(0).at(2).toInt(), 30);
+    QCOMPARE(edited.at(0).at(3).toBool(), true);
+    const auto& left = tracks.boolValues(0);
+    QVERIFY(!left[9]);
+    for (int f = 10; f <= 30; ++f) QVERIFY(left[static_cast<size_t>(f)]);
+    QVERIFY(!left[31]);
+
+    // On a frame that is set, the stroke clears.
+    const int y1 = tracks.boolTrackRect(1).center().y();
+    QTest::mouseClick(&tracks, Qt::LeftButton, Qt::NoModifier, QPoint(x(50), y1));
+    QCOMPARE(edited.count(), 2);
+    QCOMPARE(edited.at(1).at(3).toBool(), false);
+    QVERIFY(!tracks.boolValues(1)[50]);
+    QVERIFY(tracks.boolValues(1)[49]);
+
+    // Read-only tracks ignore strokes.
+    tracks.setEditable(false);
+    QTest::mouseClick(&tracks, Qt::LeftButton, Qt::NoModifier, QPoint(x(70), y0));
+    QCOMPARE(edited.count(), 2);
+    QVERIFY(!tracks.boolValues(0)[70]);
+  }
+
+  void rulerScrubsTheTimeline() {
+    TimelineWidget timeline;
+    timeline.setFrameCount(200);
+    timeline.resize(1000, 180);
+    timeline.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&timeline));
+    TrackView* tracks = timeline.trackView();
+    const QPoint target(static_cast<int>(tracks->xForFrame(150)), tracks->rulerRect().center().y());
+    QTest::mouseClick(tracks, Qt::LeftButton, Qt::NoModifier, target);
+    QCOMPARE(timeline.frame(), 150);
+    QCOMPARE(tracks->playhead(), 150);
+  }
+
+  void screenshot() {
+    TimelineWidget timeline;
+    timeline.setFrameCount(720);
+    timeline.setFrameRate(120.0);
+    TrackView* tracks = timeline.trackView();
+    std::vector<bool> left(720);
+    std::vector<bool> right(720);
+    std::vector<float> quality(720);
+    for (size_t f = 0; f < 720; ++f) {
+      left[f] = (f / 60) % 2 == 0;
+      right[f] = (f / 60) % 2 == 1 || f % 60 < 10;
+      quality[f] = 0.5f + 0.4f * static_cast<float>(std::sin(static_cast<double>(f) / 50.0));
+    }
+    tracks->addBoolTrack(QStringLiteral("Left foot"), QColor(240, 170, 60), left);
+    tracks->addBoolTrack(QStringLiteral("Right foot"), QColor(90, 200, 220), right);
+    tracks->setFloatTrack(QStringLiteral("Quality"), quality, 0.0f, 1.0f);
+    timeline.setFrame(250);
+    timeline.resize(1200, timeline.sizeHint().height());
+    timeline.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&timeline));
+    QVERIFY(!test::saveScreenshot(timeline.grab().toImage(), QStringLiteral("timeline")).isEmpty());
+  }
+};
+
+MOTIONSTYLE_GUI_TEST_MAIN(TimelineTest)
+#include "test_timeline.moc"

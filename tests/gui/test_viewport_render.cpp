@@ -1,0 +1,280 @@
+// The viewport really renders: a real CMU clip drawn through VTK inside the Qt6 QOpenGLWidget under
+// Xvfb. Checks the image is not blank, that pixels at the projected hips / head / ankles carry the
+// role's colour while the background does not, that figures move with the frame, the layouts, and
+// how long a frame takes with three figures.
+#include <QElapsedTimer>
+#include <QTest>
+
+#include <cmath>
+#include <stdexcept>
+
+#include "clip_loader.h"
+#include "gui_test_support.h"
+
+using namespace motionstyle;
+
+namespace {
+
+int jointNamed(const LoadedClip& clip, std::initializer_list<const char*> names) {
+  for (const char* name : names) {
+    const int joint = clip.motion.skeleton.find(name);
+    if (joint >= 0) return joint;
+  }
+  return -1;
+}
+
+}  // namespace
+
+class ViewportRenderTest : public QObject {
+  Q_OBJECT
+
+  LoadedClip cmu_;
+  LoadedClip zombie_;
+
+  // A pixel in widget coordinates -> the grabbed image (device pixels).
+  static QPointF toImage(const QImage& image, QPointF widget_point) {
+    return widget_point * image.devicePixelRatio();
+  }
+
+ private slots:
+  void initTestCase() {
+    cmu_ = loadClip(test::fixture(QStringLiteral("cmu_131_01.bvh")).toStdString());
+    zombie_ = loadClip(test::fixture(QStringLiteral("zombie.bvh")).toStdString());
+    QVERIFY(cmu_.frameCount() > 100);
+  }
+
+  void rejectsInvalidFigures() {
+    SkeletonViewport viewport;
+    FigureData bad = figureFromClip(cmu_, FigureRole::Content);
+    bad.positions.pop_back();
+    QVERIFY_THROWS_EXCEPTION(std::invalid_argument, viewport.setFigures({bad}));
+    bad = figureFromClip(cmu_, FigureRole::Content);
+    bad.parents[3] = 7;  // a parent after its child
+    QVERIFY_THROWS_EXCEPTION(std::invalid_argument, viewport.setFigures({bad}));
+    bad = figureFromClip(cmu_, FigureRole::Content);
+    bad.contact_joints = {1, 2};
+    bad.contacts.assign(static_cast<size_t>(bad.frame_count), 1);  // one flag per frame, two needed
+    QVERIFY_THROWS_EXCEPTION(std::invalid_argument, viewport.setFigures({bad}));
+    bad.contacts.assign(static_cast<size_t>(bad.frame_count) * 2, 1);
+    bad.contact_joints = {1, 999};
+    QVERIFY_THROWS_EXCEPTION(std::invalid_argument, viewport.setFigures({bad}));
+    std::vector<FigureData> five(5, figureFromClip(cmu_, FigureRole::Content));
+    QVERIFY_THROWS_EXCEPTION(std::invalid_argument, viewport.setFigures(five));
+    QCOMPARE(viewport.figureCount(), 0);
+    QVERIFY(!viewport.projectToWidget(0, 0, 0).has_value());
+  }
+
+  void emptyViewportShowsBackdropAndFloor() {
+    SkeletonViewport viewport;
+    viewport.resize(800, 500);
+    viewport.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&viewport));
+    const QImage image = viewport.grabFrame();
+    QCOMPARE(image.size(), QSize(800, 500) * image.devicePixelRatio());
+    QVERIFY2(test::luminanceVariance(image) > 20.0, "the empty view is blank: VTK did not render");
+    QVERIFY(qAlpha(image.pixel(image.width() / 2, image.height() / 2)) == 255);
+    test::saveScreenshot(image, QStringLiteral("viewport_empty"));
+  }
+
+  void contentFigureIsDrawnWhereItsJointsProject() {
+    SkeletonViewport viewport;
+    viewport.resize(960, 640);
+    viewport.setFigures({figureFromClip(cmu_, FigureRole::Content)});
+    viewport.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&viewport));
+    viewport.setFrame(60);
+    const QImage image = viewport.grabFrame();
+    QVERIFY(!test::saveScreenshot(image, QStringLiteral("viewport_cmu_content")).isEmpty());
+    QVERIFY2(test::luminanceVariance(image) > 50.0, "the image is blank");
+
+    const int hips = 0;
+    const int head = jointNamed(cmu_, {"Head", "head"});
+    const int left_ankle = jointNamed(cmu_, {"LeftAnkle", "LeftFoot"});
+    const int right_ankle = jointNamed(cmu_, {"RightAnkle", "RightFoot"});
+    QVERIFY(head > 0 && left_ankle > 0 && right_ankle > 0);
+    for (const int joint : {hips, head, left_ankle, right_ankle}) {
+      const auto point = viewport.projectToWidget(0, joint, 60);
+      QVERIFY(point.has_value());
+      QVERIFY2(viewport.rect().contains(point->toPoint()), "joint projects outside the view");
+      const int green = test::countAround(image, toImage(image, *point), 3, test::isGreenish);
+      QVERIFY2(green >= 5, qPrintable(QStringLiteral("joint %1 (%2) at (%3, %4): only %5 of 49 pixels are green")
+                                          .arg(joint)
+                                          .arg(QString::fromStdString(cmu_.motion.skeleton.joints[static_cast<size_t>(joint)].name))
+                                          .arg(point->x())
+                                          .arg(point->y())
+                                          .arg(green)));
+    }
+    // The top-right corner is backdrop: not the figure's colour.
+    const QPointF corner(image.width() - 3, 3);
+    QCOMPARE(test::countAround(image, corner, 2, test::isGreenish), 0);
+    // And no stray green far from the figure: the hips' mirror position across the view.
+    const auto hip_point = viewport.projectToWidget(0, hips, 60);
+    const QPointF mirrored(viewport.width() - hip_point->x() + (hip_point->x() > viewport.width() / 2 ? -150 : 150),
+                           hip_point->y());
+    QCOMPARE(test::countAround(image, toImage(image, mirrored), 3, test::isGreenish), 0);
+  }
+
+  void footContactsAreMarkedOnTheFloor() {
+    const int left_ankle = jointNamed(cmu_, {"LeftAnkle", "LeftFoot"});
+    const int right_ankle = jointNamed(cmu_, {"RightAnkle", "RightFoot"});
+    const auto greenUnderFeet = [&](bool in_contact) {
+      FigureData figure = figureFromClip(cmu_, FigureRole::Content);
+      figure.contact_joints = {left_ankle, right_ankle};
+      figure.contacts.assign(static_cast<size_t>(figure.frame_count) * 2, in_contact ? 1 : 0);
+      SkeletonViewport viewport;
+      viewport.resize(800, 600);
+      viewport.setFigures({figure});
+      viewport.show();
+      if (!QTest::qWaitForWindowExposed(&viewport)) return -1;
+      const QImage image = viewport.grabFrame();
+      if (in_contact) test::saveScreenshot(image, QStringLiteral("viewport_contacts"));
+      int green = 0;
+      for (const int joint : {left_ankle, right_ankle}) {
+        // The disc lies on the floor below the ankle: lower on screen, within a few tens of pixels.
+        const QPointF ankle = toImage(image, *viewport.projectToWidget(0, joint, 0));
+        for (int dy = 4; dy <= 48; dy += 4)
+          for (int dx = -24; dx <= 24; dx += 4) green += test::isGreenish(image.pixel((ankle + QPointF(dx, dy)).toPoint()));
+      }
+      return green;
+    };
+    const int without = greenUnderFeet(false);
+    const int with = greenUnderFeet(true);
+    QVERIFY2(with > without + 20, qPrintable(QStringLiteral("green pixels around the feet: %1 with contacts, %2 without")
+                                                 .arg(with)
+                                                 .arg(without)));
+  }
+
+  void figuresMoveWithTheFrameInFixedMode() {
+    SkeletonViewport viewport;
+    viewport.resize(800, 500);
+    viewport.setCameraMode(SkeletonViewport::CameraMode::Fixed);
+    viewport.setFigures({figureFromClip(cmu_, FigureRole::Content)});
+    viewport.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&viewport));
+    const QPointF start = *viewport.projectToWidget(0, 0, 0);
+    const QPointF later = *viewport.projectToWidget(0, 0, cmu_.frameCount() - 1);
+    // The CMU clip walks: its hips travel across the fixed view.
+    QVERIFY2(QLineF(start, later).length() > 20.0, "the root did not move on screen");
+    viewport.setFrame(cmu_.frameCount() - 1);
+    const QImage image = viewport.grabFrame();
+    QVERIFY(test::countAround(image, toImage(image, later), 3, test::isGreenish) >= 5);
+  }
+
+  void followCameraKeepsTheCharacterInPlace() {
+    SkeletonViewport viewport;
+    viewport.resize(800, 500);
+    viewport.setFigures({figureFromClip(cmu_, FigureRole::Content)});
+    viewport.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&viewport));
+    QCOMPARE(viewport.cameraMode(), SkeletonViewport::CameraMode::Follow);
+    viewport.setFrame(0);
+    const QPointF start = *viewport.projectToWidget(0, 0, 0);
+    viewport.setFrame(cmu_.frameCount() - 1);
+    const QPointF later = *viewport.projectToWidget(0, 0, cmu_.frameCount() - 1);
+    // The camera moved with the hips on the floor plane; only depth/height changes remain.
+    QVERIFY2(std::abs(later.x() - start.x()) < 60.0,
+             qPrintable(QStringLiteral("hips moved from %1 to %2 px").arg(start.x()).arg(later.x())));
+  }
+
+  void rolesKeepTheirColoursSideBySideAndOverlaid() {
+    SkeletonViewport viewport;
+    viewport.resize(1100, 600);
+    viewport.setFigures({figureFromClip(cmu_, FigureRole::Content), figureFromClip(zombie_, FigureRole::Style)});
+    viewport.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&viewport));
+    QCOMPARE(viewport.layout(), SkeletonViewport::Layout::SideBySide);
+    QImage image = viewport.grabFrame();
+    test::saveScreenshot(image, QStringLiteral("viewport_side_by_side"));
+    const QPointF content_hips = *viewport.projectToWidget(0, 0, 0);
+    const QPointF style_hips = *viewport.projectToWidget(1, 0, 0);
+    QVERIFY2(QLineF(content_hips, style_hips).length() > 80.0, "side by side figures overlap");
+    QVERIFY(test::countAround(image, toImage(image, content_hips), 3, test::isGreenish) >= 5);
+    QVERIFY(test::countAround(image, toImage(image, style_hips), 3, test::isReddish) >= 5);
+
+    viewport.setLayout(SkeletonViewport::Layout::Overlay);
+    image = viewport.grabFrame();
+    test::saveScreenshot(image, QStringLiteral("viewport_overlay"));
+    const QPointF content_overlaid = *viewport.projectToWidget(0, 0, 0);
+    const QPointF style_overlaid = *viewport.projectToWidget(1, 0, 0);
+    // Both start on the origin of the floor; their hips differ only in height, which the camera
+    // (no roll, Y up) shows as a vertical offset.
+    QVERIFY2(std::abs(content_overlaid.x() - style_overlaid.x()) < 25.0,
+             qPrintable(QStringLiteral("overlaid hips %1 px apart sideways").arg(content_overlaid.x() - style_overlaid.x())));
+  }
+
+  void cameraInteractionMovesTheView() {
+    SkeletonViewport viewport;
+    viewport.resize(800, 500);
+    viewport.setFigures({figureFromClip(cmu_, FigureRole::Content)});
+    viewport.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&viewport));
+    const auto head = [&] { return *viewport.projectToWidget(0, jointNamed(cmu_, {"Head"}), 0); };
+    const QPointF start = head();
+    // Orbit: left drag.
+    QTest::mousePress(&viewport, Qt::LeftButton, Qt::NoModifier, QPoint(400, 250));
+    QTest::mouseMove(&viewport, QPoint(500, 250));
+    QTest::mouseRelease(&viewport, Qt::LeftButton, Qt::NoModifier, QPoint(500, 250));
+    QVERIFY(QLineF(start, head()).length() > 2.0);
+    // Reset returns to the framing.
+    viewport.resetCamera();
+    QVERIFY(QLineF(start, head()).length() < 1.0);
+    // Pan: shift + left drag moves the head by about the drag.
+    QTest::mousePress(&viewport, Qt::LeftButton, Qt::ShiftModifier, QPoint(400, 250));
+    QTest::mouseMove(&viewport, QPoint(450, 280), 0);
+    QTest::mouseRelease(&viewport, Qt::LeftButton, Qt::ShiftModifier, QPoint(450, 280));
+    const QPointF panned = head();
+    QVERIFY2(std::abs(panned.x() - start.x() - 50.0) < 15.0 && std::abs(panned.y() - start.y() - 30.0) < 15.0,
+             qPrintable(QStringLiteral("pan moved the head by (%1, %2)").arg(panned.x() - start.x()).arg(panned.y() - start.y())));
+    // Zoom: the wheel brings the figure closer, so joints spread apart on screen.
+    viewport.resetCamera();
+    const auto spread = [&] { return QLineF(*viewport.projectToWidget(0, 0, 0), head()).length(); };
+    const double before = spread();
+    QWheelEvent wheel(QPointF(400, 250), viewport.mapToGlobal(QPointF(400, 250)), QPoint(), QPoint(0, 240),
+                      Qt::NoButton, Qt::NoModifier, Qt::NoScrollPhase, false);
+    QApplication::sendEvent(&viewport, &wheel);
+    QVERIFY(spread() > before * 1.2);
+  }
+
+  void threeFiguresPlayAtInteractiveRates() {
+    SkeletonViewport viewport;
+    viewport.resize(1280, 720);
+    viewport.setFigures({figureFromClip(cmu_, FigureRole::Content), figureFromClip(zombie_, FigureRole::Style),
+                         figureFromClip(cmu_, FigureRole::Output)});
+    viewport.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&viewport));
+    viewport.grabFrame();  // compile shaders outside the measurement
+
+    // What the viewport itself does per frame: re-pose three skeletons (no pipeline rebuild).
+    constexpr int kPoses = 2000;
+    QElapsedTimer posing;
+    posing.start();
+    for (int f = 0; f < kPoses; ++f) viewport.setFrame(f % cmu_.frameCount());
+    const double pose_ms = static_cast<double>(posing.nsecsElapsed()) / 1e6 / kPoses;
+
+    // Full frames, rendered synchronously (plus a read-back that a screen update does not pay).
+    constexpr int kFrames = 40;
+    double render_ms = 0.0;
+    QElapsedTimer wall;
+    wall.start();
+    for (int f = 0; f < kFrames; ++f) {
+      viewport.setFrame(f * 8);
+      viewport.grabFrame();
+      render_ms += viewport.lastRenderMilliseconds();
+    }
+    const double frame_ms = static_cast<double>(wall.nsecsElapsed()) / 1e6 / kFrames;
+    qInfo("three figures (%d, %d, %d joints), 1280x720, %s GL, antialiasing %s: posing %.3f ms, frame %.1f ms "
+          "(%.1f fps incl. read-back), of which VTK Render %.1f ms",
+          cmu_.motion.skeleton.jointCount(), zombie_.motion.skeleton.jointCount(), cmu_.motion.skeleton.jointCount(),
+          viewport.softwareRenderer() ? "software" : "hardware", viewport.antialiasing() ? "on" : "off", pose_ms,
+          frame_ms, 1000.0 / frame_ms, render_ms / kFrames);
+    test::saveScreenshot(viewport.grabFrame(), QStringLiteral("viewport_three_figures"));
+    // Posing must stay far below a 60 fps frame budget (16.7 ms); rebuilding the pipeline per frame
+    // would cost milliseconds. Rasterising is the GL's business: under software GL on shared cores it
+    // is slow, so only a pathological rate fails.
+    QVERIFY2(pose_ms < 1.0, qPrintable(QStringLiteral("posing took %1 ms").arg(pose_ms)));
+    QVERIFY2(frame_ms < 1000.0, qPrintable(QStringLiteral("a frame took %1 ms").arg(frame_ms)));
+  }
+};
+
+MOTIONSTYLE_GUI_TEST_MAIN(ViewportRenderTest)
+#include "test_viewport_render.moc"

@@ -1,0 +1,366 @@
+#include "skeleton_viewport.h"
+
+#include <QElapsedTimer>
+#include <QGridLayout>
+#include <QLabel>
+#include <QKeyEvent>
+#include <QMouseEvent>
+#include <QOpenGLContext>
+#include <QOpenGLFunctions>
+#include <QSurfaceFormat>
+#include <QWheelEvent>
+
+#include <vtkCamera.h>
+#include <vtkCommand.h>
+#include <vtkGenericOpenGLRenderWindow.h>
+#include <vtkNew.h>
+#include <vtkOpenGLState.h>
+#include <vtkRenderer.h>
+
+#include <cmath>
+#include <stdexcept>
+
+#include "viewport_camera.h"
+#include "viewport_scene.h"
+
+namespace motionstyle {
+namespace {
+
+// The default view: from the front (+Z), a little to the right and above, like a camera on a tripod.
+constexpr double kDefaultAzimuthDegrees = 28.0;
+constexpr double kDefaultElevationDegrees = 12.0;
+constexpr double kOrbitDegreesPerPixel = 0.4;
+constexpr double kWheelStepFactor = 1.15;
+
+}  // namespace
+
+struct SkeletonViewport::Impl {
+  enum class Drag { None, Orbit, Pan, Zoom };
+
+  explicit Impl(SkeletonViewport* owner) : self(owner) {
+    window->AddRenderer(scene.renderer());
+    window->SetMultiSamples(0);  // edge smoothing is FXAA on the renderer: cheaper than MSAA
+    // The render window asks its host to manage the context: answer with the QOpenGLWidget's.
+    observers.push_back(window->AddObserver(vtkCommand::WindowMakeCurrentEvent, this, &Impl::onWindowEvent));
+    observers.push_back(window->AddObserver(vtkCommand::WindowIsCurrentEvent, this, &Impl::onWindowEvent));
+    observers.push_back(window->AddObserver(vtkCommand::WindowFrameEvent, this, &Impl::onWindowEvent));
+  }
+
+  void onWindowEvent(vtkObject*, unsigned long event, void* call_data) {
+    switch (event) {
+      case vtkCommand::WindowMakeCurrentEvent:
+        // VTK asks for this many times per render. QOpenGLWidget::makeCurrent() also re-binds Qt's
+        // framebuffer, behind VTK's cached binding, and VTK would then attach its own textures to Qt's
+        // framebuffer: only switch contexts when another one is current.
+        if (QOpenGLContext::currentContext() != self->context()) self->makeCurrent();
+        break;
+      case vtkCommand::WindowIsCurrentEvent: {
+        const QOpenGLContext* current = QOpenGLContext::currentContext();
+        *static_cast<bool*>(call_data) = current != nullptr && current == self->context();
+        break;
+      }
+      case vtkCommand::WindowFrameEvent:
+        if (!in_paint) self->update();  // VTK rendered outside paintGL: show it
+        break;
+      default: break;
+    }
+  }
+
+  void removeObservers() {
+    for (const unsigned long id : observers) window->RemoveObserver(id);
+    observers.clear();
+  }
+
+  vtkCamera* camera() const { return scene.renderer()->GetActiveCamera(); }
+  double aspect() const { return self->height() > 0 ? double(self->width()) / double(self->height()) : 1.0; }
+
+  void follow() {
+    if (mode != CameraMode::Follow || scene.figures().empty()) return;
+    const detail::Vec3 anchor = scene.anchor(scene.frame());
+    // Horizontal only: bobbing the camera with the hips is tiring to watch.
+    detail::translateCamera(camera(), {anchor[0] - followed[0], 0.0, anchor[2] - followed[2]});
+    followed = anchor;
+  }
+
+  SkeletonViewport* self;
+  vtkNew<vtkGenericOpenGLRenderWindow> window;
+  detail::ViewportScene scene;
+  std::vector<unsigned long> observers;
+  Layout layout = Layout::SideBySide;
+  CameraMode mode = CameraMode::Follow;
+  detail::Vec3 followed{};  // the anchor the camera was last moved with
+  QLabel* legend = nullptr;
+  QLabel* mode_label = nullptr;
+  bool gl_ready = false;
+  bool software_gl = false;
+  bool antialiasing_chosen = false;  // the user decided: no automatic default any more
+  bool in_paint = false;
+  Drag drag = Drag::None;
+  QPointF last_mouse;
+  double last_render_ms = 0.0;
+};
+
+SkeletonViewport::SkeletonViewport(QWidget* parent) : QOpenGLWidget(parent), impl_(std::make_unique<Impl>(this)) {
+  setFocusPolicy(Qt::StrongFocus);
+  setMinimumSize(200, 150);
+
+  impl_->legend = new QLabel(this);
+  impl_->legend->setObjectName(QStringLiteral("ViewportLegend"));
+  impl_->legend->setTextFormat(Qt::RichText);
+  impl_->legend->setStyleSheet(QStringLiteral(
+      "QLabel { background: rgba(22, 24, 28, 165); color: #ebeef2; border-radius: 6px; padding: 6px 10px; }"));
+  impl_->mode_label = new QLabel(this);
+  impl_->mode_label->setStyleSheet(QStringLiteral("QLabel { color: rgba(230, 233, 237, 190); background: transparent; }"));
+  auto* hint = new QLabel(tr("Drag: orbit    Shift/middle drag: pan    Wheel/right drag: zoom    F: frame    C: follow"), this);
+  hint->setStyleSheet(QStringLiteral("QLabel { color: rgba(230, 233, 237, 150); background: transparent; }"));
+  for (QLabel* label : {impl_->legend, impl_->mode_label, hint}) label->setAttribute(Qt::WA_TransparentForMouseEvents);
+  auto* overlay = new QGridLayout(this);
+  overlay->setContentsMargins(10, 10, 12, 8);
+  overlay->addWidget(impl_->legend, 0, 0, Qt::AlignLeft | Qt::AlignTop);
+  overlay->addWidget(impl_->mode_label, 0, 1, Qt::AlignRight | Qt::AlignTop);
+  overlay->addWidget(hint, 2, 0, 1, 2, Qt::AlignLeft | Qt::AlignBottom);
+  overlay->setRowStretch(1, 1);
+  refreshOverlay();
+  resetCamera();
+}
+
+SkeletonViewport::~SkeletonViewport() {
+  releaseGraphics();
+  impl_->removeObservers();
+}
+
+void SkeletonViewport::installDefaultSurfaceFormat() {
+  QSurfaceFormat format;
+  format.setRenderableType(QSurfaceFormat::OpenGL);
+  format.setVersion(3, 2);
+  format.setProfile(QSurfaceFormat::CoreProfile);
+  format.setDepthBufferSize(24);
+  format.setStencilBufferSize(8);
+  format.setRedBufferSize(8);
+  format.setGreenBufferSize(8);
+  format.setBlueBufferSize(8);
+  format.setAlphaBufferSize(8);
+  format.setSamples(0);
+  format.setSwapBehavior(QSurfaceFormat::DoubleBuffer);
+  QSurfaceFormat::setDefaultFormat(format);
+}
+
+void SkeletonViewport::setFigures(std::vector<FigureData> figures) {
+  if (static_cast<int>(figures.size()) > kMaxFigures)
+    throw std::invalid_argument("the viewport shows at most " + std::to_string(kMaxFigures) + " figures, got " +
+                                std::to_string(figures.size()));
+  for (const FigureData& figure : figures) figure.validate();
+  const int frame = impl_->scene.frame();
+  impl_->scene.setFigures(std::move(figures));
+  impl_->scene.setFrame(std::clamp(frame, 0, std::max(0, frameCount() - 1)));
+  refreshOverlay();
+  resetCamera();
+}
+
+void SkeletonViewport::clearFigures() { setFigures({}); }
+
+int SkeletonViewport::figureCount() const { return static_cast<int>(impl_->scene.figures().size()); }
+
+const FigureData& SkeletonViewport::figure(int index) const {
+  return impl_->scene.figures().at(static_cast<size_t>(index));
+}
+
+int SkeletonViewport::frameCount() const { return impl_->scene.frameCount(); }
+int SkeletonViewport::currentFrame() const { return impl_->scene.frame(); }
+SkeletonViewport::Layout SkeletonViewport::layout() const { return impl_->layout; }
+SkeletonViewport::CameraMode SkeletonViewport::cameraMode() const { return impl_->mode; }
+double SkeletonViewport::lastRenderMilliseconds() const { return impl_->last_render_ms; }
+
+void SkeletonViewport::setFrame(int frame) {
+  impl_->scene.setFrame(std::clamp(frame, 0, std::max(0, frameCount() - 1)));
+  impl_->follow();
+  update();
+}
+
+void SkeletonViewport::setLayout(Layout layout) {
+  if (layout == impl_->layout) return;
+  impl_->layout = layout;
+  impl_->scene.setLayout(layout == Layout::SideBySide ? detail::SceneLayout::SideBySide : detail::SceneLayout::Overlay);
+  impl_->scene.setFrame(impl_->scene.frame());
+  resetCamera();
+  emit layoutChanged(layout);
+}
+
+void SkeletonViewport::setCameraMode(CameraMode mode) {
+  if (mode == impl_->mode) return;
+  impl_->mode = mode;
+  impl_->followed = impl_->scene.anchor(impl_->scene.frame());
+  refreshOverlay();
+  update();
+  emit cameraModeChanged(mode);
+}
+
+bool SkeletonViewport::trajectoriesVisible() const { return impl_->scene.trajectoriesVisible(); }
+
+void SkeletonViewport::setTrajectoriesVisible(bool visible) {
+  impl_->scene.setTrajectoriesVisible(visible);
+  update();
+}
+
+bool SkeletonViewport::antialiasing() const { return impl_->scene.antialiasing(); }
+bool SkeletonViewport::softwareRenderer() const { return impl_->software_gl; }
+
+void SkeletonViewport::setAntialiasing(bool on) {
+  impl_->antialiasing_chosen = true;
+  impl_->scene.setAntialiasing(on);
+  update();
+}
+
+void SkeletonViewport::resetCamera() {
+  std::array<double, 6> box = impl_->scene.bounds(impl_->mode == CameraMode::Follow ? impl_->scene.frame() : -1);
+  box[2] = std::min(box[2], 0.0);  // keep the floor under the feet in view
+  detail::frameBox(impl_->camera(), box, kDefaultAzimuthDegrees, kDefaultElevationDegrees, impl_->aspect());
+  impl_->followed = impl_->scene.anchor(impl_->scene.frame());
+  update();
+}
+
+QImage SkeletonViewport::grabFrame() { return grabFramebuffer(); }
+
+std::optional<QPointF> SkeletonViewport::projectToWidget(int figure, int joint, int frame) const {
+  if (figure < 0 || figure >= figureCount()) return std::nullopt;
+  if (joint < 0 || joint >= impl_->scene.figures()[static_cast<size_t>(figure)].jointCount()) return std::nullopt;
+  if (!impl_->gl_ready || width() <= 0 || height() <= 0) return std::nullopt;
+  const detail::Vec3 world = impl_->scene.drawnJoint(figure, joint, frame);
+  vtkRenderer* renderer = impl_->scene.renderer();
+  renderer->SetWorldPoint(world[0], world[1], world[2], 1.0);
+  renderer->WorldToDisplay();
+  const double* display = renderer->GetDisplayPoint();  // device pixels, origin bottom-left
+  const double ratio = devicePixelRatioF();
+  const int device_height = impl_->window->GetSize()[1];
+  return QPointF(display[0] / ratio, (device_height - display[1]) / ratio);
+}
+
+void SkeletonViewport::initializeGL() {
+  // A new context (first show, or after reparenting): VTK must forget resources of the old one.
+  connect(context(), &QOpenGLContext::aboutToBeDestroyed, this, &SkeletonViewport::releaseGraphics,
+          Qt::UniqueConnection);
+  vtkGenericOpenGLRenderWindow* window = impl_->window;
+  window->SetOwnContext(false);
+  window->SetFrameBlitModeToBlitToCurrent();
+  window->OpenGLInitContext();
+  window->SetReadyForRendering(true);
+  impl_->gl_ready = true;
+  const auto* renderer_name = reinterpret_cast<const char*>(context()->functions()->glGetString(GL_RENDERER));
+  const QByteArray name = QByteArray(renderer_name != nullptr ? renderer_name : "").toLower();
+  impl_->software_gl = name.contains("llvmpipe") || name.contains("softpipe") || name.contains("swrast");
+  if (!impl_->antialiasing_chosen) impl_->scene.setAntialiasing(!impl_->software_gl);
+
+}
+
+void SkeletonViewport::resizeGL(int width, int height) {
+  const double ratio = devicePixelRatioF();
+  impl_->window->SetSize(static_cast<int>(std::lround(width * ratio)), static_cast<int>(std::lround(height * ratio)));
+}
+
+void SkeletonViewport::paintGL() {
+  if (!impl_->gl_ready) return;
+  // The render window re-applies its cached GL state at every Start() (it does not own the context),
+  // so what Qt and the overlay painter change between frames is overwritten; the framebuffer binding
+  // is the exception VTK must READ: Qt bound its own framebuffer, and VTK returns to it at the end.
+  impl_->in_paint = true;
+  impl_->window->GetState()->ResetFramebufferBindings();
+  impl_->scene.renderer()->ResetCameraClippingRange();
+  QElapsedTimer timer;
+  timer.start();
+  impl_->window->Render();
+  impl_->last_render_ms = static_cast<double>(timer.nsecsElapsed()) / 1e6;
+  impl_->in_paint = false;
+
+  // VTK blits into the framebuffer bound when it started (Qt's); make sure it is still bound, then
+  // force alpha to 1: Mesa leaves alpha = 0 in the blit and Qt composites the widget with that alpha,
+  // so the view would come out transparent.
+  QOpenGLFunctions* gl = context()->functions();
+  gl->glBindFramebuffer(GL_FRAMEBUFFER, defaultFramebufferObject());
+  gl->glViewport(0, 0, impl_->window->GetSize()[0], impl_->window->GetSize()[1]);
+  gl->glDisable(GL_SCISSOR_TEST);
+  gl->glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_TRUE);
+  gl->glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+  gl->glClear(GL_COLOR_BUFFER_BIT);
+  gl->glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+}
+
+void SkeletonViewport::refreshOverlay() {
+  // Child widgets, not QPainter on the GL framebuffer: Qt composites them over the 3-D view, they
+  // stay crisp, and VTK's GL state never meets the paint engine's.
+  QString legend;
+  for (const FigureData& figure : impl_->scene.figures()) {
+    if (!legend.isEmpty()) legend += QStringLiteral("<br>");
+    legend += QStringLiteral("<span style='color:%1'>&#9679;</span>&nbsp;&nbsp;%2&nbsp;&nbsp;<span style='color:#aeb4bc'>%3</span>")
+                  .arg(figureColor(figure.role).name(), figureRoleName(figure.role), figure.name.toHtmlEscaped());
+  }
+  impl_->legend->setText(legend);
+  impl_->legend->setVisible(!legend.isEmpty());
+  impl_->legend->adjustSize();
+  impl_->mode_label->setText(impl_->mode == CameraMode::Follow ? tr("Follow camera") : tr("Fixed camera"));
+}
+
+void SkeletonViewport::releaseGraphics() {
+  if (!impl_->gl_ready) return;
+  makeCurrent();
+  impl_->window->Finalize();
+  impl_->window->SetReadyForRendering(false);
+  impl_->gl_ready = false;
+  doneCurrent();
+}
+
+void SkeletonViewport::mousePressEvent(QMouseEvent* event) {
+  impl_->last_mouse = event->position();
+  const bool shift = event->modifiers() & Qt::ShiftModifier;
+  if (event->button() == Qt::LeftButton) impl_->drag = shift ? Impl::Drag::Pan : Impl::Drag::Orbit;
+  else if (event->button() == Qt::MiddleButton) impl_->drag = Impl::Drag::Pan;
+  else if (event->button() == Qt::RightButton) impl_->drag = Impl::Drag::Zoom;
+  event->accept();
+}
+
+void SkeletonViewport::mouseMoveEvent(QMouseEvent* event) {
+  if (impl_->drag == Impl::Drag::None) return;
+  const QPointF delta = event->position() - impl_->last_mouse;
+  impl_->last_mouse = event->position();
+  const double height_cm = impl_->scene.characterHeight();
+  switch (impl_->drag) {
+    case Impl::Drag::Orbit:
+      detail::orbitCamera(impl_->camera(), -delta.x() * kOrbitDegreesPerPixel, delta.y() * kOrbitDegreesPerPixel);
+      break;
+    case Impl::Drag::Pan: detail::panCamera(impl_->camera(), delta.x(), delta.y(), height()); break;
+    case Impl::Drag::Zoom:
+      detail::dollyCamera(impl_->camera(), std::pow(1.01, -delta.y()), 0.1 * height_cm, 60.0 * height_cm);
+      break;
+    case Impl::Drag::None: break;
+  }
+  update();
+}
+
+void SkeletonViewport::mouseReleaseEvent(QMouseEvent* event) {
+  impl_->drag = Impl::Drag::None;
+  event->accept();
+}
+
+void SkeletonViewport::mouseDoubleClickEvent(QMouseEvent* event) {
+  if (event->button() == Qt::LeftButton) resetCamera();
+}
+
+void SkeletonViewport::wheelEvent(QWheelEvent* event) {
+  const double steps = event->angleDelta().y() / 120.0;
+  const double height_cm = impl_->scene.characterHeight();
+  detail::dollyCamera(impl_->camera(), std::pow(kWheelStepFactor, steps), 0.1 * height_cm, 60.0 * height_cm);
+  update();
+  event->accept();
+}
+
+void SkeletonViewport::keyPressEvent(QKeyEvent* event) {
+  switch (event->key()) {
+    case Qt::Key_F: resetCamera(); break;
+    case Qt::Key_C:
+      setCameraMode(impl_->mode == CameraMode::Follow ? CameraMode::Fixed : CameraMode::Follow);
+      break;
+    default: QOpenGLWidget::keyPressEvent(event); return;
+  }
+  event->accept();
+}
+
+}  // namespace motionstyle

@@ -1,0 +1,108 @@
+#pragma once
+// SkeletonViewport: the 3-D view of up to four characters played in sync (content, style, output,
+// raw output), drawn with VTK inside a Qt6 QOpenGLWidget. This header names no VTK type (pimpl).
+//
+// Why not QVTKOpenGLNativeWidget: Debian 12's VTK 9.1 Qt module is built against Qt5. The widget
+// hosts a vtkGenericOpenGLRenderWindow that renders into Qt's framebuffer instead, and handles the
+// mouse itself (no vtkRenderWindowInteractor):
+//   left drag: orbit   middle drag or Shift+left drag: pan   right drag or wheel: zoom
+//   F or double-click: reset the camera   C: toggle follow / fixed camera
+// A legend (role colours and clip names) and the camera mode are child widgets over the view: they
+// appear on screen and in QWidget::grab(), not in grabFrame().
+//
+// Call installDefaultSurfaceFormat() in main() BEFORE constructing QApplication (VTK needs a 3.2
+// core-profile context with depth and stencil buffers).
+//
+// Space: figure data are world cm, Y-up (see figure_data.h). Coordinates returned by
+// projectToWidget() are widget pixels (logical, origin top-left).
+
+#include <QImage>
+#include <QOpenGLWidget>
+#include <QPointF>
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "figure_data.h"
+
+namespace motionstyle {
+
+class SkeletonViewport : public QOpenGLWidget {
+  Q_OBJECT
+
+ public:
+  static constexpr int kMaxFigures = 4;
+  enum class Layout { SideBySide, Overlay };
+  enum class CameraMode { Follow, Fixed };
+
+  explicit SkeletonViewport(QWidget* parent = nullptr);
+  ~SkeletonViewport() override;
+
+  // Sets the OpenGL 3.2 core profile, 24-bit depth and 8-bit stencil format as Qt's default.
+  static void installDefaultSurfaceFormat();
+
+  // Replaces every figure, shows the current frame (clamped) and frames the camera on them.
+  // Throws std::invalid_argument (figures unchanged) for more than kMaxFigures figures or invalid data
+  // (FigureData::validate).
+  void setFigures(std::vector<FigureData> figures);
+  void clearFigures();
+  int figureCount() const;
+  const FigureData& figure(int index) const;
+  int frameCount() const;  // the longest figure's frames
+  int currentFrame() const;
+
+  Layout layout() const;
+  CameraMode cameraMode() const;
+  bool trajectoriesVisible() const;
+
+  // The framebuffer as rendered now (renders first if needed), device pixels.
+  QImage grabFrame();
+  // Where joint `joint` of figure `figure` at frame `frame` (clamped to that figure) appears, in widget
+  // pixels, with the CURRENT camera (in follow mode the camera moves with the current frame). Empty for
+  // an out-of-range figure or joint, or before the widget has a size.
+  std::optional<QPointF> projectToWidget(int figure, int joint, int frame) const;
+  // Edge smoothing (FXAA). Default: on, except on a software OpenGL renderer (llvmpipe, as under
+  // Xvfb), where the extra full-screen pass halves the frame rate; the first setAntialiasing() call
+  // overrides the default.
+  bool antialiasing() const;
+  // Whether the OpenGL renderer is a software rasteriser (known after the widget is first shown).
+  bool softwareRenderer() const;
+  // Time the last paint spent in VTK's Render(), milliseconds (for the status bar and benchmarks).
+  double lastRenderMilliseconds() const;
+
+ public slots:
+  // Poses every figure at `frame` (a shorter figure holds its last frame): only point coordinates of
+  // existing VTK data change, then a repaint is scheduled.
+  void setFrame(int frame);
+  void setLayout(Layout layout);
+  void setCameraMode(CameraMode mode);
+  void setTrajectoriesVisible(bool visible);
+  void setAntialiasing(bool on);
+  // Frames the figures: the current poses in follow mode, their whole paths in fixed mode.
+  void resetCamera();
+
+ signals:
+  void layoutChanged(Layout layout);
+  void cameraModeChanged(CameraMode mode);
+
+ protected:
+  void initializeGL() override;
+  void resizeGL(int width, int height) override;
+  void paintGL() override;
+  void mousePressEvent(QMouseEvent* event) override;
+  void mouseMoveEvent(QMouseEvent* event) override;
+  void mouseReleaseEvent(QMouseEvent* event) override;
+  void mouseDoubleClickEvent(QMouseEvent* event) override;
+  void wheelEvent(QWheelEvent* event) override;
+  void keyPressEvent(QKeyEvent* event) override;
+
+ private:
+  void refreshOverlay();
+  void releaseGraphics();
+
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace motionstyle

@@ -1,0 +1,242 @@
+#include "track_view.h"
+
+#include <QMouseEvent>
+#include <QPainter>
+#include <QPainterPath>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace motionstyle {
+namespace {
+
+constexpr int kRowGap = 2;
+const QColor kBackground(43, 46, 51);
+const QColor kRowBackground(54, 58, 64);
+const QColor kHeaderText(200, 204, 210);
+const QColor kPlayhead(255, 196, 64);
+
+}  // namespace
+
+TrackView::TrackView(QWidget* parent) : QWidget(parent) {
+  setMouseTracking(false);
+  setSizePolicy(QSizePolicy::Expanding, QSizePolicy::Fixed);
+}
+
+void TrackView::setFrameCount(int frames) {
+  frames_ = std::max(0, frames);
+  for (BoolTrack& track : bool_tracks_) track.values.resize(static_cast<size_t>(frames_), false);
+  if (!float_values_.empty()) float_values_.resize(static_cast<size_t>(frames_), float_min_);
+  playhead_ = std::clamp(playhead_, 0, std::max(0, frames_ - 1));
+  update();
+}
+
+int TrackView::addBoolTrack(const QString& name, const QColor& color, std::vector<bool> values) {
+  values.resize(static_cast<size_t>(frames_), false);
+  bool_tracks_.push_back({name, color, std::move(values)});
+  updateGeometry();
+  update();
+  return static_cast<int>(bool_tracks_.size()) - 1;
+}
+
+void TrackView::setBoolValues(int track, std::vector<bool> values) {
+  values.resize(static_cast<size_t>(frames_), false);
+  bool_tracks_.at(static_cast<size_t>(track)).values = std::move(values);
+  update();
+}
+
+const std::vector<bool>& TrackView::boolValues(int track) const {
+  return bool_tracks_.at(static_cast<size_t>(track)).values;
+}
+
+void TrackView::setFloatTrack(const QString& name, std::vector<float> values, float minimum, float maximum) {
+  float_name_ = name;
+  float_values_ = std::move(values);
+  float_values_.resize(name.isEmpty() ? 0 : static_cast<size_t>(frames_), minimum);
+  float_min_ = minimum;
+  float_max_ = maximum > minimum ? maximum : minimum + 1.0f;
+  updateGeometry();
+  update();
+}
+
+void TrackView::clearTracks() {
+  bool_tracks_.clear();
+  float_name_.clear();
+  float_values_.clear();
+  updateGeometry();
+  update();
+}
+
+void TrackView::setPlayhead(int frame) {
+  const int clamped = std::clamp(frame, 0, std::max(0, frames_ - 1));
+  if (clamped == playhead_) return;
+  playhead_ = clamped;
+  update();
+}
+
+QRect TrackView::timeArea() const { return QRect(kHeaderWidth, 0, std::max(1, width() - kHeaderWidth - 6), height()); }
+
+QRect TrackView::rulerRect() const {
+  const QRect area = timeArea();
+  return QRect(area.left(), 0, area.width(), kRulerHeight);
+}
+
+QRect TrackView::boolTrackRect(int track) const {
+  const QRect area = timeArea();
+  return QRect(area.left(), kRulerHeight + kRowGap + track * (kBoolRowHeight + kRowGap), area.width(), kBoolRowHeight);
+}
+
+QRect TrackView::floatTrackRect() const {
+  const QRect area = timeArea();
+  return QRect(area.left(), kRulerHeight + kRowGap + boolTrackCount() * (kBoolRowHeight + kRowGap), area.width(),
+               kFloatRowHeight);
+}
+
+QSize TrackView::sizeHint() const {
+  int height = kRulerHeight + kRowGap + boolTrackCount() * (kBoolRowHeight + kRowGap);
+  if (!float_name_.isEmpty()) height += kFloatRowHeight + kRowGap;
+  return {600, height + 2};
+}
+
+QSize TrackView::minimumSizeHint() const { return {kHeaderWidth + 100, sizeHint().height()}; }
+
+int TrackView::frameAt(double x) const {
+  if (frames_ <= 0) return -1;
+  const QRect area = timeArea();
+  const double cell = static_cast<double>(area.width()) / frames_;
+  return std::clamp(static_cast<int>(std::floor((x - area.left()) / cell)), 0, frames_ - 1);
+}
+
+double TrackView::xForFrame(int frame) const {
+  const QRect area = timeArea();
+  if (frames_ <= 0) return area.left();
+  return area.left() + (frame + 0.5) * static_cast<double>(area.width()) / frames_;
+}
+
+void TrackView::paintRuler(QPainter& painter) const {
+  const QRect ruler = rulerRect();
+  painter.fillRect(ruler, kRowBackground.darker(115));
+  if (frames_ <= 0) return;
+  // Label every 1, 2 or 5 x 10^k frames, whichever keeps labels at least ~70 px apart.
+  const double cell = static_cast<double>(ruler.width()) / frames_;
+  int step = 1;
+  for (int decade = 1; step * cell < 70.0 && decade < 1'000'000; decade *= 10) {
+    for (const int multiple : {1, 2, 5, 10}) {
+      step = multiple * decade;
+      if (step * cell >= 70.0) break;
+    }
+  }
+  painter.setPen(QColor(150, 155, 162));
+  const int minor = std::max(1, step / 5);
+  for (int frame = 0; frame < frames_; frame += minor) {
+    const int x = static_cast<int>(std::lround(xForFrame(frame)));
+    const bool major = frame % step == 0;
+    painter.drawLine(x, ruler.bottom(), x, ruler.bottom() - (major ? 8 : 4));
+    if (major) painter.drawText(QRect(x + 3, ruler.top(), 60, ruler.height() - 6), Qt::AlignLeft | Qt::AlignVCenter,
+                                QString::number(frame));
+  }
+}
+
+void TrackView::paintEvent(QPaintEvent*) {
+  QPainter painter(this);
+  painter.fillRect(rect(), kBackground);
+  QFont font = painter.font();
+  font.setPointSizeF(8.5);
+  painter.setFont(font);
+  paintRuler(painter);
+
+  const double cell = frames_ > 0 ? static_cast<double>(timeArea().width()) / frames_ : 0.0;
+  for (int t = 0; t < boolTrackCount(); ++t) {
+    const QRect row = boolTrackRect(t);
+    const BoolTrack& track = bool_tracks_[static_cast<size_t>(t)];
+    painter.fillRect(row, kRowBackground);
+    painter.setPen(kHeaderText);
+    painter.drawText(QRect(6, row.top(), kHeaderWidth - 10, row.height()), Qt::AlignVCenter | Qt::AlignLeft, track.name);
+    // Draw runs, not frames: a 10 000-frame clip is a handful of rectangles.
+    for (int f = 0; f < frames_;) {
+      if (!track.values[static_cast<size_t>(f)]) { ++f; continue; }
+      int end = f;
+      while (end < frames_ && track.values[static_cast<size_t>(end)]) ++end;
+      const QRectF run(row.left() + f * cell, row.top() + 3, std::max(1.0, (end - f) * cell), row.height() - 6);
+      painter.fillRect(run, track.color);
+      f = end;
+    }
+  }
+
+  if (!float_name_.isEmpty() && frames_ > 0) {
+    const QRect row = floatTrackRect();
+    painter.fillRect(row, kRowBackground);
+    painter.setPen(kHeaderText);
+    painter.drawText(QRect(6, row.top(), kHeaderWidth - 10, row.height()), Qt::AlignVCenter | Qt::AlignLeft, float_name_);
+    QPainterPath curve;
+    curve.moveTo(row.left(), row.bottom());
+    for (int f = 0; f < frames_; ++f) {
+      const double t = std::clamp((float_values_[static_cast<size_t>(f)] - float_min_) / (float_max_ - float_min_), 0.0f, 1.0f);
+      const double y = row.bottom() - t * (row.height() - 4);
+      curve.lineTo(row.left() + f * cell, y);
+      curve.lineTo(row.left() + (f + 1) * cell, y);
+    }
+    curve.lineTo(row.right(), row.bottom());
+    curve.closeSubpath();
+    painter.setRenderHint(QPainter::Antialiasing);
+    painter.fillPath(curve, QColor(120, 170, 230, 120));
+    painter.setPen(QColor(140, 190, 250));
+    painter.drawPath(curve);
+    painter.setRenderHint(QPainter::Antialiasing, false);
+  }
+
+  if (frames_ > 0) {
+    const int x = static_cast<int>(std::lround(xForFrame(playhead_)));
+    painter.setPen(QPen(kPlayhead, 2));
+    painter.drawLine(x, 0, x, height());
+  }
+}
+
+void TrackView::mousePressEvent(QMouseEvent* event) {
+  if (frames_ <= 0 || event->button() != Qt::LeftButton) return;
+  const QPoint pos = event->position().toPoint();
+  const int frame = frameAt(pos.x());
+  if (rulerRect().contains(pos)) {
+    scrubbing_ = true;
+    emit scrubbed(frame);
+    return;
+  }
+  if (!editable_) return;
+  for (int t = 0; t < boolTrackCount(); ++t) {
+    if (!boolTrackRect(t).contains(pos)) continue;
+    const bool value = !bool_tracks_[static_cast<size_t>(t)].values[static_cast<size_t>(frame)];
+    stroke_ = {t, value, frame, frame, frame};
+    paintStroke(frame);
+    return;
+  }
+}
+
+void TrackView::mouseMoveEvent(QMouseEvent* event) {
+  const int frame = frameAt(event->position().x());
+  if (scrubbing_) emit scrubbed(frame);
+  else if (stroke_.track >= 0) paintStroke(frame);
+}
+
+void TrackView::paintStroke(int frame) {
+  // Fill from the previous mouse frame to this one so a fast drag leaves no gaps.
+  auto& values = bool_tracks_[static_cast<size_t>(stroke_.track)].values;
+  for (int f = std::min(stroke_.previous, frame); f <= std::max(stroke_.previous, frame); ++f)
+    values[static_cast<size_t>(f)] = stroke_.value;
+  stroke_.first = std::min(stroke_.first, frame);
+  stroke_.last = std::max(stroke_.last, frame);
+  stroke_.previous = frame;
+  update();
+}
+
+void TrackView::mouseReleaseEvent(QMouseEvent* event) {
+  if (event->button() != Qt::LeftButton) return;
+  scrubbing_ = false;
+  if (stroke_.track >= 0) {
+    const Stroke done = stroke_;
+    stroke_ = {};
+    emit trackEdited(done.track, done.first, done.last, done.value);
+  }
+}
+
+}  // namespace motionstyle

@@ -1,0 +1,106 @@
+#pragma once
+// TrackView: per-frame tracks under the timeline's time axis.
+//   - a ruler with frame numbers (click or drag on it to scrub),
+//   - boolean tracks (e.g. left / right foot contact), editable by click-drag painting: the press
+//     toggles the frame under the cursor and the drag paints that value over every frame it crosses,
+//   - one optional float track (e.g. a quality score) drawn as a filled curve,
+//   - a playhead across all of them.
+// Frames are cells: frame f covers [f, f+1) of the track area's width; the playhead sits on the centre.
+
+#include <QColor>
+#include <QString>
+#include <QWidget>
+
+#include <vector>
+
+namespace motionstyle {
+
+class TrackView : public QWidget {
+  Q_OBJECT
+
+ public:
+  static constexpr int kHeaderWidth = 84;  // the track names' column, left of the time area
+  static constexpr int kRulerHeight = 20;
+  static constexpr int kBoolRowHeight = 20;
+  static constexpr int kFloatRowHeight = 34;
+
+  explicit TrackView(QWidget* parent = nullptr);
+
+  // Number of frames on the time axis (>= 0). Tracks are resized to it (new frames: false / 0).
+  void setFrameCount(int frames);
+  int frameCount() const { return frames_; }
+
+  // Adds a boolean track and returns its index. `values` is resized to frameCount().
+  int addBoolTrack(const QString& name, const QColor& color, std::vector<bool> values = {});
+  void setBoolValues(int track, std::vector<bool> values);
+  const std::vector<bool>& boolValues(int track) const;
+  int boolTrackCount() const { return static_cast<int>(bool_tracks_.size()); }
+
+  // The float track, drawn scaled to [minimum, maximum]; an empty name hides it.
+  void setFloatTrack(const QString& name, std::vector<float> values, float minimum, float maximum);
+  void clearTracks();  // removes every boolean track and the float track
+
+  // Whether boolean tracks can be painted with the mouse (default true).
+  void setEditable(bool editable) { editable_ = editable; }
+  bool isEditable() const { return editable_; }
+
+  int playhead() const { return playhead_; }
+
+  // Geometry, in widget pixels: the frame under x (clamped; -1 without frames), the x of a frame's
+  // cell centre, and the rectangle of a boolean track's row.
+  int frameAt(double x) const;
+  double xForFrame(int frame) const;
+  QRect boolTrackRect(int track) const;
+  QRect rulerRect() const;
+
+  QSize sizeHint() const override;
+  QSize minimumSizeHint() const override;
+
+ public slots:
+  void setPlayhead(int frame);
+
+ signals:
+  // Emitted once per paint stroke (on release): frames first..last (inclusive) of `track` now hold
+  // `value`.
+  void trackEdited(int track, int first_frame, int last_frame, bool value);
+  // A click or drag on the ruler asks to show `frame`.
+  void scrubbed(int frame);
+
+ protected:
+  void paintEvent(QPaintEvent* event) override;
+  void mousePressEvent(QMouseEvent* event) override;
+  void mouseMoveEvent(QMouseEvent* event) override;
+  void mouseReleaseEvent(QMouseEvent* event) override;
+
+ private:
+  struct BoolTrack {
+    QString name;
+    QColor color;
+    std::vector<bool> values;
+  };
+  struct Stroke {
+    int track = -1;
+    bool value = false;
+    int first = 0;
+    int last = 0;
+    int previous = 0;
+  };
+
+  QRect timeArea() const;
+  QRect floatTrackRect() const;
+  void paintRuler(QPainter& painter) const;
+  void paintStroke(int frame);
+
+  int frames_ = 0;
+  int playhead_ = 0;
+  bool editable_ = true;
+  std::vector<BoolTrack> bool_tracks_;
+  QString float_name_;
+  std::vector<float> float_values_;
+  float float_min_ = 0.0f;
+  float float_max_ = 1.0f;
+  Stroke stroke_;
+  bool scrubbing_ = false;
+};
+
+}  // namespace motionstyle
