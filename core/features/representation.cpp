@@ -1,6 +1,7 @@
 #include "features/representation.h"
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "common/errors.h"
@@ -82,7 +83,7 @@ MotionFeatures extractFeatures(const Motion& motion, const JointMapping& mapping
   const Eigen::Index frames = world.rows();
 
   // Floor: a soft minimum (5th percentile) of the lowest foot joint per frame.
-  Eigen::VectorXd lowest_foot = Eigen::VectorXd::Constant(frames, INFINITY);
+  Eigen::VectorXd lowest_foot = Eigen::VectorXd::Constant(frames, std::numeric_limits<double>::infinity());
   for (CanonicalJoint foot : kContactJoint) lowest_foot = lowest_foot.cwiseMin(world.col(3 * index(foot) + 1));
   anchor.floor_height = quantile(lowest_foot, 0.05);
   for (int c = 0; c < kJoints; ++c) world.col(3 * c + 1).array() -= anchor.floor_height;

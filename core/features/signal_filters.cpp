@@ -1,7 +1,6 @@
 #include "features/signal_filters.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <vector>
 
@@ -25,7 +24,8 @@ Eigen::MatrixXd gaussianSmoothRows(const Eigen::MatrixXd& signal, double sigma_f
   // computed a block of kBlock frames at a time, the block's sums held in registers while the taps are
   // added in order k = -radius .. radius (the same order for every frame), each tap one vector
   // multiply-add over the block.
-  constexpr Eigen::Index kBlock = 8;
+  constexpr int kBlock = 8;
+  using Block = Eigen::Array<double, kBlock, 1>;
   const Eigen::Index frames = signal.rows();
   Eigen::MatrixXd smoothed(frames, signal.cols());
   std::vector<double> padded(static_cast<size_t>(frames + 2 * radius + kBlock), 0.0);  // + kBlock: last block's reads
@@ -36,13 +36,10 @@ Eigen::MatrixXd gaussianSmoothRows(const Eigen::MatrixXd& signal, double sigma_f
     std::fill_n(padded.begin() + radius + frames, radius, in[frames - 1]);
     double* out = smoothed.col(column).data();
     for (Eigen::Index first = 0; first < frames; first += kBlock) {
-      std::array<double, kBlock> sums{};
+      Block sums = Block::Zero();
       const double* window = padded.data() + first;
-      for (Eigen::Index k = 0; k < taps; ++k) {
-        const double weight = kernel[static_cast<size_t>(k)];
-        for (size_t i = 0; i < static_cast<size_t>(kBlock); ++i) sums[i] += weight * window[k + static_cast<Eigen::Index>(i)];
-      }
-      std::copy_n(sums.begin(), std::min(kBlock, frames - first), out + first);
+      for (Eigen::Index k = 0; k < taps; ++k) sums += kernel[static_cast<size_t>(k)] * Eigen::Map<const Block>(window + k);
+      std::copy_n(sums.data(), std::min<Eigen::Index>(kBlock, frames - first), out + first);
     }
   }
   return smoothed;

@@ -81,55 +81,57 @@ void checkFixedTranslation(const Joint& joint, const JointChannels& channels, co
   }
 }
 
-// Local rotations of joint j over all frames when its three rotation axes are A, B and the remaining
-// one, D (known at compile time: the composition is then straight-line code). With half-angle cosines
-// c and sines s per channel: (c0 + s0 e_A)(c1 + s1 e_B) = c0 c1 + s0 c1 e_A + c0 s1 e_B + s0 s1 e_A e_B,
-// where e_A e_B = sigma e_D (sigma = +1 when A, B, D is cyclic), then times (c2 + s2 e_D).
-template <int A, int B>
-void threeAxisRotations(LocalPoses& poses, int j, const double* const cosines[3], const double* const sines[3]) {
-  constexpr int D = 3 - A - B;
-  constexpr double sigma = B == (A + 1) % 3 ? 1.0 : -1.0;
-  for (int f = 0; f < poses.frames; ++f) {
-    Eigen::Quaterniond q;
-    q.w() = cosines[0][f] * cosines[1][f];
-    q.vec()[A] = sines[0][f] * cosines[1][f];
-    q.vec()[B] = cosines[0][f] * sines[1][f];
-    q.vec()[D] = sigma * sines[0][f] * sines[1][f];
-    poses.rotation(f, j) = composeAxisRotation(q, D, cosines[2][f], sines[2][f]);
-  }
+// Per-frame work below runs on blocks of kLanes frames held in Eigen fixed-size arrays, so that every
+// operation is one explicit vector expression over the block. Every frame (lane) therefore goes
+// through the same instructions: a frame's result does not depend on where it sits in the clip (a
+// decimated clip's frames equal the source's bit for bit), which loops left to the auto-vectoriser do
+// not guarantee (their scalar remainder may contract multiply-adds differently).
+constexpr int kLanes = 8;
+using Lanes = Eigen::Array<double, kLanes, 1>;
+
+// values[0 .. count), the last one repeated into the lanes past count (1 <= count <= kLanes).
+Lanes loadLanes(const double* values, int count) {
+  if (count == kLanes) return Eigen::Map<const Lanes>(values);
+  Lanes lanes;
+  for (int i = 0; i < kLanes; ++i) lanes[i] = values[std::min(i, count - 1)];
+  return lanes;
 }
 
-// Any other axis layout (0, 1 or 2 axes): channel by channel.
-void generalRotations(LocalPoses& poses, int j, const RotationAxes& axes, const double* const cosines[3],
-                      const double* const sines[3]) {
-  for (int f = 0; f < poses.frames; ++f) {
-    Eigen::Quaterniond q = Eigen::Quaterniond::Identity();
-    for (int n = 0; n < axes.count; ++n)
-      q = composeAxisRotation(q, axes.axis[static_cast<size_t>(n)], cosines[n][f], sines[n][f]);
-    poses.rotation(f, j) = q;
-  }
+// (w, v) <- (w, v) * (c + s e_A) over a block of frames, as composeAxisRotation (rotation.h). The axis
+// is a template argument so that the quaternion's lanes stay in registers.
+template <int A>
+void composeLanes(Lanes& w, std::array<Lanes, 3>& v, const Lanes& c, const Lanes& s) {
+  constexpr size_t a = A, b = (A + 1) % 3, d = (A + 2) % 3;
+  const Lanes w0 = w, va = v[a], vb = v[b], vd = v[d];
+  w = c * w0 - s * va;
+  v[a] = c * va + s * w0;
+  v[b] = c * vb + s * vd;
+  v[d] = c * vd - s * vb;
 }
 
+// Local rotations of joint j over all frames from its channels' half-angle cosines and sines (one run
+// of frames per channel): R = (c1 + s1 e_a1) (c2 + s2 e_a2) ...
 void jointRotations(LocalPoses& poses, int j, const RotationAxes& axes, const double* const cosines[3],
                     const double* const sines[3]) {
-  if (axes.count == 3) {
-    const int first = axes.axis[0], second = axes.axis[1];
-    if (first == 0 && second == 1) return threeAxisRotations<0, 1>(poses, j, cosines, sines);
-    if (first == 0 && second == 2) return threeAxisRotations<0, 2>(poses, j, cosines, sines);
-    if (first == 1 && second == 0) return threeAxisRotations<1, 0>(poses, j, cosines, sines);
-    if (first == 1 && second == 2) return threeAxisRotations<1, 2>(poses, j, cosines, sines);
-    if (first == 2 && second == 0) return threeAxisRotations<2, 0>(poses, j, cosines, sines);
-    if (first == 2 && second == 1) return threeAxisRotations<2, 1>(poses, j, cosines, sines);
+  for (int first = 0; first < poses.frames; first += kLanes) {
+    const int count = std::min(kLanes, poses.frames - first);
+    Lanes w = Lanes::Ones();
+    std::array<Lanes, 3> v = {Lanes::Zero(), Lanes::Zero(), Lanes::Zero()};
+    for (int n = 0; n < axes.count; ++n) {
+      const Lanes c = loadLanes(cosines[n] + first, count), s = loadLanes(sines[n] + first, count);
+      switch (axes.axis[static_cast<size_t>(n)]) {
+        case 0: composeLanes<0>(w, v, c, s); break;
+        case 1: composeLanes<1>(w, v, c, s); break;
+        default: composeLanes<2>(w, v, c, s); break;
+      }
+    }
+    for (int i = 0; i < count; ++i) poses.rotation(first + i, j) = Eigen::Quaterniond(w[i], v[0][i], v[1][i], v[2][i]);
   }
-  generalRotations(poses, j, axes, cosines, sines);
 }
 
-// Forward kinematics over a block of frames at a time, one joint at a time, in structure-of-arrays form:
-// every operation is a loop over the block's frames, which the compiler turns into vector instructions
-// (and no value is stored and reloaded at another width, which stalls per-frame scalar code).
-constexpr int kFkBlock = 8;
-using FkLane = std::array<double, kFkBlock>;
-
+// Forward kinematics over a block of frames at a time, one joint at a time, in structure-of-arrays form
+// (lanes as above; storing a joint's world rotation per frame and reloading it at another width is
+// what stalled the per-frame scalar version).
 struct FkStep {
   int joint, parent;
   bool needs_rotation;  // some visited joint is its child
@@ -137,18 +139,17 @@ struct FkStep {
 
 // World rotation (quaternion and row-major matrix) and position of one joint over a block of frames.
 struct FkBlock {
-  FkLane qw, qx, qy, qz;
-  std::array<FkLane, 9> m;
-  FkLane px, py, pz;
+  Lanes qw, qx, qy, qz;
+  std::array<Lanes, 9> m;
+  Lanes px, py, pz;
 };
 
-void forwardKinematicsStep(const LocalPoses& poses, const FkStep& step, int first, int count,
-                           FkBlock* blocks) {
+void forwardKinematicsStep(const LocalPoses& poses, const FkStep& step, int first, int count, FkBlock* blocks) {
   FkBlock& out = blocks[static_cast<size_t>(step.joint)];
   // Local transforms of the block's frames (lanes past the clip's end repeat its last frame).
-  FkLane lw, lx, ly, lz, tx, ty, tz;
-  for (size_t i = 0; i < static_cast<size_t>(kFkBlock); ++i) {
-    const int frame = first + std::min(static_cast<int>(i), count - 1);
+  Lanes lw, lx, ly, lz, tx, ty, tz;
+  for (int i = 0; i < kLanes; ++i) {
+    const int frame = first + std::min(i, count - 1);
     const Eigen::Quaterniond& q = poses.rotation(frame, step.joint);
     const Eigen::Vector3d& t = poses.translation(frame, step.joint);
     lw[i] = q.w(), lx[i] = q.x(), ly[i] = q.y(), lz[i] = q.z();
@@ -160,31 +161,25 @@ void forwardKinematicsStep(const LocalPoses& poses, const FkStep& step, int firs
   } else {
     const FkBlock& parent = blocks[static_cast<size_t>(step.parent)];
     const auto& m = parent.m;
-    for (size_t i = 0; i < static_cast<size_t>(kFkBlock); ++i) {
-      out.px[i] = parent.px[i] + (m[0][i] * tx[i] + m[1][i] * ty[i] + m[2][i] * tz[i]);
-      out.py[i] = parent.py[i] + (m[3][i] * tx[i] + m[4][i] * ty[i] + m[5][i] * tz[i]);
-      out.pz[i] = parent.pz[i] + (m[6][i] * tx[i] + m[7][i] * ty[i] + m[8][i] * tz[i]);
-    }
+    out.px = parent.px + (m[0] * tx + m[1] * ty + m[2] * tz);
+    out.py = parent.py + (m[3] * tx + m[4] * ty + m[5] * tz);
+    out.pz = parent.pz + (m[6] * tx + m[7] * ty + m[8] * tz);
     if (!step.needs_rotation) return;  // a leaf of the visited tree: its position is all that is wanted
-    for (size_t i = 0; i < static_cast<size_t>(kFkBlock); ++i) {  // world = parent world * local
-      const double aw = parent.qw[i], ax = parent.qx[i], ay = parent.qy[i], az = parent.qz[i];
-      out.qw[i] = aw * lw[i] - ax * lx[i] - ay * ly[i] - az * lz[i];
-      out.qx[i] = aw * lx[i] + ax * lw[i] + ay * lz[i] - az * ly[i];
-      out.qy[i] = aw * ly[i] + ay * lw[i] + az * lx[i] - ax * lz[i];
-      out.qz[i] = aw * lz[i] + az * lw[i] + ax * ly[i] - ay * lx[i];
-    }
+    // world = parent world * local
+    out.qw = parent.qw * lw - parent.qx * lx - parent.qy * ly - parent.qz * lz;
+    out.qx = parent.qw * lx + parent.qx * lw + parent.qy * lz - parent.qz * ly;
+    out.qy = parent.qw * ly + parent.qy * lw + parent.qz * lx - parent.qx * lz;
+    out.qz = parent.qw * lz + parent.qz * lw + parent.qx * ly - parent.qy * lx;
   }
   if (!step.needs_rotation) return;
-  for (size_t i = 0; i < static_cast<size_t>(kFkBlock); ++i) {  // as Eigen's toRotationMatrix
-    const double w = out.qw[i], x = out.qx[i], y = out.qy[i], z = out.qz[i];
-    const double tx2 = 2 * x, ty2 = 2 * y, tz2 = 2 * z;
-    const double twx = tx2 * w, twy = ty2 * w, twz = tz2 * w;
-    const double txx = tx2 * x, txy = ty2 * x, txz = tz2 * x;
-    const double tyy = ty2 * y, tyz = tz2 * y, tzz = tz2 * z;
-    out.m[0][i] = 1 - (tyy + tzz), out.m[1][i] = txy - twz, out.m[2][i] = txz + twy;
-    out.m[3][i] = txy + twz, out.m[4][i] = 1 - (txx + tzz), out.m[5][i] = tyz - twx;
-    out.m[6][i] = txz - twy, out.m[7][i] = tyz + twx, out.m[8][i] = 1 - (txx + tyy);
-  }
+  // Rotation matrix of a unit quaternion, as Eigen's toRotationMatrix.
+  const Lanes tx2 = 2 * out.qx, ty2 = 2 * out.qy, tz2 = 2 * out.qz;
+  const Lanes twx = tx2 * out.qw, twy = ty2 * out.qw, twz = tz2 * out.qw;
+  const Lanes txx = tx2 * out.qx, txy = ty2 * out.qx, txz = tz2 * out.qx;
+  const Lanes tyy = ty2 * out.qy, tyz = tz2 * out.qy, tzz = tz2 * out.qz;
+  out.m[0] = 1 - (tyy + tzz), out.m[1] = txy - twz, out.m[2] = txz + twy;
+  out.m[3] = txy + twz, out.m[4] = 1 - (txx + tzz), out.m[5] = tyz - twx;
+  out.m[6] = txz - twy, out.m[7] = tyz + twx, out.m[8] = 1 - (txx + tyy);
 }
 
 }  // namespace
@@ -313,18 +308,18 @@ Eigen::MatrixXd worldPositions(const Skeleton& skeleton, const LocalPoses& poses
 
   Eigen::MatrixXd positions(poses.frames, 3 * static_cast<Eigen::Index>(wanted.size()));
   const std::unique_ptr<FkBlock[]> blocks(new FkBlock[static_cast<size_t>(joint_count)]);  // uninitialised scratch
-  for (int first = 0; first < poses.frames; first += kFkBlock) {
-    const int count = std::min(kFkBlock, poses.frames - first);
+  for (int first = 0; first < poses.frames; first += kLanes) {
+    const int count = std::min(kLanes, poses.frames - first);
     for (const FkStep& step : steps) forwardKinematicsStep(poses, step, first, count, blocks.get());
     Eigen::Index column = 0;
     for (const int joint : wanted) {  // column-major: each coordinate is a contiguous run of frames
       const FkBlock& block = blocks[static_cast<size_t>(joint)];
-      for (const FkLane* lane : {&block.px, &block.py, &block.pz}) {
+      for (const Lanes* lane : {&block.px, &block.py, &block.pz}) {
         double* out = positions.col(column++).data() + first;
-        if (count == kFkBlock)
-          std::copy_n(lane->begin(), kFkBlock, out);  // a fixed-size copy: two vector moves
+        if (count == kLanes)
+          std::copy_n(lane->data(), kLanes, out);  // a fixed-size copy: a few vector moves
         else
-          std::copy_n(lane->begin(), count, out);
+          std::copy_n(lane->data(), count, out);
       }
     }
   }

@@ -1,5 +1,6 @@
 #include "motion/rotation.h"
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cmath>
@@ -73,6 +74,19 @@ inline SinCos halfAngleSinCosSmall(double degrees) {
   const double cosine = swap ? s : c;
   return {std::bit_cast<double>(std::bit_cast<std::uint64_t>(sine) ^ sin_sign),
           std::bit_cast<double>(std::bit_cast<std::uint64_t>(cosine) ^ cos_sign)};
+}
+
+// N angles at once, results gathered in registers before they are stored (outputs may alias nothing).
+template <size_t N>
+void halfAngleSinCosBlock(const double* degrees, double* sines, double* cosines) {
+  std::array<double, N> sin_block, cos_block;
+  for (size_t i = 0; i < N; ++i) {
+    const SinCos value = halfAngleSinCosSmall(degrees[i]);
+    sin_block[i] = value.sin;
+    cos_block[i] = value.cos;
+  }
+  std::copy_n(sin_block.begin(), N, sines);
+  std::copy_n(cos_block.begin(), N, cosines);
 }
 
 // Any finite angle: whole turns (720 degrees of the full angle) removed exactly first.
@@ -297,13 +311,23 @@ void halfAngleSinCos(std::span<const double> degrees, std::span<double> sines, s
     }
     return;
   }
-  const double* in = degrees.data();
-  double* sin_out = sines.data();
-  double* cos_out = cosines.data();
-  for (size_t i = 0; i < n; ++i) {
-    const SinCos value = halfAngleSinCosSmall(in[i]);
-    sin_out[i] = value.sin;
-    cos_out[i] = value.cos;
+  // Blocks of kBlock angles, the last one padded, all through the one call below (vectorised): an
+  // angle's result then does not depend on its position in the array, as it could if a scalar
+  // remainder loop contracted multiply-adds differently.
+  constexpr size_t kBlock = 8;
+  std::array<double, kBlock> padded_in{}, padded_sin{}, padded_cos{};
+  for (size_t first = 0; first < n; first += kBlock) {
+    const size_t count = std::min(kBlock, n - first);
+    const bool whole = count == kBlock;
+    if (!whole) std::copy_n(degrees.data() + first, count, padded_in.begin());
+    const double* in = whole ? degrees.data() + first : padded_in.data();
+    double* sin_out = whole ? sines.data() + first : padded_sin.data();
+    double* cos_out = whole ? cosines.data() + first : padded_cos.data();
+    halfAngleSinCosBlock<kBlock>(in, sin_out, cos_out);
+    if (!whole) {
+      std::copy_n(padded_sin.begin(), count, sines.data() + first);
+      std::copy_n(padded_cos.begin(), count, cosines.data() + first);
+    }
   }
 }
 

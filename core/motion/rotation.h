@@ -67,8 +67,10 @@ Eigen::Quaterniond axisRotation(int axis, double degrees);
 // Sine and cosine of HALF of each angle, the scalar and vector parts of an axis rotation's quaternion:
 // sines[n] = sin(degrees[n] / 2), cosines[n] = cos(degrees[n] / 2) (angles in degrees). The reduction
 // to +-45 degrees is exact (done in degrees), so results are within about 1 ulp of the true values for
-// any finite angle. A branch-free loop the compiler vectorises: the fast path for whole clips (no
-// allocation). std::invalid_argument when the three spans differ in size.
+// any finite angle (NaN for a non-finite one); axisRotation and eulerToQuaternion use the same method.
+// Vectorised, without allocation: the fast path for whole clips. Every angle goes through the same
+// instructions, so its result does not depend on its position in the span. std::invalid_argument when
+// the three spans differ in size.
 void halfAngleSinCos(std::span<const double> degrees, std::span<double> sines, std::span<double> cosines);
 
 // q * axisRotation(axis, a), given cos(a / 2) and sin(a / 2): the product with a quaternion that has a

@@ -248,6 +248,20 @@ TEST(ForwardKinematics, PartialWorldPositionsMatchTheIndependentProductForAnySel
   }
 }
 
+TEST(ForwardKinematics, AFramesResultDoesNotDependOnWhereItSitsInTheClip) {
+  // Kinematics works on blocks of frames with vector instructions: dropping the first few frames moves
+  // every frame to another lane, which must not change a single bit (decimation relies on it).
+  const Motion m = test::randomMotion(test::mixedSkeleton(), 29, 24, 40.0);
+  const Eigen::MatrixXd world = worldPositions(m);
+  for (int dropped = 1; dropped <= 9; ++dropped) {
+    Motion later = m;
+    later.values = m.values.bottomRows(m.frameCount() - dropped);
+    const Eigen::MatrixXd later_world = worldPositions(later);
+    for (int f = 0; f < later.frameCount(); ++f)
+      ASSERT_EQ(later_world.row(f), world.row(f + dropped)) << dropped << " dropped, frame " << f;
+  }
+}
+
 TEST(ForwardKinematics, PartialWorldPositionsOfZeroFramesAreEmpty) {
   Motion m = handChain();
   m.values.resize(0, 12);

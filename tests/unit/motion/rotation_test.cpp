@@ -341,14 +341,16 @@ TEST(HalfAngleSinCos, NonFiniteAnglesGiveNaN) {
   }
 }
 
-TEST(HalfAngleSinCos, AxisRotationAndEulerToQuaternionUseTheSameValues) {
-  const std::vector<double> degrees = {-250.0, 33.3, 179.0};
-  std::vector<double> sines(3), cosines(3);
-  halfAngleSinCos(degrees, sines, cosines);
-  for (size_t n = 0; n < degrees.size(); ++n) {
-    const Eigen::Quaterniond q = axisRotation(1, degrees[n]);
-    EXPECT_EQ(q.w(), cosines[n]);
-    EXPECT_EQ(q.y(), sines[n]);
+TEST(HalfAngleSinCos, AxisRotationIsAsAccurateForAnyAngle) {
+  for (const double degrees : {-250.0, 33.3, 179.0, 360.0, 1e17, -7e19}) {
+    const auto [sine, cosine] = referenceHalfAngle(degrees);
+    for (int axis = 0; axis < 3; ++axis) {
+      const Eigen::Quaterniond q = axisRotation(axis, degrees);
+      EXPECT_NEAR(q.w(), static_cast<double>(cosine), 2.5e-16) << degrees;
+      EXPECT_NEAR(q.vec()[axis], static_cast<double>(sine), 2.5e-16) << degrees;
+      EXPECT_EQ(q.vec()[(axis + 1) % 3], 0.0);
+      EXPECT_EQ(q.vec()[(axis + 2) % 3], 0.0);
+    }
   }
 }
 
