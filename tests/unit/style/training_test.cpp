@@ -16,6 +16,14 @@
 namespace motionstyle {
 namespace {
 
+// The bound is 1 s, checked in the optimised build. AddressSanitizer slows every step several
+// times over, so the sanitizer pass (tests/run_all.sh) checks only that cancellation is prompt.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr double kCancelBoundSeconds = 5.0;
+#else
+constexpr double kCancelBoundSeconds = 1.0;
+#endif
+
 using test::TempDir;
 
 TEST(ResumableAdam, MatchesNnAdamBitForBit) {
@@ -145,7 +153,7 @@ TEST(TrainAutoencoder, CancellationTakesEffectWithinOneSecond) {
   const double latency = std::chrono::duration<double>(returned - requested).count();
   RecordProperty("cancel_latency_ms", std::to_string(static_cast<int>(latency * 1000)));
   EXPECT_EQ(result.status, style::TrainingStatus::Cancelled);
-  EXPECT_LT(latency, 1.0);
+  EXPECT_LT(latency, kCancelBoundSeconds);
   EXPECT_FALSE(std::filesystem::exists(dir / "ae.net"));
 }
 
