@@ -11,6 +11,7 @@
 #include "common/errors.h"
 #include "mapping/mapping_file.h"
 #include "mapping_test_rigs.h"
+#include "test_paths.h"
 
 namespace motionstyle {
 namespace {
@@ -183,11 +184,8 @@ TEST_F(MappingFileInvalid, InconsistentChainIsRefused) {
 
 class MappingFileOnDisk : public ::testing::Test {
  protected:
-  std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "mapping_file_invalid";
-  void SetUp() override {
-    std::filesystem::remove_all(dir);
-    std::filesystem::create_directories(dir);
-  }
+  std::filesystem::path dir;
+  void SetUp() override { dir = test::uniqueTempDir("mapping-file-invalid"); }
   void TearDown() override { std::filesystem::remove_all(dir); }
 };
 
