@@ -143,7 +143,15 @@ MotionFeatures extractFeatures(const Motion& motion, const JointMapping& mapping
   }
   anchor.start_root = root.row(0).transpose();
   anchor.start_heading = heading[0];
-  result.contacts = detectFootContacts(world, options.fps);
+  // Contacts from the project's one detector (foot_contacts.h), here in reference space: Y-up, the floor
+  // at 0, and the body height of the character's rest pose converted to reference cm, so the labels
+  // are the ones the clean-up finds on the clip in its own space.
+  const double body_height = restPoseBodyHeight(motion.skeleton, anchor.convention.fileUp()) *
+                             anchor.convention.cm_per_unit * anchor.scale;
+  result.contacts = detectContacts(world, canonicalContactJoints(), Eigen::Vector3d::UnitY(), 0.0, options.fps,
+                                   body_height)
+                        .transpose()
+                        .cast<double>();
   return result;
 }
 

@@ -10,6 +10,7 @@
 #include <string>
 #include <utility>
 
+#include "features/foot_contacts.h"
 #include "ik/cleanup_model.h"
 #include "ik/cleanup_solver.h"
 #include "ik/cleanup_warnings.h"

@@ -42,6 +42,22 @@ void chainTipPosition(const std::vector<ChainSegment>& segments, T const* const*
   for (int i = 0; i < 3; ++i) position[i] = parameters[0][i] + v[i];
 }
 
+// The chain functors' shared preamble: the world position (file units) of canonical joint `canonical`
+// for this frame's parameters [P, q_pivot0, ...], by chainTipPosition on the frame's chain segments.
+template <typename T>
+void canonicalJointPosition(const FrameData& frame, int canonical, T const* const* parameters, T* position) {
+  chainTipPosition(frame.segments[static_cast<size_t>(canonical)], parameters, position);
+}
+
+// The residual of a joint pulled toward a point: r = scale * (p_c(P, q) - point)  [3 residuals].
+template <typename T>
+void scaledOffsetFrom(const FrameData& frame, int canonical, T const* const* parameters, const Eigen::Vector3d& point,
+                      double scale, T* residuals) {
+  T p[3];
+  canonicalJointPosition(frame, canonical, parameters, p);
+  for (int i = 0; i < 3; ++i) residuals[i] = scale * (p[i] - point[i]);
+}
+
 // 2 * vector part of conj(a) * b, with the sign of the product's w made non-negative: the rotation
 // vector from a to b for small angles (radians), never flipping between q and -q.
 template <typename T>
@@ -63,11 +79,8 @@ struct MappedPositionCost {
 
   template <typename T>
   bool operator()(T const* const* parameters, T* residuals) const {
-    T p[3];
-    chainTipPosition(frame->segments[static_cast<size_t>(canonical)], parameters, p);
-    const Eigen::Vector3d& target = frame->targets[static_cast<size_t>(canonical)];
-    const double scale = weight * constants->cm_per_unit;
-    for (int i = 0; i < 3; ++i) residuals[i] = scale * (p[i] - target[i]);
+    scaledOffsetFrom(*frame, canonical, parameters, frame->targets[static_cast<size_t>(canonical)],
+                     weight * constants->cm_per_unit, residuals);
     return true;
   }
 };
@@ -88,11 +101,8 @@ struct ContactLockCost {
       for (int i = 0; i < 3; ++i) residuals[i] = T(0);
       return true;
     }
-    T p[3];
-    chainTipPosition(frame->segments[static_cast<size_t>(canonical)], parameters, p);
-    const Eigen::Vector3d& lock = frame->lock_positions[static_cast<size_t>(contact)];
-    const double scale = weight * constants->cm_per_unit;
-    for (int i = 0; i < 3; ++i) residuals[i] = scale * (p[i] - lock[i]);
+    scaledOffsetFrom(*frame, canonical, parameters, frame->lock_positions[static_cast<size_t>(contact)],
+                     weight * constants->cm_per_unit, residuals);
     return true;
   }
 };
@@ -108,7 +118,7 @@ struct FloorCost {
   template <typename T>
   bool operator()(T const* const* parameters, T* residuals) const {
     T p[3];
-    chainTipPosition(frame->segments[static_cast<size_t>(canonical)], parameters, p);
+    canonicalJointPosition(*frame, canonical, parameters, p);
     const Eigen::Vector3d& up = constants->up;
     const T height = up.x() * p[0] + up.y() * p[1] + up.z() * p[2];
     const T depth = T(constants->floor_height) - height;

@@ -13,9 +13,9 @@
 #include <vector>
 
 #include "bvh/bvh_reader.h"
+#include "features/foot_contacts.h"
 #include "features/space_convention.h"
 #include "ik/cleanup.h"
-#include "ik/contacts.h"
 #include "ik/metrics.h"
 #include "ik_test_support.h"
 #include "mapping/joint_mapping.h"

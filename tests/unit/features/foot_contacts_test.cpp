@@ -1,27 +1,28 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "bvh/bvh_reader.h"
 #include "features/foot_contacts.h"
 #include "features/representation.h"
+#include "mapping/joint_mapping.h"
 #include "test_paths.h"
 
 namespace motionstyle {
 namespace {
 
-TEST(FootContacts, RejectsBadInput) {
-  EXPECT_THROW(detectFootContacts(Eigen::MatrixXd::Zero(10, 60), 60.0), std::invalid_argument);
-  EXPECT_THROW(detectFootContacts(Eigen::MatrixXd::Zero(10, 63), 0.0), std::invalid_argument);
-}
+// The detector itself (thresholds, hysteresis, flicker, unit and axis invariance) is tested in
+// tests/unit/ik/contacts_test.cpp on file-space clips; here: its use on the representation's canonical,
+// reference-space positions.
 
-TEST(FootContacts, RemoveShortRunsMergesFlickerButKeepsEnds) {
-  Eigen::RowVectorXd labels(12);
-  labels << 1, 0, 1, 1, 1, 1, 0, 0, 0, 0, 1, 0;
-  removeShortRuns(labels, 3);
-  Eigen::RowVectorXd expected(12);
-  // The interior single 1 at frame 10 is flicker and goes; the ends (frames 0 and 11) stay; the single
-  // 0 at frame 1 is interior and is filled.
-  expected << 1, 1, 1, 1, 1, 1, 0, 0, 0, 0, 0, 0;
-  EXPECT_EQ(labels, expected);
+TEST(FootContacts, RejectsBadCanonicalInput) {
+  const std::array<int, kContactCount> feet = canonicalContactJoints();
+  const Eigen::Vector3d up = Eigen::Vector3d::UnitY();
+  // Too few joints: the last contact joint is missing.
+  const int too_few = 3 * *std::max_element(feet.begin(), feet.end());
+  EXPECT_THROW(detectContacts(Eigen::MatrixXd::Zero(10, too_few), feet, up, 0.0, 60.0, 170.0), std::invalid_argument);
+  EXPECT_THROW(detectContacts(Eigen::MatrixXd::Zero(10, 63), feet, up, 0.0, 0.0, 170.0), std::invalid_argument);
+  EXPECT_THROW(detectContacts(Eigen::MatrixXd::Zero(10, 63), feet, up, 0.0, 60.0, 0.0), std::invalid_argument);
 }
 
 TEST(FootContacts, PlantedLowFootIsInContactAndMovingOrHighFootIsNot) {
@@ -29,15 +30,42 @@ TEST(FootContacts, PlantedLowFootIsInContactAndMovingOrHighFootIsNot) {
   Eigen::MatrixXd positions = Eigen::MatrixXd::Zero(frames, 63);
   const int heel = 3 * index(CanonicalJoint::LeftAnkle);
   const int toe = 3 * index(CanonicalJoint::RightToe);
+  const int other_heel = 3 * index(CanonicalJoint::RightAnkle);
   for (int t = 0; t < frames; ++t) {
-    positions(t, heel + 1) = 8.0;                       // low and still for the first half...
+    positions(t, heel + 1) = 8.0;                          // low and still for the first half...
     if (t >= 30) positions(t, heel + 2) = 3.0 * (t - 30);  // ...then sliding at 180 cm/s
-    positions(t, toe + 1) = 40.0;                       // high the whole time
+    positions(t, toe + 1) = 40.0 + (t % 2);                // high the whole time
+    positions(t, other_heel + 1) = 8.0;                    // planted all along
   }
-  const Eigen::MatrixXd contacts = detectFootContacts(positions, 60.0);
-  EXPECT_EQ(contacts.row(static_cast<int>(ContactLabel::LeftHeel)).head(29).sum(), 29.0);
-  EXPECT_EQ(contacts.row(static_cast<int>(ContactLabel::LeftHeel)).tail(28).sum(), 0.0);
-  EXPECT_EQ(contacts.row(static_cast<int>(ContactLabel::RightToe)).sum(), 0.0);
+  const ContactLabels contacts =
+      detectContacts(positions, canonicalContactJoints(), Eigen::Vector3d::UnitY(), 0.0, 60.0, 170.0);
+  EXPECT_EQ(contacts.col(static_cast<int>(ContactLabel::LeftHeel)).head(29).sum(), 29);
+  EXPECT_EQ(contacts.col(static_cast<int>(ContactLabel::LeftHeel)).tail(28).sum(), 0);
+  EXPECT_EQ(contacts.col(static_cast<int>(ContactLabel::RightHeel)).sum(), frames);
+  EXPECT_EQ(contacts.col(static_cast<int>(ContactLabel::RightToe)).sum(), 0);
+}
+
+TEST(FootContacts, RepresentationLabelsAreTheDetectorsOnItsReferencePositions) {
+  // One detector: the representation's labels are exactly what detectContacts finds on the clip's
+  // reference-space positions (rebuilt from the features), with the rest-pose body height in
+  // reference cm, and they are plain 0/1 with some contact and some swing.
+  const Motion motion = readBvh(test::fixture("cmu_131_01.bvh"));
+  const MotionFeatures features = extractFeatures(motion, mapJoints(motion.skeleton));
+  const Eigen::MatrixXd reference = referenceWorldPositions(features.values, features.anchor);
+  const double body_height = restPoseBodyHeight(motion.skeleton, features.anchor.convention.fileUp()) *
+                             features.anchor.convention.cm_per_unit * features.anchor.scale;
+  EXPECT_GT(body_height, 120.0);  // a skeletal height of 127 reference cm is ~0.75 of the body's
+  EXPECT_LT(body_height, 220.0);
+  const ContactLabels expected =
+      detectContacts(reference, canonicalContactJoints(), Eigen::Vector3d::UnitY(), 0.0, 60.0, body_height);
+  ASSERT_EQ(features.contacts.rows(), kContactCount);
+  ASSERT_EQ(features.contacts.cols(), features.values.cols());
+  EXPECT_EQ(features.contacts, expected.transpose().cast<double>());
+  for (int label = 0; label < kContactCount; ++label) {
+    const double share = features.contacts.row(label).mean();
+    EXPECT_GT(share, 0.2) << "label " << label;
+    EXPECT_LT(share, 0.9) << "label " << label;
+  }
 }
 
 // Swing phases of one heel: runs of "not in contact" lasting at least min_frames (a real step, not a

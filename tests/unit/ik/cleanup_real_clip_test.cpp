@@ -7,8 +7,8 @@
 #include <string>
 
 #include "bvh/bvh_reader.h"
+#include "features/foot_contacts.h"
 #include "ik/cleanup.h"
-#include "ik/contacts.h"
 #include "ik/metrics.h"
 #include "ik_test_support.h"
 #include "mapping/joint_mapping.h"

@@ -6,6 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "features/foot_contacts.h"
 #include "ik/contacts.h"
 #include "ik_test_support.h"
 
