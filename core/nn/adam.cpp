@@ -33,6 +33,21 @@ void Adam<S>::setLearningRate(double learning_rate) {
 }
 
 template <typename S>
+void Adam<S>::restore(long steps, std::vector<Mat<S>> first, std::vector<Mat<S>> second) {
+  if (steps < 0 || first.size() != parameters_.size() || second.size() != parameters_.size())
+    throw std::invalid_argument("optimiser state: wrong number of moments");
+  for (std::size_t i = 0; i < parameters_.size(); ++i) {
+    const Mat<S>& value = parameters_[i]->value;
+    if (first[i].rows() != value.rows() || first[i].cols() != value.cols() || second[i].rows() != value.rows() ||
+        second[i].cols() != value.cols())
+      throw std::invalid_argument("optimiser state: moment shapes differ from parameter " + parameters_[i]->name);
+  }
+  steps_ = steps;
+  first_moment_ = std::move(first);
+  second_moment_ = std::move(second);
+}
+
+template <typename S>
 void Adam<S>::step() {
   ++steps_;
   const double correction1 = 1.0 - std::pow(options_.beta1, static_cast<double>(steps_));

@@ -2,8 +2,10 @@
 
 #include <array>
 #include <cstring>
+#include <stdexcept>
 
 #include "common/errors.h"
+#include "nn/half_float.h"
 
 namespace motionstyle::nn {
 namespace {
@@ -25,6 +27,12 @@ std::uint64_t loadLittleEndian(std::string_view bytes, int count) {
 }
 
 }  // namespace
+
+const char* weightPrecisionName(WeightPrecision precision) {
+  return precision == WeightPrecision::F16 ? "f16" : "f32";
+}
+
+std::size_t bytesPerWeight(WeightPrecision precision) { return precision == WeightPrecision::F16 ? 2 : 4; }
 
 std::uint32_t crc32(std::string_view bytes) {
   static const std::array<std::uint32_t, 256> table = makeCrcTable();
@@ -69,10 +77,21 @@ void ByteWriter::f64Vector(const Eigen::VectorXd& v) {
   for (Eigen::Index i = 0; i < v.size(); ++i) f64(v(i));
 }
 
-void ByteWriter::tensor(const std::string& name, const Mat<float>& m) {
+void ByteWriter::tensor(const std::string& name, const Mat<float>& m, WeightPrecision precision) {
   str(name);
   u32(static_cast<std::uint32_t>(m.rows()));
   u32(static_cast<std::uint32_t>(m.cols()));
+  if (precision == WeightPrecision::F16) {
+    for (Eigen::Index i = 0; i < m.size(); ++i) {
+      const std::uint16_t half = floatToHalf(m.data()[i]);
+      if ((half & 0x7C00u) == 0x7C00u)  // infinity or NaN
+        throw std::invalid_argument("tensor '" + name + "': value " + std::to_string(m.data()[i]) +
+                                    " cannot be stored as f16 (finite range +-65504); store this network as f32");
+      bytes_.push_back(static_cast<char>(half & 0xFFu));
+      bytes_.push_back(static_cast<char>(half >> 8));
+    }
+    return;
+  }
   for (Eigen::Index i = 0; i < m.size(); ++i) {
     std::uint32_t bits = 0;
     std::memcpy(&bits, m.data() + i, sizeof bits);
@@ -125,18 +144,24 @@ Eigen::VectorXd ByteReader::f64Vector(const char* what) {
   return v;
 }
 
-ByteReader::Tensor ByteReader::tensor() {
+ByteReader::Tensor ByteReader::tensor(WeightPrecision precision) {
   Tensor t;
   t.name = str("tensor name", 256);
   const std::uint32_t rows = u32("tensor rows");
   const std::uint32_t cols = u32("tensor cols");
   const std::uint64_t count = static_cast<std::uint64_t>(rows) * cols;
-  if (count * 4 > remaining())  // 64-bit: no overflow for 32-bit rows and cols
+  const std::uint64_t size = count * bytesPerWeight(precision);  // 64-bit: no overflow for 32-bit rows and cols
+  if (size > remaining())
     fail("truncated or corrupt network file: tensor '" + t.name + "' of " + std::to_string(rows) + " x " +
-         std::to_string(cols) + " needs " + std::to_string(count * 4) + " bytes, only " +
+         std::to_string(cols) + " needs " + std::to_string(size) + " bytes, only " +
          std::to_string(remaining()) + " left");
   t.value.resize(rows, cols);
-  const std::string_view data = take(static_cast<std::size_t>(count) * 4, "tensor data");
+  const std::string_view data = take(static_cast<std::size_t>(size), "tensor data");
+  if (precision == WeightPrecision::F16) {
+    for (std::uint64_t i = 0; i < count; ++i)
+      t.value.data()[i] = halfToFloat(static_cast<std::uint16_t>(loadLittleEndian(data.substr(static_cast<std::size_t>(i) * 2, 2), 2)));
+    return t;
+  }
   for (std::uint64_t i = 0; i < count; ++i) {
     const auto bits = static_cast<std::uint32_t>(loadLittleEndian(data.substr(static_cast<std::size_t>(i) * 4, 4), 4));
     std::memcpy(t.value.data() + i, &bits, sizeof bits);

@@ -13,6 +13,15 @@
 
 namespace motionstyle::nn {
 
+// How a network file stores its weights (NETWORK_FORMAT.md, "weight encoding"; format 2 on). The
+// values are the file's codes. Weights are always float32 in memory.
+enum class WeightPrecision : std::uint32_t {
+  F32 = 1,  // IEEE binary32, exact
+  F16 = 2,  // IEEE binary16 (nn/half_float.h), half the size, relative rounding error <= 2^-11
+};
+const char* weightPrecisionName(WeightPrecision precision);  // "f32", "f16"
+std::size_t bytesPerWeight(WeightPrecision precision);       // 4, 2
+
 // CRC-32 (IEEE 802.3, reflected, polynomial 0xEDB88320, init and final xor 0xFFFFFFFF), the zlib one.
 std::uint32_t crc32(std::string_view bytes);
 
@@ -27,7 +36,10 @@ class ByteWriter {
   void f64(double v);
   void str(std::string_view s);                 // u32 length + bytes
   void f64Vector(const Eigen::VectorXd& v);     // u32 count + f64 values
-  void tensor(const std::string& name, const Mat<float>& m);  // str name, u32 rows, u32 cols, f32 column-major
+  // str name, u32 rows, u32 cols, then the values column-major in `precision`. F16 throws
+  // std::invalid_argument naming the tensor for a value that is not finite in binary16 (|w| >= 65520,
+  // NaN, infinity): a file that could not be read back is never written.
+  void tensor(const std::string& name, const Mat<float>& m, WeightPrecision precision = WeightPrecision::F32);
   void raw(std::string_view s) { bytes_.append(s); }
   const std::string& bytes() const { return bytes_; }
   std::string& bytes() { return bytes_; }
@@ -52,7 +64,7 @@ class ByteReader {
     std::string name;
     Mat<float> value;
   };
-  Tensor tensor();
+  Tensor tensor(WeightPrecision precision = WeightPrecision::F32);
   std::string_view take(std::size_t count, const char* what);
 
   std::size_t remaining() const { return bytes_.size() - position_; }

@@ -50,7 +50,7 @@ void describeMetadata(std::ostringstream& out, const NetworkMetadata& m, bool st
 std::string describe(const AutoencoderModel& model) {
   std::ostringstream out;
   const AutoencoderShape& s = model.network.shape();
-  out << "MotionStyle network (format " << kNetworkFormatVersion << "): autoencoder (loss network)\n";
+  out << "MotionStyle network: autoencoder (loss network)\n";
   out << "  architecture: " << s.features << " features -> conv width " << s.width << " -> " << s.hidden
       << " hidden units, max-pool 2 (decoder: average depool, conv back to " << s.features << ")\n";
   Autoencoder<float> copy = model.network;
@@ -63,7 +63,7 @@ std::string describe(const StyleModel& model) {
   std::ostringstream out;
   const TransformerShape& t = model.transformer.shape();
   const AutoencoderShape& s = model.loss_network.shape();
-  out << "MotionStyle network (format " << kNetworkFormatVersion << "): style (transformation network)\n";
+  out << "MotionStyle network: style (transformation network)\n";
   out << "  transformation: " << t.features << " -> " << t.hidden << " -> " << t.hidden << " -> " << t.features
       << ", conv width " << t.width << (t.residual ? ", residual (output = input + T(input))" : ", plain") << "\n";
   out << "  loss network: " << s.features << " features -> " << s.hidden << " hidden units, width " << s.width << "\n";
@@ -76,8 +76,15 @@ std::string describe(const StyleModel& model) {
 }
 
 std::string describeNetworkFile(const std::filesystem::path& file) {
-  const NetworkKind kind = networkFileKind(file);
-  return kind == NetworkKind::Style ? describe(loadStyleModel(file)) : describe(loadAutoencoder(file));
+  const NetworkFileInfo info = networkFileInfo(file);
+  std::string text = info.kind == NetworkKind::Style ? describe(loadStyleModel(file)) : describe(loadAutoencoder(file));
+  std::ostringstream line;
+  line << "  file: format " << info.format_version << ", weights " << weightPrecisionName(info.precision)
+       << (info.precision == WeightPrecision::F16 ? " (IEEE binary16, computed in f32)" : "") << ", " << std::fixed
+       << std::setprecision(2) << static_cast<double>(info.bytes) / 1e6 << " MB\n";
+  const std::size_t first_line_end = text.find('\n');
+  text.insert(first_line_end == std::string::npos ? text.size() : first_line_end + 1, line.str());
+  return text;
 }
 
 }  // namespace motionstyle::nn

@@ -25,9 +25,9 @@ const char* kindName(NetworkKind kind) {
 
 // ---------------------------------------------------------------- writing
 
-void writeConvTensors(ByteWriter& w, const Conv1d<float>& conv) {
-  w.tensor(conv.weight.name, conv.weight.value);
-  if (conv.hasBias()) w.tensor(conv.bias.name, conv.bias.value);
+void writeConvTensors(ByteWriter& w, const Conv1d<float>& conv, WeightPrecision precision) {
+  w.tensor(conv.weight.name, conv.weight.value, precision);
+  if (conv.hasBias()) w.tensor(conv.bias.name, conv.bias.value, precision);
 }
 
 void requireWritable(const Normalisation& normalisation, const NetworkMetadata& metadata) {
@@ -39,8 +39,12 @@ void requireWritable(const Normalisation& normalisation, const NetworkMetadata& 
       throw std::invalid_argument("network file: every loss-history epoch needs one value per term");
 }
 
+// format_version 1 has no weight-encoding field and is always f32.
 std::string serialise(NetworkKind kind, const Normalisation& normalisation, const NetworkMetadata& m,
-                      const Autoencoder<float>& ae, const Transformer<float>* transformer) {
+                      const Autoencoder<float>& ae, const Transformer<float>* transformer,
+                      WeightPrecision precision, std::uint32_t format_version) {
+  if (format_version == 1 && precision != WeightPrecision::F32)
+    throw std::invalid_argument("network file format 1 stores f32 weights only");
   requireWritable(normalisation, m);
   ByteWriter body;
   const RepresentationInfo& r = m.representation;
@@ -75,6 +79,7 @@ std::string serialise(NetworkKind kind, const Normalisation& normalisation, cons
     body.str(key);
     body.str(value);
   }
+  if (format_version >= 2) body.u32(static_cast<std::uint32_t>(precision));
   // Architecture, then tensors.
   body.u32(static_cast<std::uint32_t>(ae.shape().features));
   body.u32(static_cast<std::uint32_t>(ae.shape().hidden));
@@ -87,16 +92,16 @@ std::string serialise(NetworkKind kind, const Normalisation& normalisation, cons
   }
   body.u32(transformer != nullptr ? 9u : 3u);
   if (transformer != nullptr) {
-    writeConvTensors(body, transformer->conv1);
-    writeConvTensors(body, transformer->conv2);
-    writeConvTensors(body, transformer->conv3);
+    writeConvTensors(body, transformer->conv1, precision);
+    writeConvTensors(body, transformer->conv2, precision);
+    writeConvTensors(body, transformer->conv3, precision);
   }
-  writeConvTensors(body, ae.encoder);
-  writeConvTensors(body, ae.decoder);
+  writeConvTensors(body, ae.encoder, precision);
+  writeConvTensors(body, ae.decoder, precision);
 
   ByteWriter file;
   file.raw(kMagic);
-  file.u32(kNetworkFormatVersion);
+  file.u32(format_version);
   file.u32(static_cast<std::uint32_t>(kind));
   file.u64(body.bytes().size());
   file.raw(body.bytes());
@@ -107,7 +112,9 @@ std::string serialise(NetworkKind kind, const Normalisation& normalisation, cons
 // ---------------------------------------------------------------- reading
 
 struct Parsed {
+  std::uint32_t version = 0;
   NetworkKind kind{};
+  WeightPrecision precision = WeightPrecision::F32;
   NetworkMetadata metadata;
   Normalisation normalisation;
   AutoencoderShape ae_shape;
@@ -115,8 +122,13 @@ struct Parsed {
   std::vector<ByteReader::Tensor> tensors;
 };
 
-// Header, size, version and CRC; returns the kind and leaves `reader` at the body.
-NetworkKind readHeader(std::string_view bytes, ByteReader& reader) {
+struct Header {
+  std::uint32_t version = 0;
+  NetworkKind kind{};
+};
+
+// Header, size, version and CRC; leaves `reader` at the body.
+Header readHeader(std::string_view bytes, ByteReader& reader) {
   if (bytes.size() < kHeaderBytes + kCrcBytes)
     reader.fail("truncated network file: " + std::to_string(bytes.size()) + " bytes, a network file has at least " +
                 std::to_string(kHeaderBytes + kCrcBytes));
@@ -141,7 +153,7 @@ NetworkKind readHeader(std::string_view bytes, ByteReader& reader) {
     reader.fail("corrupt network file: CRC-32 mismatch (the file was damaged or truncated)");
   if (kind != static_cast<std::uint32_t>(NetworkKind::Autoencoder) && kind != static_cast<std::uint32_t>(NetworkKind::Style))
     reader.fail("corrupt network file: unknown kind " + std::to_string(kind));
-  return static_cast<NetworkKind>(kind);
+  return {version, static_cast<NetworkKind>(kind)};
 }
 
 std::uint32_t readCount(ByteReader& r, const char* what, std::size_t min_bytes_each) {
@@ -220,6 +232,14 @@ void validateRepresentation(const ByteReader& r, const Parsed& p) {
            std::to_string(rep.feature_count));
 }
 
+WeightPrecision readWeightEncoding(ByteReader& r, std::uint32_t version) {
+  if (version < 2) return WeightPrecision::F32;
+  const std::uint32_t code = r.u32("weight encoding");
+  if (code != static_cast<std::uint32_t>(WeightPrecision::F32) && code != static_cast<std::uint32_t>(WeightPrecision::F16))
+    r.fail("corrupt network file: unknown weight encoding " + std::to_string(code) + " (1 = f32, 2 = f16)");
+  return static_cast<WeightPrecision>(code);
+}
+
 void readArchitecture(ByteReader& r, Parsed& p) {
   p.ae_shape.features = readDimension(r, "autoencoder features", kMaxDimension);
   p.ae_shape.hidden = readDimension(r, "autoencoder hidden units", kMaxDimension);
@@ -239,8 +259,9 @@ void readArchitecture(ByteReader& r, Parsed& p) {
   if (p.ae_shape.width % 2 == 0 || (p.kind == NetworkKind::Style && p.t_shape.width % 2 == 0))
     r.fail("corrupt network file: convolution widths must be odd");
   // Before any network is allocated: the declared architecture must fit in the bytes that remain.
-  if (floats * 4 > r.remaining())
-    r.fail("truncated or corrupt network file: the architecture needs " + std::to_string(floats * 4) +
+  const std::uint64_t weight_bytes = floats * bytesPerWeight(p.precision);
+  if (weight_bytes > r.remaining())
+    r.fail("truncated or corrupt network file: the architecture needs " + std::to_string(weight_bytes) +
            " bytes of weights, only " + std::to_string(r.remaining()) + " left");
 }
 
@@ -262,16 +283,19 @@ Parsed parse(std::string_view bytes, const std::string& source, NetworkKind want
   ByteReader r(bytes.substr(0, bytes.size() >= kCrcBytes ? bytes.size() - kCrcBytes : 0), source);
   ByteReader header_reader(bytes, source);
   Parsed p;
-  p.kind = readHeader(bytes, header_reader);
+  const Header header = readHeader(bytes, header_reader);
+  p.version = header.version;
+  p.kind = header.kind;
   if (p.kind != wanted)
     r.fail(std::string("this file holds a ") + kindName(p.kind) + " network, not the expected " + kindName(wanted) +
            " network");
   r.take(kHeaderBytes, "header");
   readMetadata(r, p);
+  p.precision = readWeightEncoding(r, p.version);
   readArchitecture(r, p);
   validateRepresentation(r, p);
   const std::uint32_t count = readCount(r, "tensor count", 12);
-  for (std::uint32_t i = 0; i < count; ++i) p.tensors.push_back(r.tensor());
+  for (std::uint32_t i = 0; i < count; ++i) p.tensors.push_back(r.tensor(p.precision));
   if (r.remaining() != 0) r.fail("corrupt network file: " + std::to_string(r.remaining()) + " unread bytes");
   return p;
 }
@@ -292,22 +316,29 @@ std::string readWholeFile(const std::filesystem::path& file) {
 
 }  // namespace
 
-std::string serialiseAutoencoder(const AutoencoderModel& model) {
-  return serialise(NetworkKind::Autoencoder, model.normalisation, model.metadata, model.network, nullptr);
+std::string serialiseAutoencoder(const AutoencoderModel& model, WeightPrecision precision) {
+  return serialise(NetworkKind::Autoencoder, model.normalisation, model.metadata, model.network, nullptr, precision,
+                   kNetworkFormatVersion);
 }
 
-std::string serialiseStyleModel(const StyleModel& model) {
+std::string serialiseAutoencoderFormat1(const AutoencoderModel& model) {
+  return serialise(NetworkKind::Autoencoder, model.normalisation, model.metadata, model.network, nullptr,
+                   WeightPrecision::F32, 1);
+}
+
+std::string serialiseStyleModel(const StyleModel& model, WeightPrecision precision) {
   if (model.transformer.shape().features != model.loss_network.shape().features)
     throw std::invalid_argument("StyleModel: transformer and loss network feature counts differ");
-  return serialise(NetworkKind::Style, model.normalisation, model.metadata, model.loss_network, &model.transformer);
+  return serialise(NetworkKind::Style, model.normalisation, model.metadata, model.loss_network, &model.transformer,
+                   precision, kNetworkFormatVersion);
 }
 
-void saveAutoencoder(const AutoencoderModel& model, const std::filesystem::path& file) {
-  writeFileAtomically(file, serialiseAutoencoder(model));
+void saveAutoencoder(const AutoencoderModel& model, const std::filesystem::path& file, WeightPrecision precision) {
+  writeFileAtomically(file, serialiseAutoencoder(model, precision));
 }
 
-void saveStyleModel(const StyleModel& model, const std::filesystem::path& file) {
-  writeFileAtomically(file, serialiseStyleModel(model));
+void saveStyleModel(const StyleModel& model, const std::filesystem::path& file, WeightPrecision precision) {
+  writeFileAtomically(file, serialiseStyleModel(model, precision));
 }
 
 AutoencoderModel parseAutoencoder(std::string_view bytes, const std::string& source_name) {
@@ -344,16 +375,23 @@ AutoencoderModel loadAutoencoder(const std::filesystem::path& file) {
 
 StyleModel loadStyleModel(const std::filesystem::path& file) { return parseStyleModel(readWholeFile(file), file.string()); }
 
-NetworkKind networkFileKind(const std::filesystem::path& file) {
-  const std::string bytes = readWholeFile(file);
-  ByteReader header(bytes, file.string());
-  const NetworkKind kind = readHeader(bytes, header);
-  if (kind == NetworkKind::Style)
-    parseStyleModel(bytes, file.string());
+NetworkFileInfo networkFileInfo(std::string_view bytes, const std::string& source_name) {
+  ByteReader header_reader(bytes, source_name);
+  const Header header = readHeader(bytes, header_reader);
+  // Full validation (tensor names, shapes, finite weights), not just the header.
+  const Parsed p = parse(bytes, source_name, header.kind);
+  if (header.kind == NetworkKind::Style)
+    parseStyleModel(bytes, source_name);
   else
-    parseAutoencoder(bytes, file.string());
-  return kind;
+    parseAutoencoder(bytes, source_name);
+  return {p.version, p.kind, p.precision, bytes.size()};
 }
+
+NetworkFileInfo networkFileInfo(const std::filesystem::path& file) {
+  return networkFileInfo(readWholeFile(file), file.string());
+}
+
+NetworkKind networkFileKind(const std::filesystem::path& file) { return networkFileInfo(file).kind; }
 
 void checkCompatible(const RepresentationInfo& actual, const RepresentationInfo& expected, const std::string& file) {
   std::ostringstream differences;

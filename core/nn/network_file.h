@@ -13,13 +13,15 @@
 #include <vector>
 
 #include "nn/autoencoder.h"
+#include "nn/binary_io.h"
 #include "nn/losses.h"
 #include "nn/style_loss.h"
 #include "nn/transformer.h"
 
 namespace motionstyle::nn {
 
-constexpr std::uint32_t kNetworkFormatVersion = 1;
+// Version 2 added the weight encoding (f32 or f16). Readers read 1 and 2; writers write 2.
+constexpr std::uint32_t kNetworkFormatVersion = 2;
 // The joint set this build's 66-value representation uses (feature_layout.h).
 inline constexpr std::string_view kCanonicalJointSetName = "canonical-21";
 
@@ -85,12 +87,20 @@ struct StyleModel {
   NetworkMetadata metadata;
 };
 
-// Serialise to bytes (the exact file content) / save atomically. Throws std::invalid_argument when
-// the model is internally inconsistent (e.g. normalisation of the wrong size), WriteError on I/O.
-std::string serialiseAutoencoder(const AutoencoderModel& model);
-std::string serialiseStyleModel(const StyleModel& model);
-void saveAutoencoder(const AutoencoderModel& model, const std::filesystem::path& file);
-void saveStyleModel(const StyleModel& model, const std::filesystem::path& file);
+// Serialise to bytes (the exact file content, format kNetworkFormatVersion) / save atomically, the
+// weights stored in `precision` (F16: half the size; metadata and statistics stay f64). Throws
+// std::invalid_argument when the model is internally inconsistent (e.g. normalisation of the wrong
+// size) or, for F16, has a weight outside binary16's finite range; WriteError on I/O.
+std::string serialiseAutoencoder(const AutoencoderModel& model, WeightPrecision precision = WeightPrecision::F32);
+std::string serialiseStyleModel(const StyleModel& model, WeightPrecision precision = WeightPrecision::F32);
+void saveAutoencoder(const AutoencoderModel& model, const std::filesystem::path& file,
+                     WeightPrecision precision = WeightPrecision::F32);
+void saveStyleModel(const StyleModel& model, const std::filesystem::path& file,
+                    WeightPrecision precision = WeightPrecision::F32);
+
+// The bytes a format-1 build wrote for this model (f32, no weight-encoding field). Training
+// fingerprints hash these, so that checkpoints written before format 2 stay resumable; tests use it.
+std::string serialiseAutoencoderFormat1(const AutoencoderModel& model);
 
 // Parse bytes (source_name names them in errors) / load a file. InputError on anything wrong, incl.
 // a file of the other kind, a feature count or joint set this build does not use, shapes that do
@@ -103,6 +113,16 @@ StyleModel loadStyleModel(const std::filesystem::path& file);
 // The kind of a network file after full validation (for a CLI that accepts either).
 NetworkKind networkFileKind(const std::filesystem::path& file);
 
+// What a network file is, as stored (after full validation; InputError as for loading).
+struct NetworkFileInfo {
+  std::uint32_t format_version = kNetworkFormatVersion;
+  NetworkKind kind = NetworkKind::Autoencoder;
+  WeightPrecision precision = WeightPrecision::F32;  // format 1 is always F32
+  std::uint64_t bytes = 0;                           // file size
+};
+NetworkFileInfo networkFileInfo(std::string_view bytes, const std::string& source_name);
+NetworkFileInfo networkFileInfo(const std::filesystem::path& file);
+
 // Throws InputError (naming `file`) listing every field of `actual` that differs from `expected`.
 void checkCompatible(const RepresentationInfo& actual, const RepresentationInfo& expected,
                      const std::string& file);
@@ -110,7 +130,8 @@ void checkCompatible(const RepresentationInfo& actual, const RepresentationInfo&
 // Human-readable summary (used by `motionstyle-cli info NET`).
 std::string describe(const AutoencoderModel& model);
 std::string describe(const StyleModel& model);
-// Loads either kind and describes it (InputError as for loading).
+// Loads either kind and describes it, with its format version, weight precision and size (InputError
+// as for loading).
 std::string describeNetworkFile(const std::filesystem::path& file);
 
 }  // namespace motionstyle::nn

@@ -28,8 +28,7 @@ AutoencoderTrainingResult trainAutoencoder(const AutoencoderTrainingConfig& conf
   try {
     data = loadTrainingClips(config.data, config.clips, settings, callbacks, "training", started);
   } catch (const OperationCancelled&) {
-    result.status = TrainingStatus::Cancelled;
-    result.seconds = secondsSince(started);
+    markCancelledBeforeTraining(result, started);
     return result;
   }
   result.training_files = data.training_files;
@@ -38,7 +37,7 @@ AutoencoderTrainingResult trainAutoencoder(const AutoencoderTrainingConfig& conf
   nn::AutoencoderModel& model = result.model;
   std::vector<EpochRecord> history;
   std::vector<nn::Parameter<float>*> parameters = model.network.parameters();
-  ResumableAdam optimiser(parameters, nn::AdamOptions{settings.learning_rate});
+  nn::Adam<float> optimiser(parameters, nn::AdamOptions{settings.learning_rate});
   const std::uint64_t fingerprint = dataFingerprint(data, settings, settingsParts(config));
   int first_epoch = 1;
 
@@ -49,7 +48,7 @@ AutoencoderTrainingResult trainAutoencoder(const AutoencoderTrainingConfig& conf
       throw InputError(settings.checkpointPath().string(), 0, "the checkpoint's autoencoder has another shape");
     model = std::move(resumed);
     parameters = model.network.parameters();
-    optimiser = ResumableAdam(parameters, nn::AdamOptions{settings.learning_rate});
+    optimiser = nn::Adam<float>(parameters, nn::AdamOptions{settings.learning_rate});
     first_epoch = restoreFromState(checkpoint.state, nn::NetworkKind::Autoencoder, fingerprint,
                                    settings.checkpointPath(), optimiser, history);
     if (callbacks.log) callbacks.log("resuming after epoch " + std::to_string(first_epoch - 1));
@@ -62,7 +61,7 @@ AutoencoderTrainingResult trainAutoencoder(const AutoencoderTrainingConfig& conf
     model.network = std::move(initial.network);
     model.normalisation = initial.normalisation;
     parameters = model.network.parameters();
-    optimiser = ResumableAdam(parameters, nn::AdamOptions{settings.learning_rate});
+    optimiser = nn::Adam<float>(parameters, nn::AdamOptions{settings.learning_rate});
   } else {
     std::vector<Eigen::MatrixXd> values;
     for (const MotionClip& clip : data.clips) values.push_back(clip.features.values);
@@ -98,9 +97,7 @@ AutoencoderTrainingResult trainAutoencoder(const AutoencoderTrainingConfig& conf
     if (callbacks.autoencoder_snapshot) callbacks.autoencoder_snapshot(model);
   };
 
-  result.status = runTrainingLoop(setup, history, callbacks);
-  result.history = history;
-  result.epochs_completed = history.empty() ? 0 : history.back().epoch;
+  runTrainingLoop(setup, history, callbacks, result);
   model.metadata = trainingMetadata(settings, history, data);
   model.metadata.training.sparsity = config.sparsity;
   model.metadata.training.dropout = config.dropout;

@@ -31,6 +31,7 @@ void accumulate(ClipEvaluation& sum, const ClipEvaluation& clip) {
   sum.content_distance_after += w * clip.content_distance_after;
   sum.style_distance_before += w * clip.style_distance_before;
   sum.style_distance_after += w * clip.style_distance_after;
+  sum.style_distance_projection += w * clip.style_distance_projection;
   sum.bone_error_cm_content += w * clip.bone_error_cm_content;
   sum.bone_error_cm_output += w * clip.bone_error_cm_output;
   sum.foot_skate_cm_s_content += w * clip.foot_skate_cm_s_content;
@@ -49,7 +50,9 @@ nlohmann::json clipJson(const ClipEvaluation& c) {
           {"style_distance",
            {{"before", c.style_distance_before},
             {"after", c.style_distance_after},
-            {"ratio", ratio(c.style_distance_after, c.style_distance_before)}}},
+            {"ratio", ratio(c.style_distance_after, c.style_distance_before)},
+            {"projection_only", c.style_distance_projection},
+            {"projection_ratio", ratio(c.style_distance_projection, c.style_distance_before)}}},
           {"bone_error_cm", {{"content", c.bone_error_cm_content}, {"output", c.bone_error_cm_output}}},
           {"foot_skate_cm_s", {{"content", c.foot_skate_cm_s_content}, {"output", c.foot_skate_cm_s_output}}},
           {"stylize_seconds", c.stylize_seconds}};
@@ -129,6 +132,7 @@ EvaluationReport evaluateStyleNetwork(const nn::AutoencoderModel& autoencoder, c
     const std::vector<nn::Mat<float>> gram = {style_grams[static_cast<std::size_t>(pairing[i])]};
     e.style_distance_before = static_cast<double>(nn::styleLoss<float>(h_content, pooled, gram, 0.0f, nullptr));
     e.style_distance_after = static_cast<double>(nn::styleLoss<float>(h_output, pooled, gram, 0.0f, nullptr));
+    e.style_distance_projection = static_cast<double>(nn::styleLoss<float>(h_projected, pooled, gram, 0.0f, nullptr));
 
     e.bone_error_cm_content = boneLengthError(content, clip.bone_lengths);
     e.bone_error_cm_output = boneLengthError(output, clip.bone_lengths);
@@ -143,6 +147,7 @@ EvaluationReport evaluateStyleNetwork(const nn::AutoencoderModel& autoencoder, c
     const double n = mean.frames;
     for (double* v : {&mean.reconstruction_mse, &mean.reconstruction_joint_error_cm, &mean.content_distance_before,
                       &mean.content_distance_after, &mean.style_distance_before, &mean.style_distance_after,
+                      &mean.style_distance_projection,
                       &mean.bone_error_cm_content, &mean.bone_error_cm_output, &mean.foot_skate_cm_s_content,
                       &mean.foot_skate_cm_s_output})
       *v /= n;

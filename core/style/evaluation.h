@@ -10,7 +10,10 @@
 //                             (enc(X) - enc(C))^2: "before" X = L(C) (what the projection alone costs),
 //                             "after" X = Y
 //   style_distance            eq. 5 unweighted, mean over entries of (Gram(enc(X)) - Gram(enc(S)))^2 with
-//                             nn::gramMatrix: "before" X = C, "after" X = Y; ratio = after / before
+//                             nn::gramMatrix: "before" X = C, "after" X = Y; ratio = after / before;
+//                             "projection_only" X = L(C), the content through the projection alone, and
+//                             projection_ratio = projection_only / before: how much of the change the
+//                             projection makes without the style network (ratio vs projection_ratio)
 //   bone_error_cm             mean over frames and the 20 bones of | |p_child - p_parent| - l_b |, l_b the
 //                             content's mean bone length; for C and for Y (the raw output, no IK)
 //   foot_skate_cm_s           mean horizontal speed of a foot joint over the frame pairs (t, t+1) that
@@ -41,6 +44,7 @@ struct ClipEvaluation {
   double content_distance_after = 0;
   double style_distance_before = 0;
   double style_distance_after = 0;
+  double style_distance_projection = 0;  // X = L(C): the projection alone, no style network
   double bone_error_cm_content = 0;
   double bone_error_cm_output = 0;
   double foot_skate_cm_s_content = 0;

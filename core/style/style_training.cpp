@@ -56,7 +56,7 @@ std::vector<std::string> settingsParts(const StyleTrainingConfig& config, const 
   for (double v : {w.content, w.style, w.foot, w.bone, w.trajectory}) parts.push_back(std::to_string(v));
   parts.insert(parts.end(), style_hashes.begin(), style_hashes.end());
   for (int p : pairing) parts.push_back(std::to_string(p));
-  parts.push_back(nn::contentHash(nn::serialiseAutoencoder(nn::AutoencoderModel{loss.network, loss.normalisation, {}})));
+  parts.push_back(nn::contentHash(nn::serialiseAutoencoderFormat1(nn::AutoencoderModel{loss.network, loss.normalisation, {}})));
   return parts;
 }
 
@@ -88,8 +88,7 @@ StyleTrainingResult trainStyleNetwork(const StyleTrainingConfig& config, const T
   try {
     data = loadTrainingClips(config.content, config.content_clips, settings, callbacks, "content", started);
   } catch (const OperationCancelled&) {
-    result.status = TrainingStatus::Cancelled;
-    result.seconds = secondsSince(started);
+    markCancelledBeforeTraining(result, started);
     return result;
   }
   result.training_files = data.training_files;
@@ -122,8 +121,7 @@ StyleTrainingResult trainStyleNetwork(const StyleTrainingConfig& config, const T
   try {
     content_hidden = encodeAllWindows(loss.network, windows, callbacks, started);
   } catch (const OperationCancelled&) {
-    result.status = TrainingStatus::Cancelled;
-    result.seconds = secondsSince(started);
+    markCancelledBeforeTraining(result, started);
     return result;
   }
   if (callbacks.log)
@@ -134,7 +132,7 @@ StyleTrainingResult trainStyleNetwork(const StyleTrainingConfig& config, const T
   model.normalisation = loss.normalisation;
   std::vector<EpochRecord> history;
   std::vector<nn::Parameter<float>*> parameters = model.transformer.parameters();
-  ResumableAdam optimiser(parameters, nn::AdamOptions{settings.learning_rate});
+  nn::Adam<float> optimiser(parameters, nn::AdamOptions{settings.learning_rate});
   const std::uint64_t fingerprint = dataFingerprint(data, settings, settingsParts(config, style_hashes, result.pairing, loss));
   int first_epoch = 1;
   if (settings.resume) {
@@ -144,7 +142,7 @@ StyleTrainingResult trainStyleNetwork(const StyleTrainingConfig& config, const T
       throw InputError(settings.checkpointPath().string(), 0, "the checkpoint's network has another shape");
     model.transformer = std::move(resumed.transformer);
     parameters = model.transformer.parameters();
-    optimiser = ResumableAdam(parameters, nn::AdamOptions{settings.learning_rate});
+    optimiser = nn::Adam<float>(parameters, nn::AdamOptions{settings.learning_rate});
     first_epoch = restoreFromState(checkpoint.state, nn::NetworkKind::Style, fingerprint, settings.checkpointPath(),
                                    optimiser, history);
     if (callbacks.log) callbacks.log("resuming after epoch " + std::to_string(first_epoch - 1));
@@ -154,7 +152,7 @@ StyleTrainingResult trainStyleNetwork(const StyleTrainingConfig& config, const T
       throw InputError(settings.init.string(), 0, "the --init network has another shape than requested");
     model.transformer = std::move(initial.transformer);
     parameters = model.transformer.parameters();
-    optimiser = ResumableAdam(parameters, nn::AdamOptions{settings.learning_rate});
+    optimiser = nn::Adam<float>(parameters, nn::AdamOptions{settings.learning_rate});
     if (callbacks.log) callbacks.log("warm start from " + settings.init.string());
   } else {
     model.transformer.initialise(settings.seed);
@@ -206,9 +204,7 @@ StyleTrainingResult trainStyleNetwork(const StyleTrainingConfig& config, const T
     if (callbacks.style_snapshot) callbacks.style_snapshot(model);
   };
 
-  result.status = runTrainingLoop(setup, history, callbacks);
-  result.history = history;
-  result.epochs_completed = history.empty() ? 0 : history.back().epoch;
+  runTrainingLoop(setup, history, callbacks, result);
   model.metadata = metadata(history);
   if (result.status == TrainingStatus::Completed && !settings.output.empty()) nn::saveStyleModel(model, settings.output);
   result.seconds = secondsSince(started);

@@ -58,6 +58,18 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+void runTrainingLoop(const LoopSetup& setup, std::vector<EpochRecord>& history, const TrainingCallbacks& callbacks,
+                     TrainingResult& result) {
+  result.status = runTrainingLoop(setup, history, callbacks);
+  result.history = history;
+  result.epochs_completed = history.empty() ? 0 : history.back().epoch;
+}
+
+void markCancelledBeforeTraining(TrainingResult& result, std::chrono::steady_clock::time_point started) {
+  result.status = TrainingStatus::Cancelled;
+  result.seconds = secondsSince(started);
+}
+
 namespace {
 
 void accumulateTerms(std::vector<NamedLoss>& sum, const std::vector<NamedLoss>& terms, double fraction) {
@@ -255,7 +267,7 @@ std::uint64_t dataFingerprint(const TrainingClips& data, const TrainingSettings&
 }
 
 void saveCheckpoint(const TrainingSettings& settings, const std::string& network_bytes, nn::NetworkKind kind,
-                    const ResumableAdam& optimiser, const std::vector<EpochRecord>& history,
+                    const nn::Adam<float>& optimiser, const std::vector<EpochRecord>& history,
                     std::uint64_t data_fingerprint) {
   TrainingState state;
   state.kind = kind;
@@ -269,7 +281,7 @@ void saveCheckpoint(const TrainingSettings& settings, const std::string& network
 }
 
 int restoreFromState(const TrainingState& state, nn::NetworkKind kind, std::uint64_t data_fingerprint,
-                     const std::filesystem::path& checkpoint, ResumableAdam& optimiser,
+                     const std::filesystem::path& checkpoint, nn::Adam<float>& optimiser,
                      std::vector<EpochRecord>& history) {
   if (state.kind != kind) throw InputError(checkpoint.string(), 0, "the checkpoint is for the other network kind");
   if (state.data_fingerprint != data_fingerprint)

@@ -52,7 +52,7 @@ struct LoopSetup {
   int window_count = 0;
   int first_epoch = 1;  // 1-based; > 1 when resuming
   std::vector<nn::Parameter<float>*> parameters;
-  ResumableAdam* optimiser = nullptr;
+  nn::Adam<float>* optimiser = nullptr;
   // Adds the gradient of the loss over `windows` (one micro-batch) into the parameters' gradients
   // (unscaled) and returns its unweighted terms and weighted total. `rng` is the epoch's generator for
   // stochastic layers (dropout).
@@ -65,6 +65,14 @@ struct LoopSetup {
 // Runs epochs first_epoch..settings->epochs. Returns Completed or Cancelled; throws TrainingDiverged.
 TrainingStatus runTrainingLoop(const LoopSetup& setup, std::vector<EpochRecord>& history,
                                const TrainingCallbacks& callbacks);
+
+// runTrainingLoop, then the end both trainers share: the result's status, history and epoch count.
+void runTrainingLoop(const LoopSetup& setup, std::vector<EpochRecord>& history, const TrainingCallbacks& callbacks,
+                     TrainingResult& result);
+
+// A run cancelled before its first step (while loading data or encoding content): status Cancelled,
+// the time spent. Nothing was trained or written.
+void markCancelledBeforeTraining(TrainingResult& result, std::chrono::steady_clock::time_point started);
 
 double secondsSince(std::chrono::steady_clock::time_point start);
 
@@ -90,13 +98,13 @@ std::uint64_t dataFingerprint(const TrainingClips& data, const TrainingSettings&
 
 // Writes the checkpoint (network bytes + state) and logs where.
 void saveCheckpoint(const TrainingSettings& settings, const std::string& network_bytes, nn::NetworkKind kind,
-                    const ResumableAdam& optimiser, const std::vector<EpochRecord>& history,
+                    const nn::Adam<float>& optimiser, const std::vector<EpochRecord>& history,
                     std::uint64_t data_fingerprint);
 
 // Restores the optimiser and history from a checkpoint state, after checking kind and fingerprint.
 // Returns the first epoch to run.
 int restoreFromState(const TrainingState& state, nn::NetworkKind kind, std::uint64_t data_fingerprint,
-                     const std::filesystem::path& checkpoint, ResumableAdam& optimiser,
+                     const std::filesystem::path& checkpoint, nn::Adam<float>& optimiser,
                      std::vector<EpochRecord>& history);
 
 }  // namespace motionstyle::style

@@ -27,47 +27,6 @@ std::string readWholeFile(const std::filesystem::path& file, const char* what) {
 
 }  // namespace
 
-ResumableAdam::ResumableAdam(std::vector<nn::Parameter<float>*> parameters, nn::AdamOptions options)
-    : parameters_(std::move(parameters)), options_(options) {
-  options_.validate();
-  for (const nn::Parameter<float>* p : parameters_) {
-    first_.push_back(nn::Mat<float>::Zero(p->value.rows(), p->value.cols()));
-    second_.push_back(nn::Mat<float>::Zero(p->value.rows(), p->value.cols()));
-  }
-}
-
-// Same operations, in the same order and precision, as nn::Adam<float>::step().
-void ResumableAdam::step() {
-  ++steps_;
-  const double correction1 = 1.0 - std::pow(options_.beta1, static_cast<double>(steps_));
-  const double correction2 = 1.0 - std::pow(options_.beta2, static_cast<double>(steps_));
-  const float b1 = static_cast<float>(options_.beta1);
-  const float b2 = static_cast<float>(options_.beta2);
-  const float step_size = static_cast<float>(options_.learning_rate / correction1);
-  const float inv_sqrt_c2 = static_cast<float>(1.0 / std::sqrt(correction2));
-  const float eps = static_cast<float>(options_.epsilon);
-  for (std::size_t i = 0; i < parameters_.size(); ++i) {
-    nn::Parameter<float>& p = *parameters_[i];
-    first_[i] = b1 * first_[i] + (1.0f - b1) * p.grad;
-    second_[i] = b2 * second_[i] + (1.0f - b2) * p.grad.cwiseAbs2();
-    p.value.array() -= step_size * first_[i].array() / (second_[i].array().sqrt() * inv_sqrt_c2 + eps);
-  }
-}
-
-void ResumableAdam::restore(long steps, std::vector<nn::Mat<float>> first, std::vector<nn::Mat<float>> second) {
-  if (steps < 0 || first.size() != parameters_.size() || second.size() != parameters_.size())
-    throw std::invalid_argument("optimiser state: wrong number of moments");
-  for (std::size_t i = 0; i < parameters_.size(); ++i) {
-    const nn::Mat<float>& value = parameters_[i]->value;
-    if (first[i].rows() != value.rows() || first[i].cols() != value.cols() || second[i].rows() != value.rows() ||
-        second[i].cols() != value.cols())
-      throw std::invalid_argument("optimiser state: moment shapes differ from parameter " + parameters_[i]->name);
-  }
-  steps_ = steps;
-  first_ = std::move(first);
-  second_ = std::move(second);
-}
-
 std::string serialiseTrainingState(const TrainingState& state) {
   if (state.first_moments.size() != state.second_moments.size())
     throw std::invalid_argument("serialiseTrainingState: moment lists differ in length");

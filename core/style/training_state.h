@@ -3,9 +3,8 @@
 // moments and step count, the completed epochs with their losses, and fingerprints tying the state to
 // its network file and to the data it was trained on.
 //
-// ResumableAdam is nn::Adam's update, operation for operation (a test checks they agree bit for bit),
-// with its state exposed: nn::Adam keeps its moments private, so it cannot be checkpointed. When
-// nn::Adam gains state accessors, this class can go.
+// The optimiser is nn::Adam<float>: its moments and step count are read with firstMoments(),
+// secondMoments(), stepCount() and put back with restore().
 //
 // The state is a ".state" sidecar beside the checkpoint network file (the network file format has no
 // room for optimiser state). Binary, little-endian (nn/binary_io.h):
@@ -27,25 +26,6 @@
 #include "style/training.h"
 
 namespace motionstyle::style {
-
-class ResumableAdam {
- public:
-  ResumableAdam(std::vector<nn::Parameter<float>*> parameters, nn::AdamOptions options);
-
-  void step();
-  long stepCount() const { return steps_; }
-  const std::vector<nn::Mat<float>>& firstMoments() const { return first_; }
-  const std::vector<nn::Mat<float>>& secondMoments() const { return second_; }
-  // Throws std::invalid_argument when the shapes differ from the parameters'.
-  void restore(long steps, std::vector<nn::Mat<float>> first, std::vector<nn::Mat<float>> second);
-
- private:
-  std::vector<nn::Parameter<float>*> parameters_;
-  std::vector<nn::Mat<float>> first_;
-  std::vector<nn::Mat<float>> second_;
-  nn::AdamOptions options_;
-  long steps_ = 0;
-};
 
 struct TrainingState {
   nn::NetworkKind kind = nn::NetworkKind::Autoencoder;

@@ -164,6 +164,16 @@ TEST(Evaluation, ReportHasEveryFigure) {
     EXPECT_TRUE(json["clips"][0].contains(key)) << key;
   }
   EXPECT_NEAR(json["summary"]["style_distance"]["before"].get<double>(), e.style_distance_before, 1e-12);
+  // The projection alone (L(C)): a figure of its own, between the content's and, usually, the output's,
+  // and not the output's (the style network did something beyond the projection).
+  EXPECT_GT(e.style_distance_projection, 0.0);
+  EXPECT_NE(e.style_distance_projection, e.style_distance_after);
+  EXPECT_NE(e.style_distance_projection, e.style_distance_before);
+  EXPECT_NEAR(json["clips"][0]["style_distance"]["projection_only"].get<double>(), e.style_distance_projection, 1e-12);
+  EXPECT_NEAR(json["summary"]["style_distance"]["projection_ratio"].get<double>(),
+              e.style_distance_projection / e.style_distance_before, 1e-9);
+  // Backward compatible: the earlier keys are all still there.
+  for (const char* key : {"before", "after", "ratio"}) EXPECT_TRUE(json["summary"]["style_distance"].contains(key)) << key;
 }
 
 }  // namespace

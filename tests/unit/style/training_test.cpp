@@ -26,25 +26,6 @@ constexpr double kCancelBoundSeconds = 1.0;
 
 using test::TempDir;
 
-TEST(ResumableAdam, MatchesNnAdamBitForBit) {
-  nn::Parameter<float> a, b;
-  a.resize(7, 5);
-  std::mt19937 rng(4);
-  for (Eigen::Index i = 0; i < a.value.size(); ++i) a.value.data()[i] = static_cast<float>(nn::symmetricUniform(rng));
-  b = a;
-  nn::Adam<float> reference({&a}, {0.01});
-  style::ResumableAdam ours({&b}, {0.01});
-  for (int step = 0; step < 20; ++step) {
-    nn::Mat<float> grad(7, 5);
-    for (Eigen::Index i = 0; i < grad.size(); ++i) grad.data()[i] = static_cast<float>(nn::symmetricUniform(rng));
-    a.grad = grad;
-    b.grad = grad;
-    reference.step();
-    ours.step();
-  }
-  EXPECT_EQ(a.value, b.value);
-}
-
 TEST(TrainAutoencoder, LossDecreasesAndTheOutputLoads) {
   TempDir dir;
   std::vector<style::TrainingProgress> calls;

@@ -1,0 +1,134 @@
+// Acceptance on RAW STYLIZED OUTPUT, without trained networks (those come from licensed data and are
+// not in the repository): the test builds a style model whose output is damaged the way a trained
+// network's is, and runs it through the real pipeline, style::Stylizer (the float32 fast path,
+// manifold projection included) then style::cleanUpStylizedClip (the content's contacts and those
+// detected on the output locked, the Ceres clean-up on the content's own skeleton, the metrics before
+// and after).
+//   - Loss network: a hand-set autoencoder whose projection is a low-pass filter, the kind of loss a
+//     trained one has. Hidden unit pairs carry +x + B and -x + B (B keeps the ReLU linear and is taken
+//     off again by the decoder's "- b0"), so after max-pooling their difference is the mean of each
+//     pair of frames; the decoder's taps (1/4, 1/2, 1/4) over the depooled frames then interpolate
+//     between those means: a 3-4 frame blur, like a trained projection's.
+//   - Transformation network: the residual form (output = input + T(input)) with fixed-seed random
+//     weights and its output layer scaled down, so that every feature (joint positions, root motion)
+//     gets a perturbation that follows the content: bone lengths change, feet slide during contact,
+//     the root drifts.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "bvh/bvh_reader.h"
+#include "features/feature_statistics.h"
+#include "features/representation.h"
+#include "mapping/joint_mapping.h"
+#include "nn/network_file.h"
+#include "style/stylized_cleanup.h"
+#include "style/stylizer.h"
+#include "style/training.h"
+#include "test_paths.h"
+
+namespace motionstyle {
+namespace {
+
+// Output-layer scale: raw bone errors of ~1.6-2 cm mean, as the trained networks give (README).
+constexpr float kDamage = 2.0f;
+constexpr float kHiddenBias = 50.0f;  // normalised units: far above any feature, so ReLU stays linear
+
+nn::Autoencoder<float> lowPassAutoencoder() {
+  constexpr int width = 25, centre = width / 2;
+  nn::Autoencoder<float> network(nn::AutoencoderShape{kFeatureCount, 2 * kFeatureCount, width});
+  Eigen::MatrixXf& encoder = network.encoder.weight.value;  // hidden x (features * width), tap-major
+  Eigen::MatrixXf& decoder = network.decoder.weight.value;  // features x (hidden * width)
+  encoder.setZero();
+  decoder.setZero();
+  network.encoder.bias.value.setConstant(kHiddenBias);
+  const int hidden = 2 * kFeatureCount;
+  for (int f = 0; f < kFeatureCount; ++f) {
+    encoder(f, centre * kFeatureCount + f) = 1.0f;                   // +x
+    encoder(kFeatureCount + f, centre * kFeatureCount + f) = -1.0f;  // -x
+    for (const auto& [tap, share] : {std::pair{centre - 1, 0.25f}, std::pair{centre, 0.5f}, std::pair{centre + 1, 0.25f}}) {
+      decoder(f, tap * hidden + f) = 0.5f * share;                     // (max + min) / 2 = pair mean
+      decoder(f, tap * hidden + kFeatureCount + f) = -0.5f * share;
+    }
+  }
+  return network;
+}
+
+// output_scale multiplies the transformer's (already 0.1-scaled) output layer.
+nn::StyleModel networkLikeModel(const MotionFeatures& content, std::uint32_t seed, float output_scale) {
+  nn::StyleModel model{nn::Transformer<float>(nn::TransformerShape{kFeatureCount, 32, 25, true}),
+                       lowPassAutoencoder(), style::toNormalisation(computeFeatureStatistics({content.values})), {}};
+  model.transformer.initialise(seed);
+  model.transformer.conv3.weight.value *= output_scale;
+  model.metadata.representation = style::currentRepresentation();
+  return model;
+}
+
+class CleanupStylized : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    content = readBvh(test::fixture("cmu_131_01.bvh"));
+    mapping = mapJoints(content.skeleton, content.source);
+    features = extractFeatures(content, mapping);
+  }
+  style::StylizedCleanup stylizeAndClean(const nn::StyleModel& model) const {
+    return style::cleanUpStylizedClip(content, mapping, style::Stylizer(model).stylize(features, 1.0));
+  }
+
+  Motion content;
+  JointMapping mapping;
+  MotionFeatures features;
+};
+
+TEST_F(CleanupStylized, RejectsAStylizedClipOfAnotherLength) {
+  const style::Stylizer stylizer(networkLikeModel(features, 11, 1.0f));
+  style::StylizedClip stylized = stylizer.stylize(features, 1.0);
+  stylized.features.conservativeResize(Eigen::NoChange, stylized.features.cols() - 10);
+  stylized.world_positions.conservativeResize(stylized.world_positions.rows() - 10, Eigen::NoChange);
+  stylized.contacts.conservativeResize(Eigen::NoChange, stylized.contacts.cols() - 10);
+  EXPECT_THROW(style::cleanUpStylizedClip(content, mapping, stylized), std::invalid_argument);
+}
+
+TEST_F(CleanupStylized, TheLowPassProjectionKeepsTheMotionButDamagesIt) {
+  // Zero transformer output: what is left is the projection alone, which must be close to the content
+  // (a few cm) but not exact, or the clean-up below would have nothing to repair.
+  const nn::StyleModel model = networkLikeModel(features, 11, 0.0f);
+  const Eigen::MatrixXd projected = style::Stylizer(model).stylizeFeatures(features.values, 1.0);
+  const double mean_change = (projected - features.values).topRows(3 * kCanonicalJointCount).cwiseAbs().mean();
+  EXPECT_GT(mean_change, 0.01);
+  EXPECT_LT(mean_change, 2.0);
+}
+
+TEST_F(CleanupStylized, RawOutputMeetsTheCleanUpGoals) {
+  for (const std::uint32_t seed : {11u, 12u}) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    const style::StylizedCleanup run = stylizeAndClean(networkLikeModel(features, seed, kDamage));
+    const ClipMetrics& raw = run.raw;
+    const ClipMetrics& clean = run.cleaned;
+    std::printf("[ figures  ] seed %u raw: skate %.1f cm/s, bone error mean %.2f max %.2f cm, penetration %.2f cm | "
+                "cleaned: %d contact steps, skate %.3f cm/s, penetration %.3f cm, residual %.2f cm (max %.2f), bone error %.1e cm\n",
+                seed, raw.foot_skate_cm_s, raw.bone_error_mean_cm, raw.bone_error_max_cm, raw.penetration_max_cm,
+                clean.contact_steps, clean.foot_skate_cm_s, clean.penetration_max_cm, clean.residual_mean_cm, clean.residual_max_cm,
+                clean.bone_error_max_cm);
+    // The input really is damaged like a network's output...
+    EXPECT_GT(raw.bone_error_mean_cm, 0.3);
+    EXPECT_GT(raw.foot_skate_cm_s, 5.0);
+    // ...and the clean-up meets the acceptance goals on it.
+    // Every contact of the content is locked (the network was trained to hold those feet still).
+    const Eigen::MatrixXi content_contacts = (features.contacts.transpose().array() > 0.5).cast<int>();
+    ASSERT_EQ(run.contacts.rows(), content_contacts.rows());
+    EXPECT_TRUE((run.contacts.array() >= content_contacts.array()).all());
+    ASSERT_GT(clean.contact_steps, raw.contact_steps / 2) << "the output should have plenty of contact";
+    EXPECT_LE(clean.foot_skate_cm_s, 0.5);
+    EXPECT_LE(clean.penetration_max_cm, 0.5);
+    EXPECT_LE(clean.residual_mean_cm, 2.0);
+    EXPECT_LE(clean.bone_error_max_cm, 1e-4);
+    EXPECT_EQ(run.report.frames_unsolved, 0);
+    // Back at the content's rate (120 -> 60 -> 120 fps may drop the last frame).
+    EXPECT_NEAR(run.motion.frameCount(), content.frameCount(), 1);
+    EXPECT_DOUBLE_EQ(run.motion.fps(), content.fps());
+  }
+}
+
+}  // namespace
+}  // namespace motionstyle
