@@ -2,6 +2,8 @@
 // joint positions are the targets): feet locked during contact, bone lengths exact, feet on the floor.
 // Contacts come from --contacts FILE, else from the tracks saved beside the clip
 // (IN.bvh.contacts.json, e.g. edited in the app), else are detected from height and speed.
+// The solve and the metrics run at IN's own rate; --fps N resamples the cleaned clip for export only.
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -12,13 +14,14 @@
 #include "commands.h"
 #include "common/atomic_file.h"
 #include "common/errors.h"
+#include "features/foot_contacts.h"
 #include "features/representation.h"
 #include "ik/cleanup.h"
 #include "ik/contact_file.h"
-#include "ik/contacts.h"
 #include "ik/metrics.h"
 #include "mapping/mapping_file.h"
 #include "motion/kinematics.h"
+#include "motion/resample.h"
 
 namespace motionstyle::cli {
 namespace {
@@ -39,10 +42,12 @@ ClipMetrics measure(const Motion& motion, const JointMapping& mapping, const Eig
 }  // namespace
 
 int runCleanup(const Args& args) {
-  const ParsedArgs parsed = parseArgs(args, {{"out"}, {"contacts"}, {"metrics"}, {"unit"}, {"mapping"}});
+  const ParsedArgs parsed = parseArgs(args, {{"out"}, {"contacts"}, {"metrics"}, {"unit"}, {"mapping"}, {"fps"}});
   if (parsed.positional.size() != 1) throw UsageError("cleanup needs exactly one input clip IN.bvh");
   const std::filesystem::path input_file = parsed.positional[0];
   const std::filesystem::path output = parsed.required("out");
+  const double output_fps = parsed.number("fps", 0.0);  // 0: IN's own rate
+  if (parsed.has("fps") && !(output_fps > 0.0 && output_fps <= 1000.0)) throw UsageError("--fps must be in (0, 1000]");
 
   const Motion motion = readBvh(input_file);
   const JointMapping mapping = mapJoints(motion.skeleton, input_file.string(),
@@ -74,7 +79,9 @@ int runCleanup(const Args& args) {
   CleanupReport report;
   const CleanupInput input(motion, mapping, targets, contacts, up, floor, convention.cm_per_unit);
   const Motion cleaned = cleanupMotion(input, CleanupOptions{}, &report);
-  writeBvh(cleaned, output);
+  const bool resample = output_fps > 0.0 && std::abs(output_fps - cleaned.fps()) > 1e-6 * output_fps;
+  const Motion exported = resample ? resampleMotion(cleaned, output_fps) : cleaned;
+  writeBvh(exported, output);
 
   const ClipMetrics before = measure(motion, mapping, contacts, nullptr, convention, floor);
   const ClipMetrics after = measure(cleaned, mapping, contacts, &targets, convention, floor);
@@ -88,7 +95,7 @@ int runCleanup(const Args& args) {
   for (const std::string& warning : report.warnings) std::cout << "warning: " << warning << "\n";
   std::printf("wrote %s: %d frames at %.4g fps in %.2f s\n  foot skate %.2f -> %.2f cm/s, floor penetration %.2f -> %.2f cm, "
               "residual %.2f cm, bone error %.1e cm\n",
-              output.c_str(), cleaned.frameCount(), cleaned.fps(), report.seconds, before.foot_skate_cm_s,
+              output.c_str(), exported.frameCount(), exported.fps(), report.seconds, before.foot_skate_cm_s,
               after.foot_skate_cm_s, before.penetration_max_cm, after.penetration_max_cm, after.residual_mean_cm,
               after.bone_error_max_cm);
   return 0;

@@ -16,8 +16,8 @@ int runEval(const Args& args) {
   if (parsed.positional.empty()) throw UsageError("eval needs the clips to evaluate (files or folders)");
   style::DatasetOptions dataset;
   if (auto unit = parsed.value("unit")) dataset.features.unit = *unit;
-  const std::filesystem::path ae_file = parsed.required("ae");
-  const std::filesystem::path net_file = parsed.required("net");
+  const std::filesystem::path ae_file = resolveNetworkArgument(parsed.required("ae"));
+  const std::filesystem::path net_file = resolveNetworkArgument(parsed.required("net"));
   const nn::AutoencoderModel autoencoder = style::loadCompatibleAutoencoder(ae_file, dataset.features);
   const nn::StyleModel network = style::loadCompatibleStyleModel(net_file, dataset.features);
 
@@ -43,7 +43,8 @@ int runEval(const Args& args) {
     writeFileAtomically(*file, json);
     const style::ClipEvaluation& m = report.mean;
     std::cout << "evaluated " << clips.size() << " clip(s), " << m.frames << " frames: style distance "
-              << m.style_distance_before << " -> " << m.style_distance_after << ", content distance "
+              << m.style_distance_before << " -> " << m.style_distance_after << " (projection alone "
+              << m.style_distance_projection << "), content distance "
               << m.content_distance_before << " -> " << m.content_distance_after << ", reconstruction "
               << m.reconstruction_joint_error_cm << " cm, bone error " << m.bone_error_cm_output
               << " cm, foot skate " << m.foot_skate_cm_s_output << " cm/s\nwrote " << *file << "\n";

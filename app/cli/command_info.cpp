@@ -119,7 +119,8 @@ int runInfo(const Args& args) {
   const ParsedArgs parsed = parseArgs(args, {{"json", false}, {"mapping"}, {"unit"}});
   if (parsed.positional.empty()) throw UsageError("info needs at least one FILE");
   nlohmann::ordered_json all = nlohmann::ordered_json::array();
-  for (const std::string& path : parsed.positional) {
+  for (const std::string& argument : parsed.positional) {
+    const std::string path = resolveNetworkArgument(argument).string();  // "elderly": a shipped network
     if (isNetworkFile(path)) {
       const std::string description = nn::describeNetworkFile(path);
       if (parsed.has("json"))

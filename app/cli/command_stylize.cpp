@@ -61,8 +61,8 @@ int runStylize(const Args& args) {
   const OutputOptions output_options = outputOptions(parsed);
   if (parsed.positional.size() != 1) throw UsageError("stylize needs exactly one input clip IN.bvh");
   StylizeRequest request;
-  request.network = parsed.required("net");
-  if (auto ae = parsed.value("ae")) request.autoencoder = *ae;
+  request.network = resolveNetworkArgument(parsed.required("net"));
+  if (auto ae = parsed.value("ae")) request.autoencoder = resolveNetworkArgument(*ae);
   request.input = parsed.positional[0];
   request.strength = parsed.number("strength", 1.0);
   if (!(request.strength >= 0.0 && request.strength <= 1.0)) throw UsageError("--strength must be in [0, 1]");

@@ -1,9 +1,9 @@
 // motionstyle-cli train-ae: trains the loss network (autoencoder) on a motion database.
-#include <iostream>
 
 #include "cli_args.h"
 #include "commands.h"
 #include "progress_bar.h"
+#include "training_command.h"
 #include "style/training.h"
 
 namespace motionstyle::cli {
@@ -27,22 +27,7 @@ int runTrainAutoencoder(const Args& args) {
   if (config.sparsity < 0) throw UsageError("--sparsity must be >= 0");
   if (config.dropout < 0 || config.dropout >= 1) throw UsageError("--dropout must be in [0, 1)");
 
-  InterruptGuard guard;
-  ProgressBar bar(std::cout, ProgressBar::stdoutIsTerminal());
-  TrainingReporter reporter(bar);
-  style::TrainingCallbacks callbacks;
-  callbacks.progress = [&](const style::TrainingProgress& p) { reporter(p); };
-  callbacks.log = [&](const std::string& text) { bar.line(text); };
-  callbacks.cancel = guard.flag();
-  try {
-    const style::AutoencoderTrainingResult result = style::trainAutoencoder(config, callbacks);
-    return reportTraining(result, config.settings, guard, bar);
-  } catch (const style::TrainingDiverged& error) {
-    bar.finish();
-    std::cerr << "error: " << error.what() << "\nthe last good checkpoint (if any) is kept: "
-              << config.settings.checkpointPath().string() << "\n";
-    return 1;
-  }
+  return runTrainingWithProgress(config);
 }
 
 }  // namespace motionstyle::cli

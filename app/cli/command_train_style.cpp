@@ -1,10 +1,11 @@
 // motionstyle-cli train-style: trains one style network against a loss network.
-#include <iostream>
+#include <cmath>
 #include <sstream>
 
 #include "cli_args.h"
 #include "commands.h"
 #include "progress_bar.h"
+#include "training_command.h"
 #include "style/training.h"
 
 namespace motionstyle::cli {
@@ -51,7 +52,7 @@ int runTrainStyle(const Args& args) {
 
   style::StyleTrainingConfig config;
   config.settings = trainingSettings(parsed, 1e-3);
-  config.autoencoder = parsed.required("ae");
+  config.autoencoder = resolveNetworkArgument(parsed.required("ae"));
   for (const std::string& content : parsed.values("content")) config.content.emplace_back(content);
   for (const std::string& content : parsed.positional) config.content.emplace_back(content);  // --content A B
   if (config.content.empty()) throw UsageError("train-style needs --content DIR (folders or .bvh files)");
@@ -61,22 +62,7 @@ int runTrainStyle(const Args& args) {
   config.shape.hidden = parsed.integer("hidden", config.shape.hidden);
   if (config.shape.hidden < 1 || config.shape.hidden > 4096) throw UsageError("--hidden must be in [1, 4096]");
 
-  InterruptGuard guard;
-  ProgressBar bar(std::cout, ProgressBar::stdoutIsTerminal());
-  TrainingReporter reporter(bar);
-  style::TrainingCallbacks callbacks;
-  callbacks.progress = [&](const style::TrainingProgress& p) { reporter(p); };
-  callbacks.log = [&](const std::string& text) { bar.line(text); };
-  callbacks.cancel = guard.flag();
-  try {
-    const style::StyleTrainingResult result = style::trainStyleNetwork(config, callbacks);
-    return reportTraining(result, config.settings, guard, bar);
-  } catch (const style::TrainingDiverged& error) {
-    bar.finish();
-    std::cerr << "error: " << error.what() << "\nthe last good checkpoint (if any) is kept: "
-              << config.settings.checkpointPath().string() << "\n";
-    return 1;
-  }
+  return runTrainingWithProgress(config);
 }
 
 }  // namespace motionstyle::cli

@@ -43,7 +43,8 @@ int runTransfer(const Args& args) {
   if (auto unit = parsed.value("unit")) dataset.features.unit = *unit;
   const std::filesystem::path output = parsed.required("out");
 
-  const nn::AutoencoderModel autoencoder = style::loadCompatibleAutoencoder(parsed.required("ae"), dataset.features);
+  const nn::AutoencoderModel autoencoder =
+      style::loadCompatibleAutoencoder(resolveNetworkArgument(parsed.required("ae")), dataset.features);
   const std::filesystem::path style_file = parsed.required("style");
   const style::MotionClip content = style::loadMotionClip(parsed.positional[0], dataset);
   const style::MotionClip style_clip = style::loadMotionClip(style_file, dataset);

@@ -11,7 +11,7 @@ const std::vector<Command>& commands() {
        "Prints what MotionStyle reads from each BVH file: joints, frames, frame rate, the up axis and\n"
        "length unit it assumed, the mapping to the 21 canonical joints, and a foot-contact summary.\n"
        "For a network file (train-ae, train-style): its kind, shapes, representation, training settings,\n"
-       "style clips and loss history.\n\n"
+       "style clips and loss history, and the file's format version and weight precision (f32/f16, see pack).\n\n"
        "  --json            print JSON instead of text\n"
        "  --mapping FILE    use this joint-mapping JSON instead of the automatic mapping\n"
        "  --unit UNIT       the file's length unit: cm, m, mm, inch, ft, dm or cmu (default: guessed)\n",
@@ -73,7 +73,7 @@ const std::vector<Command>& commands() {
        "Runs the style network on the whole clip (any length, no seams), projects the result onto the\n"
        "loss network's motion manifold (decode(encode(.))), cleans it up with IK onto IN's own skeleton\n"
        "and writes OUT atomically.\n\n"
-       "  --net NET       the style network (train-style)\n"
+       "  --net NET       the style network (train-style), or a shipped network's name (see models)\n"
        "  --ae AE         optional: checked to be the loss network NET was trained against\n"
        "  --strength S    0 = the content unchanged, 1 = fully styled (default 1), blended in feature space\n"
        "  --unit UNIT     IN's length unit (default: guessed)\n" MOTIONSTYLE_OUTPUT_OPTIONS_HELP,
@@ -92,29 +92,50 @@ const std::vector<Command>& commands() {
        runTransfer},
       {"cleanup", "IK clean-up of a clip on its own skeleton: feet locked, bones exact, on the floor",
        "usage: motionstyle-cli cleanup IN.bvh --out OUT.bvh [--contacts FILE] [--metrics FILE.json]\n"
-       "                              [--unit UNIT] [--mapping MAP.json]\n\n"
+       "                              [--unit UNIT] [--mapping MAP.json] [--fps N]\n\n"
        "Solves every frame's joint rotations and root position with Ceres so that the clip's canonical\n"
        "joints stay where they are, while heels and toes stay locked during contact, no foot goes below\n"
        "the floor and bone lengths stay exactly the skeleton's. OUT keeps IN's hierarchy, joint names,\n"
-       "offsets, channel layout and frame rate; it is written atomically.\n\n"
+       "offsets, channel layout and frame rate (or --fps); it is written atomically.\n\n"
        "  --contacts FILE   per-frame contact tracks (JSON, see core/ik/contact_file.h); default: the\n"
        "                    tracks saved beside the clip (IN.bvh.contacts.json) if any, else detected\n"
        "  --metrics FILE    write foot skate, floor penetration, bone error, residual and jerk before\n"
        "                    and after clean-up as JSON\n"
        "  --unit UNIT       the file's length unit (default: guessed; see info)\n"
-       "  --mapping FILE    joint-mapping JSON for a rig the automatic mapping cannot read\n",
+       "  --mapping FILE    joint-mapping JSON for a rig the automatic mapping cannot read\n"
+       "  --fps N           output frame rate (default: IN's own); the solve and metrics use IN's rate\n",
        runCleanup},
       {"eval", "evaluate a style network on held-out clips (JSON report)",
        "usage: motionstyle-cli eval --ae AE --net NET --style CLIP.bvh [--style LABEL=CLIP.bvh ...] CLIPS...\n"
        "                            [--json FILE]\n\n"
        "For each clip (files or folders): the autoencoder's reconstruction error (normalised MSE, mean joint\n"
        "error in cm), the content distance (eq. 4) and style distance (eq. 5, against the paired style clip)\n"
-       "before and after stylizing, bone-length error and foot skate (cm/s of feet labelled in contact) of\n"
+       "before and after stylizing (and the style distance of the projection decode(encode(.)) alone, to\n"
+       "separate what the projection does from what the network does), bone-length error and foot skate\n"
+       "(cm/s of feet labelled in contact) of\n"
        "the raw output, and run time; plus frame-weighted means. Use clips the network never trained on\n"
        "(train-* --holdout N lists them). Pairing as for train-style.\n\n"
        "  --json FILE   write the report to FILE (atomically) and print a summary; default: JSON on stdout\n"
        "  --unit UNIT   length unit of the clips (default: guessed)\n",
        runEval},
+      {"pack", "rewrite a network file with f16 (half the size) or f32 weights",
+       "usage: motionstyle-cli pack IN.net --out OUT.net [--precision f16|f32]\n\n"
+       "Reads a network file of either kind and any format version, and writes it atomically in the\n"
+       "current format (core/nn/NETWORK_FORMAT.md) with its weights stored in the given precision.\n"
+       "f16 (IEEE binary16, round to nearest even) halves the file; the networks still compute in f32.\n"
+       "Weights outside f16's range (+-65504) are refused. Metadata and statistics are kept exactly.\n\n"
+       "  --out FILE          the network file to write (may be IN itself)\n"
+       "  --precision P       f16 (default) or f32\n",
+       runPack},
+      {"models", "list the networks shipped with MotionStyle (usable by name: --net elderly)",
+       "usage: motionstyle-cli models [--json]\n\n"
+       "Lists the default networks in the resources directory's models/ folder: name, kind (autoencoder\n"
+       "or style), training epochs and style clips. Every option that takes a network file (--net, --ae,\n"
+       "info) also takes such a name when no file of that name exists: --net elderly reads\n"
+       "<resources>/models/elderly.net. The resources directory is $MOTIONSTYLE_RESOURCES if set, else the\n"
+       "source tree's resources/ when run from a build tree, else <prefix>/share/motionstyle.\n\n"
+       "  --json   print JSON instead of text\n",
+       runModels},
   };
   return table;
 }

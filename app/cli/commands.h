@@ -33,5 +33,12 @@ int runTransfer(const Args& args);
 int runEval(const Args& args);
 
 int runCleanup(const Args& args);
+int runPack(const Args& args);
+int runModels(const Args& args);
+
+// A network option's value as a file (command_models.cpp): VALUE itself when such a file exists or
+// VALUE is not a bare name; otherwise the shipped <resources>/models/VALUE.net (common/resource_paths.h).
+// Throws InputError naming VALUE and the shipped networks when a bare name matches neither.
+std::filesystem::path resolveNetworkArgument(const std::string& value);
 
 }  // namespace motionstyle::cli

@@ -54,11 +54,26 @@ expect 2 "garbage.bvh:1:" "$cli" cleanup "$work/garbage.bvh" --out "$work/clean.
 expect 0 "foot skate" "$cli" cleanup "$data/zombie.bvh" --out "$work/clean.bvh" --metrics "$work/clean.json"
 expect 0 "27 (+7 end sites)" "$cli" info "$work/clean.bvh"
 grep -q '"cleaned"' "$work/clean.json" || { echo "FAIL: no cleaned metrics"; failures=$((failures + 1)); }
+expect 2 "fps" "$cli" cleanup "$data/zombie.bvh" --out "$work/clean60.bvh" --fps 0
+expect 0 "at 60 fps" "$cli" cleanup "$data/zombie.bvh" --out "$work/clean60.bvh" --fps 60
+expect 0 "599 at 60 fps" "$cli" info "$work/clean60.bvh"
 
 # A failed convert never leaves a half-written output: the old file survives.
 printf 'precious\n' >"$work/keep.bvh"
 expect 2 "" "$cli" convert "$work/garbage.bvh" "$work/keep.bvh"
 if [ "$(cat "$work/keep.bvh")" != "precious" ]; then echo "FAIL: output overwritten"; failures=$((failures + 1)); fi
+
+# Shipped networks (models, bare names), against a resources folder made here: bad input first.
+mkdir -p "$work/res/models" "$work/res/samples"
+expect 1 "looked in: $work/absent" env MOTIONSTYLE_RESOURCES="$work/absent" "$cli" models
+expect 0 "no shipped networks" env MOTIONSTYLE_RESOURCES="$work/res" "$cli" models
+printf 'junk' >"$work/res/models/broken.net"
+expect 2 "broken.*UNREADABLE" env MOTIONSTYLE_RESOURCES="$work/res" "$cli" models
+expect 2 "models/broken.net" env MOTIONSTYLE_RESOURCES="$work/res" "$cli" info broken
+expect 2 "no shipped network of that name (shipped: broken" env MOTIONSTYLE_RESOURCES="$work/res" \
+  "$cli" stylize --net elderly "$data/zombie.bvh" --out "$work/styled.bvh"
+expect 2 "no-such.net" env MOTIONSTYLE_RESOURCES="$work/res" "$cli" stylize --net "$work/no-such.net" \
+  "$data/zombie.bvh" --out "$work/styled.bvh"
 
 if [ "$failures" -ne 0 ]; then echo "$failures CLI check(s) failed"; exit 1; fi
 echo "all CLI checks passed"
