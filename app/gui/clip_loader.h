@@ -1,34 +1,68 @@
 #pragma once
-// A clip as the desktop app holds it: the editable Motion (file units) plus the positions the viewport
-// draws (computed once at load, cm, Y-up). Loading goes through the core (readBvh, worldPositions).
+// A clip as the desktop app holds it: the editable Motion (file units) with its joint mapping and
+// contact overrides, plus what is computed from them once (display positions, detected contacts).
+// Loading goes through the core (readBvh, mapJoints, worldPositions, detectSpaceConvention,
+// detectContacts).
 
 #include <QString>
 
 #include <Eigen/Core>
 
+#include <cstdint>
 #include <filesystem>
+#include <optional>
 
+#include "display_space.h"
 #include "figure_data.h"
+#include "ik/contacts.h"
+#include "mapping/joint_mapping.h"
 #include "motion/motion.h"
 
 namespace motionstyle {
 
 struct LoadedClip {
+  // Identity of this clip's current content and mapping: a new id on every load or re-mapping, so
+  // that views derived from it (a stylized result) know when they are stale.
+  std::uint64_t id = 0;
   QString path;                       // absolute path of the file
   QString name;                       // file name without folder, for lists and the legend
   Motion motion;                      // as read: file units and axes, rotations in degrees
-  Eigen::MatrixXd display_positions;  // frames x 3*joints, cm, Y-up (see display_normalisation.h)
+  std::optional<JointMapping> mapping;  // nullopt: the rig could not be mapped (see mapping_problem)
+  QString mapping_problem;            // why not, e.g. "missing LeftToe, RightToe"; empty when mapped
+  DisplaySpace display_space;         // file -> display (cm, Y-up, floor at 0)
+  Eigen::MatrixXd display_positions;  // frames x 3*joints at the clip's own rate, display space
+  // Foot contacts at the clip's own rate, frames x 4 (ContactLabel order), 0/1, detected from height
+  // and speed; empty when unmapped. Overrides: same shape, -1 automatic / 0 off / 1 on (user edits).
+  ContactLabels detected_contacts;
+  Eigen::MatrixXi contact_overrides;
 
   int frameCount() const { return motion.frameCount(); }
   double fps() const { return motion.fps(); }
   int animatedJointCount() const;  // joints excluding End Sites
+  bool isMapped() const { return mapping.has_value(); }
+  // For the clips list: "cmu rig, cmu (guessed), +Y up" (convention, length unit, file's up axis) or
+  // "unmapped: missing LeftToe, RightToe".
+  QString mappingStatus() const;
+  // Detected contacts with the overrides applied (frames x 4); empty when unmapped.
+  ContactLabels effectiveContacts() const;
 };
 
-// Reads and prepares a BVH file. Throws InputError (bad or unreadable file) and std::bad_alloc; never
-// leaves a partial clip.
+// Reads and prepares a BVH file. A rig that cannot be mapped still loads (unmapped, shown with a best
+// -effort display space). Throws InputError (bad or unreadable file) and std::bad_alloc; never leaves
+// a partial clip.
 LoadedClip loadClip(const std::filesystem::path& file);
 
-// The viewport's view of a clip in a role (topology and display positions; no contacts yet).
-FigureData figureFromClip(const LoadedClip& clip, FigureRole role);
+// Maps `clip` with a mapping file (mapping/mapping_file.h) and recomputes its display space and
+// contacts; overrides are reset. Throws InputError naming the mapping file; the clip is unchanged then.
+void remapClip(LoadedClip& clip, const std::filesystem::path& mapping_file);
+
+// The viewport's view of a clip in a role, resampled to `display_fps` (the timeline's rate, so that
+// clips of any rate play in sync by time; <= 0 keeps the clip's own rate), with its effective foot
+// contacts when mapped.
+FigureData figureFromClip(const LoadedClip& clip, FigureRole role, double display_fps = 0.0);
+
+// Figure data from display positions (frames x 3*joints, one row per frame) and a topology.
+FigureData figureFromPositions(const QString& name, FigureRole role, const std::vector<int>& parents,
+                               const Eigen::MatrixXd& display_positions);
 
 }  // namespace motionstyle

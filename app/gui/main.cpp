@@ -3,14 +3,18 @@
 //   motionstyle --screenshot out.png  renders once after loading, saves a PNG of the window, exits
 //                                     (exit code 0 on success, 1 if the PNG could not be written,
 //                                     2 if a clip failed to load)
-//   --demo                            reserved for a bundled demo scene (not available yet)
+//   motionstyle --demo                opens the bundled sample clips (content and style) and, if
+//                                     installed, the bundled style network (demo_scene.h)
 #include <QApplication>
 #include <QCommandLineParser>
+#include <QStatusBar>
 #include <QTimer>
 
 #include <cstdio>
 
+#include "demo_scene.h"
 #include "main_window.h"
+#include "result_panel.h"
 #include "skeleton_viewport.h"
 
 int main(int argc, char** argv) {
@@ -28,13 +32,11 @@ int main(int argc, char** argv) {
   const QCommandLineOption screenshot(QStringLiteral("screenshot"),
                                       QStringLiteral("Save a PNG of the window after loading, then exit."),
                                       QStringLiteral("file"));
-  const QCommandLineOption demo(QStringLiteral("demo"), QStringLiteral("Reserved: open the demo scene."));
+  const QCommandLineOption demo(QStringLiteral("demo"), QStringLiteral("Open the bundled demo: sample clips and style network."));
   parser.addOption(screenshot);
   parser.addOption(demo);
   parser.addPositionalArgument(QStringLiteral("files"), QStringLiteral("BVH clips to open."), QStringLiteral("[files...]"));
   parser.process(app);
-
-  if (parser.isSet(demo)) std::fprintf(stderr, "motionstyle: --demo is reserved and not available yet\n");
 
   const bool screenshot_mode = parser.isSet(screenshot);
   motionstyle::MainWindow window(/*persist_settings=*/!screenshot_mode);
@@ -49,6 +51,11 @@ int main(int argc, char** argv) {
   window.show();
   const QStringList files = parser.positionalArguments();
   if (!files.isEmpty()) window.openFiles(files);
+  if (parser.isSet(demo)) {
+    const motionstyle::DemoOutcome outcome = motionstyle::openDemo(window, *window.resultPanel());
+    window.statusBar()->showMessage(outcome.message);
+    std::fprintf(stderr, "motionstyle: %s\n", qPrintable(outcome.message));
+  }
 
   if (!screenshot_mode) return QApplication::exec();
 

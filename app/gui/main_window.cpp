@@ -24,6 +24,9 @@
 #include <new>
 
 #include "common/errors.h"
+#include "contact_tracks.h"
+#include "network_panel.h"
+#include "result_panel.h"
 #include "skeleton_viewport.h"
 #include "timeline_widget.h"
 #include "track_view.h"
@@ -34,7 +37,7 @@ namespace {
 const char* const kGeometryKey = "mainWindow/geometry";
 const char* const kStateKey = "mainWindow/state";
 
-enum ClipColumn { kNameColumn, kRoleColumn, kFramesColumn, kFpsColumn, kJointsColumn, kColumnCount };
+enum ClipColumn { kNameColumn, kRoleColumn, kFramesColumn, kFpsColumn, kJointsColumn, kMappingColumn, kColumnCount };
 
 bool isBvhPath(const QString& path) { return path.endsWith(QStringLiteral(".bvh"), Qt::CaseInsensitive); }
 
@@ -85,7 +88,7 @@ void MainWindow::createDocks() {
   clip_list_ = new QTreeWidget(this);
   clip_list_->setObjectName(QStringLiteral("ClipList"));
   clip_list_->setColumnCount(kColumnCount);
-  clip_list_->setHeaderLabels({tr("Clip"), tr("Role"), tr("Frames"), tr("FPS"), tr("Joints")});
+  clip_list_->setHeaderLabels({tr("Clip"), tr("Role"), tr("Frames"), tr("FPS"), tr("Joints"), tr("Mapping")});
   clip_list_->setRootIsDecorated(false);
   clip_list_->setAlternatingRowColors(true);
   clip_list_->setSelectionMode(QAbstractItemView::SingleSelection);
@@ -103,6 +106,23 @@ void MainWindow::createDocks() {
   // The timeline spans the full width under both the clips list and the viewport.
   setCorner(Qt::BottomLeftCorner, Qt::BottomDockWidgetArea);
   setCorner(Qt::BottomRightCorner, Qt::BottomDockWidgetArea);
+  createResultDock();
+  createNetworkDock();
+}
+
+void MainWindow::createResultDock() {
+  result_panel_ = new ResultPanel(this);
+  result_panel_->setErrorReporter([this](const QString& title, const QString& message) { report(title, message); });
+  auto* dock = new QDockWidget(tr("Result"), this);
+  dock->setObjectName(QStringLiteral("ResultDock"));
+  dock->setWidget(result_panel_);
+  addDockWidget(Qt::RightDockWidgetArea, dock);
+  connect(result_panel_, &ResultPanel::resultChanged, this, &MainWindow::rebuildFigures);
+  connect(result_panel_, &ResultPanel::statusMessage, this, [this](const QString& text) { status_label_->setText(text); });
+  const auto content = [this]() -> LoadedClip* { return content_ >= 0 ? &clips_[static_cast<size_t>(content_)] : nullptr; };
+  contact_tracks_ = new ContactTrackController(timeline_->trackView(), content,
+                                               [this](const QString& title, const QString& message) { report(title, message); }, this);
+  connect(contact_tracks_, &ContactTrackController::overridesChanged, result_panel_, &ResultPanel::setContactOverrides);
 }
 
 void MainWindow::createMenus() {
@@ -111,6 +131,10 @@ void MainWindow::createMenus() {
   file->addAction(tr("Open &Folder..."), QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_O), this,
                   &MainWindow::browseFolder);
   recent_menu_ = file->addMenu(tr("&Recent Files"));
+  file->addSeparator();
+  file->addAction(tr("Open &Network..."), result_panel_, &ResultPanel::browseNetwork);
+  file->addAction(tr("&Export Result..."), QKeySequence(Qt::CTRL | Qt::Key_E), result_panel_, &ResultPanel::browseExport);
+  contact_tracks_->addActions(file->addMenu(tr("&Contacts")));
   file->addSeparator();
   file->addAction(tr("Save &Screenshot..."), QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_S), this,
                   &MainWindow::browseScreenshot);
@@ -140,6 +164,9 @@ void MainWindow::createMenus() {
                                    &SkeletonViewport::setTrajectoriesVisible);
   paths->setCheckable(true);
   paths->setChecked(viewport_->trajectoriesVisible());
+  raw_output_action_ = view->addAction(tr("Show &Raw Output"), QKeySequence(Qt::Key_R), this, &MainWindow::setRawOutputVisible);
+  raw_output_action_->setCheckable(true);
+  raw_output_action_->setStatusTip(tr("The network's output before clean-up, in grey beside the cleaned output"));
   view->addSeparator();
   for (QDockWidget* dock : findChildren<QDockWidget*>()) view->addAction(dock->toggleViewAction());
 
@@ -236,18 +263,31 @@ void MainWindow::removeClip(int index) {
   const auto shift = [index](int& role) { role = role == index ? -1 : (role > index ? role - 1 : role); };
   shift(content_);
   shift(style_);
+  forgetTrainingClip(index);
   if (content_ < 0 && style_ >= 0) std::swap(content_, style_);
   refreshClipList();
   rebuildFigures();
 }
 
 void MainWindow::rebuildFigures() {
+  // Every figure plays at the content's rate (resampled by time), so clips of any rate stay in sync;
+  // the result is at the content's rate already.
+  const double fps = content_ >= 0 ? clip(content_).fps() : 30.0;
+  result_panel_->setContentClip(content_ >= 0 ? &clip(content_) : nullptr);
   std::vector<FigureData> figures;
   const auto add = [&](int index, FigureRole role) {
-    if (index >= 0 && clip(index).frameCount() > 0) figures.push_back(figureFromClip(clip(index), role));
+    if (index >= 0 && clip(index).frameCount() > 0) figures.push_back(figureFromClip(clip(index), role, fps));
   };
   add(content_, FigureRole::Content);
   add(style_, FigureRole::Style);
+  // The live training preview stands in for the result while it is fresh (the viewport holds at most
+  // four figures); a new result drops the preview (main_window_networks.cpp).
+  if (training_preview_) {
+    figures.push_back(*training_preview_);
+  } else {
+    for (FigureData& figure : result_panel_->resultFigures(raw_output_action_->isChecked()))
+      figures.push_back(std::move(figure));
+  }
   try {
     viewport_->setFigures(std::move(figures));
   } catch (const std::exception& error) {
@@ -255,9 +295,29 @@ void MainWindow::rebuildFigures() {
     viewport_->clearFigures();
   }
   // The content clip sets the time base; the others hold their last frame when shorter.
-  timeline_->setFrameRate(content_ >= 0 ? clip(content_).fps() : 30.0);
+  timeline_->setFrameRate(fps);
   timeline_->setFrameCount(viewport_->frameCount());
   viewport_->setFrame(timeline_->frame());
+  contact_tracks_->refresh();
+  contact_tracks_->setSkateTrack(result_panel_->skateTrack());
+}
+
+void MainWindow::setRawOutputVisible(bool visible) {
+  if (raw_output_action_->isChecked() != visible) raw_output_action_->setChecked(visible);
+  rebuildFigures();
+}
+
+bool MainWindow::loadMappingFile(int index, const QString& file) {
+  if (index < 0 || index >= clipCount()) return false;
+  try {
+    remapClip(clips_[static_cast<size_t>(index)], file.toStdString());
+  } catch (const std::exception& error) {
+    report(tr("Could not use the mapping file"), QString::fromStdString(error.what()));
+    return false;
+  }
+  refreshClipList();
+  rebuildFigures();
+  return true;
 }
 
 void MainWindow::refreshClipList() {
@@ -274,12 +334,20 @@ void MainWindow::refreshClipList() {
       item->setText(kRoleColumn, figureRoleName(role));
       item->setForeground(kRoleColumn, figureColor(role));
     }
+    if (isTrainingClip(i))
+      item->setText(kRoleColumn, item->text(kRoleColumn).isEmpty() ? tr("Training") : item->text(kRoleColumn) + tr(" + training"));
     item->setText(kFramesColumn, QString::number(c.frameCount()));
     item->setText(kFpsColumn, QString::number(c.fps(), 'g', 4));
     item->setText(kJointsColumn, QString::number(c.animatedJointCount()));
-    for (int column = kFramesColumn; column < kColumnCount; ++column)
+    item->setText(kMappingColumn, c.mappingStatus());
+    item->setToolTip(kMappingColumn, c.isMapped() ? c.mappingStatus()
+                                                  : tr("This rig cannot be stylized until it is mapped: "
+                                                       "right-click and choose Load Mapping File."));
+    if (!c.isMapped()) item->setForeground(kMappingColumn, QColor(230, 120, 60));
+    for (int column = kFramesColumn; column < kMappingColumn; ++column)
       item->setTextAlignment(column, Qt::AlignRight | Qt::AlignVCenter);
   }
+  emit clipsChanged();
 }
 
 void MainWindow::showClipMenu(const QPoint& position) {
@@ -289,6 +357,11 @@ void MainWindow::showClipMenu(const QPoint& position) {
   QMenu menu(this);
   menu.addAction(tr("Use as &Content"), this, [this, index] { setContentClip(index); });
   menu.addAction(tr("Use as &Style"), this, [this, index] { setStyleClip(index); });
+  QAction* training = menu.addAction(tr("&Training Database"), this, [this, index](bool on) { setTrainingClip(index, on); });
+  training->setCheckable(true);
+  training->setChecked(isTrainingClip(index));
+  menu.addAction(tr("Add &Folder as Training Database..."), network_panel_, &NetworkPanel::browseTrainingFolder);
+  menu.addAction(tr("Load &Mapping File..."), this, [this, index] { browseMappingFile(index); });
   menu.addSeparator();
   menu.addAction(tr("&Remove"), this, [this, index] { removeClip(index); });
   menu.exec(clip_list_->viewport()->mapToGlobal(position));
@@ -308,6 +381,11 @@ void MainWindow::report(const QString& title, const QString& message) {
 }
 
 void MainWindow::closeEvent(QCloseEvent* event) {
+  // A running training asks, then cancels cleanly; unsaved networks ask before they are lost.
+  if (network_panel_ != nullptr && !network_panel_->prepareToClose()) {
+    event->ignore();
+    return;
+  }
   if (persist_settings_) {
     QSettings settings;
     settings.setValue(kGeometryKey, saveGeometry());

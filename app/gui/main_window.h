@@ -13,6 +13,7 @@
 #include <QStringList>
 
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "clip_loader.h"
@@ -25,6 +26,9 @@ class QTreeWidget;
 
 namespace motionstyle {
 
+class ContactTrackController;
+class NetworkPanel;
+class ResultPanel;
 class SkeletonViewport;
 class TimelineWidget;
 
@@ -45,13 +49,26 @@ class MainWindow : public QMainWindow {
   SkeletonViewport* viewport() const { return viewport_; }
   TimelineWidget* timeline() const { return timeline_; }
   QTreeWidget* clipList() const { return clip_list_; }
+  ResultPanel* resultPanel() const { return result_panel_; }
+  NetworkPanel* networkPanel() const { return network_panel_; }
+  ContactTrackController* contactTracks() const { return contact_tracks_; }
   int clipCount() const { return static_cast<int>(clips_.size()); }
   const LoadedClip& clip(int index) const { return clips_.at(static_cast<size_t>(index)); }
   int contentClip() const { return content_; }  // index into the clips, -1 when none
   int styleClip() const { return style_; }
   QStringList recentFiles() const;
 
+ // The "training database" role (main_window_networks.cpp): any number of clips may have it; they are
+  // the content clips the Style networks panel trains on, with its folders.
+  bool isTrainingClip(int index) const;
+  QStringList trainingClipPaths() const;
+
+ signals:
+  // The clip list or a role changed (emitted by refreshClipList).
+  void clipsChanged();
+
  public slots:
+  void setTrainingClip(int index, bool on);
   // Loads every file (the same path the File menu, drag-and-drop and the command line take), reports
   // all failures in one message, and returns how many loaded.
   int openFiles(const QStringList& paths);
@@ -60,6 +77,11 @@ class MainWindow : public QMainWindow {
   void setContentClip(int index);
   void setStyleClip(int index);
   void removeClip(int index);
+  // Re-maps clip `index` with a joint mapping file (mapping/mapping_file.h); false and a report if the
+  // file does not fit the rig.
+  bool loadMappingFile(int index, const QString& file);
+  // Shows or hides the raw network output (grey) beside the cleaned output.
+  void setRawOutputVisible(bool visible);
   // Saves a PNG of the whole window as it is now; false (and a report) on failure.
   bool saveScreenshot(const QString& file);
 
@@ -79,6 +101,10 @@ class MainWindow : public QMainWindow {
   void browseFiles();
   void browseFolder();
   void browseScreenshot();
+  void browseMappingFile(int index);
+  void createResultDock();
+  void createNetworkDock();
+  void forgetTrainingClip(int removed_index);
   void showAbout();
   void report(const QString& title, const QString& message);
   QString lastFolder() const;
@@ -99,6 +125,12 @@ class MainWindow : public QMainWindow {
   QAction* overlay_action_ = nullptr;
   QAction* follow_action_ = nullptr;
   QLabel* status_label_ = nullptr;
+  ResultPanel* result_panel_ = nullptr;
+  NetworkPanel* network_panel_ = nullptr;
+  std::vector<int> training_clips_;           // indices with the training-database role, ascending
+  std::optional<FigureData> training_preview_;  // the live training preview (blue), while fresh
+  ContactTrackController* contact_tracks_ = nullptr;
+  QAction* raw_output_action_ = nullptr;
 };
 
 }  // namespace motionstyle

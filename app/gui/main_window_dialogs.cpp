@@ -80,6 +80,12 @@ void MainWindow::browseScreenshot() {
   if (!file.isEmpty()) saveScreenshot(file);
 }
 
+void MainWindow::browseMappingFile(int index) {
+  const QString file = QFileDialog::getOpenFileName(this, tr("Load a joint mapping file"), lastFolder(),
+                                                    tr("Joint mapping (*.json);;All files (*)"));
+  if (!file.isEmpty()) loadMappingFile(index, file);
+}
+
 void MainWindow::showAbout() {
   QMessageBox::about(
       this, tr("About MotionStyle"),

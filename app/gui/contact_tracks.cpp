@@ -1,0 +1,134 @@
+#include "contact_tracks.h"
+
+#include <QFileInfo>
+#include <QMenu>
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+
+#include "common/errors.h"
+#include "ik/contact_file.h"
+#include "track_view.h"
+
+namespace motionstyle {
+namespace {
+
+// ContactLabel columns of a foot: heel then toe.
+std::array<int, 2> footLabels(int foot) {
+  return foot == 0 ? std::array<int, 2>{static_cast<int>(ContactLabel::LeftHeel), static_cast<int>(ContactLabel::LeftToe)}
+                   : std::array<int, 2>{static_cast<int>(ContactLabel::RightHeel), static_cast<int>(ContactLabel::RightToe)};
+}
+
+}  // namespace
+
+std::vector<bool> footTrack(const ContactLabels& labels, int foot, int frames) {
+  std::vector<bool> track(static_cast<size_t>(std::max(frames, 0)), false);
+  const auto [heel, toe] = footLabels(foot);
+  for (Eigen::Index f = 0; f < labels.rows() && f < frames; ++f)
+    track[static_cast<size_t>(f)] = labels(f, heel) != 0 || labels(f, toe) != 0;
+  return track;
+}
+
+ContactTrackController::ContactTrackController(TrackView* tracks, ContentProvider content, ErrorReporter reporter,
+                                               QObject* parent)
+    : QObject(parent), tracks_(tracks), content_(std::move(content)), reporter_(std::move(reporter)) {
+  connect(tracks_, &TrackView::trackEdited, this, [this](int track, int first, int last, bool value) {
+    if (track == kLeftFootTrack || track == kRightFootTrack) overrideFoot(track, first, last, value);
+  });
+  setSkateTrack({});
+}
+
+void ContactTrackController::refresh() {
+  const LoadedClip* clip = content_();
+  const ContactLabels labels = clip != nullptr ? clip->effectiveContacts() : ContactLabels();
+  for (int foot : {kLeftFootTrack, kRightFootTrack}) tracks_->setBoolValues(foot, footTrack(labels, foot, tracks_->frameCount()));
+}
+
+void ContactTrackController::setSkateTrack(const std::vector<float>& skate_cm_s) {
+  // The row is always there (flat without a result), so the timeline dock keeps one height.
+  // Scale: at least 5 cm/s full height, so that a clean result reads as flat, not as noise blown up.
+  const float top = skate_cm_s.empty() ? 5.0f : std::max(5.0f, *std::max_element(skate_cm_s.begin(), skate_cm_s.end()));
+  tracks_->setFloatTrack(tr("Skate cm/s"), skate_cm_s, 0.0f, top);
+}
+
+void ContactTrackController::overrideFoot(int foot, int first_frame, int last_frame, bool in_contact) {
+  LoadedClip* clip = content_();
+  if (clip == nullptr || clip->contact_overrides.size() == 0) {
+    refresh();  // nothing to edit (no content, or unmapped): undo the painted cells
+    return;
+  }
+  const int last = std::min(last_frame, clip->frameCount() - 1);
+  for (int f = std::max(first_frame, 0); f <= last; ++f)
+    for (int label : footLabels(foot)) clip->contact_overrides(f, label) = in_contact ? 1 : 0;
+  refresh();
+  emit overridesChanged(clip->contact_overrides);
+}
+
+void ContactTrackController::resetOverrides() {
+  LoadedClip* clip = content_();
+  if (clip == nullptr || clip->contact_overrides.size() == 0) return;
+  clip->contact_overrides.setConstant(-1);
+  refresh();
+  emit overridesChanged(clip->contact_overrides);
+}
+
+bool ContactTrackController::saveTracks() {
+  LoadedClip* clip = content_();
+  if (clip == nullptr || !clip->isMapped()) {
+    reporter_(tr("Could not save the contact tracks"), tr("There is no mapped content clip."));
+    return false;
+  }
+  ContactTracks tracks;
+  tracks.fps = clip->fps();
+  tracks.labels = clip->effectiveContacts();
+  tracks.overrides = clip->contact_overrides;
+  try {
+    saveContactTracks(tracks, contactTracksPath(clip->path.toStdString()));
+  } catch (const std::exception& error) {
+    reporter_(tr("Could not save the contact tracks"), QString::fromStdString(error.what()));
+    return false;
+  }
+  return true;
+}
+
+bool ContactTrackController::loadTracks() {
+  LoadedClip* clip = content_();
+  const QString title = tr("Could not load the contact tracks");
+  if (clip == nullptr || !clip->isMapped()) {
+    reporter_(title, tr("There is no mapped content clip."));
+    return false;
+  }
+  const std::filesystem::path file = contactTracksPath(clip->path.toStdString());
+  try {
+    const ContactTracks tracks = loadContactTracks(file);
+    if (tracks.labels.rows() != clip->frameCount() || std::abs(tracks.fps - clip->fps()) > 1e-3 * clip->fps())
+      throw InputError(file.string(), 0, "holds " + std::to_string(tracks.labels.rows()) + " frames at " +
+                                             std::to_string(tracks.fps) + " fps, the clip " +
+                                             std::to_string(clip->frameCount()) + " at " + std::to_string(clip->fps()));
+    // Frames whose saved label differs from today's detection are kept as overrides too, so that a
+    // file edited by hand (tracks only) still means what it says.
+    Eigen::MatrixXi overrides = tracks.overrides.size() > 0 ? tracks.overrides
+                                                            : Eigen::MatrixXi::Constant(tracks.labels.rows(), kContactCount, -1);
+    for (Eigen::Index f = 0; f < overrides.rows(); ++f)
+      for (Eigen::Index k = 0; k < overrides.cols(); ++k)
+        if (overrides(f, k) < 0 && tracks.labels(f, k) != clip->detected_contacts(f, k)) overrides(f, k) = tracks.labels(f, k);
+    clip->contact_overrides = overrides;
+  } catch (const std::exception& error) {
+    reporter_(title, QString::fromStdString(error.what()));
+    return false;
+  }
+  refresh();
+  emit overridesChanged(clip->contact_overrides);
+  return true;
+}
+
+void ContactTrackController::addActions(QMenu* menu) {
+  menu->addAction(tr("&Save Contact Tracks"), this, &ContactTrackController::saveTracks)
+      ->setStatusTip(tr("Save the content clip's foot contacts beside it (.contacts.json)"));
+  menu->addAction(tr("&Load Contact Tracks"), this, &ContactTrackController::loadTracks)
+      ->setStatusTip(tr("Load the foot contacts saved beside the content clip"));
+  menu->addAction(tr("&Reset Contact Edits"), this, &ContactTrackController::resetOverrides);
+}
+
+}  // namespace motionstyle

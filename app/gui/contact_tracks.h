@@ -1,0 +1,69 @@
+#pragma once
+// ContactTrackController: the timeline's foot-contact tracks for the content clip, and its quality
+// track.
+//   - "Left foot" / "Right foot" (TrackView bool tracks 0 and 1) show the content clip's contacts:
+//     detected from height and speed (ik/contacts.h) with the user's overrides applied; a foot is in
+//     contact when its heel or its toe is.
+//   - Painting a track (click-drag) forces heel and toe of that foot on or off over the painted frames:
+//     overrides that the next clean-up applies (applyContactOverrides).
+//   - Save / Load write and read them beside the clip (ik/contact_file.h: clip.bvh.contacts.json).
+//   - The float track shows a per-frame quality figure of the output (foot skate, cm/s).
+// Timeline frames are the content's own frames (MainWindow plays every clip at the content's rate).
+
+#include <QObject>
+#include <QString>
+
+#include <Eigen/Core>
+
+#include <functional>
+#include <vector>
+
+#include "clip_loader.h"
+
+class QMenu;
+
+namespace motionstyle {
+
+class TrackView;
+
+class ContactTrackController : public QObject {
+  Q_OBJECT
+
+ public:
+  using ContentProvider = std::function<LoadedClip*()>;  // the content clip, nullptr when none
+  using ErrorReporter = std::function<void(const QString& title, const QString& message)>;
+  static constexpr int kLeftFootTrack = 0;
+  static constexpr int kRightFootTrack = 1;
+
+  // `tracks` must already hold the two foot tracks (indices above).
+  ContactTrackController(TrackView* tracks, ContentProvider content, ErrorReporter reporter, QObject* parent = nullptr);
+
+  // Redraws the foot tracks from the content clip (frames beyond it stay empty).
+  void refresh();
+  // The quality track (cm/s per content frame); empty shows a flat row (no result yet).
+  void setSkateTrack(const std::vector<float>& skate_cm_s);
+  // Adds Save / Load / Reset actions to `menu`.
+  void addActions(QMenu* menu);
+
+ public slots:
+  // Force heel and toe of `foot` (0 left, 1 right) on or off over frames first..last of the content.
+  void overrideFoot(int foot, int first_frame, int last_frame, bool in_contact);
+  void resetOverrides();
+  // Beside the clip (contactTracksPath). false and a report on failure.
+  bool saveTracks();
+  bool loadTracks();
+
+ signals:
+  // The content clip's overrides changed (frames x 4, -1/0/1 at the content's rate).
+  void overridesChanged(const Eigen::MatrixXi& overrides);
+
+ private:
+  TrackView* tracks_;
+  ContentProvider content_;
+  ErrorReporter reporter_;
+};
+
+// Foot `foot` (0 left, 1 right) of contact labels (frames x 4) as a track of `frames` values.
+std::vector<bool> footTrack(const ContactLabels& labels, int foot, int frames);
+
+}  // namespace motionstyle

@@ -1,0 +1,45 @@
+#pragma once
+// The viewport's space for a clip: MotionStyle's canonical space (features/space_convention.h: Y-up,
+// right-handed, centimetres) with the clip's floor moved to y = 0. Replaces the earlier heuristic
+// (first-frame extent) with the core's convention, found from the clip's joint mapping: the up axis
+// from the feet-to-head direction over the whole clip, the unit given or guessed from skeletal height.
+//
+// A clip and everything derived from it in its FILE space (the cleaned output on its skeleton, the
+// raw network output's canonical joints) share one DisplaySpace, so they stand on the same floor.
+
+#include <Eigen/Core>
+
+#include <array>
+#include <vector>
+
+#include "features/space_convention.h"
+#include "motion/motion.h"
+
+namespace motionstyle {
+
+struct DisplaySpace {
+  SpaceConvention convention;  // file -> canonical (Y-up cm)
+  double floor_height = 0.0;   // file units along convention.fileUp()
+
+  // file_positions: frames x 3*joints, file units and axes. Returns the same shape in cm, Y-up, with
+  // the floor at y = 0.
+  Eigen::MatrixXd toDisplay(const Eigen::MatrixXd& file_positions) const;
+};
+
+// The convention of a mapped clip (up axis and unit from the core) and its floor: a soft minimum of
+// the contact joints' heights (estimateFloorHeight). file_positions: frames x 3*joints of the clip.
+DisplaySpace mappedDisplaySpace(const Motion& motion, const JointMapping& mapping, const Eigen::MatrixXd& file_positions);
+
+// A best effort for a clip that cannot be mapped (no feet or head to find the up axis): +Y up, scaled
+// so that the rest pose is 170 cm tall, floor at the lowest joint over the clip. Shown only so that
+// the user can see the rig while fixing its mapping.
+DisplaySpace unmappedDisplaySpace(const Motion& motion, const Eigen::MatrixXd& file_positions);
+
+// Per-frame rows (positions, one frame per row) from `source_fps` to `target_fps` by linear
+// interpolation (resampleRowsLinear), so that clips of any rate play in sync by time on one timeline.
+Eigen::MatrixXd rowsAtRate(const Eigen::MatrixXd& rows, double source_fps, double target_fps);
+
+// 0/1 labels (frames x k) at another rate: each output frame takes the nearest source frame in time.
+Eigen::MatrixXi labelsAtRate(const Eigen::MatrixXi& labels, double source_fps, double target_fps);
+
+}  // namespace motionstyle

@@ -1,0 +1,73 @@
+// MainWindow's side of the "Style networks" dock (network_panel.h): the dock and its wiring to the
+// viewport, the result panel and the error reporter, and the "training database" clip role.
+#include <QDockWidget>
+
+#include <algorithm>
+
+#include "main_window.h"
+#include "network_panel.h"
+#include "result_panel.h"
+
+namespace motionstyle {
+
+void MainWindow::createNetworkDock() {
+  network_panel_ = new NetworkPanel(this, persist_settings_);
+  auto* dock = new QDockWidget(tr("Style networks"), this);
+  dock->setObjectName(QStringLiteral("NetworksDock"));
+  dock->setWidget(network_panel_);
+  dock->setMinimumWidth(360);
+  addDockWidget(Qt::RightDockWidgetArea, dock);
+  if (auto* result_dock = findChild<QDockWidget*>(QStringLiteral("ResultDock"))) {
+    tabifyDockWidget(result_dock, dock);
+    result_dock->raise();  // the one-click path (load a network, stylize) comes first
+  }
+
+  connect(network_panel_, &NetworkPanel::errorOccurred, this, &MainWindow::report);
+  connect(network_panel_, &NetworkPanel::previewReady, this, [this](const FigureData& figure) {
+    training_preview_ = figure;
+    rebuildFigures();
+  });
+  connect(network_panel_, &NetworkPanel::previewCleared, this, [this] {
+    if (!training_preview_) return;
+    training_preview_.reset();
+    rebuildFigures();
+  });
+  // The result panel stylizes with the selected network and cleans up the optimisation method's output.
+  connect(network_panel_, &NetworkPanel::currentNetworkChanged, this,
+          [this](std::shared_ptr<const nn::StyleModel> model) {
+            result_panel_->setStyleNetwork(std::move(model), network_panel_->currentNetworkName());
+          });
+  connect(network_panel_, &NetworkPanel::stylizedClipReady, result_panel_, &ResultPanel::setStylizedClip);
+  // A real result replaces the training preview (both are blue "output" figures).
+  connect(result_panel_, &ResultPanel::resultChanged, this, [this] {
+    if (!training_preview_ || result_panel_->resultFigures(false).empty()) return;
+    training_preview_.reset();
+    rebuildFigures();
+  });
+}
+
+bool MainWindow::isTrainingClip(int index) const {
+  return std::binary_search(training_clips_.begin(), training_clips_.end(), index);
+}
+
+QStringList MainWindow::trainingClipPaths() const {
+  QStringList paths;
+  for (int index : training_clips_) paths << clip(index).path;
+  return paths;
+}
+
+void MainWindow::setTrainingClip(int index, bool on) {
+  if (index < 0 || index >= clipCount() || isTrainingClip(index) == on) return;
+  if (on) training_clips_.insert(std::upper_bound(training_clips_.begin(), training_clips_.end(), index), index);
+  else training_clips_.erase(std::find(training_clips_.begin(), training_clips_.end(), index));
+  refreshClipList();
+}
+
+void MainWindow::forgetTrainingClip(int removed_index) {
+  std::vector<int> kept;
+  for (int index : training_clips_)
+    if (index != removed_index) kept.push_back(index > removed_index ? index - 1 : index);
+  training_clips_ = std::move(kept);
+}
+
+}  // namespace motionstyle

@@ -1,0 +1,237 @@
+#pragma once
+// NetworkPanel: the "Style networks" dock.
+//
+//   Networks tab: load/save network files (saved atomically by the core; an existing file is never
+//     replaced without a confirmation), the list of networks with their metadata (style clips, loss
+//     weights, epochs, date) and the selected one's loss history in the curve below.
+//   Train tab: the training database (clips with MainWindow's "training database" role plus folders),
+//     style clips per content label (style_pairing.h), the loss network, the loss weights (defaults
+//     from nn::LossWeights), epochs, learning rate and hidden units; Train, Retrain (warm start from
+//     the selected network with the new weights) and Cancel.
+//   Optimise tab: the optimisation method (Holden 2016) for MainWindow's content and style clips; the
+//     result goes out as stylizedClipReady() (the result panel cleans it up and shows it).
+//   Below the tabs: a progress bar with ETA, a status line and the live loss curve.
+//
+// Jobs run in a TrainingWorker / TransferWorker in a QThread (training_worker.h); one job at a time.
+// While training, each epoch's network stylizes MainWindow's content clip (at most every few seconds)
+// and previewReady() carries it as the blue "output" figure. The selected network is currentNetwork();
+// currentNetworkChanged() announces it to the other panels (the result panel).
+//
+// Safety: prepareToClose() asks before stopping a running job (then cancels, quits and waits; the
+// core keeps the last good checkpoint and never writes a network file half-way), and asks before any
+// trained network that was never saved is dropped (closing, or removing it from the list).
+// Dialogs go through the Confirmer (tests replace it) and errors through errorOccurred() (MainWindow's
+// ErrorReporter).
+
+#include <QMessageBox>
+#include <QWidget>
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "display_space.h"
+#include "figure_data.h"
+#include "nn/network_file.h"
+#include "style/stylizer.h"
+#include "style/training.h"
+
+class QDoubleSpinBox;
+class QLabel;
+class QLineEdit;
+class QListWidget;
+class QProgressBar;
+class QPushButton;
+class QSpinBox;
+class QTabWidget;
+class QTemporaryDir;
+class QThread;
+class QTreeWidget;
+
+namespace motionstyle {
+
+class LossCurveWidget;
+class MainWindow;
+class TrainingWorker;
+class TransferWorker;
+struct TrainingOutcome;
+
+class NetworkPanel : public QWidget {
+  Q_OBJECT
+
+ public:
+  // Shows a question and returns the button chosen (default: a QMessageBox).
+  using Confirmer = std::function<QMessageBox::StandardButton(const QString& title, const QString& text,
+                                                              QMessageBox::StandardButtons buttons)>;
+
+  // What the Train tab holds (editable data; validated when a run starts).
+  struct TrainingForm {
+    nn::LossWeights weights;  // unweighted terms are multiplied by these (eq. 10)
+    int epochs = 100;
+    double learning_rate = 1e-3;  // Adam
+    int hidden_units = 128;       // of the transformation network (new networks only)
+  };
+
+  explicit NetworkPanel(MainWindow* window, bool persist_settings = true);
+  ~NetworkPanel() override;  // cancels and joins a running job without asking
+
+  void setConfirmer(Confirmer confirmer);
+
+  // ---- Networks -----------------------------------------------------------------------------------
+  int networkCount() const { return static_cast<int>(networks_.size()); }
+  int currentIndex() const;
+  void setCurrentIndex(int index);
+  std::shared_ptr<const nn::StyleModel> currentNetwork() const;
+  QString currentNetworkName() const;  // the list's name (file name without .net), empty when none
+  std::shared_ptr<const nn::StyleModel> network(int index) const;
+  QString networkFile(int index) const;   // empty while never saved
+  bool isNetworkSaved(int index) const;
+  // Loads a style network (or, for an autoencoder file, takes it as the loss network). Errors are
+  // reported; returns false then.
+  bool loadNetworkFile(const QString& file);
+  // Saves atomically; an existing file is replaced only after the Confirmer answers Yes (or when
+  // `overwrite_confirmed`, e.g. after a file dialog asked). false (and a report) on failure.
+  bool saveNetwork(int index, const QString& file, bool overwrite_confirmed = false);
+  // Asks before dropping an unsaved network; false when the user keeps it.
+  bool removeNetwork(int index);
+
+  // ---- Training -----------------------------------------------------------------------------------
+  TrainingForm trainingForm() const;
+  void setTrainingForm(const TrainingForm& form);
+  QString lossNetworkFile() const;
+  void setLossNetworkFile(const QString& file);
+  QStringList trainingFolders() const;
+  void addTrainingFolder(const QString& folder);
+  // Style clips per content label: an empty label pairs by the clip's file name / as the default.
+  void addStyleClip(const QString& file, const QString& label = QString());
+  int styleClipCount() const;
+  // With no style clip listed, MainWindow's style clip is used.
+  std::vector<style::StyleSource> styleSources() const;
+
+  // Starts a run (retrain: warm start from the selected network, its shape and loss network). Returns
+  // false and reports why when it cannot start (busy, no data, no style clip, no loss network).
+  bool startTraining(bool retrain);
+  // The optimisation method on MainWindow's content and style clips (stage-1 iterations; the
+  // constraint stage gets 100 / 250 of them).
+  bool startTransfer(int iterations);
+  bool isBusy() const { return thread_ != nullptr; }
+  // Requests cancellation of the running job (returns at once; jobFinished() follows).
+  void cancelJob();
+  // The checkpoint file of the latest training run (its network loads with nn::loadStyleModel).
+  QString lastCheckpointFile() const;
+
+  // For MainWindow::closeEvent: true when the window may close (see the top of this file).
+  bool prepareToClose();
+
+  LossCurveWidget* lossCurve() const { return loss_curve_; }
+  QProgressBar* progressBar() const { return progress_bar_; }
+  QString statusText() const;
+
+ public slots:
+  void browseLoad();
+  void browseSave();
+  void browseTrainingFolder();
+
+ signals:
+  void currentNetworkChanged(std::shared_ptr<const motionstyle::nn::StyleModel> network);
+  // The live preview / optimisation result as the blue output figure (display space like the clips).
+  void previewReady(const motionstyle::FigureData& figure);
+  void previewCleared();  // a new run started: the old preview is stale
+  // The optimisation method's output for MainWindow's content clip (for the result panel's clean-up).
+  void stylizedClipReady(const motionstyle::style::StylizedClip& clip, const QString& label);
+  void errorOccurred(const QString& title, const QString& message);
+  void trainingProgress(const motionstyle::style::TrainingProgress& progress);
+  void jobFinished();  // any job ended and its thread was joined
+
+ private:
+  struct NetworkEntry {
+    std::shared_ptr<const nn::StyleModel> model;
+    QString name;
+    QString file;
+    bool saved = false;
+  };
+
+  QWidget* createNetworksTab();
+  QWidget* createTrainTab();
+  QWidget* createOptimiseTab();
+  void addNetwork(NetworkEntry entry);
+  void refreshNetworkList();
+  void refreshTrainingSummary();
+  void onClipsChanged();
+  void showNetworkDetails();
+  void updateButtons();
+  void report(const QString& title, const QString& message);
+  QMessageBox::StandardButton ask(const QString& title, const QString& text, QMessageBox::StandardButtons buttons);
+  bool confirmDropUnsaved(int index, bool allow_cancel);
+  QString lastFolder() const;
+  void rememberFolder(const QString& path);
+
+  // Jobs (network_panel_jobs.cpp).
+  void startThread(QObject* worker);
+  void shutdownJob();
+  void onTrainingProgress(const style::TrainingProgress& progress);
+  void onTrainingFinished(const TrainingOutcome& outcome);
+  void onPreview(const std::shared_ptr<const style::StylizedClip>& clip);
+  void onJobDone();
+  void capturePreviewTarget();
+  std::filesystem::path scratchFile(const QString& name);
+
+  MainWindow* window_;
+  bool persist_settings_;
+  Confirmer confirmer_;
+  std::vector<NetworkEntry> networks_;
+
+  // The running job (null when idle).
+  QThread* thread_ = nullptr;
+  TrainingWorker* training_worker_ = nullptr;
+  TransferWorker* transfer_worker_ = nullptr;
+  bool training_retrain_ = false;
+  QString training_name_;
+  std::unique_ptr<QTemporaryDir> scratch_;
+  QString last_checkpoint_;
+
+  // Maps the stylized clip (content file space, 60 fps) onto the content figure (its display space, the
+  // timeline's rate): fixed when a job starts.
+  struct PreviewTarget {
+    bool valid = false;
+    std::uint64_t content_id = 0;
+    QString name;
+    DisplaySpace display_space;
+    double display_fps = 60.0;
+  };
+  PreviewTarget preview_target_;
+  std::uint64_t preview_content_id_ = 0;  // LoadedClip::id the shown preview was made from
+  bool preview_shown_ = false;
+
+  QTabWidget* tabs_ = nullptr;
+  QTreeWidget* network_list_ = nullptr;
+  QLabel* details_label_ = nullptr;
+  QPushButton* save_button_ = nullptr;
+  QPushButton* remove_button_ = nullptr;
+  QLabel* database_label_ = nullptr;
+  QListWidget* folder_list_ = nullptr;
+  QTreeWidget* style_list_ = nullptr;
+  QLabel* style_hint_label_ = nullptr;
+  QLineEdit* loss_network_edit_ = nullptr;
+  QDoubleSpinBox* content_weight_ = nullptr;
+  QDoubleSpinBox* style_weight_ = nullptr;
+  QDoubleSpinBox* foot_weight_ = nullptr;
+  QDoubleSpinBox* bone_weight_ = nullptr;
+  QDoubleSpinBox* trajectory_weight_ = nullptr;
+  QSpinBox* epochs_spin_ = nullptr;
+  QDoubleSpinBox* learning_rate_spin_ = nullptr;
+  QSpinBox* hidden_spin_ = nullptr;
+  QPushButton* train_button_ = nullptr;
+  QPushButton* retrain_button_ = nullptr;
+  QPushButton* cancel_button_ = nullptr;
+  QSpinBox* iterations_spin_ = nullptr;
+  QPushButton* optimise_button_ = nullptr;
+  QPushButton* optimise_cancel_button_ = nullptr;
+  QProgressBar* progress_bar_ = nullptr;
+  QLabel* status_label_ = nullptr;
+  LossCurveWidget* loss_curve_ = nullptr;
+};
+
+}  // namespace motionstyle

@@ -1,0 +1,351 @@
+// NetworkPanel's jobs: training (new / retrain) and the optimisation method in a worker thread, their
+// progress, results and live preview, and the shutdown rules (cancel, quit, wait).
+#include "network_panel.h"
+
+#include <QCoreApplication>
+#include <QDateTime>
+#include <QDir>
+#include <QFileInfo>
+#include <QLabel>
+#include <QProgressBar>
+#include <QTemporaryDir>
+#include <QThread>
+
+#include <cmath>
+#include <exception>
+
+#include "features/feature_layout.h"
+#include "loss_curve_widget.h"
+#include "main_window.h"
+#include "timeline_widget.h"
+#include "training_worker.h"
+
+namespace motionstyle {
+namespace {
+
+QString formatDuration(double seconds) {
+  if (!(seconds >= 0.0) || !std::isfinite(seconds)) return QStringLiteral("--:--");
+  const long long total = std::llround(seconds);
+  if (total >= 3600)
+    return QStringLiteral("%1:%2:%3")
+        .arg(total / 3600)
+        .arg(total / 60 % 60, 2, 10, QLatin1Char('0'))
+        .arg(total % 60, 2, 10, QLatin1Char('0'));
+  return QStringLiteral("%1:%2").arg(total / 60).arg(total % 60, 2, 10, QLatin1Char('0'));
+}
+
+QString termsText(double total, const std::vector<style::NamedLoss>& terms) {
+  QString text = QStringLiteral("total %1").arg(total, 0, 'g', 4);
+  for (const style::NamedLoss& term : terms)
+    text += QStringLiteral(", %1 %2").arg(QString::fromStdString(term.name)).arg(term.value, 0, 'g', 3);
+  return text;
+}
+
+}  // namespace
+
+std::filesystem::path NetworkPanel::scratchFile(const QString& name) {
+  if (!scratch_) {
+    scratch_ = std::make_unique<QTemporaryDir>(QDir(QDir::tempPath()).filePath(QStringLiteral("motionstyle-training-XXXXXX")));
+    if (!scratch_->isValid()) {
+      scratch_.reset();
+      return {};
+    }
+  }
+  return std::filesystem::path(scratch_->filePath(name).toStdString());
+}
+
+QString NetworkPanel::lastCheckpointFile() const { return last_checkpoint_; }
+
+void NetworkPanel::capturePreviewTarget() {
+  preview_target_ = {};
+  const int content = window_->contentClip();
+  if (content < 0) return;
+  const LoadedClip& clip = window_->clip(content);
+  if (clip.frameCount() < 1) return;
+  // The output is in the content's file space: the content's display space puts it on the same floor at
+  // the same size, and the timeline's rate keeps it in step with the other figures.
+  preview_target_.valid = true;
+  preview_target_.content_id = clip.id;
+  preview_target_.name = clip.name;
+  preview_target_.display_space = clip.display_space;
+  preview_target_.display_fps = window_->timeline()->frameRate() > 0 ? window_->timeline()->frameRate() : clip.fps();
+}
+
+void NetworkPanel::onPreview(const std::shared_ptr<const style::StylizedClip>& clip) {
+  if (!clip || !preview_target_.valid || clip->frameCount() < 1) return;
+  // The run previews the content clip it started with; once the user picks another, stay quiet.
+  const int content = window_->contentClip();
+  if (content < 0 || window_->clip(content).id != preview_target_.content_id) return;
+  try {
+    const Eigen::MatrixXd shown = rowsAtRate(preview_target_.display_space.toDisplay(clip->world_positions), clip->fps,
+                                             preview_target_.display_fps);
+    const std::vector<int> parents(kCanonicalParent.begin(), kCanonicalParent.end());
+    preview_shown_ = true;
+    preview_content_id_ = preview_target_.content_id;
+    emit previewReady(figureFromPositions(tr("%1 (preview)").arg(preview_target_.name), FigureRole::Output, parents, shown));
+  } catch (const std::exception& error) {
+    status_label_->setText(tr("Could not show the preview: %1").arg(QString::fromStdString(error.what())));
+  }
+}
+
+bool NetworkPanel::startTraining(bool retrain) {
+  if (isBusy()) {
+    report(tr("A job is running"), tr("Cancel the running job before starting another."));
+    return false;
+  }
+  const TrainingForm form = trainingForm();
+  TrainingJob job;
+  style::StyleTrainingConfig& config = job.config;
+  for (const QString& file : window_->trainingClipPaths()) config.content.emplace_back(file.toStdString());
+  for (const QString& folder : trainingFolders()) config.content.emplace_back(folder.toStdString());
+  if (config.content.empty()) {
+    report(tr("No training database"), tr("Right-click clips in the Clips list and choose \"Training Database\", or add a "
+                                          "folder of BVH files on the Train tab."));
+    return false;
+  }
+  config.styles = styleSources();
+  if (config.styles.empty()) {
+    report(tr("No style clip"), tr("Give a clip the Style role, or add style clips on the Train tab."));
+    return false;
+  }
+  config.weights = form.weights;
+  config.settings.epochs = form.epochs;
+  config.settings.learning_rate = form.learning_rate;
+  config.settings.dataset.bad_files = style::BadFilePolicy::Skip;  // a bad file in a folder is logged, not fatal
+
+  QString base_name = QString::fromStdString(config.styles.front().file.stem().string());
+  if (retrain) {
+    const std::shared_ptr<const nn::StyleModel> model = currentNetwork();
+    if (!model) {
+      report(tr("No network selected"), tr("Select the network to retrain on the Networks tab."));
+      return false;
+    }
+    // The warm start keeps the selected network's shape and the loss network it was trained against.
+    nn::AutoencoderModel loss;
+    loss.network = model->loss_network;
+    loss.normalisation = model->normalisation;
+    loss.metadata.representation = model->metadata.representation;
+    loss.metadata.training.sparsity = model->metadata.training.sparsity;
+    loss.metadata.training.dropout = model->metadata.training.dropout;
+    config.autoencoder_model = std::move(loss);
+    config.shape = model->transformer.shape();
+    const std::filesystem::path init = scratchFile(QStringLiteral("retrain-start.net"));
+    try {
+      if (init.empty()) throw std::runtime_error("no temporary folder");
+      nn::saveStyleModel(*model, init);
+    } catch (const std::exception& error) {
+      report(tr("Could not start retraining"), QString::fromStdString(error.what()));
+      return false;
+    }
+    config.settings.init = init;
+    base_name = networks_[static_cast<std::size_t>(currentIndex())].name + tr(" retrained");
+  } else {
+    const QString loss_file = lossNetworkFile();
+    if (loss_file.isEmpty()) {
+      report(tr("No loss network"), tr("Choose the loss network (an autoencoder .net file) on the Train tab."));
+      return false;
+    }
+    config.autoencoder = loss_file.toStdString();
+    config.shape.hidden = form.hidden_units;
+  }
+  const std::filesystem::path checkpoint =
+      scratchFile(QStringLiteral("run-%1.net.checkpoint").arg(QDateTime::currentDateTime().toString(QStringLiteral("yyyyMMdd-hhmmss-zzz"))));
+  if (checkpoint.empty()) {
+    report(tr("Could not start training"), tr("No temporary folder for the checkpoints in %1.").arg(QDir::tempPath()));
+    return false;
+  }
+  config.settings.checkpoint = checkpoint;
+  last_checkpoint_ = QString::fromStdString(checkpoint.string());
+  if (window_->contentClip() >= 0) job.preview_content = window_->clip(window_->contentClip()).path.toStdString();
+  capturePreviewTarget();
+
+  auto* worker = new TrainingWorker(std::move(job));
+  connect(worker, &TrainingWorker::progress, this, &NetworkPanel::onTrainingProgress, Qt::QueuedConnection);
+  connect(worker, &TrainingWorker::logMessage, this, [this](const QString& text) { status_label_->setText(text); },
+          Qt::QueuedConnection);
+  connect(worker, &TrainingWorker::previewReady, this,
+          [this](const std::shared_ptr<const style::StylizedClip>& clip, int) { onPreview(clip); }, Qt::QueuedConnection);
+  connect(worker, &TrainingWorker::finished, this, &NetworkPanel::onTrainingFinished, Qt::QueuedConnection);
+  connect(worker, &TrainingWorker::failed, this, &NetworkPanel::report, Qt::QueuedConnection);
+  connect(worker, &TrainingWorker::done, this, &NetworkPanel::onJobDone, Qt::QueuedConnection);
+  training_worker_ = worker;
+  training_retrain_ = retrain;
+  training_name_ = base_name;
+  loss_curve_->clear();
+  emit previewCleared();
+  progress_bar_->setRange(0, 0);
+  progress_bar_->setFormat(tr("Loading clips..."));
+  status_label_->setText(retrain ? tr("Retraining from %1...").arg(base_name) : tr("Loading the training clips..."));
+  startThread(worker);
+  // Show the panel (it may be a tab behind the result panel): the progress and curves are here.
+  for (QWidget* ancestor = parentWidget(); ancestor != nullptr; ancestor = ancestor->parentWidget()) {
+    if (ancestor->inherits("QDockWidget")) {
+      ancestor->show();
+      ancestor->raise();
+      break;
+    }
+  }
+  tabs_->setCurrentIndex(1);
+  return true;
+}
+
+bool NetworkPanel::startTransfer(int iterations) {
+  if (isBusy()) {
+    report(tr("A job is running"), tr("Cancel the running job before starting another."));
+    return false;
+  }
+  const int content = window_->contentClip();
+  const int style = window_->styleClip();
+  if (content < 0 || style < 0) {
+    report(tr("Content and style needed"), tr("The optimisation method needs a clip with the Content role and one with "
+                                              "the Style role."));
+    return false;
+  }
+  TransferJob job;
+  // The loss network: the file on the Train tab, else the one embedded in the selected style network.
+  const QString loss_file = lossNetworkFile();
+  try {
+    if (!loss_file.isEmpty()) {
+      job.autoencoder = style::loadCompatibleAutoencoder(loss_file.toStdString());
+    } else if (const auto model = currentNetwork()) {
+      job.autoencoder.network = model->loss_network;
+      job.autoencoder.normalisation = model->normalisation;
+      job.autoencoder.metadata.representation = model->metadata.representation;
+    } else {
+      report(tr("No loss network"), tr("Choose the loss network (an autoencoder .net file) on the Train tab."));
+      return false;
+    }
+  } catch (const std::exception& error) {
+    report(tr("Could not load the loss network"), QString::fromStdString(error.what()));
+    return false;
+  }
+  job.content = window_->clip(content).path.toStdString();
+  job.style = window_->clip(style).path.toStdString();
+  job.options.iterations = iterations;
+  job.options.constraint_iterations = std::max(1, iterations * 100 / 250);
+  const QString label = tr("optimised towards %1").arg(window_->clip(style).name);
+  const int total = job.options.iterations + job.options.constraint_iterations;
+
+  auto* worker = new TransferWorker(std::move(job));
+  connect(worker, &TransferWorker::progress, this, [this, iterations, total](const style::OptimizationProgress& p) {
+    const int done = (p.stage == "style" ? 0 : iterations) + p.iteration;
+    progress_bar_->setRange(0, total);
+    progress_bar_->setValue(done);
+    const double eta = done > 0 ? p.elapsed_seconds / done * (total - done) : -1.0;
+    progress_bar_->setFormat(tr("%1 %2/%3, ETA %4").arg(QString::fromStdString(p.stage)).arg(p.iteration).arg(p.iterations)
+                                 .arg(formatDuration(eta)));
+  }, Qt::QueuedConnection);
+  connect(worker, &TransferWorker::finished, this,
+          [this, label](const std::shared_ptr<const style::StylizedClip>& clip, bool cancelled, double seconds) {
+            status_label_->setText(cancelled ? tr("Optimisation cancelled") : tr("Optimised in %1").arg(formatDuration(seconds)));
+            if (!cancelled && clip) emit stylizedClipReady(*clip, label);
+          }, Qt::QueuedConnection);
+  connect(worker, &TransferWorker::failed, this, &NetworkPanel::report, Qt::QueuedConnection);
+  connect(worker, &TransferWorker::done, this, &NetworkPanel::onJobDone, Qt::QueuedConnection);
+  transfer_worker_ = worker;
+  status_label_->setText(tr("Optimising %1 towards %2...").arg(window_->clip(content).name, window_->clip(style).name));
+  startThread(worker);
+  return true;
+}
+
+void NetworkPanel::startThread(QObject* worker) {
+  thread_ = new QThread(this);
+  thread_->setObjectName(QStringLiteral("MotionStyleNetworkJob"));
+  worker->moveToThread(thread_);
+  // The worker lives in the job thread: it is deleted there, as the thread finishes.
+  connect(thread_, &QThread::finished, worker, &QObject::deleteLater);
+  thread_->start();
+  QMetaObject::invokeMethod(worker, "run", Qt::QueuedConnection);
+  updateButtons();
+}
+
+void NetworkPanel::cancelJob() {
+  if (training_worker_) training_worker_->requestCancel();
+  if (transfer_worker_) transfer_worker_->requestCancel();
+  if (isBusy()) {
+    progress_bar_->setFormat(tr("Cancelling..."));
+    status_label_->setText(tr("Cancelling: the last completed epoch is kept."));
+  }
+}
+
+void NetworkPanel::shutdownJob() {
+  if (!thread_) return;
+  if (training_worker_) training_worker_->requestCancel();  // no-ops when the run already ended
+  if (transfer_worker_) transfer_worker_->requestCancel();
+  thread_->quit();  // leaves the thread's event loop as soon as run() returns
+  thread_->wait();
+  delete thread_;   // finished: its deferred deletes (the worker) have run
+  thread_ = nullptr;
+  training_worker_ = nullptr;
+  transfer_worker_ = nullptr;
+}
+
+void NetworkPanel::onJobDone() {
+  shutdownJob();
+  if (progress_bar_->maximum() == 0) progress_bar_->setRange(0, 1000);
+  progress_bar_->setFormat(tr("Idle"));
+  updateButtons();
+  emit jobFinished();
+}
+
+void NetworkPanel::onTrainingProgress(const style::TrainingProgress& p) {
+  if (!training_worker_) return;  // a late signal after a shutdown
+  emit trainingProgress(p);
+  if (p.phase == style::TrainingProgress::Phase::Loading) {
+    progress_bar_->setRange(0, 0);
+    progress_bar_->setFormat(QString::fromStdString(p.message));
+    return;
+  }
+  if (training_worker_->cancelRequested()) return;
+  const double steps = std::max(1, p.steps_per_epoch);
+  const double position = (p.epoch - 1) + std::min(1.0, p.step / steps);
+  progress_bar_->setRange(0, 1000);
+  progress_bar_->setValue(static_cast<int>(std::lround(1000.0 * position / std::max(1, p.epochs))));
+  progress_bar_->setFormat(tr("Epoch %1/%2, ETA %3").arg(p.epoch).arg(p.epochs).arg(formatDuration(p.eta_seconds)));
+  if (p.phase == style::TrainingProgress::Phase::Training) {
+    for (const style::NamedLoss& term : p.terms) loss_curve_->addPoint(QString::fromStdString(term.name), position, term.value);
+    status_label_->setText(tr("Epoch %1/%2, step %3/%4, %5 elapsed\n%6")
+                               .arg(p.epoch).arg(p.epochs).arg(p.step).arg(p.steps_per_epoch)
+                               .arg(formatDuration(p.elapsed_seconds), termsText(p.total, p.terms)));
+  }
+}
+
+void NetworkPanel::onTrainingFinished(const TrainingOutcome& outcome) {
+  if (outcome.model) {
+    auto model = std::make_shared<nn::StyleModel>(*outcome.model);
+    model->metadata.properties.emplace_back("created", QDateTime::currentDateTime().toString(Qt::ISODate).toStdString());
+    NetworkEntry entry;
+    entry.model = std::move(model);
+    entry.name = outcome.cancelled ? tr("%1 (epoch %2)").arg(training_name_).arg(outcome.epochs_completed) : training_name_;
+    addNetwork(std::move(entry));
+  }
+  if (!outcome.cancelled) {
+    progress_bar_->setValue(progress_bar_->maximum());
+    status_label_->setText(tr("Trained %n epoch(s) in %1. Not saved yet: Save As... on the Networks tab.", nullptr,
+                              outcome.epochs_completed).arg(formatDuration(outcome.seconds)));
+  } else if (outcome.model) {
+    status_label_->setText(tr("Cancelled. Kept the network of epoch %1 (checkpoint %2); not saved yet.")
+                               .arg(outcome.epochs_completed).arg(QString::fromStdString(outcome.checkpoint.string())));
+  } else {
+    status_label_->setText(tr("Cancelled before the first epoch ended: no network to keep."));
+  }
+  tabs_->setCurrentIndex(0);
+}
+
+bool NetworkPanel::prepareToClose() {
+  if (isBusy()) {
+    const QString what = training_worker_ ? tr("A training run is in progress. Stop it and close?\n\nThe network of the last "
+                                               "completed epoch is kept; no network file is left half-written.")
+                                          : tr("The optimisation method is running. Stop it and close?");
+    if (ask(tr("Stop and close?"), what, QMessageBox::Yes | QMessageBox::No) != QMessageBox::Yes) return false;
+    shutdownJob();
+    // Deliver what the worker sent before it stopped (the cancelled run's network, then done()), so the
+    // network can be offered for saving below.
+    QCoreApplication::sendPostedEvents(this, QEvent::MetaCall);
+  }
+  for (int i = 0; i < networkCount(); ++i)
+    if (!confirmDropUnsaved(i, true)) return false;
+  return true;
+}
+
+}  // namespace motionstyle

@@ -1,0 +1,432 @@
+#include "result_panel.h"
+
+#include <QDir>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QFormLayout>
+#include <QHBoxLayout>
+#include <QHeaderView>
+#include <QLabel>
+#include <QProgressBar>
+#include <QPushButton>
+#include <QSlider>
+#include <QTableWidget>
+#include <QVBoxLayout>
+
+#include <cmath>
+#include <exception>
+
+#include "bvh/bvh_writer.h"
+#include "common/errors.h"
+#include "display_space.h"
+#include "features/feature_layout.h"
+#include "ik/contacts.h"
+#include "motion/kinematics.h"
+#include "style/training.h"
+
+namespace motionstyle {
+namespace {
+
+constexpr int kStrengthSteps = 100;
+
+QString cm(double value, int decimals = 2) { return QString::number(value, 'f', decimals); }
+
+}  // namespace
+
+ResultPanel::ResultPanel(QWidget* parent) : QWidget(parent), cancel_(std::make_shared<std::atomic<bool>>(false)) {
+  setObjectName(QStringLiteral("ResultPanel"));
+  qRegisterMetaType<std::shared_ptr<const CleanupJob>>();
+  qRegisterMetaType<std::shared_ptr<const CleanupResult>>();
+
+  network_label_ = new QLabel(this);
+  network_label_->setWordWrap(true);
+  auto* open_network = new QPushButton(tr("Open..."), this);
+  open_network->setToolTip(tr("Load a style network file (.net)"));
+  connect(open_network, &QPushButton::clicked, this, &ResultPanel::browseNetwork);
+  auto* network_row = new QHBoxLayout;
+  network_row->addWidget(network_label_, 1);
+  network_row->addWidget(open_network);
+  content_label_ = new QLabel(this);
+  content_label_->setWordWrap(true);
+
+  strength_slider_ = new QSlider(Qt::Horizontal, this);
+  strength_slider_->setObjectName(QStringLiteral("StrengthSlider"));
+  strength_slider_->setRange(0, kStrengthSteps);
+  strength_slider_->setValue(kStrengthSteps);
+  strength_slider_->setToolTip(tr("0 = the content as it is, 1 = fully in the style"));
+  strength_label_ = new QLabel(this);
+  strength_label_->setMinimumWidth(36);
+  connect(strength_slider_, &QSlider::valueChanged, this,
+          [this](int value) { strength_label_->setText(QString::number(value / double(kStrengthSteps), 'f', 2)); });
+  // A result follows the slider once the user lets go (one job per release, not per step).
+  connect(strength_slider_, &QSlider::sliderReleased, this, [this] {
+    if (result_ && !given_stylized_ && hasNetwork()) stylize();
+  });
+  strength_label_->setText(QStringLiteral("1.00"));
+  auto* strength_row = new QHBoxLayout;
+  strength_row->addWidget(strength_slider_, 1);
+  strength_row->addWidget(strength_label_);
+
+  stylize_button_ = new QPushButton(tr("Stylize && Clean Up"), this);
+  stylize_button_->setObjectName(QStringLiteral("StylizeButton"));
+  stylize_button_->setDefault(true);
+  cancel_button_ = new QPushButton(tr("Cancel"), this);
+  connect(stylize_button_, &QPushButton::clicked, this, &ResultPanel::stylize);
+  connect(cancel_button_, &QPushButton::clicked, this, &ResultPanel::cancel);
+  auto* buttons = new QHBoxLayout;
+  buttons->addWidget(stylize_button_, 1);
+  buttons->addWidget(cancel_button_);
+  progress_ = new QProgressBar(this);
+  progress_->setRange(0, 0);  // busy indicator: the IK reports no fraction
+  progress_->setVisible(false);
+  status_label_ = new QLabel(this);
+  status_label_->setWordWrap(true);
+
+  metrics_ = new QTableWidget(kMetricRowCount, 2, this);
+  metrics_->setObjectName(QStringLiteral("MetricsTable"));
+  metrics_->setHorizontalHeaderLabels({tr("Raw output"), tr("Cleaned")});
+  metrics_->setVerticalHeaderLabels(
+      {tr("Foot skate (cm/s)"), tr("Floor penetration (cm)"), tr("Bone error (cm)"), tr("Residual (cm)")});
+  metrics_->verticalHeaderItem(kSkateRow)->setToolTip(tr("Mean horizontal speed of a foot during contact"));
+  metrics_->verticalHeaderItem(kPenetrationRow)->setToolTip(tr("Deepest foot below the floor"));
+  metrics_->verticalHeaderItem(kBoneErrorRow)->setToolTip(tr("Mean difference from the skeleton's bone lengths"));
+  metrics_->verticalHeaderItem(kResidualRow)->setToolTip(tr("Mean distance of the mapped joints from the network's output"));
+  metrics_->setEditTriggers(QAbstractItemView::NoEditTriggers);
+  metrics_->setSelectionMode(QAbstractItemView::NoSelection);
+  metrics_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
+  metrics_->verticalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+  metrics_->setVerticalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+  metrics_->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+  metrics_->setSizeAdjustPolicy(QAbstractScrollArea::AdjustToContents);
+  warnings_label_ = new QLabel(this);
+  warnings_label_->setWordWrap(true);
+  warnings_label_->setStyleSheet(QStringLiteral("color: #d08a2a"));
+
+  export_button_ = new QPushButton(tr("Export BVH..."), this);
+  export_button_->setObjectName(QStringLiteral("ExportButton"));
+  export_button_->setToolTip(tr("Save the cleaned clip on the content's own skeleton"));
+  connect(export_button_, &QPushButton::clicked, this, &ResultPanel::browseExport);
+
+  auto* form = new QFormLayout;
+  form->addRow(tr("Network:"), network_row);
+  form->addRow(tr("Content:"), content_label_);
+  form->addRow(tr("Strength:"), strength_row);
+  auto* layout = new QVBoxLayout(this);
+  layout->addLayout(form);
+  layout->addLayout(buttons);
+  layout->addWidget(progress_);
+  layout->addWidget(status_label_);
+  layout->addWidget(metrics_);
+  layout->addWidget(warnings_label_);
+  layout->addWidget(export_button_);
+  layout->addStretch(1);
+
+  auto* worker = new CleanupWorker(cancel_);
+  worker->moveToThread(&thread_);
+  connect(&thread_, &QThread::finished, worker, &QObject::deleteLater);
+  connect(this, &ResultPanel::jobRequested, worker, &CleanupWorker::run);
+  connect(worker, &CleanupWorker::progress, this, [this](const QString& step, quint64 id) {
+    if (id == job_id_ && busy_) status_label_->setText(step);
+  });
+  connect(worker, &CleanupWorker::finished, this, &ResultPanel::onFinished);
+  connect(worker, &CleanupWorker::failed, this, &ResultPanel::onFailed);
+  connect(worker, &CleanupWorker::cancelled, this, &ResultPanel::onCancelled);
+  thread_.setObjectName(QStringLiteral("CleanupThread"));
+  thread_.start();
+
+  refreshMetrics();
+  refreshControls();
+}
+
+ResultPanel::~ResultPanel() {
+  cancel_->store(true);
+  thread_.quit();
+  thread_.wait();
+}
+
+void ResultPanel::report(const QString& title, const QString& message) {
+  if (reporter_) reporter_(title, message);
+}
+
+void ResultPanel::setStyleNetwork(std::shared_ptr<const nn::StyleModel> model, const QString& name) {
+  stylizer_.reset();
+  network_name_.clear();
+  given_stylized_.reset();
+  if (model) {
+    try {
+      stylizer_ = std::make_shared<const style::Stylizer>(*model);
+      network_name_ = name.isEmpty() ? tr("style network") : name;
+    } catch (const std::exception& error) {
+      report(tr("Could not use the style network"), QString::fromStdString(error.what()));
+    }
+  }
+  refreshControls();
+}
+
+bool ResultPanel::loadNetworkFile(const QString& file) {
+  try {
+    auto model = std::make_shared<const nn::StyleModel>(style::loadCompatibleStyleModel(file.toStdString()));
+    setStyleNetwork(std::move(model), QFileInfo(file).completeBaseName());
+    return hasNetwork();
+  } catch (const InputError& error) {
+    report(tr("Could not open the style network"), QString::fromStdString(error.what()));
+  } catch (const std::bad_alloc&) {
+    report(tr("Could not open the style network"), tr("%1: not enough memory").arg(file));
+  } catch (const std::exception& error) {
+    report(tr("Could not open the style network"), tr("%1: internal error: %2").arg(file, QString::fromStdString(error.what())));
+  }
+  return false;
+}
+
+void ResultPanel::browseNetwork() {
+  const QString file = QFileDialog::getOpenFileName(this, tr("Open a style network"), QString(),
+                                                    tr("Style networks (*.net);;All files (*)"));
+  if (!file.isEmpty()) loadNetworkFile(file);
+}
+
+void ResultPanel::setContentClip(const LoadedClip* clip) {
+  if ((clip == nullptr && !content_) || (clip != nullptr && content_ && content_->id == clip->id)) return;
+  cancel();
+  content_ = clip != nullptr ? std::make_shared<const LoadedClip>(*clip) : nullptr;
+  overrides_ = content_ ? content_->contact_overrides : Eigen::MatrixXi();
+  given_stylized_.reset();
+  clearResult();
+  refreshControls();
+}
+
+void ResultPanel::setContactOverrides(const Eigen::MatrixXi& overrides) {
+  overrides_ = overrides;
+  if (result_) status_label_->setText(tr("Contacts edited: run the clean-up again to apply them."));
+}
+
+void ResultPanel::setStylizedClip(style::StylizedClip clip, const QString& label) {
+  if (!content_) {
+    report(tr("Nothing to clean up"), tr("Choose a content clip first."));
+    return;
+  }
+  given_stylized_ = std::move(clip);
+  network_name_ = label;
+  stylize();
+}
+
+double ResultPanel::strength() const { return strength_slider_->value() / double(kStrengthSteps); }
+
+void ResultPanel::setStrength(double strength) {
+  strength_slider_->setValue(static_cast<int>(std::lround(std::clamp(strength, 0.0, 1.0) * kStrengthSteps)));
+}
+
+void ResultPanel::stylize() {
+  if (busy_) return;
+  if (!content_) {
+    report(tr("Nothing to stylize"), tr("Open a BVH clip and use it as the content."));
+    return;
+  }
+  if (!content_->mapping) {
+    report(tr("The content clip is not mapped"),
+           tr("%1 cannot be stylized: %2.\nLoad a mapping file from the clip's context menu.")
+               .arg(content_->name, content_->mapping_problem));
+    return;
+  }
+  if (!given_stylized_ && !stylizer_) {
+    report(tr("No style network"), tr("Open a style network file (.net) first, or train one."));
+    return;
+  }
+  auto job = std::make_shared<CleanupJob>();
+  job->content = content_->motion;
+  job->mapping = *content_->mapping;
+  job->stylizer = stylizer_;
+  job->strength = strength();
+  job->stylized = given_stylized_;
+  job->contact_overrides = overrides_;
+  startJob(std::move(job));
+}
+
+void ResultPanel::startJob(std::shared_ptr<CleanupJob> job) {
+  cancel_->store(false);
+  ++job_id_;
+  setBusy(true, tr("Working..."));
+  emit jobRequested(std::move(job), job_id_);
+}
+
+void ResultPanel::cancel() {
+  if (!busy_) return;
+  // The worker stops at its next check; its late answer carries a stale id and is ignored.
+  cancel_->store(true);
+  ++job_id_;
+  setBusy(false, tr("Cancelled."));
+  emit jobEnded(false);
+}
+
+void ResultPanel::onFinished(std::shared_ptr<const CleanupResult> result, quint64 job_id) {
+  if (job_id != job_id_ || !busy_) return;
+  result_ = std::move(result);
+  QString status = tr("Stylized and cleaned up %1 frames in %2 s.")
+                       .arg(result_->cleaned.frameCount())
+                       .arg(result_->seconds, 0, 'f', 2);
+  setBusy(false, status);
+  refreshMetrics();
+  refreshControls();
+  emit statusMessage(status);
+  emit resultChanged();
+  emit jobEnded(true);
+}
+
+void ResultPanel::onFailed(const QString& message, quint64 job_id) {
+  if (job_id != job_id_ || !busy_) return;
+  setBusy(false, tr("Failed."));
+  report(tr("Could not stylize the clip"), message);
+  emit jobEnded(false);
+}
+
+void ResultPanel::onCancelled(quint64 job_id) {
+  if (job_id != job_id_ || !busy_) return;
+  setBusy(false, tr("Cancelled."));
+  emit jobEnded(false);
+}
+
+void ResultPanel::setBusy(bool busy, const QString& status) {
+  const bool changed = busy != busy_;
+  busy_ = busy;
+  progress_->setVisible(busy);
+  status_label_->setText(status);
+  refreshControls();
+  if (changed) emit busyChanged(busy);
+}
+
+void ResultPanel::clearResult() {
+  const bool had = result_ != nullptr;
+  result_.reset();
+  status_label_->clear();
+  refreshMetrics();
+  if (had) emit resultChanged();
+}
+
+void ResultPanel::refreshControls() {
+  network_label_->setText(given_stylized_ ? tr("%1 (stylized clip)").arg(network_name_)
+                                          : (hasNetwork() ? network_name_ : tr("<i>none: open a .net file</i>")));
+  content_label_->setText(content_ ? content_->name : tr("<i>none</i>"));
+  const bool ready = content_ && content_->mapping && (hasNetwork() || given_stylized_);
+  stylize_button_->setEnabled(ready && !busy_);
+  strength_slider_->setEnabled(!given_stylized_);
+  cancel_button_->setEnabled(busy_);
+  export_button_->setEnabled(result_ != nullptr && !busy_);
+}
+
+void ResultPanel::refreshMetrics() {
+  const auto put = [this](int row, int column, const QString& text) {
+    auto* item = new QTableWidgetItem(text);
+    item->setTextAlignment(Qt::AlignRight | Qt::AlignVCenter);
+    metrics_->setItem(row, column, item);
+  };
+  const QString none = QStringLiteral("-");
+  if (!result_) {
+    for (int row = 0; row < kMetricRowCount; ++row)
+      for (int column : {kRawColumn, kCleanedColumn}) put(row, column, none);
+    warnings_label_->clear();
+    warnings_label_->setToolTip(QString());
+    return;
+  }
+  const ClipMetrics& raw = result_->raw_metrics;
+  const ClipMetrics& cleaned = result_->cleaned_metrics;
+  put(kSkateRow, kRawColumn, cm(raw.foot_skate_cm_s));
+  put(kSkateRow, kCleanedColumn, cm(cleaned.foot_skate_cm_s));
+  put(kPenetrationRow, kRawColumn, cm(raw.penetration_max_cm));
+  put(kPenetrationRow, kCleanedColumn, cm(cleaned.penetration_max_cm));
+  put(kBoneErrorRow, kRawColumn, cm(raw.bone_error_mean_cm));
+  put(kBoneErrorRow, kCleanedColumn, cm(cleaned.bone_error_mean_cm, 4));
+  // The raw output IS the target of the clean-up: its residual is zero by definition.
+  put(kResidualRow, kRawColumn, raw.has_residual ? cm(raw.residual_mean_cm) : QStringLiteral("0 (target)"));
+  put(kResidualRow, kCleanedColumn, cleaned.has_residual ? cm(cleaned.residual_mean_cm) : none);
+  // A few lines in the panel, all of them in the tooltip: a long list would push the table away.
+  constexpr qsizetype kShownWarnings = 3;
+  QStringList warnings;
+  for (const std::string& warning : result_->report.warnings) warnings << QString::fromStdString(warning);
+  QStringList shown = warnings.mid(0, kShownWarnings);
+  if (warnings.size() > kShownWarnings) shown << tr("... and %1 more (hover to see them)").arg(warnings.size() - kShownWarnings);
+  warnings_label_->setText(shown.join(QStringLiteral("\n")));
+  warnings_label_->setToolTip(warnings.join(QStringLiteral("\n")));
+}
+
+std::vector<FigureData> ResultPanel::resultFigures(bool include_raw) const {
+  std::vector<FigureData> figures;
+  if (!result_ || !content_) return figures;
+  const double fps = content_->fps();
+  const DisplaySpace& space = content_->display_space;
+  const Motion& cleaned = result_->cleaned;
+  std::vector<int> parents;
+  for (const Joint& joint : cleaned.skeleton.joints) parents.push_back(joint.parent);
+  const QString name = tr("%1 (%2)").arg(content_->name, network_name_);
+  FigureData output = figureFromPositions(name, FigureRole::Output, parents, space.toDisplay(worldPositions(cleaned)));
+  const Eigen::MatrixXi contacts = labelsAtRate(result_->contacts, result_->stylized.fps, fps);
+  const auto joints = contactJoints(*content_->mapping);
+  output.contact_joints.assign(joints.begin(), joints.end());
+  output.contacts.assign(static_cast<size_t>(output.frame_count) * joints.size(), 0);
+  for (int f = 0; f < output.frame_count && f < contacts.rows(); ++f)
+    for (size_t k = 0; k < joints.size(); ++k)
+      output.contacts[static_cast<size_t>(f) * joints.size() + k] =
+          static_cast<std::uint8_t>(contacts(f, static_cast<Eigen::Index>(k)) != 0);
+  figures.push_back(std::move(output));
+  if (include_raw) {
+    const Eigen::MatrixXd raw = rowsAtRate(result_->stylized.world_positions, result_->stylized.fps, fps);
+    const std::vector<int> canonical_parents(kCanonicalParent.begin(), kCanonicalParent.end());
+    FigureData raw_figure = figureFromPositions(tr("%1 raw").arg(name), FigureRole::RawOutput, canonical_parents,
+                                                space.toDisplay(raw));
+    // The raw output is judged by the content's contacts (what the network was asked to respect).
+    const Eigen::MatrixXi raw_contacts = labelsAtRate(
+        (result_->stylized.contacts.transpose().array() > 0.5).cast<int>().matrix(), result_->stylized.fps, fps);
+    const auto raw_joints = canonicalContactJoints();
+    raw_figure.contact_joints.assign(raw_joints.begin(), raw_joints.end());
+    raw_figure.contacts.assign(static_cast<size_t>(raw_figure.frame_count) * raw_joints.size(), 0);
+    for (int f = 0; f < raw_figure.frame_count && f < raw_contacts.rows(); ++f)
+      for (size_t k = 0; k < raw_joints.size(); ++k)
+        raw_figure.contacts[static_cast<size_t>(f) * raw_joints.size() + k] =
+            static_cast<std::uint8_t>(raw_contacts(f, static_cast<Eigen::Index>(k)) != 0);
+    figures.push_back(std::move(raw_figure));
+  }
+  return figures;
+}
+
+std::vector<float> ResultPanel::skateTrack() const {
+  if (!result_ || !content_) return {};
+  const std::vector<double>& track = result_->cleaned_metrics.skate_track_cm_s;
+  Eigen::MatrixXd rows(static_cast<Eigen::Index>(track.size()), 1);
+  for (size_t i = 0; i < track.size(); ++i) rows(static_cast<Eigen::Index>(i), 0) = track[i];
+  const Eigen::MatrixXd at_rate = rowsAtRate(rows, result_->stylized.fps, content_->fps());
+  std::vector<float> values(static_cast<size_t>(at_rate.rows()));
+  for (Eigen::Index i = 0; i < at_rate.rows(); ++i) values[static_cast<size_t>(i)] = static_cast<float>(at_rate(i, 0));
+  return values;
+}
+
+bool ResultPanel::exportResult(const QString& file, bool overwrite) {
+  const QString title = tr("Could not export the clip");
+  if (!result_) {
+    report(title, tr("There is no result to export yet: Stylize first."));
+    return false;
+  }
+  if (QFileInfo::exists(file) && !overwrite) {
+    report(title, tr("%1 already exists; it was not overwritten.").arg(file));
+    return false;
+  }
+  try {
+    writeBvh(result_->cleaned, file.toStdString());
+  } catch (const std::exception& error) {
+    report(title, QString::fromStdString(error.what()));
+    return false;
+  }
+  last_export_folder_ = QFileInfo(file).absolutePath();
+  emit statusMessage(tr("Exported %1").arg(file));
+  return true;
+}
+
+void ResultPanel::browseExport() {
+  if (!result_ || !content_) return;
+  const QString folder = last_export_folder_.isEmpty() ? QFileInfo(content_->path).absolutePath() : last_export_folder_;
+  const QString suggestion = QFileInfo(content_->path).completeBaseName() + QLatin1Char('_') +
+                             (network_name_.isEmpty() ? QStringLiteral("styled") : network_name_) + QStringLiteral(".bvh");
+  // QFileDialog asks before replacing an existing file, so the choice to overwrite is the user's.
+  const QString file = QFileDialog::getSaveFileName(this, tr("Export the cleaned clip"), QDir(folder).filePath(suggestion),
+                                                    tr("BVH motion (*.bvh)"));
+  if (!file.isEmpty()) exportResult(file, /*overwrite=*/true);
+}
+
+}  // namespace motionstyle

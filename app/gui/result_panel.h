@@ -1,0 +1,135 @@
+#pragma once
+// ResultPanel: the "Result" dock. The user's loop is: pick a style network (File > Open Network, or
+// the Networks panel), set the strength, Stylize, look, Export.
+//   - Stylize runs the network on the content clip and the Ceres IK clean-up onto the content's own
+//     skeleton in a worker QThread (cleanup_worker.h): the UI never waits; Cancel drops the job.
+//   - The metrics table shows foot skate, floor penetration, bone error and residual of the raw
+//     network output (before) and of the cleaned clip (after), in cm and cm/s.
+//   - Export writes the cleaned clip as BVH on the content's skeleton, atomically (bvh_writer.h), and
+//     never overwrites silently (the save dialog asks; exportResult() refuses unless told to).
+// The panel owns no clip: MainWindow hands it a copy of the content clip, the user's contact overrides
+// and the network, and rebuilds its figures and tracks on resultChanged().
+
+#include <QString>
+#include <QThread>
+#include <QWidget>
+
+#include <Eigen/Core>
+
+#include <atomic>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "cleanup_worker.h"
+#include "clip_loader.h"
+#include "figure_data.h"
+#include "nn/network_file.h"
+
+class QLabel;
+class QProgressBar;
+class QPushButton;
+class QSlider;
+class QTableWidget;
+
+namespace motionstyle {
+
+class ResultPanel : public QWidget {
+  Q_OBJECT
+
+ public:
+  using ErrorReporter = std::function<void(const QString& title, const QString& message)>;
+  enum MetricRow { kSkateRow, kPenetrationRow, kBoneErrorRow, kResidualRow, kMetricRowCount };
+  enum MetricColumn { kRawColumn, kCleanedColumn };
+
+  explicit ResultPanel(QWidget* parent = nullptr);
+  ~ResultPanel() override;  // cancels the job, stops the worker thread and waits for it
+
+  void setErrorReporter(ErrorReporter reporter) { reporter_ = std::move(reporter); }
+
+  // The network used by Stylize (nullptr: none). `name` is shown and names exports ("elderly").
+  void setStyleNetwork(std::shared_ptr<const nn::StyleModel> model, const QString& name = {});
+  // Loads a style network file (checked against this build's representation). false + report on error.
+  bool loadNetworkFile(const QString& file);
+  bool hasNetwork() const { return stylizer_ != nullptr; }
+  QString networkName() const { return network_name_; }
+
+  // The clip to stylize (a copy is kept), nullptr for none. The result is dropped when the clip's id
+  // changes (another clip, or the same clip re-mapped); the same id again is a no-op.
+  void setContentClip(const LoadedClip* clip);
+  // The user's contact overrides at the content's rate (frames x 4, -1/0/1): used by the next clean-up.
+  void setContactOverrides(const Eigen::MatrixXi& overrides);
+  // An already stylized clip of the current content (the optimisation method's output): cleaned up
+  // now, and again by the next Stylize instead of running a network.
+  void setStylizedClip(style::StylizedClip clip, const QString& label);
+
+  double strength() const;  // in [0, 1]: 0 = the content, 1 = fully styled
+  void setStrength(double strength);
+  bool isBusy() const { return busy_; }
+  const CleanupResult* result() const { return result_.get(); }
+  QTableWidget* metricsTable() const { return metrics_; }
+
+  // The result's figures at the content's rate, in the content's display space: the cleaned output
+  // (blue) with its contacts, then, when `include_raw`, the raw network output (grey). Empty without a
+  // result.
+  std::vector<FigureData> resultFigures(bool include_raw) const;
+  // Per-frame foot skate of the cleaned output (cm/s) at the content's rate; empty without a result.
+  std::vector<float> skateTrack() const;
+
+ public slots:
+  void stylize();  // reports when there is no content or network; ignored while busy
+  void cancel();
+  // Writes the cleaned clip to `file` (BVH, content's skeleton and rate). An existing file is replaced
+  // only when `overwrite`; otherwise, as on any failure, false and a report.
+  bool exportResult(const QString& file, bool overwrite);
+  void browseExport();
+  void browseNetwork();
+
+ signals:
+  void resultChanged();           // a new result, or none any more
+  void busyChanged(bool busy);
+  void jobEnded(bool succeeded);  // after finished, failed or cancelled
+  void statusMessage(const QString& message);
+  // Internal: hands a job to the worker thread (queued connection).
+  void jobRequested(std::shared_ptr<const motionstyle::CleanupJob> job, quint64 job_id);
+
+ private:
+  void startJob(std::shared_ptr<CleanupJob> job);
+  void onFinished(std::shared_ptr<const CleanupResult> result, quint64 job_id);
+  void onFailed(const QString& message, quint64 job_id);
+  void onCancelled(quint64 job_id);
+  void setBusy(bool busy, const QString& status);
+  void clearResult();
+  void refreshMetrics();
+  void refreshControls();
+  void report(const QString& title, const QString& message);
+
+  ErrorReporter reporter_;
+  std::shared_ptr<const style::Stylizer> stylizer_;
+  QString network_name_;
+  std::shared_ptr<const LoadedClip> content_;
+  Eigen::MatrixXi overrides_;
+  std::optional<style::StylizedClip> given_stylized_;
+  std::shared_ptr<const CleanupResult> result_;
+  QString last_export_folder_;
+
+  QThread thread_;
+  std::shared_ptr<std::atomic<bool>> cancel_;
+  quint64 job_id_ = 0;
+  bool busy_ = false;
+
+  QLabel* network_label_ = nullptr;
+  QLabel* content_label_ = nullptr;
+  QSlider* strength_slider_ = nullptr;
+  QLabel* strength_label_ = nullptr;
+  QPushButton* stylize_button_ = nullptr;
+  QPushButton* cancel_button_ = nullptr;
+  QProgressBar* progress_ = nullptr;
+  QLabel* status_label_ = nullptr;
+  QTableWidget* metrics_ = nullptr;
+  QLabel* warnings_label_ = nullptr;
+  QPushButton* export_button_ = nullptr;
+};
+
+}  // namespace motionstyle

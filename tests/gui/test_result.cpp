@@ -1,0 +1,450 @@
+// The Result panel in the real main window: a tiny style network made here (random weights, fixture
+// statistics) stylizes the CMU fixture, the IK clean-up runs in the worker thread, the metrics table
+// fills, the output figures appear, and the export round-trips through the BVH reader. Bad input
+// first: corrupt clips and networks, nothing to stylize or export, an existing export target.
+#include <QFile>
+#include <QPushButton>
+#include <QSettings>
+#include <QSignalSpy>
+#include <QTableWidget>
+#include <QTemporaryDir>
+#include <QTreeWidget>
+
+#include <cmath>
+#include <filesystem>
+
+#include "bvh/bvh_reader.h"
+#include "bvh/bvh_writer.h"
+#include "common/resource_paths.h"
+#include "contact_tracks.h"
+#include "demo_scene.h"
+#include "features/feature_statistics.h"
+#include "gui_test_support.h"
+#include "ik/contact_file.h"
+#include "main_window.h"
+#include "mapping/mapping_file.h"
+#include "motion/kinematics.h"
+#include "nn/network_file.h"
+#include "result_panel.h"
+#include "style/motion_dataset.h"
+#include "style/training.h"
+#include "timeline_widget.h"
+#include "track_view.h"
+
+using namespace motionstyle;
+
+namespace {
+
+struct Report {
+  QString title;
+  QString message;
+};
+
+// Generous: a guard against a hang, not a speed test (software GL, two shared cores).
+constexpr int kJobTimeoutMs = 120000;
+
+// An untrained but valid tiny style network (16 hidden units, width 5) with the fixtures' statistics.
+std::filesystem::path writeTinyNetwork(const QTemporaryDir& dir) {
+  std::vector<Eigen::MatrixXd> values;
+  for (const char* name : {"cmu_131_01.bvh", "zombie.bvh"})
+    values.push_back(style::loadMotionClip(test::fixture(QString::fromLatin1(name)).toStdString()).features.values);
+  nn::StyleModel model{nn::Transformer<float>({kFeatureCount, 8, 5, true}), nn::Autoencoder<float>({kFeatureCount, 16, 5}),
+                       style::toNormalisation(computeFeatureStatistics(values)), {}};
+  model.transformer.initialise(5);
+  model.loss_network.initialise(3);
+  model.metadata.representation = style::currentRepresentation();
+  const std::filesystem::path file = dir.filePath(QStringLiteral("tiny_style.net")).toStdString();
+  nn::saveStyleModel(model, file);
+  return file;
+}
+
+QString copyInto(const QTemporaryDir& dir, const QString& source, const QString& name) {
+  const QString target = dir.filePath(name);
+  QFile::remove(target);
+  return QFile::copy(source, target) ? target : QString();
+}
+
+double cellValue(const QTableWidget* table, int row, int column) {
+  bool ok = false;
+  const double value = table->item(row, column)->text().toDouble(&ok);
+  return ok ? value : std::nan("");
+}
+
+// <build>/screenshots/<name>.png (the folder is created).
+QString screenshotPath(const QString& name) {
+  QDir dir(QStringLiteral(MOTIONSTYLE_SCREENSHOT_DIR));
+  dir.mkpath(QStringLiteral("."));
+  return dir.filePath(name + QStringLiteral(".png"));
+}
+
+// Waits until `ended` has seen `jobs` jobs end (a hang guard, not a timing).
+bool waitForJobs(QSignalSpy& ended, int jobs = 1) {
+  return QTest::qWaitFor([&] { return ended.count() >= jobs; }, kJobTimeoutMs);
+}
+
+}  // namespace
+
+class ResultTest : public QObject {
+  Q_OBJECT
+
+  QTemporaryDir settings_dir_;
+  QTemporaryDir scratch_;
+  std::filesystem::path network_;
+
+ private slots:
+  void initTestCase() {
+    QVERIFY(settings_dir_.isValid() && scratch_.isValid());
+    QSettings::setPath(QSettings::NativeFormat, QSettings::UserScope, settings_dir_.path());
+    QSettings::setPath(QSettings::IniFormat, QSettings::UserScope, settings_dir_.path());
+    QCoreApplication::setOrganizationName(QStringLiteral("MotionStyleTests"));
+    QCoreApplication::setApplicationName(QStringLiteral("test_gui_result"));
+    network_ = writeTinyNetwork(scratch_);
+  }
+
+  void corruptInputsGiveErrorDialogsNotCrashes() {
+    MainWindow window(/*persist_settings=*/false);
+    std::vector<Report> reports;
+    window.setErrorReporter([&](const QString& title, const QString& message) { reports.push_back({title, message}); });
+    ResultPanel* panel = window.resultPanel();
+
+    // Nothing to stylize or export yet.
+    panel->stylize();
+    QCOMPARE(reports.size(), size_t{1});
+    QVERIFY(!panel->exportResult(scratch_.filePath(QStringLiteral("never.bvh")), true));
+    QCOMPARE(reports.size(), size_t{2});
+    QVERIFY(!QFile::exists(scratch_.filePath(QStringLiteral("never.bvh"))));
+
+    // A truncated BVH (hierarchy cut off mid-joint).
+    QFile corrupt(scratch_.filePath(QStringLiteral("corrupt.bvh")));
+    QVERIFY(corrupt.open(QIODevice::WriteOnly));
+    corrupt.write("HIERARCHY\nROOT Hips\n{\n  OFFSET 0 0 0\n  CHANNELS 6 Xposition Yposition");
+    corrupt.close();
+    QCOMPARE(window.openFiles({corrupt.fileName()}), 0);
+    QCOMPARE(reports.size(), size_t{3});
+    QVERIFY2(reports.back().message.contains(QStringLiteral("corrupt.bvh")), qPrintable(reports.back().message));
+
+    // A corrupt network: a real one with its middle overwritten.
+    QFile bytes(QString::fromStdString(network_.string()));
+    QVERIFY(bytes.open(QIODevice::ReadOnly));
+    QByteArray data = bytes.readAll();
+    data.replace(data.size() / 2, 64, QByteArray(64, '\x5a'));
+    QFile damaged(scratch_.filePath(QStringLiteral("damaged.net")));
+    QVERIFY(damaged.open(QIODevice::WriteOnly));
+    damaged.write(data);
+    damaged.close();
+    QVERIFY(!panel->loadNetworkFile(damaged.fileName()));
+    QCOMPARE(reports.size(), size_t{4});
+    QVERIFY2(reports.back().message.contains(QStringLiteral("damaged.net")), qPrintable(reports.back().message));
+    QVERIFY(!panel->hasNetwork());
+
+    // Still usable: a good clip loads after all that.
+    QCOMPARE(window.openFiles({test::fixture(QStringLiteral("cmu_131_01.bvh"))}), 1);
+    QCOMPARE(reports.size(), size_t{4});
+  }
+
+  void clipsOfDifferentRatesPlayInSyncAndShowTheirMapping() {
+    MainWindow window(false);
+    window.setErrorReporter([](const QString& title, const QString& message) { QFAIL(qPrintable(title + message)); });
+    // CMU fixture: 720 frames at 120 fps; zombie: 300 frames at 30 fps, Z-up in a small unit.
+    QCOMPARE(window.openFiles({test::fixture(QStringLiteral("cmu_131_01.bvh")), test::fixture(QStringLiteral("zombie.bvh"))}), 2);
+    QCOMPARE(window.contentClip(), 0);
+    QCOMPARE(window.styleClip(), 1);
+    for (int i = 0; i < 2; ++i) {
+      const QString status = window.clipList()->topLevelItem(i)->text(5);
+      QVERIFY2(!status.startsWith(QStringLiteral("unmapped")), qPrintable(status));
+    }
+    QVERIFY(window.clipList()->topLevelItem(1)->text(5).contains(QStringLiteral("+Z up")));
+    // The style is shown at the content's 120 fps: 10 s of it span (300 - 1) * 4 + 1 frames.
+    QCOMPARE(window.viewport()->figure(1).frame_count, 299 * 4 + 1);
+    QCOMPARE(window.timeline()->frameRate(), window.clip(0).fps());
+    // Display space: centimetres, Y-up, floor at 0: both characters are person-sized and stand on it.
+    for (int i = 0; i < 2; ++i) {
+      const FigureData& figure = window.viewport()->figure(i);
+      double low = 1e9;
+      double high = -1e9;
+      for (int j = 0; j < figure.jointCount(); ++j) {
+        low = std::min(low, figure.y(0, j));
+        high = std::max(high, figure.y(0, j));
+      }
+      QVERIFY2(std::abs(low) < 10.0, qPrintable(QString::number(low)));
+      QVERIFY2(high > 80.0 && high < 250.0, qPrintable(QString::number(high)));
+    }
+    // The detected contacts of the content fill the foot tracks.
+    const std::vector<bool>& left = window.timeline()->trackView()->boolValues(ContactTrackController::kLeftFootTrack);
+    QVERIFY(std::count(left.begin(), left.end(), true) > 20);
+    QVERIFY(std::count(left.begin(), left.begin() + 720, false) > 20);
+  }
+
+  void unmappableRigIsFlaggedAndAMappingFileFixesIt() {
+    // The CMU fixture with every joint renamed: no alias matches any more.
+    Motion motion = readBvh(test::fixture(QStringLiteral("cmu_131_01.bvh")).toStdString());
+    const JointMapping original = mapJoints(motion.skeleton);
+    int n = 0;
+    for (Joint& joint : motion.skeleton.joints)
+      if (!joint.end_site) joint.name = "bone" + std::to_string(n++);
+    const std::filesystem::path renamed = scratch_.filePath(QStringLiteral("renamed.bvh")).toStdString();
+    writeBvh(motion, renamed);
+    const Skeleton reread = readBvh(renamed).skeleton;
+    const std::filesystem::path mapping = scratch_.filePath(QStringLiteral("renamed.json")).toStdString();
+    saveJointMapping(original, reread, mapping);
+
+    MainWindow window(false);
+    std::vector<Report> reports;
+    window.setErrorReporter([&](const QString& title, const QString& message) { reports.push_back({title, message}); });
+    QCOMPARE(window.openFiles({QString::fromStdString(renamed.string())}), 1);
+    QVERIFY(!window.clip(0).isMapped());
+    QVERIFY2(window.clipList()->topLevelItem(0)->text(5).startsWith(QStringLiteral("unmapped: missing")),
+             qPrintable(window.clipList()->topLevelItem(0)->text(5)));
+    // Stylizing an unmapped clip explains itself.
+    QVERIFY(window.resultPanel()->loadNetworkFile(QString::fromStdString(network_.string())));
+    window.resultPanel()->stylize();
+    QCOMPARE(reports.size(), size_t{1});
+    QVERIFY(reports[0].message.contains(QStringLiteral("mapping")));
+
+    // A mapping file for another rig is refused; the right one maps the clip.
+    const std::filesystem::path foreign = scratch_.filePath(QStringLiteral("foreign.json")).toStdString();
+    saveJointMapping(original, readBvh(test::fixture(QStringLiteral("cmu_131_01.bvh")).toStdString()).skeleton, foreign);
+    QVERIFY(!window.loadMappingFile(0, QString::fromStdString(foreign.string())));
+    QCOMPARE(reports.size(), size_t{2});
+    QVERIFY(!window.clip(0).isMapped());
+    QVERIFY(window.loadMappingFile(0, QString::fromStdString(mapping.string())));
+    QVERIFY(window.clip(0).isMapped());
+    QVERIFY2(window.clipList()->topLevelItem(0)->text(5).startsWith(QStringLiteral("file:")),
+             qPrintable(window.clipList()->topLevelItem(0)->text(5)));
+    QCOMPARE(reports.size(), size_t{2});
+  }
+
+  void stylizeCleanUpShowAndExport() {
+    MainWindow window(false);
+    std::vector<Report> reports;
+    window.setErrorReporter([&](const QString& title, const QString& message) { reports.push_back({title, message}); });
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    const QString content_file = test::fixture(QStringLiteral("cmu_131_01.bvh"));
+    QCOMPARE(window.openFiles({content_file, test::fixture(QStringLiteral("zombie.bvh"))}), 2);
+    ResultPanel* panel = window.resultPanel();
+    QVERIFY(panel->loadNetworkFile(QString::fromStdString(network_.string())));
+    QCOMPARE(panel->networkName(), QStringLiteral("tiny_style"));
+
+    auto* button = panel->findChild<QPushButton*>(QStringLiteral("StylizeButton"));
+    QVERIFY(button != nullptr && button->isEnabled());
+    QSignalSpy ended(panel, &ResultPanel::jobEnded);
+    QTest::mouseClick(button, Qt::LeftButton);
+    QVERIFY(panel->isBusy());  // the click returned while the worker runs
+    QVERIFY(waitForJobs(ended));
+    QCOMPARE(ended.count(), 1);
+    QVERIFY2(ended.at(0).at(0).toBool(), reports.empty() ? "" : qPrintable(reports.back().message));
+    QVERIFY(reports.empty());
+    const CleanupResult* result = panel->result();
+    QVERIFY(result != nullptr);
+
+    // Metrics: both columns filled; the cleaned clip's bones are exact, its feet stay put.
+    const QTableWidget* metrics = panel->metricsTable();
+    for (int row = ResultPanel::kSkateRow; row <= ResultPanel::kBoneErrorRow; ++row)
+      for (int column : {ResultPanel::kRawColumn, ResultPanel::kCleanedColumn})
+        QVERIFY2(std::isfinite(cellValue(metrics, row, column)), qPrintable(metrics->item(row, column)->text()));
+    QCOMPARE(cellValue(metrics, ResultPanel::kSkateRow, ResultPanel::kCleanedColumn),
+             std::round(result->cleaned_metrics.foot_skate_cm_s * 100.0) / 100.0);
+    QVERIFY(cellValue(metrics, ResultPanel::kBoneErrorRow, ResultPanel::kCleanedColumn) < 1e-3);
+    QVERIFY(result->cleaned_metrics.foot_skate_cm_s < 0.5);
+    QVERIFY(result->cleaned_metrics.penetration_max_cm < 0.5);
+    QVERIFY(std::isfinite(cellValue(metrics, ResultPanel::kResidualRow, ResultPanel::kCleanedColumn)));
+    qInfo("metrics raw -> cleaned: skate %.2f -> %.2f cm/s, penetration %.2f -> %.2f cm, bone %.3f -> %.1e cm, "
+          "residual %.2f cm, %.2f s",
+          result->raw_metrics.foot_skate_cm_s, result->cleaned_metrics.foot_skate_cm_s,
+          result->raw_metrics.penetration_max_cm, result->cleaned_metrics.penetration_max_cm,
+          result->raw_metrics.bone_error_mean_cm, result->cleaned_metrics.bone_error_mean_cm,
+          result->cleaned_metrics.residual_mean_cm, result->seconds);
+
+    // Figures: content, style, the cleaned output (blue); the raw output (grey) at a toggle.
+    QCOMPARE(window.viewport()->figureCount(), 3);
+    QVERIFY(window.viewport()->figure(2).role == FigureRole::Output);
+    QCOMPARE(window.viewport()->figure(2).frame_count, window.clip(0).frameCount());
+    QVERIFY(!window.viewport()->figure(2).contacts.empty());
+    window.setRawOutputVisible(true);
+    QCOMPARE(window.viewport()->figureCount(), 4);
+    QVERIFY(window.viewport()->figure(3).role == FigureRole::RawOutput);
+    QCOMPARE(window.viewport()->figure(3).jointCount(), kCanonicalJointCount);
+    window.timeline()->setFrame(300);
+    QTest::qWait(50);
+    QVERIFY(window.saveScreenshot(screenshotPath(QStringLiteral("with_result"))));
+    window.setRawOutputVisible(false);
+    QCOMPARE(window.viewport()->figureCount(), 3);
+
+    // Export, then read it back: the content's skeleton and timing, finite values.
+    const QString exported = scratch_.filePath(QStringLiteral("styled.bvh"));
+    QVERIFY(panel->exportResult(exported, /*overwrite=*/false));
+    const Motion content = readBvh(content_file.toStdString());
+    const Motion out = readBvh(exported.toStdString());
+    QCOMPARE(out.skeleton.jointCount(), content.skeleton.jointCount());
+    for (int j = 0; j < content.skeleton.jointCount(); ++j) {
+      const Joint& a = content.skeleton.joints[static_cast<size_t>(j)];
+      const Joint& b = out.skeleton.joints[static_cast<size_t>(j)];
+      QVERIFY(b.name == a.name);
+      QCOMPARE(b.parent, a.parent);
+      QCOMPARE(b.end_site, a.end_site);
+      QVERIFY((b.offset - a.offset).norm() < 1e-4);
+      QVERIFY(b.channels == a.channels);
+    }
+    QCOMPARE(out.frameCount(), content.frameCount());
+    QVERIFY(std::abs(out.frame_time - content.frame_time) < 1e-6);
+    QVERIFY(out.values.allFinite());
+    QVERIFY((out.values - content.values).cwiseAbs().maxCoeff() > 1e-3);  // it is not the content again
+
+    // An existing file is not overwritten without the flag; with it, it is.
+    QFile::resize(exported, 10);
+    QVERIFY(!panel->exportResult(exported, /*overwrite=*/false));
+    QCOMPARE(reports.size(), size_t{1});
+    QVERIFY(reports[0].message.contains(QStringLiteral("already exists")));
+    QCOMPARE(QFileInfo(exported).size(), qint64{10});
+    QVERIFY(panel->exportResult(exported, /*overwrite=*/true));
+    QCOMPARE(readBvh(exported.toStdString()).frameCount(), content.frameCount());
+  }
+
+  void contactEditsReachTheCleanUpAndSurviveBesideTheClip() {
+    // A copy, so that the contact file lands in the temp dir, not beside the fixture.
+    const QString clip = copyInto(scratch_, test::fixture(QStringLiteral("cmu_131_01.bvh")), QStringLiteral("walk.bvh"));
+    QVERIFY(!clip.isEmpty());
+    MainWindow window(false);
+    std::vector<Report> reports;
+    window.setErrorReporter([&](const QString& title, const QString& message) { reports.push_back({title, message}); });
+    QCOMPARE(window.openFiles({clip}), 1);
+    ResultPanel* panel = window.resultPanel();
+    QVERIFY(panel->loadNetworkFile(QString::fromStdString(network_.string())));
+    ContactTrackController* contacts = window.contactTracks();
+
+    // Paint the left foot off over the whole clip (as a drag over its track would).
+    const int frames = window.clip(0).frameCount();
+    QSignalSpy changed(contacts, &ContactTrackController::overridesChanged);
+    emit window.timeline()->trackView()->trackEdited(ContactTrackController::kLeftFootTrack, 0, frames - 1, false);
+    QCOMPARE(changed.count(), 1);
+    const std::vector<bool>& left = window.timeline()->trackView()->boolValues(ContactTrackController::kLeftFootTrack);
+    QVERIFY(std::count(left.begin(), left.end(), true) == 0);
+    QVERIFY((window.clip(0).effectiveContacts().col(0).array() == 0).all());
+
+    QSignalSpy ended(panel, &ResultPanel::jobEnded);
+    panel->stylize();
+    QVERIFY(waitForJobs(ended));
+    QVERIFY(panel->result() != nullptr);
+    const Eigen::MatrixXi& locked = panel->result()->contacts;
+    QCOMPARE(locked.col(0).sum() + locked.col(1).sum(), 0);  // the left foot was never locked
+    QVERIFY(locked.col(2).sum() + locked.col(3).sum() > 0);  // the right one was
+
+    // Saved beside the clip, reset, and loaded back.
+    QVERIFY(contacts->saveTracks());
+    QVERIFY(QFile::exists(clip + QStringLiteral(".contacts.json")));
+    contacts->resetOverrides();
+    QVERIFY((window.clip(0).effectiveContacts().col(0).array() != 0).any());
+    QVERIFY(contacts->loadTracks());
+    QVERIFY((window.clip(0).effectiveContacts().col(0).array() == 0).all());
+    QVERIFY(reports.empty());
+
+    // A damaged contact file is reported, and the edits stay as they were.
+    QFile damaged(clip + QStringLiteral(".contacts.json"));
+    QVERIFY(damaged.open(QIODevice::WriteOnly | QIODevice::Truncate));
+    damaged.write("{\"format\": \"motionstyle-contacts\", \"version\": 1, \"fps\": ");
+    damaged.close();
+    contacts->resetOverrides();
+    QVERIFY(!contacts->loadTracks());
+    QCOMPARE(reports.size(), size_t{1});
+    QVERIFY((window.clip(0).contact_overrides.array() == -1).all());
+  }
+
+  void strengthZeroKeepsTheContentAndAStylizedClipIsCleanedAsGiven() {
+    MainWindow window(false);
+    window.setErrorReporter([](const QString& title, const QString& message) { QFAIL(qPrintable(title + message)); });
+    const QString content_file = test::fixture(QStringLiteral("cmu_131_01.bvh"));
+    QCOMPARE(window.openFiles({content_file}), 1);
+    ResultPanel* panel = window.resultPanel();
+    QVERIFY(panel->loadNetworkFile(QString::fromStdString(network_.string())));
+    panel->setStrength(0.0);
+    QCOMPARE(panel->strength(), 0.0);
+    QSignalSpy ended(panel, &ResultPanel::jobEnded);
+    panel->stylize();
+    QVERIFY(waitForJobs(ended));
+    QVERIFY(panel->result() != nullptr);
+    // Strength 0 is the content itself: the clean-up hands back nearly the same clip (issue 4: a clean
+    // real clip changes by at most 1 cm on average).
+    const Motion& content = window.clip(0).motion;
+    const Eigen::MatrixXd before = worldPositions(content);
+    const Eigen::MatrixXd after = worldPositions(panel->result()->cleaned);
+    QCOMPARE(after.rows(), before.rows());
+    double change = 0.0;
+    for (Eigen::Index f = 0; f < before.rows(); ++f)
+      for (Eigen::Index j = 0; j < before.cols() / 3; ++j)
+        change += (after.row(f).segment<3>(3 * j) - before.row(f).segment<3>(3 * j)).norm();
+    change *= window.clip(0).display_space.convention.cm_per_unit / double(before.rows() * (before.cols() / 3));
+    qInfo("strength 0: mean joint change %.3f cm", change);
+    QVERIFY(change < 1.0);
+
+    // A clip stylized elsewhere (the optimisation method's output) is cleaned up as it is.
+    const MotionFeatures features = extractFeatures(content, *window.clip(0).mapping);
+    const style::Stylizer stylizer(nn::loadStyleModel(network_));
+    style::StylizedClip half = stylizer.stylize(features, 0.5);
+    const Eigen::MatrixXd targets = half.world_positions;
+    panel->setStylizedClip(std::move(half), QStringLiteral("optimised"));
+    QVERIFY(panel->isBusy());
+    QVERIFY(waitForJobs(ended, 2));
+    QVERIFY(panel->result() != nullptr);
+    QCOMPARE(panel->networkName(), QStringLiteral("optimised"));
+    QVERIFY(panel->result()->stylized.world_positions == targets);
+  }
+
+  void cancelDropsTheJobAndClosingStaysClean() {
+    MainWindow window(false);
+    window.setErrorReporter([](const QString& title, const QString& message) { QFAIL(qPrintable(title + message)); });
+    QCOMPARE(window.openFiles({test::fixture(QStringLiteral("cmu_131_01.bvh"))}), 1);
+    ResultPanel* panel = window.resultPanel();
+    QVERIFY(panel->loadNetworkFile(QString::fromStdString(network_.string())));
+    QSignalSpy ended(panel, &ResultPanel::jobEnded);
+    QSignalSpy changed(panel, &ResultPanel::resultChanged);
+    panel->stylize();
+    QVERIFY(panel->isBusy());
+    panel->cancel();
+    QVERIFY(!panel->isBusy());
+    QCOMPARE(ended.count(), 1);
+    QVERIFY(!ended.at(0).at(0).toBool());
+    QTest::qWait(200);  // a late answer from the worker must not resurrect the job
+    QVERIFY(panel->result() == nullptr);
+    QCOMPARE(changed.count(), 0);
+    // A second job starts at once, and the window is destroyed while it may still run.
+    panel->stylize();
+    QVERIFY(panel->isBusy());
+  }
+
+  void demoLoadsTheSamplesAndTheBundledNetworkWhenPresent() {
+    const auto resources = resourceDirectory();
+    if (!resources) QSKIP("no resources directory next to this build");
+    MainWindow window(false);
+    std::vector<Report> reports;
+    window.setErrorReporter([&](const QString& title, const QString& message) { reports.push_back({title, message}); });
+    const DemoOutcome outcome = openDemo(window, *window.resultPanel());
+    QVERIFY2(outcome.clips_loaded, qPrintable(outcome.message));
+    QCOMPARE(window.clipCount(), 2);
+    QCOMPARE(window.clip(window.contentClip()).name, QStringLiteral("cmu_131_01_walk.bvh"));
+    QCOMPARE(window.clip(window.styleClip()).name, QStringLiteral("zombie_walk.bvh"));
+    const bool bundled = shippedNetworkFile(*resources, kDemoNetwork).has_value();
+    QCOMPARE(outcome.network_loaded, bundled);
+    QCOMPARE(window.resultPanel()->hasNetwork(), bundled);
+    QVERIFY(!outcome.message.isEmpty());
+    QVERIFY(reports.empty());
+    if (!bundled) return;
+    // One click gives a result with the shipped network.
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    QSignalSpy ended(window.resultPanel(), &ResultPanel::jobEnded);
+    QTest::mouseClick(window.resultPanel()->findChild<QPushButton*>(QStringLiteral("StylizeButton")), Qt::LeftButton);
+    QVERIFY(waitForJobs(ended));
+    QVERIFY2(window.resultPanel()->result() != nullptr, reports.empty() ? "" : qPrintable(reports.back().message));
+    const ClipMetrics& cleaned = window.resultPanel()->result()->cleaned_metrics;
+    qInfo("demo with the bundled network: skate %.2f -> %.2f cm/s, residual %.2f cm",
+          window.resultPanel()->result()->raw_metrics.foot_skate_cm_s, cleaned.foot_skate_cm_s, cleaned.residual_mean_cm);
+    QVERIFY(cleaned.foot_skate_cm_s < 0.5);
+    window.timeline()->setFrame(200);
+    QTest::qWait(50);
+    QVERIFY(window.saveScreenshot(screenshotPath(QStringLiteral("demo_result"))));
+  }
+};
+
+MOTIONSTYLE_GUI_TEST_MAIN(ResultTest)
+#include "test_result.moc"

@@ -1,0 +1,540 @@
+// The "Style networks" panel in the real MainWindow: training-database role, bad input reported through
+// the ErrorReporter, a short training run with progress, live loss curves and preview, Cancel within the
+// issue's bound with a loadable checkpoint, save (never overwriting silently), Retrain as a warm start,
+// the optimisation method, and closing the window during training.
+//
+// The loss network is a tiny autoencoder trained here on the two fixtures (a fraction of a second); the
+// style networks have 8 hidden units, so each epoch takes milliseconds.
+#include <QCloseEvent>
+#include <QDir>
+#include <QElapsedTimer>
+#include <QFile>
+#include <QProgressBar>
+#include <QPushButton>
+#include <QSignalSpy>
+#include <QTemporaryDir>
+#include <QThread>
+#include <QTreeWidget>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "features/feature_layout.h"
+#include "gui_test_support.h"
+#include "loss_curve_widget.h"
+#include "main_window.h"
+#include "network_panel.h"
+#include "result_panel.h"
+#include "training_worker.h"
+#include "nn/network_file.h"
+#include "style/training.h"
+
+using namespace motionstyle;
+
+namespace {
+
+// The bound is 1 s in the optimised build; AddressSanitizer slows every step several times.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr qint64 kCancelBoundMs = 5000;
+#else
+constexpr qint64 kCancelBoundMs = 1000;
+#endif
+constexpr int kJobTimeoutMs = 60000;
+
+struct Report {
+  QString title;
+  QString message;
+};
+
+QByteArray readAll(const QString& path) {
+  QFile file(path);
+  return file.open(QIODevice::ReadOnly) ? file.readAll() : QByteArray();
+}
+
+bool writeAll(const QString& path, const QByteArray& bytes) {
+  QFile file(path);
+  return file.open(QIODevice::WriteOnly) && file.write(bytes) == bytes.size();
+}
+
+// Largest weight difference between two transformation networks (parameters() is non-const: copies).
+float maxAbsDifference(const nn::StyleModel& a, const nn::StyleModel& b) {
+  float worst = 0.0f;
+  nn::Transformer<float> ta = a.transformer;
+  nn::Transformer<float> tb = b.transformer;
+  const auto pa = ta.parameters();
+  const auto pb = tb.parameters();
+  if (pa.size() != pb.size()) return std::numeric_limits<float>::infinity();
+  for (std::size_t i = 0; i < pa.size(); ++i) {
+    if (pa[i]->value.size() != pb[i]->value.size()) return std::numeric_limits<float>::infinity();
+    worst = std::max(worst, (pa[i]->value - pb[i]->value).cwiseAbs().maxCoeff());
+  }
+  return worst;
+}
+
+}  // namespace
+
+class TrainingTest : public QObject {
+  Q_OBJECT
+
+  QTemporaryDir scratch_;
+  QString autoencoder_;
+  std::vector<Report> reports_;
+
+  QString scratchFile(const QString& name) const { return scratch_.filePath(name); }
+
+  // A window with both fixtures loaded (content cmu_131_01, style zombie), errors collected, and the
+  // Confirmer answering `answer` (recorded in `asked`).
+  std::unique_ptr<MainWindow> makeWindow() {
+    auto window = std::make_unique<MainWindow>(/*persist_settings=*/false);
+    window->setErrorReporter([this](const QString& title, const QString& message) { reports_.push_back({title, message}); });
+    window->resize(1500, 950);
+    window->show();
+    if (!QTest::qWaitForWindowExposed(window.get())) return nullptr;
+    if (window->openFiles({test::fixture(QStringLiteral("cmu_131_01.bvh")), test::fixture(QStringLiteral("zombie.bvh"))}) != 2)
+      return nullptr;
+    return window;
+  }
+
+  static void setTinyForm(NetworkPanel* panel, int epochs, double learning_rate = 1e-3) {
+    NetworkPanel::TrainingForm form = panel->trainingForm();
+    form.epochs = epochs;
+    form.learning_rate = learning_rate;
+    form.hidden_units = 8;
+    panel->setTrainingForm(form);
+  }
+
+ private slots:
+  void initTestCase() {
+    QVERIFY(scratch_.isValid());
+    // The loss network: 16 hidden units, width 5, one epoch on the fixtures.
+    style::AutoencoderTrainingConfig config;
+    config.data = {test::fixture(QStringLiteral("cmu_131_01.bvh")).toStdString(),
+                   test::fixture(QStringLiteral("zombie.bvh")).toStdString()};
+    config.shape = {kFeatureCount, 16, 5};
+    config.settings.epochs = 1;
+    config.settings.batch_size = 8;
+    config.settings.seed = 3;
+    config.settings.windows = {60, 30};
+    autoencoder_ = scratchFile(QStringLiteral("tiny_ae.net"));
+    config.settings.output = autoencoder_.toStdString();
+    const auto result = style::trainAutoencoder(config);
+    QCOMPARE(result.status, style::TrainingStatus::Completed);
+    QVERIFY(QFile::exists(autoencoder_));
+  }
+
+  void init() { reports_.clear(); }
+
+  void lossCurveSkipsWhatALogAxisCannotShowAndPaintsEachTerm() {
+    LossCurveWidget curve;
+    curve.resize(420, 220);
+    curve.addPoint(QStringLiteral("style"), 0.5, std::nan(""));
+    curve.addPoint(QStringLiteral("style"), 0.5, -1.0);
+    curve.addPoint(QStringLiteral("style"), 0.5, 0.0);
+    curve.addPoint(QStringLiteral("style"), std::numeric_limits<double>::infinity(), 1.0);
+    QCOMPARE(curve.skippedPoints(), 4);
+    QCOMPARE(curve.pointCount(QStringLiteral("style")), 0);
+    QVERIFY(!curve.grab().toImage().isNull());  // paints "no values" without dividing by zero
+
+    // A history (nn::LossHistory layout, a short row tolerated): one point per epoch and term.
+    curve.setHistory({QStringLiteral("content"), QStringLiteral("style")}, {{1.0, 1e-3}, {0.5, 5e-4}, {0.25}});
+    QCOMPARE(curve.skippedPoints(), 0);
+    QCOMPARE(curve.pointCount(QStringLiteral("content")), 3);
+    QCOMPARE(curve.pointCount(QStringLiteral("style")), 2);
+    QCOMPARE(curve.terms(), (QStringList{QStringLiteral("content"), QStringLiteral("style")}));
+    // Both curves are drawn in their colours, decades apart on the log axis.
+    const QImage image = curve.grab().toImage();
+    const auto count = [&](QColor colour) {
+      int n = 0;
+      for (int y = 0; y < image.height(); ++y)
+        for (int x = 0; x < image.width(); ++x) {
+          const QColor pixel = image.pixelColor(x, y);
+          n += std::abs(pixel.red() - colour.red()) + std::abs(pixel.green() - colour.green()) +
+                   std::abs(pixel.blue() - colour.blue()) < 40;
+        }
+      return n;
+    };
+    QVERIFY(count(LossCurveWidget::termColor(QStringLiteral("content"))) > 50);
+    QVERIFY(count(LossCurveWidget::termColor(QStringLiteral("style"))) > 50);
+    QVERIFY(LossCurveWidget::termColor(QStringLiteral("content")) != LossCurveWidget::termColor(QStringLiteral("style")));
+  }
+
+  void divergenceComesBackAsAnErrorAndKeepsTheCheckpoint() {
+    // The worker on its own thread: a first run leaves a good checkpoint, a run with an absurd learning
+    // rate diverges (the weights overflow) and reports it instead of finishing; the checkpoint is intact.
+    TrainingJob job;
+    job.config.autoencoder = autoencoder_.toStdString();
+    job.config.content = {test::fixture(QStringLiteral("cmu_131_01.bvh")).toStdString()};
+    job.config.styles = {{std::nullopt, test::fixture(QStringLiteral("zombie.bvh")).toStdString()}};
+    job.config.shape.hidden = 8;
+    job.config.settings.epochs = 1;
+    job.config.settings.batch_size = 1;  // several steps per epoch: the overflow shows within the epoch
+    job.config.settings.checkpoint = scratchFile(QStringLiteral("diverge.checkpoint")).toStdString();
+    const auto run = [](TrainingJob config, QStringList* failures) {
+      auto* worker = new TrainingWorker(std::move(config));
+      QThread thread;
+      worker->moveToThread(&thread);
+      QObject::connect(&thread, &QThread::finished, worker, &QObject::deleteLater);
+      QSignalSpy done(worker, &TrainingWorker::done);
+      QSignalSpy finished(worker, &TrainingWorker::finished);
+      QObject::connect(worker, &TrainingWorker::failed, worker,
+                       [failures](const QString& title, const QString& message) { *failures << title + ": " + message; });
+      thread.start();
+      QMetaObject::invokeMethod(worker, "run", Qt::QueuedConnection);
+      const bool ended = done.wait(kJobTimeoutMs);
+      thread.quit();
+      thread.wait();
+      return ended ? static_cast<int>(finished.count()) : -1;
+    };
+    QStringList failures;
+    QCOMPARE(run(job, &failures), 1);
+    QVERIFY2(failures.isEmpty(), qPrintable(failures.join(QLatin1Char('\n'))));
+    const QByteArray checkpoint = readAll(scratchFile(QStringLiteral("diverge.checkpoint")));
+    QVERIFY(!checkpoint.isEmpty());
+
+    job.config.settings.learning_rate = 1e35;
+    QCOMPARE(run(job, &failures), 0);
+    QCOMPARE(failures.size(), 1);
+    QVERIFY2(failures[0].startsWith(QStringLiteral("Training diverged")), qPrintable(failures[0]));
+    QVERIFY2(failures[0].contains(QStringLiteral("diverge.checkpoint")), qPrintable(failures[0]));  // where to go back to
+    QCOMPARE(readAll(scratchFile(QStringLiteral("diverge.checkpoint"))), checkpoint);
+  }
+
+  void trainingDatabaseRoleIsAssignedAndShown() {
+    auto window = makeWindow();
+    QVERIFY(window);
+    QVERIFY(window->trainingClipPaths().isEmpty());
+    QSignalSpy changed(window.get(), &MainWindow::clipsChanged);
+    window->setTrainingClip(0, true);
+    window->setTrainingClip(1, true);
+    window->setTrainingClip(5, true);  // out of range: ignored
+    QCOMPARE(window->trainingClipPaths().size(), 2);
+    QVERIFY(changed.count() >= 2);
+    QVERIFY2(window->clipList()->topLevelItem(0)->text(1).contains(QStringLiteral("training")),
+             qPrintable(window->clipList()->topLevelItem(0)->text(1)));
+    // Removing a clip keeps the role on the right clips.
+    window->setTrainingClip(0, false);
+    QCOMPARE(window->trainingClipPaths(), QStringList{window->clip(1).path});
+    window->removeClip(0);
+    QCOMPARE(window->trainingClipPaths(), QStringList{window->clip(0).path});
+    QVERIFY(window->isTrainingClip(0));
+    QVERIFY(reports_.empty());
+  }
+
+  void badInputIsReportedAndNothingStarts() {
+    auto window = makeWindow();
+    QVERIFY(window);
+    NetworkPanel* panel = window->networkPanel();
+    QVERIFY(panel != nullptr);
+
+    // No training database yet.
+    QVERIFY(!panel->startTraining(false));
+    QCOMPARE(reports_.size(), std::size_t{1});
+    QVERIFY(reports_.back().title.contains(QStringLiteral("training database"), Qt::CaseInsensitive));
+    // No loss network.
+    window->setTrainingClip(0, true);
+    panel->setLossNetworkFile({});
+    QVERIFY(!panel->startTraining(false));
+    QVERIFY(reports_.back().title.contains(QStringLiteral("loss network"), Qt::CaseInsensitive));
+    // Retrain without a selected network.
+    QVERIFY(!panel->startTraining(true));
+    QVERIFY(reports_.back().title.contains(QStringLiteral("network"), Qt::CaseInsensitive));
+    QVERIFY(!panel->isBusy());
+
+    // A corrupt and a truncated network file: an error dialog naming the file, not a crash.
+    const QString garbage = scratchFile(QStringLiteral("garbage.net"));
+    QVERIFY(writeAll(garbage, QByteArray("MSNETxxxx this is not a network\x01\x02\x03", 36)));
+    QVERIFY(!panel->loadNetworkFile(garbage));
+    QVERIFY2(reports_.back().message.contains(QStringLiteral("garbage.net")), qPrintable(reports_.back().message));
+    const QByteArray ae_bytes = readAll(autoencoder_);
+    const QString truncated = scratchFile(QStringLiteral("truncated.net"));
+    QVERIFY(writeAll(truncated, ae_bytes.left(ae_bytes.size() / 2)));
+    const std::size_t before = reports_.size();
+    QVERIFY(!panel->loadNetworkFile(truncated));
+    QCOMPARE(reports_.size(), before + 1);
+    QVERIFY(reports_.back().message.contains(QStringLiteral("truncated.net")));
+    QCOMPARE(panel->networkCount(), 0);
+
+    // A loss network whose file is corrupt: the worker's error comes back as a dialog, and the panel is
+    // idle and usable again.
+    panel->setLossNetworkFile(garbage);
+    setTinyForm(panel, 1);
+    QSignalSpy finished(panel, &NetworkPanel::jobFinished);
+    QVERIFY(panel->startTraining(false));
+    QVERIFY(finished.wait(kJobTimeoutMs));
+    QVERIFY(!panel->isBusy());
+    QVERIFY2(reports_.back().message.contains(QStringLiteral("garbage.net")), qPrintable(reports_.back().message));
+    QCOMPARE(panel->networkCount(), 0);
+
+    // An autoencoder file loaded in the panel becomes the loss network (it is not a style network).
+    QVERIFY(panel->loadNetworkFile(autoencoder_));
+    QCOMPARE(panel->lossNetworkFile(), QFileInfo(autoencoder_).absoluteFilePath());
+    QCOMPARE(panel->networkCount(), 0);
+  }
+
+  void trainCancelSaveAndRetrain() {
+    auto window = makeWindow();
+    QVERIFY(window);
+    NetworkPanel* panel = window->networkPanel();
+    window->setTrainingClip(0, true);
+    window->setTrainingClip(1, true);
+    panel->setLossNetworkFile(autoencoder_);
+    setTinyForm(panel, 100000);  // far more than the test waits for: it ends by Cancel
+
+    QSignalSpy progress(panel, &NetworkPanel::trainingProgress);
+    QSignalSpy preview(panel, &NetworkPanel::previewReady);
+    QSignalSpy finished(panel, &NetworkPanel::jobFinished);
+    QSignalSpy current(panel, &NetworkPanel::currentNetworkChanged);
+    QVERIFY(panel->startTraining(false));
+    QVERIFY(panel->isBusy());
+    QVERIFY(!panel->startTraining(false));  // one job at a time
+    reports_.clear();
+
+    // Progress arrives (queued from the worker thread) with sane fields; an epoch completes, so the
+    // checkpoint exists and the live preview reached the viewport as the blue output figure.
+    QTRY_VERIFY_WITH_TIMEOUT(preview.count() >= 1, kJobTimeoutMs);
+    QTRY_VERIFY_WITH_TIMEOUT(progress.count() >= 3, kJobTimeoutMs);
+    bool saw_training_step = false;
+    for (const QList<QVariant>& call : progress) {
+      const auto p = call.at(0).value<style::TrainingProgress>();
+      if (p.phase != style::TrainingProgress::Phase::Training) continue;
+      saw_training_step = true;
+      QCOMPARE(p.epochs, 100000);
+      QVERIFY(p.step >= 1 && p.step <= p.steps_per_epoch);
+      QCOMPARE(p.terms.size(), std::size_t{5});
+      QCOMPARE(QString::fromStdString(p.terms[1].name), QStringLiteral("style"));
+      QVERIFY(std::isfinite(p.total) && p.elapsed_seconds >= 0.0);
+    }
+    QVERIFY(saw_training_step);
+    const auto shown = preview.back().at(0).value<FigureData>();
+    QCOMPARE(shown.role, FigureRole::Output);
+    QCOMPARE(shown.jointCount(), kCanonicalJointCount);
+    bool viewport_has_output = false;
+    for (int i = 0; i < window->viewport()->figureCount(); ++i)
+      viewport_has_output |= window->viewport()->figure(i).role == FigureRole::Output;
+    QVERIFY(viewport_has_output);
+    QTRY_VERIFY_WITH_TIMEOUT(panel->lossCurve()->pointCount(QStringLiteral("content")) >= 2, kJobTimeoutMs);
+    QVERIFY(panel->lossCurve()->terms().contains(QStringLiteral("trajectory")));
+    QVERIFY(panel->progressBar()->maximum() > 0);
+    QVERIFY(QFile::exists(panel->lastCheckpointFile()));
+    QVERIFY(!test::saveScreenshot(window->grab().toImage(), QStringLiteral("during_training")).isEmpty());
+
+    // Cancel (the button, as the user does) stops the run within the bound, thread joined.
+    auto* cancel = panel->findChild<QPushButton*>(QStringLiteral("CancelButton"));
+    QVERIFY(cancel != nullptr && cancel->isEnabled());
+    QElapsedTimer clock;
+    clock.start();
+    QTest::mouseClick(cancel, Qt::LeftButton);
+    QVERIFY(finished.wait(kJobTimeoutMs));
+    const qint64 cancel_ms = clock.elapsed();
+    qInfo("cancel took %lld ms", static_cast<long long>(cancel_ms));
+    QVERIFY2(cancel_ms < kCancelBoundMs, qPrintable(QStringLiteral("cancel took %1 ms").arg(cancel_ms)));
+    QVERIFY(!panel->isBusy());
+    QVERIFY2(reports_.empty(), reports_.empty() ? "" : qPrintable(reports_.front().message));
+    QVERIFY2(panel->statusText().startsWith(QStringLiteral("Cancelled")), qPrintable(panel->statusText()));
+
+    // The last completed epoch is kept: in the list (unsaved, current, announced) and as a loadable
+    // checkpoint holding the same epoch count.
+    QCOMPARE(panel->networkCount(), 1);
+    QVERIFY(!panel->isNetworkSaved(0));
+    QVERIFY(panel->currentNetwork() != nullptr);
+    QVERIFY(current.count() >= 1);
+    const nn::StyleModel checkpoint = nn::loadStyleModel(panel->lastCheckpointFile().toStdString());
+    QVERIFY(checkpoint.metadata.training.epochs >= 1);
+    QCOMPARE(checkpoint.transformer.shape().hidden, 8);
+    QVERIFY(panel->currentNetwork()->metadata.training.epochs >= checkpoint.metadata.training.epochs);
+
+    // The network list shows the metadata, and the result panel got the network to stylize with.
+    auto* list = panel->findChild<QTreeWidget*>(QStringLiteral("NetworkList"));
+    QVERIFY(list != nullptr && list->topLevelItemCount() == 1);
+    QCOMPARE(list->topLevelItem(0)->text(1), QStringLiteral("zombie.bvh"));
+    QCOMPARE(list->topLevelItem(0)->text(2), QString::number(panel->currentNetwork()->metadata.training.epochs));
+    QVERIFY(!list->topLevelItem(0)->text(3).isEmpty());  // created
+    QVERIFY(window->resultPanel()->hasNetwork());
+    QCOMPARE(window->resultPanel()->networkName(), panel->currentNetworkName());
+
+    // Save: atomic, and an existing file is never replaced without a Yes.
+    const QString saved = scratchFile(QStringLiteral("trained.net"));
+    int questions = 0;
+    QMessageBox::StandardButton answer = QMessageBox::No;
+    panel->setConfirmer([&](const QString&, const QString&, QMessageBox::StandardButtons) {
+      ++questions;
+      return answer;
+    });
+    QVERIFY(panel->saveNetwork(0, saved));
+    QCOMPARE(questions, 0);
+    QVERIFY(panel->isNetworkSaved(0));
+    const QByteArray saved_bytes = readAll(saved);
+    const nn::StyleModel reloaded = nn::loadStyleModel(saved.toStdString());
+    QCOMPARE(maxAbsDifference(reloaded, *panel->currentNetwork()), 0.0f);
+    QVERIFY(!panel->saveNetwork(0, saved));  // exists, answer No
+    QCOMPARE(questions, 1);
+    QCOMPARE(readAll(saved), saved_bytes);
+    answer = QMessageBox::Yes;
+    QVERIFY(panel->saveNetwork(0, saved));
+    QCOMPARE(questions, 2);
+    const QByteArray resaved = readAll(saved);
+    QVERIFY(!resaved.isEmpty());
+
+    // Retrain from the saved network with new weights and a tiny learning rate: the result starts
+    // from the saved weights (a fresh initialisation would be far away), keeps the network's shape
+    // (hidden units 8 even though the form says 16) and records the new weights.
+    NetworkPanel::TrainingForm form = panel->trainingForm();
+    form.weights.style = 7.0;
+    form.epochs = 2;
+    form.learning_rate = 1e-6;
+    form.hidden_units = 16;
+    panel->setTrainingForm(form);
+    panel->setCurrentIndex(0);
+    QVERIFY(panel->startTraining(true));
+    QVERIFY(finished.wait(kJobTimeoutMs));
+    QVERIFY2(reports_.empty(), reports_.empty() ? "" : qPrintable(reports_.front().message));
+    QCOMPARE(panel->networkCount(), 2);
+    const auto retrained = panel->network(1);
+    QCOMPARE(panel->currentIndex(), 1);
+    QCOMPARE(retrained->metadata.training.epochs, 2);
+    QCOMPARE(retrained->metadata.training.weights.style, 7.0);
+    QCOMPARE(retrained->transformer.shape().hidden, 8);
+    const float moved = maxAbsDifference(*retrained, reloaded);
+    QVERIFY2(moved > 0.0f && moved < 1e-3f, qPrintable(QString::number(static_cast<double>(moved))));
+    QCOMPARE(readAll(saved), resaved);  // retraining never writes the file it started from
+
+    // Dropping the unsaved retrained network asks first; "Cancel" keeps it.
+    answer = QMessageBox::Cancel;
+    QVERIFY(!panel->removeNetwork(1));
+    QCOMPARE(panel->networkCount(), 2);
+    answer = QMessageBox::Discard;
+    QSignalSpy announced(panel, &NetworkPanel::currentNetworkChanged);
+    QVERIFY(panel->removeNetwork(1));
+    QCOMPARE(panel->networkCount(), 1);
+    QCOMPARE(announced.count(), 1);  // the result panel hears that the saved network is current again
+    QCOMPARE(announced.back().at(0).value<std::shared_ptr<const nn::StyleModel>>(), panel->network(0));
+    QCOMPARE(window->resultPanel()->networkName(), panel->currentNetworkName());
+
+    // A saved network goes without a question; loaded again, its loss history is drawn per epoch.
+    const int asked_before = questions;
+    QVERIFY(panel->removeNetwork(0));
+    QCOMPARE(questions, asked_before);
+    QCOMPARE(panel->networkCount(), 0);
+    QVERIFY(panel->loadNetworkFile(saved));
+    QCOMPARE(panel->networkCount(), 1);
+    QVERIFY(panel->isNetworkSaved(0));
+    QCOMPARE(panel->networkFile(0), QFileInfo(saved).absoluteFilePath());
+    const auto epochs = static_cast<int>(panel->currentNetwork()->metadata.loss_history.epochs.size());
+    QVERIFY(epochs >= 1);
+    QCOMPARE(panel->lossCurve()->pointCount(QStringLiteral("content")), epochs);
+    QCOMPARE(panel->lossCurve()->pointCount(QStringLiteral("total")), epochs);
+  }
+
+  void aFolderAsTrainingDatabaseTrainsToCompletion() {
+    auto window = makeWindow();
+    QVERIFY(window);
+    NetworkPanel* panel = window->networkPanel();
+    panel->addTrainingFolder(scratchFile(QStringLiteral("no-such-folder")));
+    QCOMPARE(reports_.size(), std::size_t{1});
+    QVERIFY(reports_.back().message.contains(QStringLiteral("no-such-folder")));
+    QVERIFY(panel->trainingFolders().isEmpty());
+
+    // A folder holding one good clip and one broken file: the broken one is skipped (logged), not fatal.
+    const QString folder = scratchFile(QStringLiteral("database"));
+    QVERIFY(QDir().mkpath(folder));
+    QVERIFY(QFile::copy(test::fixture(QStringLiteral("cmu_131_01.bvh")), folder + QStringLiteral("/walk.bvh")));
+    QVERIFY(writeAll(folder + QStringLiteral("/broken.bvh"), QByteArray("HIERARCHY\nROOT Hips\n{\n")));
+    panel->addTrainingFolder(folder);
+    panel->addTrainingFolder(folder);  // listed once
+    QCOMPARE(panel->trainingFolders(), QStringList{QDir(folder).absolutePath()});
+    QVERIFY(window->trainingClipPaths().isEmpty());
+    panel->setLossNetworkFile(autoencoder_);
+    setTinyForm(panel, 3);
+    QSignalSpy finished(panel, &NetworkPanel::jobFinished);
+    reports_.clear();
+    QVERIFY(panel->startTraining(false));
+    QVERIFY(finished.wait(kJobTimeoutMs));
+    QVERIFY2(reports_.empty(), reports_.empty() ? "" : qPrintable(reports_.front().message));
+    QCOMPARE(panel->networkCount(), 1);
+    QVERIFY(!panel->isNetworkSaved(0));
+    QCOMPARE(panel->network(0)->metadata.training.epochs, 3);
+    QCOMPARE(panel->network(0)->metadata.loss_history.epochs.size(), std::size_t{3});
+    QVERIFY2(panel->statusText().startsWith(QStringLiteral("Trained")), qPrintable(panel->statusText()));
+    QCOMPARE(panel->progressBar()->value(), panel->progressBar()->maximum());
+  }
+
+  void optimisationMethodRunsInTheWorker() {
+    auto window = makeWindow();
+    QVERIFY(window);
+    NetworkPanel* panel = window->networkPanel();
+    panel->setLossNetworkFile(autoencoder_);
+    QSignalSpy ready(panel, &NetworkPanel::stylizedClipReady);
+    QSignalSpy finished(panel, &NetworkPanel::jobFinished);
+    QVERIFY(panel->startTransfer(5));
+    QVERIFY(finished.wait(kJobTimeoutMs));
+    QVERIFY2(reports_.empty(), reports_.empty() ? "" : qPrintable(reports_.front().message));
+    QCOMPARE(ready.count(), 1);
+    const auto clip = ready.front().at(0).value<style::StylizedClip>();
+    QVERIFY(clip.frameCount() > 0);
+    QVERIFY(clip.world_positions.allFinite());
+    // The result panel takes the optimised clip for its clean-up and shows it.
+    QTRY_VERIFY_WITH_TIMEOUT(window->resultPanel()->result() != nullptr, kJobTimeoutMs);
+    QTRY_VERIFY_WITH_TIMEOUT(!window->resultPanel()->isBusy(), kJobTimeoutMs);
+
+    // Cancelled at once: no result, no error, idle again.
+    QVERIFY(panel->startTransfer(100000));
+    panel->cancelJob();
+    QVERIFY(finished.wait(kJobTimeoutMs));
+    QCOMPARE(ready.count(), 1);
+    QVERIFY(!panel->isBusy());
+    QVERIFY(reports_.empty());
+  }
+
+  void closingDuringTrainingAsksAndStopsCleanly() {
+    auto window = makeWindow();
+    QVERIFY(window);
+    NetworkPanel* panel = window->networkPanel();
+    window->setTrainingClip(0, true);
+    panel->setLossNetworkFile(autoencoder_);
+    setTinyForm(panel, 100000);
+    QStringList asked;
+    QMessageBox::StandardButton stop_answer = QMessageBox::No;
+    panel->setConfirmer([&](const QString& title, const QString&, QMessageBox::StandardButtons buttons) {
+      asked << title;
+      if (buttons.testFlag(QMessageBox::Discard)) return QMessageBox::Discard;  // the unsaved network
+      return stop_answer;
+    });
+    QSignalSpy snapshots(panel, &NetworkPanel::previewReady);
+    QVERIFY(panel->startTraining(false));
+    QTRY_VERIFY_WITH_TIMEOUT(snapshots.count() >= 1, kJobTimeoutMs);
+    const auto outputShown = [&] {
+      for (int i = 0; i < window->viewport()->figureCount(); ++i)
+        if (window->viewport()->figure(i).role == FigureRole::Output) return true;
+      return false;
+    };
+    QVERIFY(outputShown());
+    // Another content clip makes the preview (of the first one) stale: it leaves the viewport.
+    window->setContentClip(1);
+    QVERIFY(!outputShown());
+
+    // "No": the window stays and training goes on.
+    QVERIFY(!window->close());
+    QCOMPARE(asked.size(), 1);
+    QVERIFY(window->isVisible());
+    QVERIFY(panel->isBusy());
+
+    // "Yes": cancel, quit, wait, then the unsaved network of the last epoch is offered (Discard).
+    stop_answer = QMessageBox::Yes;
+    QElapsedTimer clock;
+    clock.start();
+    QVERIFY(window->close());
+    const qint64 close_ms = clock.elapsed();
+    qInfo("close during training took %lld ms", static_cast<long long>(close_ms));
+    QVERIFY2(close_ms < kCancelBoundMs, qPrintable(QStringLiteral("closing took %1 ms").arg(close_ms)));
+    QVERIFY(!panel->isBusy());
+    QCOMPARE(asked.size(), 3);  // stop?, then save the cancelled run's network?
+    QCOMPARE(panel->networkCount(), 1);
+    const nn::StyleModel checkpoint = nn::loadStyleModel(panel->lastCheckpointFile().toStdString());
+    QVERIFY(checkpoint.metadata.training.epochs >= 1);
+    QVERIFY2(reports_.empty(), reports_.empty() ? "" : qPrintable(reports_.front().message));
+  }
+};
+
+MOTIONSTYLE_GUI_TEST_MAIN(TrainingTest)
+#include "test_training.moc"
