@@ -2,6 +2,11 @@
 //   stylize 240 / 960 / 14,400 frames with the float32 fast path (ms and frames/s, median of runs)
 //   one transformation-network training step (forward + backward, full eq. 10 loss), batch 16 x 240
 //   one autoencoder training step (eq. 3, dropout on), batch 16 x 240
+// By default on 1 and then 2 threads (each in a forked child: the compute pool's size is fixed at its
+// first use); --threads N runs N only. Lines start with "[threads=N]" (tests/peer/pytorch_peer.py
+// parses them).
+// bench_nn --full-training [--epochs N] [--synthetic]: a 100-epoch style training over 72,000 frames
+// (bench_training.cpp); fewer epochs are extrapolated, and say so.
 // bench_nn --residual-experiment [steps] [style weight]: trains T with and without the residual
 // connection on synthetic data (same seeds, same budget) and prints validation losses.
 // Threads: MOTIONSTYLE_NN_THREADS (default: all hardware threads, at most 8).
@@ -16,8 +21,13 @@
 #include <cstdlib>
 #include <functional>
 #include <random>
+#include <string>
 #include <vector>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "bench_training.h"
 #include "nn/adam.h"
 #include "nn/compute_pool.h"
 #include "nn/fast_stylizer.h"
@@ -181,8 +191,9 @@ StyleBatch<float> syntheticBatch(const Autoencoder<float>& ae, const Normalisati
 }
 
 void speedBench() {
-  std::printf("threads: %d, load average %.2f (the figures assume an otherwise idle machine)\n",
-              computePool().threadCount(), loadAverage());
+  const int threads = computePool().threadCount();
+  std::printf("[threads=%d] load average %.2f (the figures assume an otherwise idle machine)\n", threads,
+              loadAverage());
   std::mt19937 rng(1);
   Transformer<float> t;
   Autoencoder<float> ae;
@@ -194,15 +205,15 @@ void speedBench() {
     Mat<float> out;
     const int runs = frames > 5000 ? 11 : 51;
     const Timing ms = medianMs(3, runs, [&] { fast.stylize(x, out); });
-    std::printf("stylize %6d frames: wall %8.2f ms %9.0f frames/s | cpu %8.2f ms (all threads)\n", frames,
-                ms.wall_ms, frames / ms.wall_ms * 1000.0, ms.cpu_ms);
+    std::printf("[threads=%d] stylize %6d frames: wall %8.2f ms %9.0f frames/s | cpu %8.2f ms (all threads)\n",
+                threads, frames, ms.wall_ms, frames / ms.wall_ms * 1000.0, ms.cpu_ms);
   }
   {
     const Mat<float> x = randomMatrix<float>(kFeatureCount, 14400, rng);
     Mat<float> out;
     const Timing ms = medianMs(2, 11, [&] { fast.project(x, out); });
-    std::printf("project %6d frames: wall %8.2f ms %9.0f frames/s | cpu %8.2f ms\n", 14400, ms.wall_ms,
-                14400 / ms.wall_ms * 1000.0, ms.cpu_ms);
+    std::printf("[threads=%d] project %6d frames: wall %8.2f ms %9.0f frames/s | cpu %8.2f ms\n", threads, 14400,
+                ms.wall_ms, 14400 / ms.wall_ms * 1000.0, ms.cpu_ms);
   }
   const Normalisation norm = syntheticNormalisation();
   const StyleBatch<float> batch = syntheticBatch(ae, norm, 16, 240, rng);
@@ -210,16 +221,16 @@ void speedBench() {
     t.zeroGrad();
     accumulateStyleLoss(t, ae, batch, norm, LossWeights{});
   });
-  std::printf("T training step (fwd+bwd, eq. 10), batch 16 x 240: wall %8.1f ms | cpu %8.1f ms\n", t_ms.wall_ms,
-              t_ms.cpu_ms);
+  std::printf("[threads=%d] T training step (fwd+bwd, eq. 10), batch 16 x 240: wall %8.1f ms | cpu %8.1f ms\n",
+              threads, t_ms.wall_ms, t_ms.cpu_ms);
   std::mt19937 dropout_rng(3);
   const Timing ae_ms = medianMs(1, 7, [&] {
     ae.zeroGrad();
     ae.accumulateReconstruction(batch.content, 240, static_cast<float>(kDefaultSparsity),
                                 static_cast<float>(kDefaultInputDropout), &dropout_rng);
   });
-  std::printf("AE training step (fwd+bwd, eq. 3, dropout), batch 16 x 240: wall %8.1f ms | cpu %8.1f ms\n",
-              ae_ms.wall_ms, ae_ms.cpu_ms);
+  std::printf("[threads=%d] AE training step (fwd+bwd, eq. 3, dropout), batch 16 x 240: wall %8.1f ms | cpu %8.1f ms\n",
+              threads, ae_ms.wall_ms, ae_ms.cpu_ms);
 }
 
 // Trains T on synthetic data with and without the residual connection, same seeds and budget, and
@@ -267,6 +278,30 @@ void residualExperiment(int steps, double style_weight) {
   }
 }
 
+// speedBench() in a child process whose compute pool has `threads` threads.
+int speedBenchWithThreads(int threads) {
+  std::fflush(stdout);
+  const pid_t child = fork();
+  if (child < 0) return 1;
+  if (child == 0) {
+    setenv("MOTIONSTYLE_NN_THREADS", std::to_string(threads).c_str(), 1);
+    speedBench();
+    std::fflush(stdout);
+    _exit(0);
+  }
+  int status = 0;
+  waitpid(child, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
+}
+
+int usage() {
+  std::fprintf(stderr,
+               "usage: bench_nn [--threads N]\n"
+               "       bench_nn --full-training [--epochs N] [--synthetic] [--threads N]\n"
+               "       bench_nn --residual-experiment [steps] [style weight]\n");
+  return 2;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -275,6 +310,31 @@ int main(int argc, char** argv) {
     residualExperiment(argc >= 3 ? std::atoi(argv[2]) : 200, argc >= 4 ? std::atof(argv[3]) : LossWeights{}.style);
     return 0;
   }
-  speedBench();
-  return 0;
+  bool full_training = false;
+  bool synthetic = false;
+  int epochs = 100;
+  int threads = 0;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--full-training") {
+      full_training = true;
+    } else if (arg == "--synthetic") {
+      synthetic = true;
+    } else if (arg == "--epochs" && i + 1 < argc) {
+      epochs = std::atoi(argv[++i]);
+    } else if (arg == "--threads" && i + 1 < argc) {
+      threads = std::atoi(argv[++i]);
+    } else {
+      return usage();
+    }
+  }
+  if (threads > 0) setenv("MOTIONSTYLE_NN_THREADS", std::to_string(threads).c_str(), 1);  // before first use
+  if (full_training) return motionstyle::bench::fullTrainingBench(epochs, synthetic);
+  if (threads > 0) {
+    speedBench();
+    return 0;
+  }
+  int failed = 0;
+  for (int t : {1, 2}) failed |= speedBenchWithThreads(t);
+  return failed;
 }
