@@ -5,6 +5,7 @@
 
 #include "cli_args.h"
 #include "commands.h"
+#include "common/allocator_tuning.h"
 #include "common/errors.h"
 
 namespace {
@@ -23,6 +24,7 @@ void printUsage(std::ostream& out) {
 
 int main(int argc, char** argv) {
   using namespace motionstyle;
+  keepLargeAllocationsInHeap();
   const std::vector<std::string> all(argv + 1, argv + argc);
   if (all.empty() || all[0] == "--help" || all[0] == "-h" || all[0] == "help") {
     printUsage(all.empty() ? std::cerr : std::cout);

@@ -12,12 +12,14 @@
 
 #include <cstdio>
 
+#include "common/allocator_tuning.h"
 #include "demo_scene.h"
 #include "main_window.h"
 #include "result_panel.h"
 #include "skeleton_viewport.h"
 
 int main(int argc, char** argv) {
+  motionstyle::keepLargeAllocationsInHeap();  // the networks' temporaries (allocator_tuning.h)
   // VTK needs a 3.2 core-profile context: the default format must be set before QApplication exists.
   motionstyle::SkeletonViewport::installDefaultSurfaceFormat();
   QApplication app(argc, argv);

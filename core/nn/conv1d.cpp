@@ -13,7 +13,7 @@ constexpr int kMinColumnsPerThread = 48;
 // Copies the valid outputs (window b, frame t at padded-output column b*(frames+pad) + t) into a
 // compact out x (B*frames) matrix.
 template <typename S>
-Mat<S> compactWindows(const Mat<S>& full, int windows, int frames, int pad) {
+Mat<S> compactWindows(const Eigen::Ref<const Mat<S>>& full, int windows, int frames, int pad) {
   if (windows == 1) return full.leftCols(frames);
   Mat<S> out(full.rows(), static_cast<Eigen::Index>(windows) * frames);
   for (int b = 0; b < windows; ++b)
@@ -73,12 +73,27 @@ Conv1d<S>::Conv1d(const std::string& name, int in_channels, int out_channels, in
 }
 
 template <typename S>
-Mat<S> Conv1d<S>::run(const Mat<S>& padded, int windows, int frames) const {
+bool Conv1d<S>::useSpectral(Eigen::Index count) const {
+  switch (algorithm_) {
+    case ConvAlgorithm::Direct: return false;
+    case ConvAlgorithm::Spectral: return true;
+    case ConvAlgorithm::Automatic: break;
+  }
+  return spectralIsFaster(in_, out_, width_, static_cast<long>(count));
+}
+
+template <typename S>
+Mat<S> Conv1d<S>::run(const Mat<S>& padded, int windows, int frames, SpectralCorrelation<S>* spectral) const {
   const int pad = width_ / 2;
   const Eigen::Index count = static_cast<Eigen::Index>(windows) * (frames + pad) - pad;
   Mat<S> full(out_, count);
-  correlatePadded(weight.value, padded.data(), in_, width_, full.data(), count);
-  Mat<S> y = compactWindows(full, windows, frames, pad);
+  if (spectral != nullptr) {
+    spectral->setKernel(weight.value);
+    spectral->forward(padded.data(), padded.cols(), count, full.data());
+  } else {
+    correlatePadded(weight.value, padded.data(), in_, width_, full.data(), count);
+  }
+  Mat<S> y = compactWindows<S>(full, windows, frames, pad);
   if (has_bias_) y.colwise() += bias.value.col(0);
   return y;
 }
@@ -88,7 +103,12 @@ Mat<S> Conv1d<S>::apply(const Mat<S>& x, int frames) const {
   const int windows = checkBatch(weight.name.c_str(), x.rows(), x.cols(), in_, frames);
   Mat<S> padded;
   padWindows(x, frames, width_ / 2, padded);
-  return run(padded, windows, frames);
+  const Eigen::Index count = static_cast<Eigen::Index>(windows) * (frames + width_ / 2) - width_ / 2;
+  if (!useSpectral(count)) return run(padded, windows, frames, nullptr);
+  // A const call keeps no state: its own spectra (the kernel's are recomputed, a small share of a
+  // batch long enough for the spectral path).
+  SpectralCorrelation<S> spectral(in_, out_, width_, defaultSpectralBlock(width_));
+  return run(padded, windows, frames, &spectral);
 }
 
 template <typename S>
@@ -96,7 +116,10 @@ Mat<S> Conv1d<S>::forward(const Mat<S>& x, int frames) {
   windows_ = checkBatch(weight.name.c_str(), x.rows(), x.cols(), in_, frames);
   frames_ = frames;
   padWindows(x, frames, width_ / 2, padded_input_);
-  return run(padded_input_, windows_, frames_);
+  const Eigen::Index count = static_cast<Eigen::Index>(windows_) * (frames + width_ / 2) - width_ / 2;
+  spectral_forward_ = useSpectral(count);
+  if (spectral_forward_ && !spectral_) spectral_.emplace(in_, out_, width_, defaultSpectralBlock(width_));
+  return run(padded_input_, windows_, frames_, spectral_forward_ ? &*spectral_ : nullptr);
 }
 
 template <typename S>
@@ -109,6 +132,19 @@ Mat<S> Conv1d<S>::backward(const Mat<S>& grad_out, Gradients wanted) {
   const Eigen::Index count = static_cast<Eigen::Index>(windows_) * (frames_ + pad) - pad;
   Mat<S> padded_grad;  // dY in the padded layout: zero in the gaps, so gap outputs contribute nothing
   padWindows(grad_out, frames_, pad, padded_grad);
+
+  if (spectral_forward_) {
+    // dY at every output position of the padded sequence starts `pad` columns into padded_grad; the
+    // input gradient comes back at every position of the padded input.
+    Mat<S> padded_input_grad;
+    if (wanted != Gradients::ParametersOnly) padded_input_grad.setZero(in_, count + width_ - 1);
+    spectral_->backward(padded_grad.data() + static_cast<Eigen::Index>(pad) * out_, count,
+                        wanted != Gradients::InputOnly ? &weight.grad : nullptr,
+                        wanted != Gradients::ParametersOnly ? padded_input_grad.data() : nullptr);
+    if (wanted != Gradients::InputOnly && has_bias_) bias.grad.col(0) += grad_out.rowwise().sum();
+    if (wanted == Gradients::ParametersOnly) return Mat<S>();
+    return compactWindows<S>(padded_input_grad.middleCols(pad, count), windows_, frames_, pad);
+  }
 
   if (wanted != Gradients::InputOnly) {
     const auto dy = padded_grad.middleCols(pad, count);
@@ -130,7 +166,7 @@ Mat<S> Conv1d<S>::backward(const Mat<S>& grad_out, Gradients wanted) {
         weight.value.middleCols(static_cast<Eigen::Index>(width_ - 1 - i) * in_, in_).transpose();
   Mat<S> full(in_, count);
   correlatePadded(flipped, padded_grad.data(), out_, width_, full.data(), count);
-  return compactWindows(full, windows_, frames_, pad);
+  return compactWindows<S>(full, windows_, frames_, pad);
 }
 
 template <typename S>

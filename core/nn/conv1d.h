@@ -15,10 +15,17 @@
 // The backward pass uses the same trick twice: dX is the correlation of the padded dY with the
 // flipped, transposed kernel, and dW = dY * im2col^T. Products are split by columns over the compute
 // pool (compute_pool.h).
+//
+// For long inputs the same correlation is evaluated in the frequency domain instead
+// (spectral_correlation.h: overlap-save, ~5x fewer multiplications at width 25), with identical
+// results up to rounding. ConvAlgorithm::Automatic picks it from a cost model (spectralIsFaster);
+// tests force either path to compare them and gradient-check both.
 
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "nn/spectral_correlation.h"
 #include "nn/tensor.h"
 
 namespace motionstyle::nn {
@@ -51,6 +58,10 @@ void padWindows(const Mat<S>& x, int frames, int pad, Mat<S>& padded);
 // training the transformation network); ParametersOnly serves a first layer whose input is data.
 enum class Gradients { All, InputOnly, ParametersOnly };
 
+// How a convolution evaluates its products: the direct strided product, the spectral (overlap-save)
+// evaluation, or whichever the cost model expects to be faster for the batch at hand.
+enum class ConvAlgorithm { Automatic, Direct, Spectral };
+
 template <typename S>
 class Conv1d {
  public:
@@ -76,19 +87,29 @@ class Conv1d {
   void zeroGrad();
   std::vector<Parameter<S>*> parameters();
 
+  void setAlgorithm(ConvAlgorithm algorithm) { algorithm_ = algorithm; }
+  ConvAlgorithm algorithm() const { return algorithm_; }
+
   Parameter<S> weight;  // out x (in*width), tap-major (tensor.h)
   Parameter<S> bias;    // out x 1, or 0 x 0 without bias
 
  private:
-  Mat<S> run(const Mat<S>& padded, int windows, int frames) const;
+  // The padded batch through the product (direct, or `spectral` when not null), then bias.
+  Mat<S> run(const Mat<S>& padded, int windows, int frames, SpectralCorrelation<S>* spectral) const;
+  bool useSpectral(Eigen::Index count) const;
 
   int in_ = 0;
   int out_ = 0;
   int width_ = 1;
   bool has_bias_ = false;
+  ConvAlgorithm algorithm_ = ConvAlgorithm::Automatic;
   Mat<S> padded_input_;  // cache of the last forward()
   int frames_ = 0;
   int windows_ = 0;
+  // The spectral evaluation of forward()/backward(): kernel spectra cached across calls while the
+  // weights stay the same, the last forward()'s input spectra for backward().
+  std::optional<SpectralCorrelation<S>> spectral_;
+  bool spectral_forward_ = false;  // whether the last forward() used spectral_
 };
 
 }  // namespace motionstyle::nn

@@ -28,14 +28,33 @@ void requireClip(const Mat<float>& x, int features) {
 
 }  // namespace
 
-FastStylizer::Layer FastStylizer::copyLayer(const Conv1d<float>& conv) {
+FastStylizer::Layer FastStylizer::makeLayer(Mat<float> weight, Vec<float> bias, int in, int out, int width) {
   Layer layer;
-  layer.weight = conv.weight.value;
-  if (conv.hasBias()) layer.bias = conv.bias.value.col(0);
-  layer.in = conv.inChannels();
-  layer.out = conv.outChannels();
-  layer.width = conv.width();
+  layer.weight = std::move(weight);
+  layer.bias = std::move(bias);
+  layer.in = in;
+  layer.out = out;
+  layer.width = width;
+  layer.spectral.emplace(in, out, width, defaultSpectralBlock(width));
+  layer.spectral->setKernel(layer.weight);
   return layer;
+}
+
+FastStylizer::Layer FastStylizer::copyLayer(const Conv1d<float>& conv) {
+  return makeLayer(conv.weight.value, conv.hasBias() ? Vec<float>(conv.bias.value.col(0)) : Vec<float>(),
+                   conv.inChannels(), conv.outChannels(), conv.width());
+}
+
+void FastStylizer::correlate(Layer& layer, const float* padded, Eigen::Index available, int count, float* out) {
+  if (spectralIsFaster(layer.in, layer.out, layer.width, count)) {
+    layer.spectral->forward(padded, available, count, out);
+    return;
+  }
+  computePool().parallelRanges(count, 1, kMinColumnsPerThread, [&](int begin, int end) {
+    Eigen::Map<Mat<float>> y(out + static_cast<Eigen::Index>(layer.out) * begin, layer.out, end - begin);
+    y.noalias() = layer.weight * slidingColumns(padded + static_cast<Eigen::Index>(layer.in) * begin, layer.in,
+                                                layer.width, end - begin);
+  });
 }
 
 FastStylizer::FastStylizer(const Autoencoder<float>& autoencoder) {
@@ -77,15 +96,16 @@ void FastStylizer::buildPolyphase(const Autoencoder<float>& autoencoder) {
       polyphase_.block(static_cast<Eigen::Index>(phase) * features_, static_cast<Eigen::Index>(m) * hidden_,
                        features_, hidden_) += w.middleCols(static_cast<Eigen::Index>(k) * hidden_, hidden_);
     }
+  decoder_ = makeLayer(polyphase_, Vec<float>(), hidden_, 2 * features_, phase_taps_);
 }
 
-void FastStylizer::convolve(const Layer& layer, const Mat<float>& in, Mat<float>& out, int frames, bool relu) {
+void FastStylizer::convolve(Layer& layer, const Mat<float>& in, Mat<float>& out, int frames, bool relu) {
   // `in` is padded by layer.width/2; `out` by its own consumer's padding (its extra columns / 2).
   const Eigen::Index out_pad = (out.cols() - frames) / 2;
+  float* destination = out.data() + out.rows() * out_pad;
+  correlate(layer, in.data(), in.cols(), frames, destination);
   computePool().parallelRanges(frames, 1, kMinColumnsPerThread, [&](int begin, int end) {
-    Eigen::Map<Mat<float>> y(out.data() + out.rows() * (out_pad + begin), layer.out, end - begin);
-    y.noalias() = layer.weight * slidingColumns(in.data() + static_cast<Eigen::Index>(layer.in) * begin,
-                                                layer.in, layer.width, end - begin);
+    Eigen::Map<Mat<float>> y(destination + out.rows() * begin, layer.out, end - begin);
     if (layer.bias.size() > 0) y.colwise() += layer.bias;
     if (relu) y = y.cwiseMax(0.0f);
   });
@@ -100,10 +120,8 @@ void FastStylizer::projectPadded(int frames, Mat<float>& out) {
   // Encoder (eq. 1) + max-pool + ReLU, then "- b0" for the decoder (eq. 2), per column range.
   ensureZeroed(encoded_, hidden_, even);
   ensureZeroed(pooled_, hidden_, pooled + phase_left_ + phase_right_);
+  correlate(encoder_, encoder_input_.data(), encoder_input_.cols(), even, encoded_.data());
   computePool().parallelRanges(even, 2, 2 * kMinColumnsPerThread, [&](int begin, int end) {
-    auto e = encoded_.middleCols(begin, end - begin);
-    e.noalias() = encoder_.weight * slidingColumns(encoder_input_.data() + static_cast<Eigen::Index>(features_) * begin,
-                                                   features_, encoder_.width, end - begin);
     for (int s = begin / 2; s < end / 2; ++s)
       pooled_.col(phase_left_ + s) =
           (encoded_.col(2 * s).cwiseMax(encoded_.col(2 * s + 1)) + encoder_bias_).cwiseMax(0.0f) - encoder_bias_;
@@ -116,11 +134,7 @@ void FastStylizer::projectPadded(int frames, Mat<float>& out) {
     if (decoded_.rows() != features_ || decoded_.cols() != even) decoded_.resize(features_, even);
     destination = decoded_.data();
   }
-  computePool().parallelRanges(pooled, 1, kMinColumnsPerThread / 2, [&](int begin, int end) {
-    Eigen::Map<Mat<float>> y(destination + static_cast<Eigen::Index>(2 * features_) * begin, 2 * features_, end - begin);
-    y.noalias() = polyphase_ * slidingColumns(pooled_.data() + static_cast<Eigen::Index>(hidden_) * begin, hidden_,
-                                              phase_taps_, end - begin);
-  });
+  correlate(decoder_, pooled_.data(), pooled_.cols(), pooled, destination);
   if (frames % 2 == 1) out = decoded_.leftCols(frames);
 }
 
@@ -146,16 +160,13 @@ void FastStylizer::stylize(const Mat<float>& x, Mat<float>& out) {
   convolve(t1_, input_, hidden1_, frames, true);
   convolve(t2_, hidden1_, hidden2_, frames, true);
   // The encoder input has an extra column for odd clips: write T's output at its padding offset.
-  {
-    const Eigen::Index out_pad = enc_pad;
-    computePool().parallelRanges(frames, 1, kMinColumnsPerThread, [&](int begin, int end) {
-      Eigen::Map<Mat<float>> y(encoder_input_.data() + features_ * (out_pad + begin), features_, end - begin);
-      y.noalias() = t3_.weight * slidingColumns(hidden2_.data() + static_cast<Eigen::Index>(t3_.in) * begin, t3_.in,
-                                                t3_.width, end - begin);
-      y.colwise() += t3_.bias;
-      if (residual_) y += x.middleCols(begin, end - begin);
-    });
-  }
+  float* t_output = encoder_input_.data() + features_ * enc_pad;
+  correlate(t3_, hidden2_.data(), hidden2_.cols(), frames, t_output);
+  computePool().parallelRanges(frames, 1, kMinColumnsPerThread, [&](int begin, int end) {
+    Eigen::Map<Mat<float>> y(t_output + static_cast<Eigen::Index>(features_) * begin, features_, end - begin);
+    y.colwise() += t3_.bias;
+    if (residual_) y += x.middleCols(begin, end - begin);
+  });
   projectPadded(frames, out);
 }
 

@@ -5,20 +5,25 @@
 // float rounding, including the odd-length rule (last frame repeated through the pool, cropped after).
 //
 // Where the speed comes from (see tests/bench/nn for figures):
-//  - every convolution is ONE matrix product over the whole clip on a strided, zero-copy im2col view
-//    of a padded buffer (conv1d.h), written straight into the next layer's padded buffer; bias, ReLU
-//    and max-pool run on the same thread right after its slice of the product, while it is in cache;
+//  - every convolution is evaluated spectrally (spectral_correlation.h: overlap-save, ~5x fewer
+//    multiplications at width 25) when the cost model expects it to be faster, with the kernels'
+//    spectra computed once, here in the constructor; otherwise it is ONE matrix product over the whole
+//    clip on a strided, zero-copy im2col view of a padded buffer (conv1d.h). Either way it writes
+//    straight into the next layer's padded buffer, and bias, ReLU and max-pool follow on the slice;
 //  - the two cores split every product by columns (compute_pool.h), one synchronisation per layer;
 //  - the decoder is POLYPHASE: after average depooling, output frames 2s and 2s+1 only see pooled
 //    frames s-6..s+6 (width 25), each through a kernel that sums pairs of taps. The two phase kernels
-//    are stacked into one (2*features) x (hidden*13) matrix whose product with the pooled hidden units
-//    is, column for column, the interleaved output: half the multiplications of the plain decoder
-//    and no depooled buffer;
+//    are stacked into one (2*features) x (hidden*13) kernel, a correlation of width 13 over the pooled
+//    hidden units whose output is, column for column, the interleaved frames: half the
+//    multiplications of the plain decoder and no depooled buffer;
 //  - the decoder's "Depool(H) - b0" becomes "H - b0" before the product (depool repeats values);
 //  - buffers persist across calls: same-length calls allocate nothing of ours.
-// Not thread-safe (scratch buffers): use one instance per thread.
+// Not thread-safe (scratch buffers): use one instance per thread (copies are independent).
+
+#include <optional>
 
 #include "nn/autoencoder.h"
+#include "nn/spectral_correlation.h"
 #include "nn/transformer.h"
 
 namespace motionstyle::nn {
@@ -50,12 +55,19 @@ class FastStylizer {
     int in = 0;
     int out = 0;
     int width = 1;
+    // The spectral evaluation, holding this kernel's spectra (computed once) and its scratch.
+    std::optional<SpectralCorrelation<float>> spectral;
   };
+  static Layer makeLayer(Mat<float> weight, Vec<float> bias, int in, int out, int width);
   static Layer copyLayer(const Conv1d<float>& conv);
+  // out (layer.out x count, column-major) = the correlation of `padded` (layer.in x available) with the
+  // layer's kernel at output positions 0..count-1 (correlatePadded's contract), no bias. Spectral or
+  // direct, whichever the cost model picks for `count`.
+  static void correlate(Layer& layer, const float* padded, Eigen::Index available, int count, float* out);
   void buildPolyphase(const Autoencoder<float>& autoencoder);
   // Runs the projection on the (even-length) padded buffer input_to_encoder_, writing `frames` columns.
   void projectPadded(int frames, Mat<float>& out);
-  void convolve(const Layer& layer, const Mat<float>& in, Mat<float>& out, int frames, bool relu);
+  void convolve(Layer& layer, const Mat<float>& in, Mat<float>& out, int frames, bool relu);
 
   bool has_transformer_ = false;
   bool residual_ = false;
@@ -63,6 +75,7 @@ class FastStylizer {
   int features_ = 0;
   int hidden_ = 0;
   Mat<float> polyphase_;    // (2*features) x (hidden*taps)
+  Layer decoder_;           // polyphase_ as a width-phase_taps_ correlation over the pooled frames
   int phase_taps_ = 0;      // taps of each phase kernel (13 for width 25)
   int phase_left_ = 0;      // pooled frames of zero padding before the clip (6)
   int phase_right_ = 0;     // ... and after (6)

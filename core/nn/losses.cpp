@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "nn/compute_pool.h"
+
 namespace motionstyle::nn {
 namespace {
 
@@ -120,19 +122,26 @@ S styleLoss(const Mat<S>& hidden, int frames, const std::vector<Mat<S>>& style_g
   const Eigen::Index channels = hidden.rows();
   for (const Mat<S>& g : style_grams) requireShape("styleLoss Gram", g.rows(), g.cols(), channels, channels);
   const S entries = static_cast<S>(channels * channels) * static_cast<S>(windows);
-  S total = 0;
-  for (int b = 0; b < windows; ++b) {
-    const auto h = hidden.middleCols(static_cast<Eigen::Index>(b) * frames, frames);
-    const Mat<S>& target = style_grams.size() == 1 ? style_grams[0] : style_grams[static_cast<std::size_t>(b)];
-    const Mat<S> diff = gramMatrix<S>(h) - target;
-    total += diff.squaredNorm();
-    if (grad != nullptr) {
-      // d/dh of sum (h h^T / n - G)^2 = 2 (D + D^T) h / n with D = diff, symmetric when G is.
-      const Mat<S> sym = diff + diff.transpose();
-      grad->middleCols(static_cast<Eigen::Index>(b) * frames, frames).noalias() +=
-          (S(2) * weight / (entries * static_cast<S>(frames))) * (sym * h);
+  // Windows are independent (each its own Gram matrix and its own gradient columns), so they are
+  // split over the compute pool; per-window sums are added in window order, so the result does not
+  // depend on the thread count.
+  std::vector<S> window_totals(static_cast<std::size_t>(windows), S(0));
+  computePool().parallelRanges(windows, 1, 1, [&](int begin, int end) {
+    for (int b = begin; b < end; ++b) {
+      const auto h = hidden.middleCols(static_cast<Eigen::Index>(b) * frames, frames);
+      const Mat<S>& target = style_grams.size() == 1 ? style_grams[0] : style_grams[static_cast<std::size_t>(b)];
+      const Mat<S> diff = gramMatrix<S>(h) - target;
+      window_totals[static_cast<std::size_t>(b)] = diff.squaredNorm();
+      if (grad != nullptr) {
+        // d/dh of sum (h h^T / n - G)^2 = 2 (D + D^T) h / n with D = diff, symmetric when G is.
+        const Mat<S> sym = diff + diff.transpose();
+        grad->middleCols(static_cast<Eigen::Index>(b) * frames, frames).noalias() +=
+            (S(2) * weight / (entries * static_cast<S>(frames))) * (sym * h);
+      }
     }
-  }
+  });
+  S total = 0;
+  for (S window_total : window_totals) total += window_total;
   return total / entries;
 }
 

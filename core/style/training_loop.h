@@ -15,10 +15,13 @@
 
 namespace motionstyle::style {
 
-// Windows per micro-batch: a step over 16 windows is computed as 4 micro-batches of 4 so that the
-// cancellation flag is seen every ~0.1 s even on a loaded machine (a whole 16 x 240 autoencoder step
-// is ~20 GFLOP). The step's gradient is the window-weighted mean of the micro-batch gradients.
-constexpr int kMicroBatchWindows = 4;
+// Windows per micro-batch: larger batches are split so that the cancellation flag is seen often and
+// memory stays bounded. 16 x 240 frames is one default step, ~50-80 ms on two cores with the spectral
+// convolutions (tests/bench/nn), so cancellation still takes effect within ~0.1 s; smaller
+// micro-batches made the per-frequency products too small to run efficiently (4 windows: 25 segments
+// per product) and repeated the kernel-gradient transforms. The step's gradient is the window-weighted
+// mean of the micro-batch gradients.
+constexpr int kMicroBatchWindows = 16;
 
 // A generator seeded from (seed, epoch, purpose) with std::seed_seq, whose algorithm the standard fixes:
 // an epoch's shuffle and dropout do not depend on earlier epochs, so resuming reproduces them.

@@ -30,6 +30,7 @@
 #include "bench_training.h"
 #include "nn/adam.h"
 #include "nn/compute_pool.h"
+#include "common/allocator_tuning.h"
 #include "nn/fast_stylizer.h"
 #include "nn/style_loss.h"
 
@@ -306,6 +307,7 @@ int usage() {
 
 int main(int argc, char** argv) {
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
+  motionstyle::keepLargeAllocationsInHeap();  // as motionstyle-cli and the app do
   if (argc >= 2 && std::strcmp(argv[1], "--residual-experiment") == 0) {
     residualExperiment(argc >= 3 ? std::atoi(argv[2]) : 200, argc >= 4 ? std::atof(argv[3]) : LossWeights{}.style);
     return 0;

@@ -5,6 +5,7 @@
 #include <random>
 #include <stdexcept>
 
+#include "conv_reference.h"
 #include "gradient_check.h"
 #include "nn/conv1d.h"
 #include "nn/init.h"
@@ -14,35 +15,11 @@ namespace motionstyle::nn {
 namespace {
 
 using test::checkGradient;
+using test::naiveConv;
+using test::randomConv;
 using test::kGradientTolerance;
 using test::MatD;
 using test::randomMatrix;
-
-// y[o, t] = b[o] + sum_{c,k} W(o, k*in + c) x[c, t + k - K/2], zero outside each window.
-MatD naiveConv(const Conv1d<double>& conv, const MatD& x, int frames) {
-  const int pad = conv.width() / 2;
-  MatD y = MatD::Zero(conv.outChannels(), x.cols());
-  for (Eigen::Index start = 0; start < x.cols(); start += frames)
-    for (int t = 0; t < frames; ++t)
-      for (int o = 0; o < conv.outChannels(); ++o) {
-        double sum = conv.hasBias() ? conv.bias.value(o, 0) : 0.0;
-        for (int k = 0; k < conv.width(); ++k) {
-          const int source = t + k - pad;
-          if (source < 0 || source >= frames) continue;
-          for (int c = 0; c < conv.inChannels(); ++c)
-            sum += conv.weight.value(o, k * conv.inChannels() + c) * x(c, start + source);
-        }
-        y(o, start + t) = sum;
-      }
-  return y;
-}
-
-Conv1d<double> randomConv(int in, int out, int width, bool bias, std::mt19937& rng) {
-  Conv1d<double> conv("test", in, out, width, bias);
-  conv.weight.value = randomMatrix(out, in * width, rng);
-  if (bias) conv.bias.value = randomMatrix(out, 1, rng);
-  return conv;
-}
 
 TEST(Conv1dInvalid, RejectsBadConstructionAndShapes) {
   EXPECT_THROW(Conv1d<double>("even", 3, 4, 4, true), std::invalid_argument);

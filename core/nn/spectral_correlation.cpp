@@ -1,0 +1,255 @@
+#include "nn/spectral_correlation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+#include "nn/compute_pool.h"
+
+namespace motionstyle::nn {
+namespace {
+
+// Parallel splits: a range of segments or rows must be worth a thread; frequencies are few and each
+// is a whole matrix product.
+constexpr int kMinSegmentsPerThread = 4;
+constexpr int kMinBinsPerThread = 2;
+constexpr int kMinRowsPerThread = 256;
+
+// cos and sin of 2 pi m / n, exact (0, +-1) where they should be, so that the imaginary parts of the
+// DC and Nyquist frequencies are exactly zero.
+struct Phase {
+  double cos, sin;
+};
+Phase phase(long m, long n) {
+  m %= n;
+  if (m == 0) return {1.0, 0.0};
+  if (2 * m == n) return {-1.0, 0.0};
+  const double angle = 2.0 * std::numbers::pi * static_cast<double>(m) / static_cast<double>(n);
+  return {std::cos(angle), std::sin(angle)};
+}
+
+// True for the frequencies whose spectrum of a real signal is real: DC and, for even N, Nyquist.
+bool isRealBin(int f, int points) { return f == 0 || 2 * f == points; }
+
+template <typename S>
+using ConstMap = Eigen::Map<const Mat<S>>;
+template <typename S>
+using MutableMap = Eigen::Map<Mat<S>>;
+
+}  // namespace
+
+int defaultSpectralBlock(int width) { return std::max(8, 8 * ((16 * width + 79) / 80)); }
+
+bool spectralIsFaster(int in, int out, int width, long count) {
+  const int block = defaultSpectralBlock(width);
+  const double points = block + width - 1;
+  const double bins = std::floor(points / 2) + 1;
+  const double mixing_saving = static_cast<double>(in) * out * (width - 4.0 * bins / block);
+  const double transform_cost = static_cast<double>(in + out) * (2.0 * bins * points / block + 2.0 * bins);
+  return count >= 2L * block && mixing_saving > 2.0 * transform_cost;
+}
+
+template <typename S>
+SpectralCorrelation<S>::SpectralCorrelation(int in, int out, int width, int block)
+    : in_(in), out_(out), width_(width), block_(block), points_(block + width - 1), bins_((block + width - 1) / 2 + 1) {
+  if (in < 1 || out < 1 || block < 1 || width < 1 || width % 2 == 0)
+    throw std::invalid_argument("SpectralCorrelation: channels and block must be >= 1 and the width odd, got in " +
+                                std::to_string(in) + ", out " + std::to_string(out) + ", width " +
+                                std::to_string(width) + ", block " + std::to_string(block));
+  const int n = points_, h = bins_;
+  analysis_.resize(n, 2 * h);
+  kernel_analysis_.resize(width, 2 * h);
+  synthesis_.resize(2 * h, n);
+  for (int f = 0; f < h; ++f) {
+    const double multiplicity = isRealBin(f, n) ? 1.0 : 2.0;  // bins f and N - f of a real signal
+    for (int t = 0; t < n; ++t) {
+      const Phase p = phase(static_cast<long>(f) * t, n);
+      analysis_(t, f) = static_cast<S>(p.cos);
+      analysis_(t, h + f) = static_cast<S>(-p.sin);
+      synthesis_(f, t) = static_cast<S>(multiplicity * p.cos / n);
+      synthesis_(h + f, t) = static_cast<S>(-multiplicity * p.sin / n);
+      if (t < width) {
+        kernel_analysis_(t, f) = static_cast<S>(p.cos);
+        kernel_analysis_(t, h + f) = static_cast<S>(p.sin);
+      }
+    }
+  }
+}
+
+template <typename S>
+void SpectralCorrelation<S>::setKernel(const Mat<S>& weight) {
+  if (weight.rows() != out_ || weight.cols() != static_cast<Eigen::Index>(in_) * width_)
+    throw std::invalid_argument("SpectralCorrelation: kernel is " + std::to_string(weight.rows()) + " x " +
+                                std::to_string(weight.cols()) + ", expected " + std::to_string(out_) + " x " +
+                                std::to_string(in_ * width_));
+  if (kernel_weight_.size() == weight.size() && kernel_weight_ == weight) return;
+  kernel_weight_ = weight;
+  // Tap-major storage makes the weight an (out*in) x K matrix whose row o + c*out holds w[o][c][.].
+  const ConstMap<S> taps(weight.data(), static_cast<Eigen::Index>(out_) * in_, width_);
+  kernel_spectra_.resize(taps.rows(), 4 * bins_);
+  computePool().parallelRanges(static_cast<int>(taps.rows()), 1, kMinRowsPerThread, [&](int begin, int end) {
+    auto rows = kernel_spectra_.middleRows(begin, end - begin);
+    rows.leftCols(2 * bins_).noalias() = taps.middleRows(begin, end - begin) * kernel_analysis_;
+    rows.middleCols(2 * bins_, bins_) = rows.leftCols(bins_) + rows.middleCols(bins_, bins_);
+    rows.rightCols(bins_) = rows.leftCols(bins_) - rows.middleCols(bins_, bins_);
+  });
+}
+
+template <typename S>
+Eigen::Map<const Mat<S>> SpectralCorrelation<S>::kernelPart(int f, int part) const {
+  return Eigen::Map<const Mat<S>>(kernel_spectra_.col(part * bins_ + f).data(), out_, in_);
+}
+
+template <typename S>
+void SpectralCorrelation<S>::transform(const S* sequence, Eigen::Index available, int channels, int frames,
+                                       Eigen::Index segments, Mat<S>& scratch, Mat<S>& spectra) const {
+  scratch.resize(channels * segments, frames);
+  spectra.resize(channels * segments, 2 * bins_);
+  const auto basis = analysis_.topRows(frames);
+  computePool().parallelRanges(static_cast<int>(segments), 1, kMinSegmentsPerThread, [&](int begin, int end) {
+    for (int j = begin; j < end; ++j) {
+      const Eigen::Index start = static_cast<Eigen::Index>(j) * block_;
+      const Eigen::Index present = std::clamp<Eigen::Index>(available - start, 0, frames);
+      auto rows = scratch.middleRows(static_cast<Eigen::Index>(j) * channels, channels);
+      rows.leftCols(present) = ConstMap<S>(sequence + start * channels, channels, present);
+      rows.rightCols(frames - present).setZero();
+    }
+    const Eigen::Index first = static_cast<Eigen::Index>(begin) * channels;
+    const Eigen::Index rows = static_cast<Eigen::Index>(end - begin) * channels;
+    spectra.middleRows(first, rows).noalias() = scratch.middleRows(first, rows) * basis;
+  });
+}
+
+template <typename S>
+void SpectralCorrelation<S>::forward(const S* padded, Eigen::Index available, Eigen::Index count, S* out) {
+  if (kernel_spectra_.size() == 0) throw std::logic_error("SpectralCorrelation: forward() before setKernel()");
+  const Eigen::Index segments = segmentCount(count);
+  transform(padded, available, in_, points_, segments, segments_, input_spectra_);
+  input_count_ = count;
+
+  // Y_f = C_f S_f with Gauss's three real products: Yr = CrSr - CiSi, Yi = (Cr + Ci)(Sr + Si) - CrSr - CiSi.
+  product_spectra_.resize(out_ * segments, 2 * bins_);
+  computePool().parallelRanges(bins_, 1, kMinBinsPerThread, [&](int begin, int end) {
+    Mat<S> ci_si(out_, segments), s_sum(in_, segments);
+    for (int f = begin; f < end; ++f) {
+      const ConstMap<S> cr = kernelPart(f, 0), ci = kernelPart(f, 1), c_sum = kernelPart(f, 2);
+      const ConstMap<S> sr(input_spectra_.col(f).data(), in_, segments),
+          si(input_spectra_.col(bins_ + f).data(), in_, segments);
+      MutableMap<S> yr(product_spectra_.col(f).data(), out_, segments),
+          yi(product_spectra_.col(bins_ + f).data(), out_, segments);
+      yr.noalias() = cr * sr;
+      if (isRealBin(f, points_)) {
+        yi.setZero();
+        continue;
+      }
+      ci_si.noalias() = ci * si;
+      s_sum = sr + si;
+      yi.noalias() = c_sum * s_sum;
+      yi -= yr + ci_si;
+      yr -= ci_si;
+    }
+  });
+
+  frames_.resize(out_ * segments, block_);
+  const auto valid = synthesis_.leftCols(block_);
+  computePool().parallelRanges(static_cast<int>(segments), 1, kMinSegmentsPerThread, [&](int begin, int end) {
+    const Eigen::Index first = static_cast<Eigen::Index>(begin) * out_;
+    const Eigen::Index rows = static_cast<Eigen::Index>(end - begin) * out_;
+    frames_.middleRows(first, rows).noalias() = product_spectra_.middleRows(first, rows) * valid;
+    for (int j = begin; j < end; ++j) {
+      const Eigen::Index start = static_cast<Eigen::Index>(j) * block_;
+      const Eigen::Index length = std::min<Eigen::Index>(block_, count - start);
+      MutableMap<S>(out + start * out_, out_, length) =
+          frames_.block(static_cast<Eigen::Index>(j) * out_, 0, out_, length);
+    }
+  });
+}
+
+template <typename S>
+void SpectralCorrelation<S>::backward(const S* grad_out, Eigen::Index count, Mat<S>* weight_grad, S* padded_grad) {
+  if (count != input_count_)
+    throw std::logic_error("SpectralCorrelation: backward() over " + std::to_string(count) +
+                           " outputs, the last forward() had " + std::to_string(input_count_));
+  const Eigen::Index segments = segmentCount(count);
+  transform(grad_out, count, out_, block_, segments, segments_, grad_spectra_);
+
+  if (weight_grad != nullptr) {
+    if (weight_grad->rows() != out_ || weight_grad->cols() != static_cast<Eigen::Index>(in_) * width_)
+      throw std::invalid_argument("SpectralCorrelation: weight gradient has the wrong shape");
+    // dW_f = conj(dY_f) S_f^T, out x in, stored like the kernel spectra; Gauss's three products:
+    // Rr = dYr Sr^T + dYi Si^T, Ri = (dYr - dYi)(Sr + Si)^T - dYr Sr^T + dYi Si^T.
+    product_spectra_.resize(static_cast<Eigen::Index>(out_) * in_, 2 * bins_);
+    computePool().parallelRanges(bins_, 1, kMinBinsPerThread, [&](int begin, int end) {
+      Mat<S> di_si(out_, in_), d_difference(out_, segments), s_sum(in_, segments);
+      for (int f = begin; f < end; ++f) {
+        const ConstMap<S> dr(grad_spectra_.col(f).data(), out_, segments),
+            di(grad_spectra_.col(bins_ + f).data(), out_, segments);
+        const ConstMap<S> sr(input_spectra_.col(f).data(), in_, segments),
+            si(input_spectra_.col(bins_ + f).data(), in_, segments);
+        MutableMap<S> rr(product_spectra_.col(f).data(), out_, in_), ri(product_spectra_.col(bins_ + f).data(), out_, in_);
+        rr.noalias() = dr * sr.transpose();
+        if (isRealBin(f, points_)) {
+          ri.setZero();
+          continue;
+        }
+        di_si.noalias() = di * si.transpose();
+        d_difference = dr - di;
+        s_sum = sr + si;
+        ri.noalias() = d_difference * s_sum.transpose();
+        ri += di_si - rr;
+        rr += di_si;
+      }
+    });
+    MutableMap<S> taps(weight_grad->data(), static_cast<Eigen::Index>(out_) * in_, width_);
+    const auto tap_synthesis = synthesis_.leftCols(width_);
+    computePool().parallelRanges(static_cast<int>(taps.rows()), 1, kMinRowsPerThread, [&](int begin, int end) {
+      taps.middleRows(begin, end - begin).noalias() += product_spectra_.middleRows(begin, end - begin) * tap_synthesis;
+    });
+  }
+
+  if (padded_grad != nullptr) {
+    // dS_f = C_f^H dY_f, in x segments; Gauss's three products:
+    // dSr = Cr^T dYr + Ci^T dYi, dSi = (Cr - Ci)^T (dYr + dYi) - Cr^T dYr + Ci^T dYi.
+    product_spectra_.resize(in_ * segments, 2 * bins_);
+    computePool().parallelRanges(bins_, 1, kMinBinsPerThread, [&](int begin, int end) {
+      Mat<S> ci_di(in_, segments), d_sum(out_, segments);
+      for (int f = begin; f < end; ++f) {
+        const ConstMap<S> cr = kernelPart(f, 0), ci = kernelPart(f, 1), c_difference = kernelPart(f, 3);
+        const ConstMap<S> dr(grad_spectra_.col(f).data(), out_, segments),
+            di(grad_spectra_.col(bins_ + f).data(), out_, segments);
+        MutableMap<S> gr(product_spectra_.col(f).data(), in_, segments),
+            gi(product_spectra_.col(bins_ + f).data(), in_, segments);
+        gr.noalias() = cr.transpose() * dr;
+        if (isRealBin(f, points_)) {
+          gi.setZero();
+          continue;
+        }
+        ci_di.noalias() = ci.transpose() * di;
+        d_sum = dr + di;
+        gi.noalias() = c_difference.transpose() * d_sum;
+        gi += ci_di - gr;
+        gr += ci_di;
+      }
+    });
+    frames_.resize(in_ * segments, points_);
+    computePool().parallelRanges(static_cast<int>(segments), 1, kMinSegmentsPerThread, [&](int begin, int end) {
+      const Eigen::Index first = static_cast<Eigen::Index>(begin) * in_;
+      const Eigen::Index rows = static_cast<Eigen::Index>(end - begin) * in_;
+      frames_.middleRows(first, rows).noalias() = product_spectra_.middleRows(first, rows) * synthesis_;
+    });
+    // Overlap-add; serial because neighbouring segments share K - 1 frames (and it is cheap).
+    const Eigen::Index total = count + width_ - 1;
+    for (Eigen::Index j = 0; j < segments; ++j) {
+      const Eigen::Index start = j * block_;
+      const Eigen::Index length = std::min<Eigen::Index>(points_, total - start);
+      MutableMap<S>(padded_grad + start * in_, in_, length) += frames_.block(j * in_, 0, in_, length);
+    }
+  }
+}
+
+template class SpectralCorrelation<float>;
+template class SpectralCorrelation<double>;
+
+}  // namespace motionstyle::nn

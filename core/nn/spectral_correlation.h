@@ -1,0 +1,100 @@
+#pragma once
+// The temporal correlation of conv1d.h evaluated in the frequency domain (overlap-save), for long
+// inputs: the same numbers as the direct product up to rounding, several times fewer multiplications.
+//
+// WHY. The direct evaluation costs K multiply-adds per (input channel, output channel, output frame).
+// Cut the padded input into overlapping segments of N = L + K - 1 frames, each giving L output frames.
+// In the real DFT of N points, correlating a segment with a kernel is a product per frequency, so the
+// channel mixing at each of the H = floor(N/2) + 1 frequencies is ONE complex matrix product
+// (out x in) x (in x segments): 4H/L real multiply-adds per (channel pair, frame) instead of K. With
+// K = 25 and L = 40: 3.3 instead of 25. The transforms are matrix products too (the DFT of every
+// segment of every channel at once), so all the work stays in Eigen's GEMM, split over the compute
+// pool (compute_pool.h). The kernel's spectra are cached and recomputed only when its weights change,
+// so a frozen network (the loss network during style training, any network at inference) pays once.
+//
+// MATHS (one channel pair; a segment s of N frames; a kernel w of K taps; 0 <= t < L):
+//   y[t] = sum_k w[k] s[t + k]                                   the correlation of conv1d.h
+//        = IDFT( C . DFT(s) )[t],   C(f) = sum_k w[k] e^{+2 pi i f k / N}   (conjugate kernel spectrum)
+// exactly, because t + k <= L - 1 + K - 1 = N - 1 never wraps around. Its adjoints, also without wrap:
+//   ds     = IDFT( conj(C) . DFT(dy) )      dy: the segment's L output gradients, zeros after; all N
+//                                           frames of ds are ADDED into the input gradient (segments
+//                                           overlap by K - 1 frames: overlap-add)
+//   dw[k]  = IDFT( conj(DFT(dy)) . DFT(s) )[k],  k < K
+// With channels, per frequency f: Y_f = C_f S_f,  dS_f = C_f^H dY_f,  dW_f = conj(dY_f) S_f^T.
+// Storage: a real signal's spectrum is its H real parts, then its H imaginary parts (2H values).
+//
+// NUMERICS. Rounding only: ~1e-6 of the largest output in float, ~1e-14 in double. tests/unit/nn
+// compare this path with the direct one and gradient-check it in double.
+//
+// Not thread-safe (cached spectra and scratch): one instance per layer and thread.
+
+#include "nn/tensor.h"
+
+namespace motionstyle::nn {
+
+// Output frames per segment (L) for a kernel of `width` taps: about 1.6 x width, a multiple of 8.
+// Longer segments cost fewer products per frame but more transform work; for width 25 this gives
+// L = 40, N = 64, the measured optimum for the default networks (tests/bench/nn).
+int defaultSpectralBlock(int width);
+
+// Whether the spectral evaluation is expected to beat the direct product for `count` output frames:
+// its per-frame saving in channel mixing, in * out * (K - 4H/L), must exceed twice its per-frame
+// transform cost, (in + out) * (2HN/L + 2H), and the input must hold at least two segments.
+bool spectralIsFaster(int in, int out, int width, long count);
+
+template <typename S>
+class SpectralCorrelation {
+ public:
+  // in, out >= 1; width odd >= 1; block (L) >= 1. Throws std::invalid_argument otherwise.
+  SpectralCorrelation(int in, int out, int width, int block);
+
+  int inChannels() const { return in_; }
+  int outChannels() const { return out_; }
+  int width() const { return width_; }
+  int block() const { return block_; }
+  int points() const { return points_; }  // N = L + K - 1
+  int bins() const { return bins_; }      // H = floor(N/2) + 1
+
+  // Uses the kernel `weight` (out x (in*width), tap-major, tensor.h). Its spectra are recomputed only
+  // when `weight` differs from the one of the previous call. Throws std::invalid_argument on a shape
+  // mismatch.
+  void setKernel(const Mat<S>& weight);
+
+  // out (out_ x count, column-major) = sum_k W_k * padded[:, j + k] for j in [0, count): the contract
+  // of correlatePadded (conv1d.h). `padded` (in_ x available, column-major) is read as zero past
+  // `available` frames. Keeps the input spectra for backward(). Needs setKernel() first.
+  void forward(const S* padded, Eigen::Index available, Eigen::Index count, S* out);
+
+  // grad_out: out_ x count, the gradient of the last forward()'s output (same count). ADDS dLoss/dW
+  // into *weight_grad (out x (in*width)) when it is not null, and dLoss/dpadded into padded_grad
+  // (in_ x (count + width - 1), column-major) when it is not null.
+  void backward(const S* grad_out, Eigen::Index count, Mat<S>* weight_grad, S* padded_grad);
+
+ private:
+  Eigen::Index segmentCount(Eigen::Index count) const { return (count + block_ - 1) / block_; }
+  // rows (j*channels .. +channels) of `segments` = frames j*L .. j*L + frames - 1 of `sequence`
+  // (channels x available), zero past `available`; then spectra = segments * analysis_.topRows(frames).
+  void transform(const S* sequence, Eigen::Index available, int channels, int frames, Eigen::Index segments,
+                 Mat<S>& scratch, Mat<S>& spectra) const;
+
+  // Part 0..3 (see kernel_spectra_) of C_f as an out x in matrix.
+  Eigen::Map<const Mat<S>> kernelPart(int f, int part) const;
+
+  int in_, out_, width_, block_, points_, bins_;
+  Mat<S> analysis_;          // N x 2H: row n = [cos(2 pi f n / N) | -sin(2 pi f n / N)], the DFT of a frame
+  Mat<S> kernel_analysis_;   // K x 2H: [cos | +sin], the conjugate spectrum of a tap
+  Mat<S> synthesis_;         // 2H x N: the real inverse DFT (first L columns: valid outputs; K: taps)
+  Mat<S> kernel_weight_;     // the weight the cached spectra belong to
+  // (out*in) x 4H: for frequency f, columns f, H+f, 2H+f, 3H+f hold Re C_f, Im C_f, Re + Im and Re - Im
+  // (out x in each; the last two serve Gauss's three-product complex multiplication).
+  Mat<S> kernel_spectra_;
+  Mat<S> input_spectra_;     // (in*segments) x 2H: column f is S_f, in x segments (kept for backward)
+  Eigen::Index input_count_ = -1;  // count of the forward() the input spectra belong to
+  // Scratch, reused across calls.
+  Mat<S> segments_;
+  Mat<S> product_spectra_;
+  Mat<S> grad_spectra_;
+  Mat<S> frames_;
+};
+
+}  // namespace motionstyle::nn
