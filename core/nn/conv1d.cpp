@@ -107,7 +107,7 @@ Mat<S> Conv1d<S>::apply(const Mat<S>& x, int frames) const {
   if (!useSpectral(count)) return run(padded, windows, frames, nullptr);
   // A const call keeps no state: its own spectra (the kernel's are recomputed, a small share of a
   // batch long enough for the spectral path).
-  SpectralCorrelation<S> spectral(in_, out_, width_, defaultSpectralBlock(width_));
+  SpectralCorrelation<S> spectral(in_, out_, width_, defaultSpectralPoints(width_));
   return run(padded, windows, frames, &spectral);
 }
 
@@ -118,7 +118,7 @@ Mat<S> Conv1d<S>::forward(const Mat<S>& x, int frames) {
   padWindows(x, frames, width_ / 2, padded_input_);
   const Eigen::Index count = static_cast<Eigen::Index>(windows_) * (frames + width_ / 2) - width_ / 2;
   spectral_forward_ = useSpectral(count);
-  if (spectral_forward_ && !spectral_) spectral_.emplace(in_, out_, width_, defaultSpectralBlock(width_));
+  if (spectral_forward_ && !spectral_) spectral_.emplace(in_, out_, width_, defaultSpectralPoints(width_));
   return run(padded_input_, windows_, frames_, spectral_forward_ ? &*spectral_ : nullptr);
 }
 

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 #include <string>
 
@@ -17,19 +16,6 @@ constexpr int kMinSegmentsPerThread = 4;
 constexpr int kMinBinsPerThread = 2;
 constexpr int kMinRowsPerThread = 256;
 
-// cos and sin of 2 pi m / n, exact (0, +-1) where they should be, so that the imaginary parts of the
-// DC and Nyquist frequencies are exactly zero.
-struct Phase {
-  double cos, sin;
-};
-Phase phase(long m, long n) {
-  m %= n;
-  if (m == 0) return {1.0, 0.0};
-  if (2 * m == n) return {-1.0, 0.0};
-  const double angle = 2.0 * std::numbers::pi * static_cast<double>(m) / static_cast<double>(n);
-  return {std::cos(angle), std::sin(angle)};
-}
-
 // True for the frequencies whose spectrum of a real signal is real: DC and, for even N, Nyquist.
 bool isRealBin(int f, int points) { return f == 0 || 2 * f == points; }
 
@@ -40,43 +26,44 @@ using MutableMap = Eigen::Map<Mat<S>>;
 
 }  // namespace
 
-int defaultSpectralBlock(int width) { return std::max(8, 8 * ((16 * width + 79) / 80)); }
+int defaultSpectralPoints(int width) {
+  const int wanted = width - 1 + (16 * width + 9) / 10;  // K - 1 + ceil(1.6 K)
+  int points = 8;
+  while (points < wanted) points *= 2;
+  return points;
+}
 
 bool spectralIsFaster(int in, int out, int width, long count) {
-  const int block = defaultSpectralBlock(width);
-  const double points = block + width - 1;
-  const double bins = std::floor(points / 2) + 1;
-  const double mixing_saving = static_cast<double>(in) * out * (width - 4.0 * bins / block);
-  const double transform_cost = static_cast<double>(in + out) * (2.0 * bins * points / block + 2.0 * bins);
-  return count >= 2L * block && mixing_saving > 2.0 * transform_cost;
+  const int points = defaultSpectralPoints(width);
+  const double block = points - width + 1;
+  const double bins = points / 2 + 1;
+  const double mixing_saving = static_cast<double>(in) * out * (width - 3.0 * bins / block);
+  const double transform_cost = static_cast<double>(in + out) * 5.0 * points * std::log2(points) / block;
+  return count >= 2L * static_cast<long>(block) && mixing_saving > 2.0 * transform_cost;
 }
 
-template <typename S>
-SpectralCorrelation<S>::SpectralCorrelation(int in, int out, int width, int block)
-    : in_(in), out_(out), width_(width), block_(block), points_(block + width - 1), bins_((block + width - 1) / 2 + 1) {
-  if (in < 1 || out < 1 || block < 1 || width < 1 || width % 2 == 0)
-    throw std::invalid_argument("SpectralCorrelation: channels and block must be >= 1 and the width odd, got in " +
-                                std::to_string(in) + ", out " + std::to_string(out) + ", width " +
-                                std::to_string(width) + ", block " + std::to_string(block));
-  const int n = points_, h = bins_;
-  analysis_.resize(n, 2 * h);
-  kernel_analysis_.resize(width, 2 * h);
-  synthesis_.resize(2 * h, n);
-  for (int f = 0; f < h; ++f) {
-    const double multiplicity = isRealBin(f, n) ? 1.0 : 2.0;  // bins f and N - f of a real signal
-    for (int t = 0; t < n; ++t) {
-      const Phase p = phase(static_cast<long>(f) * t, n);
-      analysis_(t, f) = static_cast<S>(p.cos);
-      analysis_(t, h + f) = static_cast<S>(-p.sin);
-      synthesis_(f, t) = static_cast<S>(multiplicity * p.cos / n);
-      synthesis_(h + f, t) = static_cast<S>(-multiplicity * p.sin / n);
-      if (t < width) {
-        kernel_analysis_(t, f) = static_cast<S>(p.cos);
-        kernel_analysis_(t, h + f) = static_cast<S>(p.sin);
-      }
-    }
-  }
+namespace {
+
+int checkedPoints(int in, int out, int width, int points) {
+  if (in < 1 || out < 1 || width < 1 || width % 2 == 0 || points < std::max(4, width) || (points & (points - 1)) != 0)
+    throw std::invalid_argument("SpectralCorrelation: channels must be >= 1, the width odd and the segment length a "
+                                "power of two >= the width, got in " + std::to_string(in) + ", out " +
+                                std::to_string(out) + ", width " + std::to_string(width) + ", points " +
+                                std::to_string(points));
+  return points;
 }
+
+}  // namespace
+
+template <typename S>
+SpectralCorrelation<S>::SpectralCorrelation(int in, int out, int width, int points)
+    : in_(in),
+      out_(out),
+      width_(width),
+      block_(checkedPoints(in, out, width, points) - width + 1),
+      points_(points),
+      bins_(points / 2 + 1),
+      fft_(points) {}
 
 template <typename S>
 void SpectralCorrelation<S>::setKernel(const Mat<S>& weight) {
@@ -89,9 +76,10 @@ void SpectralCorrelation<S>::setKernel(const Mat<S>& weight) {
   // Tap-major storage makes the weight an (out*in) x K matrix whose row o + c*out holds w[o][c][.].
   const ConstMap<S> taps(weight.data(), static_cast<Eigen::Index>(out_) * in_, width_);
   kernel_spectra_.resize(taps.rows(), 4 * bins_);
+  fft_.forward(taps.data(), taps.rows(), width_, taps.rows(), kernel_spectra_.data(), kernel_spectra_.rows());
   computePool().parallelRanges(static_cast<int>(taps.rows()), 1, kMinRowsPerThread, [&](int begin, int end) {
     auto rows = kernel_spectra_.middleRows(begin, end - begin);
-    rows.leftCols(2 * bins_).noalias() = taps.middleRows(begin, end - begin) * kernel_analysis_;
+    rows.middleCols(bins_, bins_) = -rows.middleCols(bins_, bins_);  // the conjugate: correlation, not convolution
     rows.middleCols(2 * bins_, bins_) = rows.leftCols(bins_) + rows.middleCols(bins_, bins_);
     rows.rightCols(bins_) = rows.leftCols(bins_) - rows.middleCols(bins_, bins_);
   });
@@ -107,7 +95,6 @@ void SpectralCorrelation<S>::transform(const S* sequence, Eigen::Index available
                                        Eigen::Index segments, Mat<S>& scratch, Mat<S>& spectra) const {
   scratch.resize(channels * segments, frames);
   spectra.resize(channels * segments, 2 * bins_);
-  const auto basis = analysis_.topRows(frames);
   computePool().parallelRanges(static_cast<int>(segments), 1, kMinSegmentsPerThread, [&](int begin, int end) {
     for (int j = begin; j < end; ++j) {
       const Eigen::Index start = static_cast<Eigen::Index>(j) * block_;
@@ -116,10 +103,8 @@ void SpectralCorrelation<S>::transform(const S* sequence, Eigen::Index available
       rows.leftCols(present) = ConstMap<S>(sequence + start * channels, channels, present);
       rows.rightCols(frames - present).setZero();
     }
-    const Eigen::Index first = static_cast<Eigen::Index>(begin) * channels;
-    const Eigen::Index rows = static_cast<Eigen::Index>(end - begin) * channels;
-    spectra.middleRows(first, rows).noalias() = scratch.middleRows(first, rows) * basis;
   });
+  fft_.forward(scratch.data(), scratch.rows(), frames, scratch.rows(), spectra.data(), spectra.rows());
 }
 
 template <typename S>
@@ -153,11 +138,8 @@ void SpectralCorrelation<S>::forward(const S* padded, Eigen::Index available, Ei
   });
 
   frames_.resize(out_ * segments, block_);
-  const auto valid = synthesis_.leftCols(block_);
+  fft_.inverse(product_spectra_.data(), product_spectra_.rows(), frames_.rows(), block_, frames_.data(), frames_.rows());
   computePool().parallelRanges(static_cast<int>(segments), 1, kMinSegmentsPerThread, [&](int begin, int end) {
-    const Eigen::Index first = static_cast<Eigen::Index>(begin) * out_;
-    const Eigen::Index rows = static_cast<Eigen::Index>(end - begin) * out_;
-    frames_.middleRows(first, rows).noalias() = product_spectra_.middleRows(first, rows) * valid;
     for (int j = begin; j < end; ++j) {
       const Eigen::Index start = static_cast<Eigen::Index>(j) * block_;
       const Eigen::Index length = std::min<Eigen::Index>(block_, count - start);
@@ -202,11 +184,9 @@ void SpectralCorrelation<S>::backward(const S* grad_out, Eigen::Index count, Mat
         rr += di_si;
       }
     });
-    MutableMap<S> taps(weight_grad->data(), static_cast<Eigen::Index>(out_) * in_, width_);
-    const auto tap_synthesis = synthesis_.leftCols(width_);
-    computePool().parallelRanges(static_cast<int>(taps.rows()), 1, kMinRowsPerThread, [&](int begin, int end) {
-      taps.middleRows(begin, end - begin).noalias() += product_spectra_.middleRows(begin, end - begin) * tap_synthesis;
-    });
+    taps_.resize(product_spectra_.rows(), width_);
+    fft_.inverse(product_spectra_.data(), product_spectra_.rows(), taps_.rows(), width_, taps_.data(), taps_.rows());
+    MutableMap<S>(weight_grad->data(), taps_.rows(), width_) += taps_;
   }
 
   if (padded_grad != nullptr) {
@@ -234,11 +214,7 @@ void SpectralCorrelation<S>::backward(const S* grad_out, Eigen::Index count, Mat
       }
     });
     frames_.resize(in_ * segments, points_);
-    computePool().parallelRanges(static_cast<int>(segments), 1, kMinSegmentsPerThread, [&](int begin, int end) {
-      const Eigen::Index first = static_cast<Eigen::Index>(begin) * in_;
-      const Eigen::Index rows = static_cast<Eigen::Index>(end - begin) * in_;
-      frames_.middleRows(first, rows).noalias() = product_spectra_.middleRows(first, rows) * synthesis_;
-    });
+    fft_.inverse(product_spectra_.data(), product_spectra_.rows(), frames_.rows(), points_, frames_.data(), frames_.rows());
     // Overlap-add; serial because neighbouring segments share K - 1 frames (and it is cheap).
     const Eigen::Index total = count + width_ - 1;
     for (Eigen::Index j = 0; j < segments; ++j) {

@@ -6,11 +6,12 @@
 // Cut the padded input into overlapping segments of N = L + K - 1 frames, each giving L output frames.
 // In the real DFT of N points, correlating a segment with a kernel is a product per frequency, so the
 // channel mixing at each of the H = floor(N/2) + 1 frequencies is ONE complex matrix product
-// (out x in) x (in x segments): 4H/L real multiply-adds per (channel pair, frame) instead of K. With
-// K = 25 and L = 40: 3.3 instead of 25. The transforms are matrix products too (the DFT of every
-// segment of every channel at once), so all the work stays in Eigen's GEMM, split over the compute
-// pool (compute_pool.h). The kernel's spectra are cached and recomputed only when its weights change,
-// so a frozen network (the loss network during style training, any network at inference) pays once.
+// (out x in) x (in x segments). With Gauss's three-product complex multiplication that is 3H/L real
+// multiply-adds per (channel pair, frame) instead of K: with K = 25 and N = 64 (L = 40), 2.5 instead
+// of 25. The channel mixing runs on Eigen's GEMM; the transforms are batched real FFTs (real_fft.h),
+// both split over the compute pool (compute_pool.h). The kernel's spectra are cached and recomputed
+// only when its weights change, so a frozen network (the loss network during style training, any
+// network at inference) pays once.
 //
 // MATHS (one channel pair; a segment s of N frames; a kernel w of K taps; 0 <= t < L):
 //   y[t] = sum_k w[k] s[t + k]                                   the correlation of conv1d.h
@@ -28,25 +29,29 @@
 //
 // Not thread-safe (cached spectra and scratch): one instance per layer and thread.
 
+#include "nn/real_fft.h"
 #include "nn/tensor.h"
 
 namespace motionstyle::nn {
 
-// Output frames per segment (L) for a kernel of `width` taps: about 1.6 x width, a multiple of 8.
-// Longer segments cost fewer products per frame but more transform work; for width 25 this gives
-// L = 40, N = 64, the measured optimum for the default networks (tests/bench/nn).
-int defaultSpectralBlock(int width);
+// Segment length N (a power of two, >= 8) for a kernel of `width` taps: the smallest that gives at
+// least 1.6 x width output frames per segment (L = N - width + 1). Longer segments cost fewer
+// products per frame but more transform work; for width 25 this gives N = 64, L = 40, the measured
+// optimum for the default networks (tests/bench/nn).
+int defaultSpectralPoints(int width);
 
 // Whether the spectral evaluation is expected to beat the direct product for `count` output frames:
-// its per-frame saving in channel mixing, in * out * (K - 4H/L), must exceed twice its per-frame
-// transform cost, (in + out) * (2HN/L + 2H), and the input must hold at least two segments.
+// its per-frame saving in channel mixing, in * out * (K - 3H/L), must exceed twice its per-frame
+// transform cost, (in + out) * 5 N log2(N) / L (one FFT per channel and segment, in multiply-add
+// equivalents as measured against the GEMM), and the input must hold at least two segments.
 bool spectralIsFaster(int in, int out, int width, long count);
 
 template <typename S>
 class SpectralCorrelation {
  public:
-  // in, out >= 1; width odd >= 1; block (L) >= 1. Throws std::invalid_argument otherwise.
-  SpectralCorrelation(int in, int out, int width, int block);
+  // in, out >= 1; width odd >= 1; points (N) a power of two >= max(4, width). Throws
+  // std::invalid_argument otherwise.
+  SpectralCorrelation(int in, int out, int width, int points);
 
   int inChannels() const { return in_; }
   int outChannels() const { return out_; }
@@ -73,7 +78,7 @@ class SpectralCorrelation {
  private:
   Eigen::Index segmentCount(Eigen::Index count) const { return (count + block_ - 1) / block_; }
   // rows (j*channels .. +channels) of `segments` = frames j*L .. j*L + frames - 1 of `sequence`
-  // (channels x available), zero past `available`; then spectra = segments * analysis_.topRows(frames).
+  // (channels x available), zero past `available`; then spectra = their real DFTs (zero past `frames`).
   void transform(const S* sequence, Eigen::Index available, int channels, int frames, Eigen::Index segments,
                  Mat<S>& scratch, Mat<S>& spectra) const;
 
@@ -81,9 +86,7 @@ class SpectralCorrelation {
   Eigen::Map<const Mat<S>> kernelPart(int f, int part) const;
 
   int in_, out_, width_, block_, points_, bins_;
-  Mat<S> analysis_;          // N x 2H: row n = [cos(2 pi f n / N) | -sin(2 pi f n / N)], the DFT of a frame
-  Mat<S> kernel_analysis_;   // K x 2H: [cos | +sin], the conjugate spectrum of a tap
-  Mat<S> synthesis_;         // 2H x N: the real inverse DFT (first L columns: valid outputs; K: taps)
+  RealFft<S> fft_;
   Mat<S> kernel_weight_;     // the weight the cached spectra belong to
   // (out*in) x 4H: for frequency f, columns f, H+f, 2H+f, 3H+f hold Re C_f, Im C_f, Re + Im and Re - Im
   // (out x in each; the last two serve Gauss's three-product complex multiplication).
@@ -95,6 +98,7 @@ class SpectralCorrelation {
   Mat<S> product_spectra_;
   Mat<S> grad_spectra_;
   Mat<S> frames_;
+  Mat<S> taps_;
 };
 
 }  // namespace motionstyle::nn

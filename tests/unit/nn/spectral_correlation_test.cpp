@@ -29,6 +29,8 @@ TEST(SpectralCorrelationInvalid, RejectsBadShapesAndOutOfOrderCalls) {
   EXPECT_THROW(SpectralCorrelation<double>(0, 2, 3, 8), std::invalid_argument);
   EXPECT_THROW(SpectralCorrelation<double>(2, 2, 4, 8), std::invalid_argument);  // even width
   EXPECT_THROW(SpectralCorrelation<double>(2, 2, 3, 0), std::invalid_argument);
+  EXPECT_THROW(SpectralCorrelation<double>(2, 2, 3, 12), std::invalid_argument);  // not a power of two
+  EXPECT_THROW(SpectralCorrelation<double>(2, 2, 9, 8), std::invalid_argument);   // shorter than the kernel
   SpectralCorrelation<double> spectral(2, 3, 3, 8);
   EXPECT_THROW(spectral.setKernel(MatD::Zero(3, 5)), std::invalid_argument);
   MatD padded = MatD::Zero(2, 20);
@@ -43,11 +45,14 @@ TEST(SpectralCorrelationInvalid, RejectsBadShapesAndOutOfOrderCalls) {
   EXPECT_THROW(spectral.backward(grad_ok.data(), 18, &wrong_shape, nullptr), std::invalid_argument);
 }
 
-TEST(SpectralCorrelation, BlockAndCostModelFollowTheirDefinitions) {
-  EXPECT_EQ(defaultSpectralBlock(25), 40);  // N = 64 for the default networks
-  EXPECT_EQ(defaultSpectralBlock(3), 8);
-  SpectralCorrelation<float> spectral(4, 4, 25, defaultSpectralBlock(25));
+TEST(SpectralCorrelation, SegmentsAndCostModelFollowTheirDefinitions) {
+  EXPECT_EQ(defaultSpectralPoints(25), 64);  // L = 40 output frames per segment for the default networks
+  EXPECT_EQ(defaultSpectralPoints(13), 64);  // the polyphase decoder
+  EXPECT_EQ(defaultSpectralPoints(3), 8);
+  EXPECT_EQ(defaultSpectralPoints(1), 8);
+  SpectralCorrelation<float> spectral(4, 4, 25, defaultSpectralPoints(25));
   EXPECT_EQ(spectral.points(), 64);
+  EXPECT_EQ(spectral.block(), 40);
   EXPECT_EQ(spectral.bins(), 33);
   EXPECT_TRUE(spectralIsFaster(128, 128, 25, 16 * 240));
   EXPECT_TRUE(spectralIsFaster(66, 256, 25, 240));
