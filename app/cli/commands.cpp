@@ -34,7 +34,8 @@ const std::vector<Command>& commands() {
        "  --seed S          seed for initialisation, shuffling and dropout (default 1); same seed and\n"
        "                    thread count give identical networks\n"
        "  --batch B         windows per step (default 16)\n"
-       "  --lr LR           Adam learning rate (default 0.001)\n"
+       "  --lr LR           Adam learning rate at the start (default 0.001)\n"
+       "  --lr-schedule S   cosine (default: decays to 1% of --lr over the run) or constant\n"
        "  --threads T       compute threads (default: all cores, at most 8)\n"
        "  --resume          continue from the checkpoint (same data and settings)\n"
        "  --init NET        warm start from an existing autoencoder (its weights and normalisation)\n"
@@ -64,8 +65,8 @@ const std::vector<Command>& commands() {
        "  --out FILE          the style network file (embeds the loss network)\n"
        "  --weights LIST      loss weights, any subset (defaults content=1,style=100,foot=0.01,bone=0.01,traj=0.01)\n"
        "  --init NET          warm start from an existing style network (adjust the weights and retrain)\n"
-       "  --epochs N, --seed S, --batch B, --lr LR, --threads T, --resume, --checkpoint FILE, --holdout N,\n"
-       "  --skip-bad, --unit UNIT: as for train-ae; --hidden H: hidden units (default 128)\n",
+       "  --epochs N, --seed S, --batch B, --lr LR, --lr-schedule S, --threads T, --resume, --checkpoint FILE,\n"
+       "  --holdout N, --skip-bad, --unit UNIT: as for train-ae; --hidden H: hidden units (default 128)\n",
        runTrainStyle},
       {"stylize", "apply a trained style network to a clip",
        "usage: motionstyle-cli stylize --net NET [--ae AE] IN.bvh --out OUT.bvh [--strength S]\n"

@@ -147,8 +147,8 @@ void applyThreadOption(int threads) {
 }
 
 std::vector<OptionSpec> trainingOptionSpecs() {
-  return {{"out"},     {"epochs"},     {"seed"},    {"batch"},          {"lr"},   {"threads"}, {"resume", false},
-          {"init"},    {"checkpoint"}, {"holdout"}, {"skip-bad", false}, {"unit"}, {"hidden"}};
+  return {{"out"},     {"epochs"},     {"seed"},    {"batch"},          {"lr"},   {"lr-schedule"}, {"threads"},
+          {"resume", false}, {"init"},    {"checkpoint"}, {"holdout"}, {"skip-bad", false}, {"unit"}, {"hidden"}};
 }
 
 style::TrainingSettings trainingSettings(const ParsedArgs& parsed, double default_lr) {
@@ -163,6 +163,14 @@ style::TrainingSettings trainingSettings(const ParsedArgs& parsed, double defaul
   if (settings.batch_size < 1 || settings.batch_size > 4096) throw UsageError("--batch must be in [1, 4096]");
   settings.learning_rate = parsed.number("lr", default_lr);
   if (!(settings.learning_rate > 0.0)) throw UsageError("--lr must be > 0");
+  if (auto schedule = parsed.value("lr-schedule")) {
+    if (*schedule == "cosine")
+      settings.schedule = style::LearningRateSchedule::Cosine;
+    else if (*schedule == "constant")
+      settings.schedule = style::LearningRateSchedule::Constant;
+    else
+      throw UsageError("--lr-schedule must be cosine or constant, not '" + *schedule + "'");
+  }
   if (parsed.has("threads")) {
     settings.threads = parsed.integer("threads", 0);
     applyThreadOption(settings.threads);

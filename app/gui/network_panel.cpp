@@ -269,6 +269,8 @@ QWidget* NetworkPanel::createTrainTab() {
   learning_rate_spin_->setRange(1e-6, 1.0);
   learning_rate_spin_->setSingleStep(1e-4);
   learning_rate_spin_->setValue(1e-3);
+  learning_rate_spin_->setToolTip(tr("Adam's learning rate at the start; it decays along a cosine to 1% of this "
+                                     "by the last epoch"));
   hidden_spin_ = new QSpinBox(tab);
   hidden_spin_->setObjectName(QStringLiteral("HiddenUnits"));
   hidden_spin_->setRange(1, 4096);
@@ -283,7 +285,7 @@ QWidget* NetworkPanel::createTrainTab() {
   form->addRow(tr("Bone weight"), bone_weight_);
   form->addRow(tr("Trajectory weight"), trajectory_weight_);
   form->addRow(tr("Epochs"), epochs_spin_);
-  form->addRow(tr("Learning rate"), learning_rate_spin_);
+  form->addRow(tr("Learning rate (start)"), learning_rate_spin_);
   form->addRow(tr("Hidden units"), hidden_spin_);
 
   train_button_ = new QPushButton(tr("&Train"), tab);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <stdexcept>
 #include <string>
 
@@ -33,7 +34,18 @@ int defaultSpectralPoints(int width) {
   return points;
 }
 
+bool spectralEnabled() {
+  // Read once: MOTIONSTYLE_NN_CONV=direct turns the spectral path off everywhere (to compare results
+  // or speed); anything else keeps the cost model.
+  static const bool enabled = [] {
+    const char* env = std::getenv("MOTIONSTYLE_NN_CONV");
+    return env == nullptr || std::string(env) != "direct";
+  }();
+  return enabled;
+}
+
 bool spectralIsFaster(int in, int out, int width, long count) {
+  if (!spectralEnabled()) return false;
   const int points = defaultSpectralPoints(width);
   const double block = points - width + 1;
   const double bins = points / 2 + 1;

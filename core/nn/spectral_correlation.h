@@ -44,6 +44,7 @@ int defaultSpectralPoints(int width);
 // its per-frame saving in channel mixing, in * out * (K - 3H/L), must exceed twice its per-frame
 // transform cost, (in + out) * 5 N log2(N) / L (one FFT per channel and segment, in multiply-add
 // equivalents as measured against the GEMM), and the input must hold at least two segments.
+// Always false when MOTIONSTYLE_NN_CONV=direct is set in the environment (read once).
 bool spectralIsFaster(int in, int out, int width, long count);
 
 template <typename S>

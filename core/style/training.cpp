@@ -1,12 +1,25 @@
 // Shared pieces of the training API: settings validation, the representation stamp, model loading.
 #include "style/training.h"
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 #include "nn/compute_pool.h"
 
 namespace motionstyle::style {
+
+double scheduledLearningRate(LearningRateSchedule schedule, double learning_rate, long step, long total_steps) {
+  if (schedule == LearningRateSchedule::Constant || total_steps <= 1) return learning_rate;
+  const double progress = std::clamp(static_cast<double>(step) / static_cast<double>(total_steps - 1), 0.0, 1.0);
+  const double cosine = 0.5 * (1.0 + std::cos(std::numbers::pi * progress));  // 1 -> 0
+  return learning_rate * (kFinalLearningRateFraction + (1.0 - kFinalLearningRateFraction) * cosine);
+}
+
+const char* scheduleName(LearningRateSchedule schedule) {
+  return schedule == LearningRateSchedule::Cosine ? "cosine" : "constant";
+}
 
 std::filesystem::path TrainingSettings::checkpointPath() const {
   if (!checkpoint.empty()) return checkpoint;

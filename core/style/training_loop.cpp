@@ -119,6 +119,9 @@ TrainingStatus runTrainingLoop(const LoopSetup& setup, std::vector<EpochRecord>&
       if (!std::isfinite(losses.total))
         throw TrainingDiverged("training diverged at epoch " + std::to_string(epoch) + ", step " +
                                std::to_string(step + 1) + ": the loss is not finite (lower the learning rate?)");
+      const long global_step = static_cast<long>(epoch - 1) * steps_per_epoch + step;
+      setup.optimiser->setLearningRate(scheduledLearningRate(settings.schedule, settings.learning_rate, global_step,
+                                                             static_cast<long>(settings.epochs) * steps_per_epoch));
       setup.optimiser->step();
       if (!parametersFinite(setup.parameters))
         throw TrainingDiverged("training diverged at epoch " + std::to_string(epoch) + ", step " +
@@ -231,6 +234,7 @@ nn::NetworkMetadata trainingMetadata(const TrainingSettings& settings, const std
   metadata.representation = currentRepresentation(settings.dataset.features);
   metadata.training.epochs = history.empty() ? 0 : history.back().epoch;
   metadata.training.learning_rate = settings.learning_rate;
+  metadata.properties.emplace_back("lr_schedule", scheduleName(settings.schedule));
   metadata.training.seed = settings.seed;
   metadata.training.batch_windows = settings.batch_size;
   metadata.training.window_frames = settings.windows.frames;
@@ -260,6 +264,7 @@ std::uint64_t dataFingerprint(const TrainingClips& data, const TrainingSettings&
     parts.push_back(data.clips[i].file.string() + "#" + std::to_string(data.clips[i].frameCount()));
   parts.push_back("batch=" + std::to_string(settings.batch_size));
   parts.push_back("lr=" + std::to_string(settings.learning_rate));
+  parts.push_back(std::string("schedule=") + scheduleName(settings.schedule));
   parts.push_back("seed=" + std::to_string(settings.seed));
   parts.push_back("window=" + std::to_string(settings.windows.frames) + "/" + std::to_string(settings.windows.step));
   parts.insert(parts.end(), extra.begin(), extra.end());

@@ -22,8 +22,8 @@ OUT="${OUT:-$here}"
 D1="$DATA/dataset-1/data"
 D2="$DATA/dataset-2/data"
 THREADS=2
-AE_EPOCHS=60
-STYLE_EPOCHS=15
+AE_EPOCHS=100
+STYLE_EPOCHS=100
 
 [[ -d "$D1" && -d "$D2" ]] || { echo "error: the Bandai dataset is not at $DATA (set DATA)" >&2; exit 2; }
 [[ -x "$CLI" ]] || { echo "error: $CLI not found: build first, or set CLI" >&2; exit 2; }

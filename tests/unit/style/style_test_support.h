@@ -4,8 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
@@ -88,6 +90,18 @@ inline style::AutoencoderTrainingConfig tinyAutoencoderConfig(const std::filesys
 }
 
 // An untrained but valid tiny loss network with statistics of the fixtures, saved to `file`.
+// Callbacks that cancel a run as epoch `epoch` ends (after its checkpoint): how an interrupted run
+// stops, with its settings (epochs, so its learning-rate schedule) unchanged.
+inline style::TrainingCallbacks cancelAtEndOfEpoch(int epoch) {
+  auto cancel = std::make_shared<std::atomic<bool>>(false);
+  style::TrainingCallbacks callbacks;
+  callbacks.cancel = cancel.get();
+  callbacks.progress = [cancel, epoch](const style::TrainingProgress& p) {
+    if (p.phase == style::TrainingProgress::Phase::EpochEnd && p.epoch == epoch) *cancel = true;
+  };
+  return callbacks;
+}
+
 inline nn::AutoencoderModel tinyAutoencoderModel(std::uint32_t seed = 3) {
   nn::AutoencoderModel model{nn::Autoencoder<float>(tinyAutoencoderShape()), {}, {}};
   model.network.initialise(seed);

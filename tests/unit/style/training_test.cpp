@@ -26,6 +26,23 @@ constexpr double kCancelBoundSeconds = 1.0;
 
 using test::TempDir;
 
+TEST(LearningRateSchedule, CosineDecaysFromTheRateToOnePercentAndConstantStays) {
+  using style::LearningRateSchedule;
+  using style::scheduledLearningRate;
+  EXPECT_DOUBLE_EQ(scheduledLearningRate(LearningRateSchedule::Cosine, 1e-3, 0, 100), 1e-3);
+  EXPECT_DOUBLE_EQ(scheduledLearningRate(LearningRateSchedule::Cosine, 1e-3, 99, 100), 1e-5);
+  EXPECT_NEAR(scheduledLearningRate(LearningRateSchedule::Cosine, 1e-3, 99, 199), 0.505e-3, 1e-12);  // halfway
+  double previous = 1.0;
+  for (long step = 0; step < 50; ++step) {
+    const double rate = scheduledLearningRate(LearningRateSchedule::Cosine, 1.0, step, 50);
+    EXPECT_LT(rate, previous + 1e-15);
+    previous = rate;
+  }
+  EXPECT_DOUBLE_EQ(scheduledLearningRate(LearningRateSchedule::Cosine, 2e-3, 0, 1), 2e-3);  // a one-step run
+  for (long step : {0L, 10L, 99L})
+    EXPECT_DOUBLE_EQ(scheduledLearningRate(LearningRateSchedule::Constant, 1e-3, step, 100), 1e-3);
+}
+
 TEST(TrainAutoencoder, LossDecreasesAndTheOutputLoads) {
   TempDir dir;
   std::vector<style::TrainingProgress> calls;
@@ -58,6 +75,23 @@ TEST(TrainAutoencoder, LossDecreasesAndTheOutputLoads) {
   EXPECT_EQ(steps, 4 * calls.back().steps_per_epoch);
 }
 
+TEST(TrainAutoencoder, TheScheduleIsAppliedAndRecorded) {
+  TempDir dir;
+  style::AutoencoderTrainingConfig cosine = test::tinyAutoencoderConfig(dir / "cosine.net", 2);
+  style::AutoencoderTrainingConfig constant = test::tinyAutoencoderConfig(dir / "constant.net", 2);
+  constant.settings.schedule = style::LearningRateSchedule::Constant;
+  const auto a = style::trainAutoencoder(cosine, {});
+  const auto b = style::trainAutoencoder(constant, {});
+  EXPECT_NE(a.model.network.encoder.weight.value, b.model.network.encoder.weight.value);
+  auto property = [](const nn::NetworkMetadata& m, const std::string& key) {
+    for (const auto& [k, v] : m.properties)
+      if (k == key) return v;
+    return std::string("(missing)");
+  };
+  EXPECT_EQ(property(style::loadCompatibleAutoencoder(dir / "cosine.net").metadata, "lr_schedule"), "cosine");
+  EXPECT_EQ(property(style::loadCompatibleAutoencoder(dir / "constant.net").metadata, "lr_schedule"), "constant");
+}
+
 TEST(TrainAutoencoder, SameSeedGivesIdenticalWeightsAndAnotherSeedDoesNot) {
   TempDir dir;
   auto config = test::tinyAutoencoderConfig(dir / "a.net", 2);
@@ -76,11 +110,10 @@ TEST(TrainAutoencoder, ResumeAfterAnEpochOrACancelledStepEqualsUninterruptedTrai
   auto config = test::tinyAutoencoderConfig(dir / "straight.net", 3);
   const auto straight = style::trainAutoencoder(config);
 
-  // Stopped at an epoch boundary, resumed.
+  // Stopped at an epoch boundary (cancelled as epoch 1 ends: the run keeps its 3-epoch schedule),
+  // resumed.
   config.settings.output = dir / "split.net";
-  config.settings.epochs = 1;
-  ASSERT_EQ(style::trainAutoencoder(config).status, style::TrainingStatus::Completed);
-  config.settings.epochs = 3;
+  ASSERT_EQ(style::trainAutoencoder(config, test::cancelAtEndOfEpoch(1)).status, style::TrainingStatus::Cancelled);
   config.settings.resume = true;
   const auto resumed = style::trainAutoencoder(config);
   EXPECT_EQ(test::weightsOf(straight.model.network), test::weightsOf(resumed.model.network));
@@ -207,9 +240,7 @@ TEST(TrainStyleNetwork, DeterministicResumableAndWarmStartable) {
   EXPECT_EQ(test::weightsOf(first.model.transformer), test::weightsOf(second.model.transformer));
 
   config.settings.output = dir / "split.net";
-  config.settings.epochs = 1;
-  style::trainStyleNetwork(config);
-  config.settings.epochs = 2;
+  ASSERT_EQ(style::trainStyleNetwork(config, test::cancelAtEndOfEpoch(1)).status, style::TrainingStatus::Cancelled);
   config.settings.resume = true;
   const auto resumed = style::trainStyleNetwork(config);
   EXPECT_EQ(test::weightsOf(first.model.transformer), test::weightsOf(resumed.model.transformer));
