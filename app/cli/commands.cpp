@@ -36,6 +36,8 @@ const std::vector<Command>& commands() {
        "  --batch B         windows per step (default 16)\n"
        "  --lr LR           Adam learning rate at the start (default 0.001)\n"
        "  --lr-schedule S   cosine (default: decays to 1% of --lr over the run) or constant\n"
+       "  --clip K          scale a batch's gradient down to K x its expected norm (default 3; 0 = off):\n"
+       "                    one batch of extreme windows (fast spins) cannot throw the network off\n"
        "  --threads T       compute threads (default: all cores, at most 8)\n"
        "  --resume          continue from the checkpoint (same data and settings)\n"
        "  --init NET        warm start from an existing autoencoder (its weights and normalisation)\n"
@@ -65,8 +67,9 @@ const std::vector<Command>& commands() {
        "  --out FILE          the style network file (embeds the loss network)\n"
        "  --weights LIST      loss weights, any subset (defaults content=1,style=100,foot=0.01,bone=0.01,traj=0.01)\n"
        "  --init NET          warm start from an existing style network (adjust the weights and retrain)\n"
-       "  --epochs N, --seed S, --batch B, --lr LR, --lr-schedule S, --threads T, --resume, --checkpoint FILE,\n"
-       "  --holdout N, --skip-bad, --unit UNIT: as for train-ae; --hidden H: hidden units (default 128)\n",
+       "  --epochs N, --seed S, --batch B, --lr LR, --lr-schedule S, --clip K, --threads T, --resume,\n"
+       "  --checkpoint FILE, --holdout N, --skip-bad, --unit UNIT: as for train-ae; --hidden H: hidden\n"
+       "  units (default 128)\n",
        runTrainStyle},
       {"stylize", "apply a trained style network to a clip",
        "usage: motionstyle-cli stylize --net NET [--ae AE] IN.bvh --out OUT.bvh [--strength S]\n"

@@ -147,7 +147,7 @@ void applyThreadOption(int threads) {
 }
 
 std::vector<OptionSpec> trainingOptionSpecs() {
-  return {{"out"},     {"epochs"},     {"seed"},    {"batch"},          {"lr"},   {"lr-schedule"}, {"threads"},
+  return {{"out"},     {"epochs"},     {"seed"},    {"batch"},          {"lr"},   {"lr-schedule"}, {"clip"}, {"threads"},
           {"resume", false}, {"init"},    {"checkpoint"}, {"holdout"}, {"skip-bad", false}, {"unit"}, {"hidden"}};
 }
 
@@ -171,6 +171,8 @@ style::TrainingSettings trainingSettings(const ParsedArgs& parsed, double defaul
     else
       throw UsageError("--lr-schedule must be cosine or constant, not '" + *schedule + "'");
   }
+  settings.gradient_clip = parsed.number("clip", settings.gradient_clip);
+  if (!(settings.gradient_clip >= 0.0) || !std::isfinite(settings.gradient_clip)) throw UsageError("--clip must be >= 0");
   if (parsed.has("threads")) {
     settings.threads = parsed.integer("threads", 0);
     applyThreadOption(settings.threads);

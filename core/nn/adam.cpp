@@ -1,5 +1,6 @@
 #include "nn/adam.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <utility>
@@ -9,8 +10,11 @@ namespace motionstyle::nn {
 void AdamOptions::validate() const {
   const bool ok = std::isfinite(learning_rate) && learning_rate > 0.0 && std::isfinite(beta1) &&
                   beta1 >= 0.0 && beta1 < 1.0 && std::isfinite(beta2) && beta2 >= 0.0 && beta2 < 1.0 &&
-                  std::isfinite(epsilon) && epsilon > 0.0;
-  if (!ok) throw std::invalid_argument("AdamOptions: need lr > 0, 0 <= beta1, beta2 < 1, eps > 0");
+                  std::isfinite(epsilon) && epsilon > 0.0 && std::isfinite(gradient_clip) && gradient_clip >= 0.0 &&
+                  clip_warmup_steps >= 0;
+  if (!ok)
+    throw std::invalid_argument("AdamOptions: need lr > 0, 0 <= beta1, beta2 < 1, eps > 0, gradient_clip >= 0 and "
+                                "clip_warmup_steps >= 0");
 }
 
 template <typename S>
@@ -49,6 +53,10 @@ void Adam<S>::restore(long steps, std::vector<Mat<S>> first, std::vector<Mat<S>>
 
 template <typename S>
 void Adam<S>::step() {
+  // v^ of the moments as they stand (before this step's gradient), for the outlier clipping.
+  const bool clipping = options_.gradient_clip > 0.0 && steps_ >= std::max(1L, options_.clip_warmup_steps);
+  const double previous_correction2 = 1.0 - std::pow(options_.beta2, static_cast<double>(steps_));
+  clipped_in_last_step_ = 0;
   ++steps_;
   const double correction1 = 1.0 - std::pow(options_.beta1, static_cast<double>(steps_));
   const double correction2 = 1.0 - std::pow(options_.beta2, static_cast<double>(steps_));
@@ -62,8 +70,18 @@ void Adam<S>::step() {
     if (p.grad.rows() != p.value.rows() || p.grad.cols() != p.value.cols() ||
         first_moment_[i].rows() != p.value.rows() || first_moment_[i].cols() != p.value.cols())
       throw std::invalid_argument("Adam: parameter " + p.name + " changed shape");
-    first_moment_[i] = b1 * first_moment_[i] + (S(1) - b1) * p.grad;
-    second_moment_[i] = b2 * second_moment_[i] + (S(1) - b2) * p.grad.cwiseAbs2();
+    S scale = S(1);
+    if (clipping) {
+      const double expected = std::sqrt(static_cast<double>(second_moment_[i].sum()) / previous_correction2);
+      const double norm = static_cast<double>(p.grad.norm());
+      const double bound = options_.gradient_clip * expected;
+      if (expected > 0.0 && norm > bound) {
+        scale = static_cast<S>(bound / norm);
+        ++clipped_in_last_step_;
+      }
+    }
+    first_moment_[i] = b1 * first_moment_[i] + ((S(1) - b1) * scale) * p.grad;
+    second_moment_[i] = b2 * second_moment_[i] + ((S(1) - b2) * scale * scale) * p.grad.cwiseAbs2();
     p.value.array() -= step_size * first_moment_[i].array() /
                        (second_moment_[i].array().sqrt() * inv_sqrt_c2 + eps);
   }

@@ -37,7 +37,7 @@ AutoencoderTrainingResult trainAutoencoder(const AutoencoderTrainingConfig& conf
   nn::AutoencoderModel& model = result.model;
   std::vector<EpochRecord> history;
   std::vector<nn::Parameter<float>*> parameters = model.network.parameters();
-  nn::Adam<float> optimiser(parameters, nn::AdamOptions{settings.learning_rate});
+  nn::Adam<float> optimiser(parameters, settings.adamOptions());
   const std::uint64_t fingerprint = dataFingerprint(data, settings, settingsParts(config));
   int first_epoch = 1;
 
@@ -48,7 +48,7 @@ AutoencoderTrainingResult trainAutoencoder(const AutoencoderTrainingConfig& conf
       throw InputError(settings.checkpointPath().string(), 0, "the checkpoint's autoencoder has another shape");
     model = std::move(resumed);
     parameters = model.network.parameters();
-    optimiser = nn::Adam<float>(parameters, nn::AdamOptions{settings.learning_rate});
+    optimiser = nn::Adam<float>(parameters, settings.adamOptions());
     first_epoch = restoreFromState(checkpoint.state, nn::NetworkKind::Autoencoder, fingerprint,
                                    settings.checkpointPath(), optimiser, history);
     if (callbacks.log) callbacks.log("resuming after epoch " + std::to_string(first_epoch - 1));
@@ -61,7 +61,7 @@ AutoencoderTrainingResult trainAutoencoder(const AutoencoderTrainingConfig& conf
     model.network = std::move(initial.network);
     model.normalisation = initial.normalisation;
     parameters = model.network.parameters();
-    optimiser = nn::Adam<float>(parameters, nn::AdamOptions{settings.learning_rate});
+    optimiser = nn::Adam<float>(parameters, settings.adamOptions());
   } else {
     std::vector<Eigen::MatrixXd> values;
     for (const MotionClip& clip : data.clips) values.push_back(clip.features.values);

@@ -132,7 +132,7 @@ StyleTrainingResult trainStyleNetwork(const StyleTrainingConfig& config, const T
   model.normalisation = loss.normalisation;
   std::vector<EpochRecord> history;
   std::vector<nn::Parameter<float>*> parameters = model.transformer.parameters();
-  nn::Adam<float> optimiser(parameters, nn::AdamOptions{settings.learning_rate});
+  nn::Adam<float> optimiser(parameters, settings.adamOptions());
   const std::uint64_t fingerprint = dataFingerprint(data, settings, settingsParts(config, style_hashes, result.pairing, loss));
   int first_epoch = 1;
   if (settings.resume) {
@@ -142,7 +142,7 @@ StyleTrainingResult trainStyleNetwork(const StyleTrainingConfig& config, const T
       throw InputError(settings.checkpointPath().string(), 0, "the checkpoint's network has another shape");
     model.transformer = std::move(resumed.transformer);
     parameters = model.transformer.parameters();
-    optimiser = nn::Adam<float>(parameters, nn::AdamOptions{settings.learning_rate});
+    optimiser = nn::Adam<float>(parameters, settings.adamOptions());
     first_epoch = restoreFromState(checkpoint.state, nn::NetworkKind::Style, fingerprint, settings.checkpointPath(),
                                    optimiser, history);
     if (callbacks.log) callbacks.log("resuming after epoch " + std::to_string(first_epoch - 1));
@@ -152,7 +152,7 @@ StyleTrainingResult trainStyleNetwork(const StyleTrainingConfig& config, const T
       throw InputError(settings.init.string(), 0, "the --init network has another shape than requested");
     model.transformer = std::move(initial.transformer);
     parameters = model.transformer.parameters();
-    optimiser = nn::Adam<float>(parameters, nn::AdamOptions{settings.learning_rate});
+    optimiser = nn::Adam<float>(parameters, settings.adamOptions());
     if (callbacks.log) callbacks.log("warm start from " + settings.init.string());
   } else {
     model.transformer.initialise(settings.seed);

@@ -28,10 +28,18 @@ std::filesystem::path TrainingSettings::checkpointPath() const {
   return path;
 }
 
+nn::AdamOptions TrainingSettings::adamOptions() const {
+  nn::AdamOptions options;
+  options.learning_rate = learning_rate;
+  options.gradient_clip = gradient_clip;
+  return options;
+}
+
 void TrainingSettings::validate() const {
   if (epochs < 1) throw std::invalid_argument("epochs must be >= 1");
   if (batch_size < 1) throw std::invalid_argument("batch size must be >= 1");
   if (!std::isfinite(learning_rate) || learning_rate <= 0) throw std::invalid_argument("learning rate must be > 0");
+  if (!std::isfinite(gradient_clip) || gradient_clip < 0) throw std::invalid_argument("gradient clip must be >= 0");
   if (threads < 0) throw std::invalid_argument("threads must be >= 0");
   if (threads > 0 && threads != nn::computePool().threadCount())
     throw std::invalid_argument("threads = " + std::to_string(threads) + " but the nn compute pool runs " +

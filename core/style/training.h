@@ -36,6 +36,7 @@
 #include <string>
 #include <vector>
 
+#include "nn/adam.h"
 #include "nn/network_file.h"
 #include "style/motion_dataset.h"
 #include "style/style_pairing.h"
@@ -103,6 +104,9 @@ struct TrainingSettings {
   int batch_size = 16;            // windows per step
   double learning_rate = 1e-3;    // Adam, at the start of the run
   LearningRateSchedule schedule = LearningRateSchedule::Cosine;
+  // Adam's outlier clipping (nn::AdamOptions::gradient_clip): a batch whose gradient is more than this
+  // many times its expected norm is scaled down to it. 0 = off.
+  double gradient_clip = 3.0;
   std::uint32_t seed = 1;
   // Total nn threads (both cores by default). 0 = the compute pool as it is; any other value must equal
   // nn::computePool().threadCount() (the pool is process-wide: the CLI sets MOTIONSTYLE_NN_THREADS
@@ -118,6 +122,7 @@ struct TrainingSettings {
 
   std::filesystem::path checkpointPath() const;
   void validate() const;  // std::invalid_argument naming the bad field
+  nn::AdamOptions adamOptions() const;  // learning_rate (before the schedule) and gradient_clip
 };
 
 struct TrainingResult {

@@ -97,6 +97,7 @@ TrainingStatus runTrainingLoop(const LoopSetup& setup, std::vector<EpochRecord>&
     const std::vector<int> order = shuffledIndices(setup.window_count, shuffle_rng);
     EpochRecord record;
     record.epoch = epoch;
+    int clipped_steps = 0;
     for (int step = 0; step < steps_per_epoch; ++step) {
       const int begin = step * batch;
       const int end = std::min(setup.window_count, begin + batch);
@@ -123,6 +124,7 @@ TrainingStatus runTrainingLoop(const LoopSetup& setup, std::vector<EpochRecord>&
       setup.optimiser->setLearningRate(scheduledLearningRate(settings.schedule, settings.learning_rate, global_step,
                                                              static_cast<long>(settings.epochs) * steps_per_epoch));
       setup.optimiser->step();
+      if (setup.optimiser->clippedInLastStep() > 0) ++clipped_steps;
       if (!parametersFinite(setup.parameters))
         throw TrainingDiverged("training diverged at epoch " + std::to_string(epoch) + ", step " +
                                std::to_string(step + 1) + ": the weights are no longer finite (lower the learning rate?)");
@@ -146,6 +148,9 @@ TrainingStatus runTrainingLoop(const LoopSetup& setup, std::vector<EpochRecord>&
     }
     record.seconds = secondsSince(epoch_start);
     history.push_back(record);
+    if (clipped_steps > 0 && callbacks.log)
+      callbacks.log("epoch " + std::to_string(epoch) + ": " + std::to_string(clipped_steps) +
+                    " step(s) with an outlier gradient, scaled down to the clip bound");
     setup.end_epoch(history);
     if (callbacks.progress) {
       TrainingProgress progress;
@@ -235,6 +240,7 @@ nn::NetworkMetadata trainingMetadata(const TrainingSettings& settings, const std
   metadata.training.epochs = history.empty() ? 0 : history.back().epoch;
   metadata.training.learning_rate = settings.learning_rate;
   metadata.properties.emplace_back("lr_schedule", scheduleName(settings.schedule));
+  metadata.properties.emplace_back("gradient_clip", std::to_string(settings.gradient_clip));
   metadata.training.seed = settings.seed;
   metadata.training.batch_windows = settings.batch_size;
   metadata.training.window_frames = settings.windows.frames;
@@ -265,6 +271,7 @@ std::uint64_t dataFingerprint(const TrainingClips& data, const TrainingSettings&
   parts.push_back("batch=" + std::to_string(settings.batch_size));
   parts.push_back("lr=" + std::to_string(settings.learning_rate));
   parts.push_back(std::string("schedule=") + scheduleName(settings.schedule));
+  parts.push_back("clip=" + std::to_string(settings.gradient_clip));
   parts.push_back("seed=" + std::to_string(settings.seed));
   parts.push_back("window=" + std::to_string(settings.windows.frames) + "/" + std::to_string(settings.windows.step));
   parts.insert(parts.end(), extra.begin(), extra.end());
