@@ -55,6 +55,18 @@ SpaceConvention detectConvention(const Skeleton& skeleton, const Eigen::MatrixXd
   return detectSpaceConvention(skeleton, mean_positions, mapping, unit);
 }
 
+// The floor rule of extractFeatures on features (66 x frames): the 5th percentile over frames of the
+// lowest foot joint's height.
+double softFloor(const Eigen::MatrixXd& features) {
+  Eigen::VectorXd lowest = Eigen::VectorXd::Constant(features.cols(), std::numeric_limits<double>::infinity());
+  for (CanonicalJoint foot : kContactJoint) lowest = lowest.cwiseMin(features.row(3 * index(foot) + 1).transpose());
+  return quantile(lowest, 0.05);
+}
+
+void shiftHeights(Eigen::MatrixXd& features, double shift) {
+  for (int c = 0; c < kJoints; ++c) features.row(3 * c + 1).array() += shift;
+}
+
 }  // namespace
 
 Eigen::MatrixXd canonicalJointPositions(const Motion& motion, const JointMapping& mapping) {
@@ -143,6 +155,16 @@ MotionFeatures extractFeatures(const Motion& motion, const JointMapping& mapping
   }
   anchor.start_root = root.row(0).transpose();
   anchor.start_heading = heading[0];
+  if (options.retarget_proportions) {
+    try {
+      anchor.proportions = measureProportions(result.values);
+      retargetFeatures(result.values, anchor.proportions, referenceProportions());
+      anchor.retarget_height_shift = -softFloor(result.values);
+      shiftHeights(result.values, anchor.retarget_height_shift);
+    } catch (const std::invalid_argument& error) {
+      throw InputError(motion.source, 0, std::string("cannot retarget the skeleton's proportions: ") + error.what());
+    }
+  }
   // Contacts from the project's one detector (foot_contacts.h), here in reference space: Y-up, the floor
   // at 0, and the body height of the character's rest pose converted to reference cm, so the labels
   // are the ones the clean-up finds on the clip in its own space.
@@ -159,17 +181,20 @@ Eigen::MatrixXd referenceWorldPositions(const Eigen::MatrixXd& features, const F
   if (features.rows() != kFeatureCount)
     throw std::invalid_argument("referenceWorldPositions: features must have 66 rows, got " + std::to_string(features.rows()));
   const Eigen::Index frames = features.cols();
+  Eigen::MatrixXd own = features;  // back to the clip's own proportions
+  shiftHeights(own, -anchor.retarget_height_shift);
+  retargetFeatures(own, referenceProportions(), anchor.proportions);
   Eigen::MatrixXd world(frames, 3 * kJoints);
   Eigen::Vector2d root = anchor.start_root;
   double heading = anchor.start_heading;
   for (Eigen::Index f = 0; f < frames; ++f) {
     for (int c = 0; c < kJoints; ++c) {
-      const Eigen::Vector3d p = features.col(f).segment<3>(3 * c);
+      const Eigen::Vector3d p = own.col(f).segment<3>(3 * c);
       const Eigen::Vector2d offset = rotateY(heading, p.x(), p.z());
       world.row(f).segment<3>(3 * c) << root.x() + offset.x(), p.y(), root.y() + offset.y();
     }
-    root += rotateY(heading, features(kSidewaysVelocity, f), features(kForwardVelocity, f));
-    heading += features(kTurningVelocity, f);
+    root += rotateY(heading, own(kSidewaysVelocity, f), own(kForwardVelocity, f));
+    heading += own(kTurningVelocity, f);
   }
   return world;
 }
@@ -188,13 +213,9 @@ Eigen::MatrixXd canonicalWorldPositions(const Eigen::MatrixXd& features, const F
 
 Eigen::VectorXd canonicalBoneLengths(const Eigen::MatrixXd& features) {
   if (features.rows() != kFeatureCount) throw std::invalid_argument("canonicalBoneLengths: features must have 66 rows");
-  Eigen::VectorXd lengths = Eigen::VectorXd::Zero(kJoints);
-  if (features.cols() == 0) return lengths;
-  for (int c = 1; c < kJoints; ++c) {
-    const int parent = kCanonicalParent[static_cast<size_t>(c)];
-    lengths[c] = (features.middleRows<3>(3 * c) - features.middleRows<3>(3 * parent)).colwise().norm().mean();
-  }
-  return lengths;
+  if (features.cols() == 0) return Eigen::VectorXd::Zero(kJoints);
+  const Proportions proportions = measureProportions(features);
+  return Eigen::Map<const Eigen::VectorXd>(proportions.bone_length.data(), kJoints);
 }
 
 }  // namespace motionstyle

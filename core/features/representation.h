@@ -9,15 +9,20 @@
 //   5. root: the hips projected on the floor, Gaussian-smoothed (sigma 3 frames at 60 fps);
 //      facing: (left - right across the hips and across the shoulders) x up, Gaussian-smoothed
 //      (sigma 20 frames) - as in Holden et al. 2016's preprocessing,
-//   6. joints expressed in the root frame; root velocities (sideways, forward, turning) per frame.
-// The inverse integrates the velocities from the anchor and undoes steps 2-4, giving world positions
-// of the canonical joints in the clip's own file space (units and axes).
+//   6. joints expressed in the root frame; root velocities (sideways, forward, turning) per frame,
+//   7. retargeted from the clip's own proportions to the reference proportions (proportions.h): the
+//      networks see every rig with one actor's bone lengths; the clip's own are kept in the anchor;
+//      heights are then shifted so that the feet's soft minimum is on the floor again.
+// Contacts are detected on the clip's own positions (step 5's frame, before 7). The inverse retargets
+// back to the clip's proportions, integrates the velocities from the anchor and undoes steps 2-4,
+// giving world positions of the canonical joints in the clip's own file space (units and axes).
 
 #include <Eigen/Core>
 #include <optional>
 #include <string>
 
 #include "features/feature_layout.h"
+#include "features/proportions.h"
 #include "features/space_convention.h"
 #include "mapping/joint_mapping.h"
 #include "motion/motion.h"
@@ -29,6 +34,7 @@ struct FeatureOptions {
   std::optional<std::string> unit;  // override the guessed length unit ("cm", "m", "inch", "cmu", ...)
   double root_smoothing_frames = 3.0;
   double facing_smoothing_frames = 20.0;
+  bool retarget_proportions = true;  // step 7; off only to reproduce networks trained without it
 };
 
 // Everything needed to map features back to the clip's file space.
@@ -39,6 +45,13 @@ struct FeatureAnchor {
   Eigen::Vector2d start_root = Eigen::Vector2d::Zero();  // root (x, z) at frame 0, reference cm
   double start_heading = 0.0;       // facing angle at frame 0, radians (0 = +Z, positive toward +X)
   double fps = kDefaultFeatureFps;
+  // The clip's own proportions (reference cm), which the inverse retargets the features back to. The
+  // reference proportions when the features were not retargeted (the inverse then changes nothing).
+  Proportions proportions = referenceProportions();
+  // Added to every height after the retargeting, reference cm: new bone lengths move the planted feet
+  // up or down (CMU's hip joints hang 4 cm lower than the actor's), so the feet's soft minimum is put
+  // back on the floor. The inverse subtracts it before retargeting back.
+  double retarget_height_shift = 0.0;
 };
 
 // Computed result for one clip.
@@ -68,7 +81,8 @@ Eigen::MatrixXd referenceWorldPositions(const Eigen::MatrixXd& features, const F
 Eigen::MatrixXd canonicalJointPositions(const Motion& motion, const JointMapping& mapping);
 
 // Mean length of each canonical bone (joint c to kCanonicalParent[c]; 0 for the hips) over the clip,
-// in reference cm, from its features.
+// in reference cm, from its features (measureProportions as a vector). For retargeted features these
+// are the reference proportions'.
 Eigen::VectorXd canonicalBoneLengths(const Eigen::MatrixXd& features);
 
 }  // namespace motionstyle

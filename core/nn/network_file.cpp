@@ -215,10 +215,11 @@ void readMetadata(ByteReader& r, Parsed& p) {
 // What this build can use: the 66-value canonical representation with matching statistics.
 void validateRepresentation(const ByteReader& r, const Parsed& p) {
   const RepresentationInfo& rep = p.metadata.representation;
-  if (rep.feature_count != kFeatureCount || rep.joint_set != kCanonicalJointSetName)
+  if (rep.feature_count != kFeatureCount ||
+      (rep.joint_set != kRetargetedJointSetName && rep.joint_set != kCanonicalJointSetName))
     r.fail("network file uses a different representation (" + std::to_string(rep.feature_count) + " features, joint set '" +
            rep.joint_set + "'); this build uses " + std::to_string(kFeatureCount) + " features of '" +
-           std::string(kCanonicalJointSetName) + "'");
+           std::string(kRetargetedJointSetName) + "'");
   if (!std::isfinite(rep.fps) || rep.fps <= 0 || !std::isfinite(rep.reference_body_height_cm) ||
       rep.reference_body_height_cm <= 0)
     r.fail("corrupt network file: fps and reference body height must be finite and positive");
@@ -397,8 +398,12 @@ void checkCompatible(const RepresentationInfo& actual, const RepresentationInfo&
   std::ostringstream differences;
   if (actual.feature_count != expected.feature_count)
     differences << " features " << actual.feature_count << " (expected " << expected.feature_count << ");";
-  if (actual.joint_set != expected.joint_set)
-    differences << " joint set '" << actual.joint_set << "' (expected '" << expected.joint_set << "');";
+  if (actual.joint_set != expected.joint_set) {
+    differences << " joint set '" << actual.joint_set << "' (expected '" << expected.joint_set << "'";
+    if (actual.joint_set == kCanonicalJointSetName && expected.joint_set == kRetargetedJointSetName)
+      differences << ": trained before proportion retargeting, retrain it with this version";
+    differences << ");";
+  }
   if (std::abs(actual.fps - expected.fps) > 1e-6 * expected.fps)
     differences << " " << actual.fps << " fps (expected " << expected.fps << ");";
   if (std::abs(actual.reference_body_height_cm - expected.reference_body_height_cm) > 1e-6 * expected.reference_body_height_cm)

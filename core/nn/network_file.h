@@ -22,7 +22,11 @@ namespace motionstyle::nn {
 
 // Version 2 added the weight encoding (f32 or f16). Readers read 1 and 2; writers write 2.
 constexpr std::uint32_t kNetworkFormatVersion = 2;
-// The joint set this build's 66-value representation uses (feature_layout.h).
+// The joint sets of the 66-value representation (feature_layout.h) this build reads: the 21 canonical
+// joints retargeted to the reference proportions (features/proportions.h; what this build computes
+// by default), and the same joints in each clip's own proportions (networks trained before that step;
+// still described by `info`, but refused for use unless FeatureOptions::retarget_proportions is off).
+inline constexpr std::string_view kRetargetedJointSetName = "canonical-21-reference-proportions";
 inline constexpr std::string_view kCanonicalJointSetName = "canonical-21";
 
 enum class NetworkKind : std::uint32_t { Autoencoder = 1, Style = 2 };
@@ -31,7 +35,7 @@ enum class NetworkKind : std::uint32_t { Autoencoder = 1, Style = 2 };
 // way: checkCompatible() compares.
 struct RepresentationInfo {
   double fps = kDefaultFeatureFps;                          // frames per second of the frames
-  std::string joint_set = std::string(kCanonicalJointSetName);
+  std::string joint_set = std::string(kRetargetedJointSetName);
   double reference_body_height_cm = kReferenceSkeletalHeightCm;  // skeletal height characters are scaled to
   int feature_count = kFeatureCount;                        // values per frame
   bool operator==(const RepresentationInfo&) const = default;

@@ -76,7 +76,7 @@ void StyleTrainingConfig::validate() const {
 nn::RepresentationInfo currentRepresentation(const FeatureOptions& options) {
   nn::RepresentationInfo info;
   info.fps = options.fps;
-  info.joint_set = std::string(nn::kCanonicalJointSetName);
+  info.joint_set = std::string(options.retarget_proportions ? nn::kRetargetedJointSetName : nn::kCanonicalJointSetName);
   info.reference_body_height_cm = kReferenceSkeletalHeightCm;
   info.feature_count = kFeatureCount;
   return info;

@@ -34,19 +34,28 @@ TEST(Representation, RejectsFeaturesOfWrongShape) {
 }
 
 // The acceptance: BVH -> 66 features -> global positions matches forward kinematics of the
-// canonical joints over a whole real clip, root drift included, within 1% of body height.
+// canonical joints over a whole real clip, root drift included, within 1% of body height, through the
+// retargeting to the reference proportions and back, and without it.
 void expectRoundTrip(const std::string& name) {
   const Motion motion = readBvh(test::fixture(name));
   const JointMapping mapping = mapJoints(motion.skeleton, name);
+  const Motion at60 = resampleMotion(motion, 60.0);
+  const Eigen::MatrixXd expected = canonicalJointPositions(at60, mapping);
+  const double body_height = skeletalHeight(motion.skeleton, mapping);
+
   const MotionFeatures features = extractFeatures(motion, mapping);
   ASSERT_EQ(features.values.rows(), kFeatureCount);
-  const Motion at60 = resampleMotion(motion, 60.0);
   ASSERT_EQ(features.frameCount(), at60.frameCount());
+  for (int c = 1; c < kCanonicalJointCount; ++c)  // the fixtures have every bone, hands included
+    EXPECT_GT(features.anchor.proportions.bone_length[static_cast<std::size_t>(c)], 1.0) << name << " bone " << c;
+  EXPECT_LT(maxJointError(expected, canonicalWorldPositions(features.values, features.anchor)), 0.01 * body_height)
+      << name;
 
-  const Eigen::MatrixXd expected = canonicalJointPositions(at60, mapping);
-  const Eigen::MatrixXd recovered = canonicalWorldPositions(features.values, features.anchor);
-  const double body_height = skeletalHeight(motion.skeleton, mapping);
-  EXPECT_LT(maxJointError(expected, recovered), 0.01 * body_height) << name;
+  FeatureOptions own_proportions;
+  own_proportions.retarget_proportions = false;
+  const MotionFeatures unretargeted = extractFeatures(motion, mapping, own_proportions);
+  EXPECT_LT(maxJointError(expected, canonicalWorldPositions(unretargeted.values, unretargeted.anchor)), 0.01 * body_height)
+      << name;
   // The hips travel: the test would be weak on a clip standing still.
   const int hips = 3 * index(CanonicalJoint::Hips);
   EXPECT_GT((expected.row(expected.rows() - 1).segment<3>(hips) - expected.row(0).segment<3>(hips)).norm(),

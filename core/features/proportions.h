@@ -1,0 +1,61 @@
+#pragma once
+// Body proportions of the 21 canonical joints, and the retargeting between a character's own
+// proportions and the REFERENCE proportions every clip is given before it meets the networks.
+//
+// Why: scaling every character to one skeletal height (feature_layout.h) leaves its proportions. Rigs
+// differ a lot at that scale: CMU's hip joints sit 13 cm apart where the Bandai actor's sit 6.8 cm;
+// the zombie rig's legs are 69 cm long against 80; spine, chest and neck are split differently; some
+// exports have hand ends and some do not. Networks trained on one actor then see other rigs out of
+// distribution: before this step the loss network reconstructed held-out Bandai clips with a mean
+// joint error of 0.79 cm but the CMU and zombie samples with 5.2 and 5.0 cm, and the stylized output
+// of those rigs had 3 cm bone errors that the clean-up could only spread around (residual 3.3-4.1 cm).
+//
+// The retargeting, on root-frame features (66 x frames, reference cm; feature_layout.h), from
+// proportions A to B:
+//   - every bone vector d_c = p_c - p_parent(c) is scaled by B.bone_length[c] / A.bone_length[c] and the
+//     joints are rebuilt from the hips outward, so each bone keeps its direction (and any per-frame
+//     variation of a non-rigid bone, such as chest to shoulder, keeps its relative size);
+//   - the hips' offset from the root and the sideways and forward root velocities are scaled by
+//     B.legLength() / A.legLength(), so that feet stay on the floor and strides fit the new legs;
+//   - the turning velocity is unchanged.
+// Retargeting A -> B -> A is the identity (up to rounding) wherever both have a length. A bone with no
+// length in the target proportions collapses onto its parent; a bone with no length in the source
+// proportions (no direction: a rig without hand ends going to proportions with hands) is laid along
+// its parent bone. The reference proportions have every bone, so any rig's bones keep their
+// directions through the networks and back.
+
+#include <Eigen/Core>
+#include <array>
+
+#include "features/feature_layout.h"
+
+namespace motionstyle {
+
+struct Proportions {
+  // Length of the bone from joint c to kCanonicalParent[c], reference cm; entry 0 (the hips) is 0.
+  std::array<double, kCanonicalJointCount> bone_length{};
+
+  // Mean over both legs of hip-knee + knee-ankle, reference cm.
+  double legLength() const;
+  // Throws std::invalid_argument unless every length is finite and >= 0 and the legs have a length.
+  void validate() const;
+};
+
+// Bones shorter than this (reference cm) have no usable direction.
+constexpr double kMinimumBoneLengthCm = 1e-3;
+
+// The reference: the Bandai Namco Research dataset's actor at the reference skeletal height (both parts
+// of the dataset share the skeleton), mean bone lengths over the dataset-2 normal-style clips rounded to
+// 0.01 cm (canonicalBoneLengths of extractFeatures without retargeting). The dataset-2 exports end the
+// arms at the wrists; the hand ends (wrist to hand tip, 4.98 cm) are those of the dataset-1 exports
+// that have them, so that rigs with hands keep their wrists' bend through the networks.
+const Proportions& referenceProportions();
+
+// The mean bone lengths of root-frame features (66 x frames, at least one frame).
+Proportions measureProportions(const Eigen::MatrixXd& features);
+
+// Retargets root-frame features (66 x frames) in place from proportions `from` to `to` (see above).
+// Throws std::invalid_argument for features that are not 66 rows or invalid proportions.
+void retargetFeatures(Eigen::MatrixXd& features, const Proportions& from, const Proportions& to);
+
+}  // namespace motionstyle

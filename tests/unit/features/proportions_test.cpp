@@ -1,0 +1,141 @@
+// Proportions and retargeting (features/proportions.h): invalid input first, then the properties the
+// representation relies on: bone lengths become the target's, directions are kept, feet stay on the
+// floor, the round trip is the identity, degenerate bones are handled, and real rigs meet the networks
+// in the reference proportions.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <stdexcept>
+
+#include "bvh/bvh_reader.h"
+#include "features/proportions.h"
+#include "features/representation.h"
+#include "mapping/joint_mapping.h"
+#include "test_paths.h"
+
+namespace motionstyle {
+namespace {
+
+// Root-frame features of one real clip, in its own proportions.
+Eigen::MatrixXd ownFeatures(const std::string& fixture) {
+  const Motion motion = readBvh(test::fixture(fixture));
+  FeatureOptions options;
+  options.retarget_proportions = false;
+  return extractFeatures(motion, mapJoints(motion.skeleton, fixture), options).values;
+}
+
+Proportions withoutHands(Proportions proportions) {
+  proportions.bone_length[static_cast<std::size_t>(index(CanonicalJoint::LeftHandEnd))] = 0.0;
+  proportions.bone_length[static_cast<std::size_t>(index(CanonicalJoint::RightHandEnd))] = 0.0;
+  return proportions;
+}
+
+TEST(ProportionsInvalid, RejectsBadLengthsAndShapes) {
+  Proportions legless = referenceProportions();
+  for (CanonicalJoint j : {CanonicalJoint::LeftKnee, CanonicalJoint::LeftAnkle, CanonicalJoint::RightKnee, CanonicalJoint::RightAnkle})
+    legless.bone_length[static_cast<std::size_t>(index(j))] = 0.0;
+  EXPECT_THROW(legless.validate(), std::invalid_argument);
+  Proportions negative = referenceProportions();
+  negative.bone_length[3] = -1.0;
+  EXPECT_THROW(negative.validate(), std::invalid_argument);
+  Proportions nan = referenceProportions();
+  nan.bone_length[14] = std::nan("");
+  EXPECT_THROW(nan.validate(), std::invalid_argument);
+  Eigen::MatrixXd wrong = Eigen::MatrixXd::Zero(65, 3);
+  EXPECT_THROW(retargetFeatures(wrong, referenceProportions(), referenceProportions()), std::invalid_argument);
+  Eigen::MatrixXd features = Eigen::MatrixXd::Zero(kFeatureCount, 3);
+  EXPECT_THROW(retargetFeatures(features, legless, referenceProportions()), std::invalid_argument);
+  EXPECT_THROW(measureProportions(Eigen::MatrixXd::Zero(kFeatureCount, 0)), std::invalid_argument);
+}
+
+TEST(Proportions, TheReferenceIsTheBandaiActorsAndValid) {
+  const Proportions& reference = referenceProportions();
+  EXPECT_NO_THROW(reference.validate());
+  EXPECT_NEAR(reference.legLength(), 38.89 + 40.78, 1e-9);
+  for (int c = 1; c < kCanonicalJointCount; ++c)  // every bone has a length, hands included
+    EXPECT_GT(reference.bone_length[static_cast<std::size_t>(c)], 1.0) << c;
+}
+
+TEST(Proportions, RetargetingGivesTheTargetBonesKeepsDirectionsAndFeetOnTheFloor) {
+  for (const std::string fixture : {"cmu_131_01.bvh", "zombie.bvh"}) {
+    const Eigen::MatrixXd own = ownFeatures(fixture);
+    const Proportions from = measureProportions(own);
+    Eigen::MatrixXd retargeted = own;
+    retargetFeatures(retargeted, from, referenceProportions());
+    const Proportions result = measureProportions(retargeted);
+    for (int c = 1; c < kCanonicalJointCount; ++c) {
+      const auto i = static_cast<std::size_t>(c);
+      EXPECT_NEAR(result.bone_length[i], referenceProportions().bone_length[i], 1e-9) << fixture << " bone " << c;
+      const int parent = kCanonicalParent[i];
+      for (Eigen::Index f = 0; f < own.cols(); f += 50) {  // each bone keeps its direction
+        const Eigen::Vector3d a = own.col(f).segment<3>(3 * c) - own.col(f).segment<3>(3 * parent);
+        const Eigen::Vector3d b = retargeted.col(f).segment<3>(3 * c) - retargeted.col(f).segment<3>(3 * parent);
+        EXPECT_GT(a.normalized().dot(b.normalized()), 1.0 - 1e-12) << fixture << " bone " << c << " frame " << f;
+      }
+    }
+    // Root motion scales with the legs; turning is unchanged.
+    const double ratio = referenceProportions().legLength() / from.legLength();
+    EXPECT_NEAR(retargeted.row(kForwardVelocity).sum(), ratio * own.row(kForwardVelocity).sum(), 1e-9);
+    EXPECT_EQ(retargeted.row(kTurningVelocity), own.row(kTurningVelocity));
+  }
+}
+
+TEST(Proportions, RetargetingThereAndBackIsTheIdentity) {
+  const Eigen::MatrixXd own = ownFeatures("zombie.bvh");
+  const Proportions from = measureProportions(own);
+  const Proportions& other = referenceProportions();
+  Eigen::MatrixXd there_and_back = own;
+  retargetFeatures(there_and_back, from, other);
+  retargetFeatures(there_and_back, other, from);
+  EXPECT_LT((there_and_back - own).cwiseAbs().maxCoeff(), 1e-9);
+  Eigen::MatrixXd same = own;
+  retargetFeatures(same, from, from);
+  EXPECT_EQ(same, own);
+}
+
+TEST(Proportions, BonesWithoutLengthCollapseOrAreLaidAlongTheirParent) {
+  const Eigen::MatrixXd own = ownFeatures("cmu_131_01.bvh");
+  const Proportions from = measureProportions(own);
+  const Proportions handless = withoutHands(referenceProportions());
+  ASSERT_GT(from.bone_length[static_cast<std::size_t>(index(CanonicalJoint::LeftHandEnd))], 1.0);
+  Eigen::MatrixXd collapsed = own;
+  retargetFeatures(collapsed, from, handless);  // hands collapse onto the wrists
+  const int hand = 3 * index(CanonicalJoint::LeftHandEnd), wrist = 3 * index(CanonicalJoint::LeftWrist),
+            elbow = 3 * index(CanonicalJoint::LeftElbow);
+  EXPECT_LT((collapsed.middleRows<3>(hand) - collapsed.middleRows<3>(wrist)).cwiseAbs().maxCoeff(), 1e-12);
+  Eigen::MatrixXd back = collapsed;
+  retargetFeatures(back, handless, from);  // and come back along the forearm
+  for (Eigen::Index f = 0; f < back.cols(); f += 40) {
+    const Eigen::Vector3d bone = back.col(f).segment<3>(hand) - back.col(f).segment<3>(wrist);
+    const Eigen::Vector3d forearm = back.col(f).segment<3>(wrist) - back.col(f).segment<3>(elbow);
+    EXPECT_NEAR(bone.norm(), from.bone_length[static_cast<std::size_t>(index(CanonicalJoint::LeftHandEnd))], 1e-9);
+    EXPECT_GT(bone.normalized().dot(forearm.normalized()), 1.0 - 1e-12);
+  }
+}
+
+// What the retargeting is for: the sample rigs reach the networks in the actor's proportions.
+TEST(Proportions, ExtractedFeaturesOfAnyRigHaveTheReferenceProportions) {
+  for (const std::string fixture : {"cmu_131_01.bvh", "zombie.bvh"}) {
+    const Motion motion = readBvh(test::fixture(fixture));
+    const MotionFeatures features = extractFeatures(motion, mapJoints(motion.skeleton, fixture));
+    const Proportions seen = measureProportions(features.values);
+    for (int c = 1; c < kCanonicalJointCount; ++c)
+      EXPECT_NEAR(seen.bone_length[static_cast<std::size_t>(c)],
+                  referenceProportions().bone_length[static_cast<std::size_t>(c)], 1e-9)
+          << fixture << " bone " << c;
+    EXPECT_GT(std::abs(features.anchor.proportions.legLength() - referenceProportions().legLength()), 1.0) << fixture;
+    // The planted feet are on the floor again: the 5th percentile of the lowest foot joint is at 0.
+    Eigen::VectorXd lowest = Eigen::VectorXd::Constant(features.frameCount(), 1e9);
+    for (CanonicalJoint foot : kContactJoint)
+      lowest = lowest.cwiseMin(features.values.row(3 * index(foot) + 1).transpose());
+    std::sort(lowest.data(), lowest.data() + lowest.size());
+    EXPECT_NEAR(lowest[static_cast<Eigen::Index>(std::lround(0.05 * static_cast<double>(lowest.size() - 1)))], 0.0, 0.05)
+        << fixture;
+  }
+}
+
+}  // namespace
+}  // namespace motionstyle
