@@ -49,10 +49,10 @@ struct CleanupResult {
   double seconds = 0.0;          // wall clock of the whole job
 };
 
-// The clean-up chain of style::cleanUpStylizedClip (stylized_cleanup.h), with the user's contact
-// overrides applied on top of the contacts detected on the stylized output. Throws InputError (an
-// unmappable or too short clip), std::invalid_argument (a stylized clip that does not belong to the
-// content) and style::OperationCancelled when `cancel` is seen between steps.
+// Stylizes (unless the job holds a stylized clip) and runs style::cleanUpStylizedClip
+// (stylized_cleanup.h) with the user's contact overrides: the same chain as motionstyle-cli stylize.
+// Throws InputError (an unmappable or too short clip), std::invalid_argument (a stylized clip that does
+// not belong to the content) and style::OperationCancelled when `cancel` is seen between steps.
 CleanupResult runCleanupJob(const CleanupJob& job, const std::atomic<bool>& cancel);
 
 class CleanupWorker : public QObject {

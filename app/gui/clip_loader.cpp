@@ -11,6 +11,7 @@
 #include "mapping/canonical_joints.h"
 #include "mapping/mapping_file.h"
 #include "motion/kinematics.h"
+#include "motion/resample.h"
 
 namespace motionstyle {
 namespace {
@@ -112,7 +113,7 @@ FigureData figureFromClip(const LoadedClip& clip, FigureRole role, double displa
   for (const Joint& joint : clip.motion.skeleton.joints) parents.push_back(joint.parent);
   FigureData figure = figureFromPositions(clip.name, role, parents, rowsAtRate(clip.display_positions, clip.fps(), display_fps));
   if (clip.mapping) {
-    const ContactLabels contacts = labelsAtRate(clip.effectiveContacts(), clip.fps(), display_fps);
+    const ContactLabels contacts = resampleRowsNearest(clip.effectiveContacts(), 1.0 / clip.fps(), display_fps);
     const auto joints = contactJoints(*clip.mapping);
     figure.contact_joints.assign(joints.begin(), joints.end());
     figure.contacts.resize(static_cast<size_t>(figure.frame_count) * joints.size(), 0);

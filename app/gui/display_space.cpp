@@ -54,17 +54,4 @@ Eigen::MatrixXd rowsAtRate(const Eigen::MatrixXd& rows, double source_fps, doubl
   return resampleRowsLinear(rows, 1.0 / source_fps, target_fps);
 }
 
-Eigen::MatrixXi labelsAtRate(const Eigen::MatrixXi& labels, double source_fps, double target_fps) {
-  if (labels.rows() == 0 || sameRate(source_fps, target_fps)) return labels;
-  const std::vector<ResampleSample> schedule =
-      resampleSchedule(static_cast<int>(labels.rows()), 1.0 / source_fps, target_fps);
-  Eigen::MatrixXi out(static_cast<Eigen::Index>(schedule.size()), labels.cols());
-  for (size_t k = 0; k < schedule.size(); ++k) {
-    const int nearest = std::min(schedule[k].index + (schedule[k].fraction >= 0.5 ? 1 : 0),
-                                 static_cast<int>(labels.rows()) - 1);
-    out.row(static_cast<Eigen::Index>(k)) = labels.row(nearest);
-  }
-  return out;
-}
-
 }  // namespace motionstyle

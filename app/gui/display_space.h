@@ -39,7 +39,4 @@ DisplaySpace unmappedDisplaySpace(const Motion& motion, const Eigen::MatrixXd& f
 // interpolation (resampleRowsLinear), so that clips of any rate play in sync by time on one timeline.
 Eigen::MatrixXd rowsAtRate(const Eigen::MatrixXd& rows, double source_fps, double target_fps);
 
-// 0/1 labels (frames x k) at another rate: each output frame takes the nearest source frame in time.
-Eigen::MatrixXi labelsAtRate(const Eigen::MatrixXi& labels, double source_fps, double target_fps);
-
 }  // namespace motionstyle

@@ -166,4 +166,18 @@ Eigen::MatrixXd resampleRowsLinear(const Eigen::MatrixXd& rows, double source_fr
   return result;
 }
 
+Eigen::MatrixXi resampleRowsNearest(const Eigen::MatrixXi& rows, double source_frame_time, double target_fps) {
+  if (rows.rows() > static_cast<Eigen::Index>(std::numeric_limits<int>::max()))
+    throw std::invalid_argument("resample: too many frames");
+  const std::vector<ResampleSample> schedule =
+      resampleSchedule(static_cast<int>(rows.rows()), source_frame_time, target_fps);
+  Eigen::MatrixXi result(static_cast<Eigen::Index>(schedule.size()), rows.cols());
+  for (Eigen::Index k = 0; k < result.rows(); ++k) {
+    const ResampleSample sample = schedule[static_cast<size_t>(k)];
+    const int nearest = std::min(sample.index + (sample.fraction >= 0.5 ? 1 : 0), static_cast<int>(rows.rows()) - 1);
+    result.row(k) = rows.row(nearest);
+  }
+  return result;
+}
+
 }  // namespace motionstyle

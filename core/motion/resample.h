@@ -63,4 +63,8 @@ LocalPoses resampleLocalPoses(const LocalPoses& poses, double source_frame_time,
 // the same timing rules. Do not use it for angles (they wrap) or quaternions (use slerp).
 Eigen::MatrixXd resampleRowsLinear(const Eigen::MatrixXd& rows, double source_frame_time, double target_fps);
 
+// The same for per-frame labels (one ROW per frame, e.g. contact labels or their overrides): each
+// output frame takes the row of the source frame nearest to it in time (ties to the later one).
+Eigen::MatrixXi resampleRowsNearest(const Eigen::MatrixXi& rows, double source_frame_time, double target_fps);
+
 }  // namespace motionstyle

@@ -1,9 +1,11 @@
 #include "style/stylized_cleanup.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 #include "features/foot_contacts.h"
+#include "ik/contacts.h"
 #include "motion/kinematics.h"
 #include "motion/resample.h"
 
@@ -16,6 +18,16 @@ Eigen::MatrixXi contactsPerFrame(const Eigen::MatrixXd& contacts) {
   return (contacts.transpose().array() > 0.5).cast<int>().matrix();
 }
 
+// Overrides at the content's rate -> `frames` frames at `fps` (nearest frame in time), "automatic"
+// where the schedule comes out short.
+Eigen::MatrixXi overridesAtRate(const Eigen::MatrixXi& overrides, double content_fps, double fps, Eigen::Index frames) {
+  const Eigen::MatrixXi at_rate = resampleRowsNearest(overrides, 1.0 / content_fps, fps);
+  Eigen::MatrixXi out = Eigen::MatrixXi::Constant(frames, kContactCount, -1);
+  const Eigen::Index rows = std::min(frames, at_rate.rows());
+  out.topRows(rows) = at_rate.topRows(rows);
+  return out;
+}
+
 }  // namespace
 
 double fileFloorHeight(const FeatureAnchor& anchor) {
@@ -24,7 +36,13 @@ double fileFloorHeight(const FeatureAnchor& anchor) {
 }
 
 StylizedCleanup cleanUpStylizedClip(const Motion& content, const JointMapping& mapping, const StylizedClip& stylized,
-                                    const CleanupOptions& options, double output_fps) {
+                                    const CleanupOptions& options, double output_fps,
+                                    const Eigen::MatrixXi& contact_overrides) {
+  if (contact_overrides.size() > 0 &&
+      (contact_overrides.rows() != content.frameCount() || contact_overrides.cols() != kContactCount))
+    throw std::invalid_argument("cleanUpStylizedClip: contact overrides are " + std::to_string(contact_overrides.rows()) +
+                                " x " + std::to_string(contact_overrides.cols()) + ", expected " +
+                                std::to_string(content.frameCount()) + " x 4 (the content's frames)");
   const Motion at_rate = sameRate(content.fps(), stylized.fps) ? content : resampleMotion(content, stylized.fps);
   if (at_rate.frameCount() != stylized.frameCount())
     throw std::invalid_argument("cleanUpStylizedClip: the stylized clip has " + std::to_string(stylized.frameCount()) +
@@ -39,10 +57,14 @@ StylizedCleanup cleanUpStylizedClip(const Motion& content, const JointMapping& m
   // on a held-back Bandai run with three style networks: 0-6 contact frames of 159, vs 15-35 per
   // foot joint in the content), so the clean-up locked almost nothing and the cleaned feet still slid
   // at 60-90 cm/s there. Contacts found on the output as well keep any stance a style lengthens.
+  // The user's overrides (edited tracks) come last and win.
   const Eigen::MatrixXi content_contacts = contactsPerFrame(stylized.contacts);
-  const Eigen::MatrixXi contacts =
+  Eigen::MatrixXi contacts =
       content_contacts.cwiseMax(detectContacts(stylized.world_positions, canonicalContactJoints(), up, floor,
                                                stylized.fps, restPoseBodyHeight(content.skeleton, up)));
+  if (contact_overrides.size() > 0)
+    contacts = applyContactOverrides(
+        contacts, overridesAtRate(contact_overrides, content.fps(), stylized.fps, stylized.frameCount()));
 
   StylizedCleanup result;
   result.contacts = contacts;
@@ -72,6 +94,15 @@ StylizedCleanup cleanUpStylizedClip(const Motion& content, const JointMapping& m
 
   const double target_fps = output_fps > 0.0 ? output_fps : content.fps();
   result.motion = sameRate(cleaned.fps(), target_fps) ? std::move(cleaned) : resampleMotion(cleaned, target_fps);
+  // Back at the content's rate the clip can come out a frame or two short (720 frames at 120 fps are
+  // 360 at 60 fps, which give 719 at 120 fps): the content's last frames lie past the last solved one.
+  // They hold that pose, as resampling does past the end, so that the export has the content's count.
+  const Eigen::Index solved = result.motion.values.rows();
+  if (sameRate(target_fps, content.fps()) && solved > 0 && solved < content.frameCount()) {
+    result.motion.values.conservativeResize(content.frameCount(), Eigen::NoChange);
+    for (Eigen::Index f = solved; f < result.motion.values.rows(); ++f)
+      result.motion.values.row(f) = result.motion.values.row(solved - 1);
+  }
   result.motion.source = content.source;
   return result;
 }

@@ -301,4 +301,19 @@ TEST(ResampleRowsLinear, ReproducesALinearSignalAtTheNewTimes) {
 }
 
 }  // namespace
+TEST(ResampleRowsNearest, TakesTheNearestFrameInTimeAndRejectsAnEmptySource) {
+  EXPECT_THROW(resampleRowsNearest(Eigen::MatrixXi(0, 4), 1.0 / 30.0, 60.0), std::invalid_argument);
+  Eigen::MatrixXi labels(5, 2);
+  labels << 0, 10, 1, 11, 2, 12, 3, 13, 4, 14;
+  // 30 -> 60 fps: every source frame, and between two the later one (the midpoint rounds up).
+  const Eigen::MatrixXi up = resampleRowsNearest(labels, 1.0 / 30.0, 60.0);
+  ASSERT_EQ(up.rows(), 9);
+  for (Eigen::Index k = 0; k < up.rows(); ++k) EXPECT_EQ(up(k, 0), (k + 1) / 2) << k;
+  EXPECT_EQ(up.col(1), (up.col(0).array() + 10).matrix());
+  // 30 -> 10 fps: every third frame exactly; 30 -> 12 fps: the nearest of the frames around each time.
+  EXPECT_EQ(resampleRowsNearest(labels, 1.0 / 30.0, 10.0).col(0), (Eigen::VectorXi(2) << 0, 3).finished());
+  EXPECT_EQ(resampleRowsNearest(labels, 1.0 / 30.0, 12.0).col(0), (Eigen::VectorXi(2) << 0, 3).finished());  // 2.5 -> 3
+  EXPECT_EQ(resampleRowsNearest(labels, 1.0 / 30.0, 30.0), labels);
+}
+
 }  // namespace motionstyle
