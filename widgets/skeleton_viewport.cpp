@@ -90,6 +90,7 @@ struct SkeletonViewport::Impl {
   CameraMode mode = CameraMode::Follow;
   detail::Vec3 followed{};  // the anchor the camera was last moved with
   QLabel* legend = nullptr;
+  QLabel* empty_message = nullptr;
   QLabel* mode_label = nullptr;
   bool gl_ready = false;
   bool software_gl = false;
@@ -111,13 +112,21 @@ SkeletonViewport::SkeletonViewport(QWidget* parent) : QOpenGLWidget(parent), imp
       "QLabel { background: rgba(22, 24, 28, 165); color: #ebeef2; border-radius: 6px; padding: 6px 10px; }"));
   impl_->mode_label = new QLabel(this);
   impl_->mode_label->setStyleSheet(QStringLiteral("QLabel { color: rgba(230, 233, 237, 190); background: transparent; }"));
+  impl_->empty_message = new QLabel(this);
+  impl_->empty_message->setObjectName(QStringLiteral("ViewportEmptyMessage"));
+  impl_->empty_message->setTextFormat(Qt::RichText);
+  impl_->empty_message->setAlignment(Qt::AlignCenter);
+  impl_->empty_message->setStyleSheet(QStringLiteral(
+      "QLabel { background: rgba(22, 24, 28, 150); color: #ebeef2; border-radius: 8px; padding: 14px 20px; }"));
   auto* hint = new QLabel(tr("Drag: orbit    Shift/middle drag: pan    Wheel/right drag: zoom    F: frame    C: follow"), this);
   hint->setStyleSheet(QStringLiteral("QLabel { color: rgba(230, 233, 237, 150); background: transparent; }"));
-  for (QLabel* label : {impl_->legend, impl_->mode_label, hint}) label->setAttribute(Qt::WA_TransparentForMouseEvents);
+  for (QLabel* label : {impl_->legend, impl_->mode_label, impl_->empty_message, hint})
+    label->setAttribute(Qt::WA_TransparentForMouseEvents);
   auto* overlay = new QGridLayout(this);
   overlay->setContentsMargins(10, 10, 12, 8);
   overlay->addWidget(impl_->legend, 0, 0, Qt::AlignLeft | Qt::AlignTop);
   overlay->addWidget(impl_->mode_label, 0, 1, Qt::AlignRight | Qt::AlignTop);
+  overlay->addWidget(impl_->empty_message, 1, 0, 1, 2, Qt::AlignCenter);
   overlay->addWidget(hint, 2, 0, 1, 2, Qt::AlignLeft | Qt::AlignBottom);
   overlay->setRowStretch(1, 1);
   refreshOverlay();
@@ -297,6 +306,12 @@ void SkeletonViewport::refreshOverlay() {
   impl_->legend->setVisible(!legend.isEmpty());
   impl_->legend->adjustSize();
   impl_->mode_label->setText(impl_->mode == CameraMode::Follow ? tr("Follow camera") : tr("Fixed camera"));
+  impl_->empty_message->setVisible(impl_->scene.figures().empty() && !impl_->empty_message->text().isEmpty());
+}
+
+void SkeletonViewport::setEmptyMessage(const QString& message) {
+  impl_->empty_message->setText(message);
+  refreshOverlay();
 }
 
 void SkeletonViewport::releaseGraphics() {

@@ -17,6 +17,7 @@
 // projectToWidget() are widget pixels (logical, origin top-left).
 
 #include <QImage>
+#include <QString>
 #include <QOpenGLWidget>
 #include <QPointF>
 
@@ -78,6 +79,8 @@ class SkeletonViewport : public QOpenGLWidget {
   void setLayout(Layout layout);
   void setCameraMode(CameraMode mode);
   void setTrajectoriesVisible(bool visible);
+  // Shown in the middle of the view while it has no figure (rich text; empty: nothing).
+  void setEmptyMessage(const QString& message);
   void setAntialiasing(bool on);
   // Frames the figures: the current poses in follow mode, their whole paths in fixed mode.
   void resetCamera();

@@ -1,5 +1,7 @@
 #include "main_window.h"
 
+#include "demo_scene.h"
+
 #include <QActionGroup>
 #include <QApplication>
 #include <QCloseEvent>
@@ -51,6 +53,9 @@ MainWindow::MainWindow(bool persist_settings, QWidget* parent)
   reporter_ = [this](const QString& title, const QString& message) { QMessageBox::warning(this, title, message); };
 
   viewport_ = new SkeletonViewport(this);
+  viewport_->setEmptyMessage(
+      tr("<b>No clips yet</b><br><br>File &#9656; Open BVH (Ctrl+O), or drop BVH files or folders here.<br>"
+         "New to MotionStyle? Help &#9656; Open Demo loads two sample clips and a style."));
   setCentralWidget(viewport_);
   createDocks();
   createMenus();
@@ -131,6 +136,7 @@ void MainWindow::createMenus() {
   file->addAction(tr("Open &Folder..."), QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_O), this,
                   &MainWindow::browseFolder);
   recent_menu_ = file->addMenu(tr("&Recent Files"));
+  file->addAction(tr("Open &Demo"), this, &MainWindow::openDemoScene);
   file->addSeparator();
   file->addAction(tr("Open &Network..."), result_panel_, &ResultPanel::browseNetwork);
   file->addAction(tr("&Export Result..."), QKeySequence(Qt::CTRL | Qt::Key_E), result_panel_, &ResultPanel::browseExport);
@@ -179,6 +185,9 @@ void MainWindow::createMenus() {
   });
 
   QMenu* help = menuBar()->addMenu(tr("&Help"));
+  help->addAction(tr("Open &Demo"), this, &MainWindow::openDemoScene);
+  help->addAction(tr("&Keyboard Shortcuts"), QKeySequence::HelpContents, this, &MainWindow::showShortcuts);
+  help->addSeparator();
   help->addAction(tr("&About MotionStyle"), this, &MainWindow::showAbout);
 }
 
@@ -415,6 +424,11 @@ void MainWindow::dropEvent(QDropEvent* event) {
   event->acceptProposedAction();
   if (!files.isEmpty()) openFiles(files);
   for (const QString& folder : folders) openFolder(folder);
+}
+
+void MainWindow::openDemoScene() {
+  const DemoOutcome outcome = openDemo(*this, *result_panel_);
+  status_label_->setText(outcome.message);
 }
 
 }  // namespace motionstyle

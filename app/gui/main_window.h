@@ -100,12 +100,15 @@ class MainWindow : public QMainWindow {
   void showClipMenu(const QPoint& position);
   void browseFiles();
   void browseFolder();
+  // The bundled demo (demo_scene.h): sample clips as content and style, the bundled style selected.
+  void openDemoScene();
   void browseScreenshot();
   void browseMappingFile(int index);
   void createResultDock();
   void createNetworkDock();
   void forgetTrainingClip(int removed_index);
   void showAbout();
+  void showShortcuts();
   void report(const QString& title, const QString& message);
   QString lastFolder() const;
   void setLastFolder(const QString& folder);

@@ -86,6 +86,26 @@ void MainWindow::browseMappingFile(int index) {
   if (!file.isEmpty()) loadMappingFile(index, file);
 }
 
+void MainWindow::showShortcuts() {
+  QMessageBox::information(
+      this, tr("Keyboard Shortcuts"),
+      tr("<table cellpadding='3'>"
+         "<tr><td><b>Space</b></td><td>play / pause</td></tr>"
+         "<tr><td><b>Left / Right</b></td><td>previous / next frame</td></tr>"
+         "<tr><td><b>Home / End</b></td><td>first / last frame</td></tr>"
+         "<tr><td><b>1 / 2</b></td><td>side by side / overlay</td></tr>"
+         "<tr><td><b>C</b></td><td>follow camera on or off</td></tr>"
+         "<tr><td><b>F</b></td><td>reset the camera</td></tr>"
+         "<tr><td><b>T</b></td><td>show trajectories</td></tr>"
+         "<tr><td><b>R</b></td><td>show the raw network output</td></tr>"
+         "<tr><td><b>Ctrl+O</b></td><td>open BVH clips</td></tr>"
+         "<tr><td><b>Ctrl+E</b></td><td>export the result</td></tr>"
+         "<tr><td colspan='2'><br>Viewport: drag to orbit, Shift or middle drag to pan, wheel or right drag to "
+         "zoom.<br>Contact tracks: press on a foot's track to toggle contact there, drag to paint that value over "
+         "the frames you cross.</td></tr>"
+         "</table>"));
+}
+
 void MainWindow::showAbout() {
   QMessageBox::about(
       this, tr("About MotionStyle"),

@@ -1,5 +1,6 @@
 #include "result_panel.h"
 
+#include <QComboBox>
 #include <QDir>
 #include <QFileDialog>
 #include <QFileInfo>
@@ -18,7 +19,9 @@
 
 #include "bvh/bvh_writer.h"
 #include "common/errors.h"
+#include "common/resource_paths.h"
 #include "display_space.h"
+#include "motion/resample.h"
 #include "features/feature_layout.h"
 #include "ik/contacts.h"
 #include "motion/kinematics.h"
@@ -38,13 +41,21 @@ ResultPanel::ResultPanel(QWidget* parent) : QWidget(parent), cancel_(std::make_s
   qRegisterMetaType<std::shared_ptr<const CleanupJob>>();
   qRegisterMetaType<std::shared_ptr<const CleanupResult>>();
 
-  network_label_ = new QLabel(this);
-  network_label_->setWordWrap(true);
+  network_choice_ = new QComboBox(this);
+  network_choice_->setObjectName(QStringLiteral("NetworkChoice"));
+  network_choice_->setPlaceholderText(tr("Choose a style..."));
+  network_choice_->setToolTip(tr("The style to apply: the styles shipped with MotionStyle, and networks you opened"));
+  network_choice_->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
+  listShippedNetworks();
+  connect(network_choice_, &QComboBox::activated, this, [this](int index) {
+    const QString file = network_choice_->itemData(index).toString();
+    if (!file.isEmpty()) loadNetworkFile(file);
+  });
   auto* open_network = new QPushButton(tr("Open..."), this);
   open_network->setToolTip(tr("Load a style network file (.net)"));
   connect(open_network, &QPushButton::clicked, this, &ResultPanel::browseNetwork);
   auto* network_row = new QHBoxLayout;
-  network_row->addWidget(network_label_, 1);
+  network_row->addWidget(network_choice_, 1);
   network_row->addWidget(open_network);
   content_label_ = new QLabel(this);
   content_label_->setWordWrap(true);
@@ -108,7 +119,7 @@ ResultPanel::ResultPanel(QWidget* parent) : QWidget(parent), cancel_(std::make_s
   connect(export_button_, &QPushButton::clicked, this, &ResultPanel::browseExport);
 
   auto* form = new QFormLayout;
-  form->addRow(tr("Network:"), network_row);
+  form->addRow(tr("Style:"), network_row);
   form->addRow(tr("Content:"), content_label_);
   form->addRow(tr("Strength:"), strength_row);
   auto* layout = new QVBoxLayout(this);
@@ -149,6 +160,10 @@ void ResultPanel::report(const QString& title, const QString& message) {
 }
 
 void ResultPanel::setStyleNetwork(std::shared_ptr<const nn::StyleModel> model, const QString& name) {
+  useNetwork(std::move(model), name, QString());
+}
+
+void ResultPanel::useNetwork(std::shared_ptr<const nn::StyleModel> model, const QString& name, const QString& file) {
   stylizer_.reset();
   network_name_.clear();
   given_stylized_.reset();
@@ -160,13 +175,40 @@ void ResultPanel::setStyleNetwork(std::shared_ptr<const nn::StyleModel> model, c
       report(tr("Could not use the style network"), QString::fromStdString(error.what()));
     }
   }
+  if (hasNetwork()) {
+    const int shipped = file.isEmpty() ? -1 : network_choice_->findData(file);
+    showNetworkInChoice(shipped >= 0 ? network_choice_->itemText(shipped) : network_name_, file);
+  }
   refreshControls();
+}
+
+void ResultPanel::listShippedNetworks() {
+  const std::optional<std::filesystem::path> resources = resourceDirectory();
+  if (!resources) return;
+  for (const std::filesystem::path& file : shippedNetworkFiles(*resources)) {
+    const QString name = QString::fromStdString(file.stem().string());
+    if (name == QLatin1String(kShippedAutoencoderName)) continue;  // the loss network is not a style
+    network_choice_->addItem(name.left(1).toUpper() + name.mid(1),
+                             QFileInfo(QString::fromStdString(file.string())).absoluteFilePath());
+  }
+}
+
+void ResultPanel::showNetworkInChoice(const QString& label, const QString& file) {
+  int index = file.isEmpty() ? -1 : network_choice_->findData(file);
+  if (index < 0) {
+    index = network_choice_->findText(label);
+    if (index < 0 || network_choice_->itemData(index).toString() != file) {
+      network_choice_->addItem(label, file);
+      index = network_choice_->count() - 1;
+    }
+  }
+  network_choice_->setCurrentIndex(index);
 }
 
 bool ResultPanel::loadNetworkFile(const QString& file) {
   try {
     auto model = std::make_shared<const nn::StyleModel>(style::loadCompatibleStyleModel(file.toStdString()));
-    setStyleNetwork(std::move(model), QFileInfo(file).completeBaseName());
+    useNetwork(std::move(model), QFileInfo(file).completeBaseName(), QFileInfo(file).absoluteFilePath());
     return hasNetwork();
   } catch (const InputError& error) {
     report(tr("Could not open the style network"), QString::fromStdString(error.what()));
@@ -302,8 +344,10 @@ void ResultPanel::clearResult() {
 }
 
 void ResultPanel::refreshControls() {
-  network_label_->setText(given_stylized_ ? tr("%1 (stylized clip)").arg(network_name_)
-                                          : (hasNetwork() ? network_name_ : tr("<i>none: open a .net file</i>")));
+  if (given_stylized_)
+    showNetworkInChoice(tr("%1 (stylized clip)").arg(network_name_), QString());
+  else if (!hasNetwork())
+    network_choice_->setCurrentIndex(-1);
   content_label_->setText(content_ ? content_->name : tr("<i>none</i>"));
   const bool ready = content_ && content_->mapping && (hasNetwork() || given_stylized_);
   stylize_button_->setEnabled(ready && !busy_);
@@ -357,7 +401,7 @@ std::vector<FigureData> ResultPanel::resultFigures(bool include_raw) const {
   for (const Joint& joint : cleaned.skeleton.joints) parents.push_back(joint.parent);
   const QString name = tr("%1 (%2)").arg(content_->name, network_name_);
   FigureData output = figureFromPositions(name, FigureRole::Output, parents, space.toDisplay(worldPositions(cleaned)));
-  const Eigen::MatrixXi contacts = labelsAtRate(result_->contacts, result_->stylized.fps, fps);
+  const Eigen::MatrixXi contacts = resampleRowsNearest(result_->contacts, 1.0 / result_->stylized.fps, fps);
   const auto joints = contactJoints(*content_->mapping);
   output.contact_joints.assign(joints.begin(), joints.end());
   output.contacts.assign(static_cast<size_t>(output.frame_count) * joints.size(), 0);
@@ -372,8 +416,8 @@ std::vector<FigureData> ResultPanel::resultFigures(bool include_raw) const {
     FigureData raw_figure = figureFromPositions(tr("%1 raw").arg(name), FigureRole::RawOutput, canonical_parents,
                                                 space.toDisplay(raw));
     // The raw output is judged by the content's contacts (what the network was asked to respect).
-    const Eigen::MatrixXi raw_contacts = labelsAtRate(
-        (result_->stylized.contacts.transpose().array() > 0.5).cast<int>().matrix(), result_->stylized.fps, fps);
+    const Eigen::MatrixXi raw_contacts = resampleRowsNearest(
+        (result_->stylized.contacts.transpose().array() > 0.5).cast<int>().matrix(), 1.0 / result_->stylized.fps, fps);
     const auto raw_joints = canonicalContactJoints();
     raw_figure.contact_joints.assign(raw_joints.begin(), raw_joints.end());
     raw_figure.contacts.assign(static_cast<size_t>(raw_figure.frame_count) * raw_joints.size(), 0);

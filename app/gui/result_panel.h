@@ -1,6 +1,7 @@
 #pragma once
-// ResultPanel: the "Result" dock. The user's loop is: pick a style network (File > Open Network, or
-// the Networks panel), set the strength, Stylize, look, Export.
+// ResultPanel: the "Result" dock. The user's loop is: pick a style (the shipped networks are listed
+// by name; File > Open Network or the Networks panel add others), set the strength, Stylize, look,
+// Export.
 //   - Stylize runs the network on the content clip and the Ceres IK clean-up onto the content's own
 //     skeleton in a worker QThread (cleanup_worker.h): the UI never waits; Cancel drops the job.
 //   - The metrics table shows foot skate, floor penetration, bone error and residual of the raw
@@ -27,6 +28,7 @@
 #include "figure_data.h"
 #include "nn/network_file.h"
 
+class QComboBox;
 class QLabel;
 class QProgressBar;
 class QPushButton;
@@ -54,6 +56,9 @@ class ResultPanel : public QWidget {
   bool loadNetworkFile(const QString& file);
   bool hasNetwork() const { return stylizer_ != nullptr; }
   QString networkName() const { return network_name_; }
+  // The style chooser: the shipped style networks (resources/models, by name), then networks opened
+  // from files. Choosing one loads it.
+  QComboBox* networkChoice() const { return network_choice_; }
 
   // The clip to stylize (a copy is kept), nullptr for none. The result is dropped when the clip's id
   // changes (another clip, or the same clip re-mapped); the same id again is a no-op.
@@ -104,6 +109,12 @@ class ResultPanel : public QWidget {
   void refreshMetrics();
   void refreshControls();
   void report(const QString& title, const QString& message);
+  void listShippedNetworks();
+  // setStyleNetwork / loadNetworkFile: `file` is the network's file ("" when it has none).
+  void useNetwork(std::shared_ptr<const nn::StyleModel> model, const QString& name, const QString& file);
+  // Selects (adding it if needed) the chooser entry for `file` ("" for a network without a file, e.g.
+  // one from the Networks panel or a stylized clip), showing `label`.
+  void showNetworkInChoice(const QString& label, const QString& file);
 
   ErrorReporter reporter_;
   std::shared_ptr<const style::Stylizer> stylizer_;
@@ -119,7 +130,7 @@ class ResultPanel : public QWidget {
   quint64 job_id_ = 0;
   bool busy_ = false;
 
-  QLabel* network_label_ = nullptr;
+  QComboBox* network_choice_ = nullptr;
   QLabel* content_label_ = nullptr;
   QSlider* strength_slider_ = nullptr;
   QLabel* strength_label_ = nullptr;

@@ -25,6 +25,8 @@ namespace motionstyle {
 
 inline constexpr const char* kResourcesEnvironmentVariable = "MOTIONSTYLE_RESOURCES";
 inline constexpr const char* kNetworkFileExtension = ".net";
+// The shipped loss network's name (models/autoencoder.net); every other shipped network is a style.
+inline constexpr const char* kShippedAutoencoderName = "autoencoder";
 
 // The inputs of the lookup, separated from the process so that tests can describe any layout.
 struct ResourceSearch {
