@@ -106,6 +106,52 @@ FigureData figureFromPositions(const QString& name, FigureRole role, const std::
   return figure;
 }
 
+void setFigureContacts(FigureData& figure, const std::array<int, kContactCount>& joints, const Eigen::MatrixXi& labels) {
+  figure.contact_joints.assign(joints.begin(), joints.end());
+  figure.contacts.assign(static_cast<size_t>(figure.frame_count) * joints.size(), 0);
+  for (int f = 0; f < figure.frame_count && f < labels.rows(); ++f)
+    for (Eigen::Index k = 0; k < labels.cols() && k < kContactCount; ++k)
+      figure.contacts[static_cast<size_t>(f) * joints.size() + static_cast<size_t>(k)] =
+          static_cast<std::uint8_t>(labels(f, k) != 0);
+}
+
+FigureData keepBodySubtree(const FigureData& figure, int body_root) {
+  if (body_root <= 0 || body_root >= figure.jointCount()) return figure;
+  // Joints descend from their parents in order, so one pass finds the subtree.
+  std::vector<int> new_index(static_cast<size_t>(figure.jointCount()), -1);
+  new_index[static_cast<size_t>(body_root)] = 0;
+  std::vector<int> kept{body_root};
+  for (int j = body_root + 1; j < figure.jointCount(); ++j) {
+    const int parent = figure.parents[static_cast<size_t>(j)];
+    if (parent >= 0 && new_index[static_cast<size_t>(parent)] >= 0) {
+      new_index[static_cast<size_t>(j)] = static_cast<int>(kept.size());
+      kept.push_back(j);
+    }
+  }
+  FigureData body = figure;
+  body.parents.assign(kept.size(), -1);
+  for (size_t k = 1; k < kept.size(); ++k) body.parents[k] = new_index[static_cast<size_t>(figure.parents[static_cast<size_t>(kept[k])])];
+  body.positions.resize(static_cast<size_t>(figure.frame_count) * kept.size() * 3);
+  for (int f = 0; f < figure.frame_count; ++f)
+    for (size_t k = 0; k < kept.size(); ++k) {
+      const size_t to = (static_cast<size_t>(f) * kept.size() + k) * 3;
+      body.positions[to] = figure.x(f, kept[k]);
+      body.positions[to + 1] = figure.y(f, kept[k]);
+      body.positions[to + 2] = figure.z(f, kept[k]);
+    }
+  // Contact joints outside the body (not possible for a mapped rig, whose feet descend from the hips)
+  // would lose their markers rather than point at another joint.
+  body.contact_joints.clear();
+  body.contacts.clear();
+  bool all_kept = true;
+  for (const int joint : figure.contact_joints) all_kept = all_kept && new_index[static_cast<size_t>(joint)] >= 0;
+  if (all_kept) {
+    for (const int joint : figure.contact_joints) body.contact_joints.push_back(new_index[static_cast<size_t>(joint)]);
+    body.contacts = figure.contacts;
+  }
+  return body;
+}
+
 FigureData figureFromClip(const LoadedClip& clip, FigureRole role, double display_fps) {
   if (!(display_fps > 0.0)) display_fps = clip.fps();
   std::vector<int> parents;
@@ -113,14 +159,9 @@ FigureData figureFromClip(const LoadedClip& clip, FigureRole role, double displa
   for (const Joint& joint : clip.motion.skeleton.joints) parents.push_back(joint.parent);
   FigureData figure = figureFromPositions(clip.name, role, parents, rowsAtRate(clip.display_positions, clip.fps(), display_fps));
   if (clip.mapping) {
-    const ContactLabels contacts = resampleRowsNearest(clip.effectiveContacts(), 1.0 / clip.fps(), display_fps);
-    const auto joints = contactJoints(*clip.mapping);
-    figure.contact_joints.assign(joints.begin(), joints.end());
-    figure.contacts.resize(static_cast<size_t>(figure.frame_count) * joints.size(), 0);
-    for (int f = 0; f < figure.frame_count && f < contacts.rows(); ++f)
-      for (Eigen::Index k = 0; k < contacts.cols(); ++k)
-        figure.contacts[static_cast<size_t>(f) * joints.size() + static_cast<size_t>(k)] =
-            static_cast<std::uint8_t>(contacts(f, k) != 0);
+    setFigureContacts(figure, contactJoints(*clip.mapping),
+                      resampleRowsNearest(clip.effectiveContacts(), 1.0 / clip.fps(), display_fps));
+    return keepBodySubtree(figure, (*clip.mapping)[CanonicalJoint::Hips]);
   }
   return figure;
 }

@@ -8,11 +8,13 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
 
 #include "display_space.h"
+#include "features/foot_contacts.h"
 #include "figure_data.h"
 #include "ik/contacts.h"
 #include "mapping/joint_mapping.h"
@@ -64,5 +66,15 @@ FigureData figureFromClip(const LoadedClip& clip, FigureRole role, double displa
 // Figure data from display positions (frames x 3*joints, one row per frame) and a topology.
 FigureData figureFromPositions(const QString& name, FigureRole role, const std::vector<int>& parents,
                                const Eigen::MatrixXd& display_positions);
+
+// The figure without the joints outside the subtree of `body_root` (the mapped hips): rigs such as
+// Bandai's have a reference root that stays at the world origin while the hips carry the motion, and
+// drawing it would put a bone from the origin to the body and place, follow and trace the figure by a
+// point that never moves. Contact joints are renumbered. body_root <= 0 returns the figure unchanged.
+FigureData keepBodySubtree(const FigureData& figure, int body_root);
+
+// Gives `figure` its foot-contact markers: `labels` is frames x 4 (at the figure's rate, nonzero = in
+// contact) for the figure's joints `joints` (foot_contacts.h order); frames past the labels get none.
+void setFigureContacts(FigureData& figure, const std::array<int, kContactCount>& joints, const Eigen::MatrixXi& labels);
 
 }  // namespace motionstyle

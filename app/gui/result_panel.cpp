@@ -21,6 +21,7 @@
 #include "common/errors.h"
 #include "common/resource_paths.h"
 #include "display_space.h"
+#include "result_figures.h"
 #include "motion/resample.h"
 #include "features/feature_layout.h"
 #include "ik/contacts.h"
@@ -394,39 +395,9 @@ void ResultPanel::refreshMetrics() {
 std::vector<FigureData> ResultPanel::resultFigures(bool include_raw) const {
   std::vector<FigureData> figures;
   if (!result_ || !content_) return figures;
-  const double fps = content_->fps();
-  const DisplaySpace& space = content_->display_space;
-  const Motion& cleaned = result_->cleaned;
-  std::vector<int> parents;
-  for (const Joint& joint : cleaned.skeleton.joints) parents.push_back(joint.parent);
   const QString name = tr("%1 (%2)").arg(content_->name, network_name_);
-  FigureData output = figureFromPositions(name, FigureRole::Output, parents, space.toDisplay(worldPositions(cleaned)));
-  const Eigen::MatrixXi contacts = resampleRowsNearest(result_->contacts, 1.0 / result_->stylized.fps, fps);
-  const auto joints = contactJoints(*content_->mapping);
-  output.contact_joints.assign(joints.begin(), joints.end());
-  output.contacts.assign(static_cast<size_t>(output.frame_count) * joints.size(), 0);
-  for (int f = 0; f < output.frame_count && f < contacts.rows(); ++f)
-    for (size_t k = 0; k < joints.size(); ++k)
-      output.contacts[static_cast<size_t>(f) * joints.size() + k] =
-          static_cast<std::uint8_t>(contacts(f, static_cast<Eigen::Index>(k)) != 0);
-  figures.push_back(std::move(output));
-  if (include_raw) {
-    const Eigen::MatrixXd raw = rowsAtRate(result_->stylized.world_positions, result_->stylized.fps, fps);
-    const std::vector<int> canonical_parents(kCanonicalParent.begin(), kCanonicalParent.end());
-    FigureData raw_figure = figureFromPositions(tr("%1 raw").arg(name), FigureRole::RawOutput, canonical_parents,
-                                                space.toDisplay(raw));
-    // The raw output is judged by the content's contacts (what the network was asked to respect).
-    const Eigen::MatrixXi raw_contacts = resampleRowsNearest(
-        (result_->stylized.contacts.transpose().array() > 0.5).cast<int>().matrix(), 1.0 / result_->stylized.fps, fps);
-    const auto raw_joints = canonicalContactJoints();
-    raw_figure.contact_joints.assign(raw_joints.begin(), raw_joints.end());
-    raw_figure.contacts.assign(static_cast<size_t>(raw_figure.frame_count) * raw_joints.size(), 0);
-    for (int f = 0; f < raw_figure.frame_count && f < raw_contacts.rows(); ++f)
-      for (size_t k = 0; k < raw_joints.size(); ++k)
-        raw_figure.contacts[static_cast<size_t>(f) * raw_joints.size() + k] =
-            static_cast<std::uint8_t>(raw_contacts(f, static_cast<Eigen::Index>(k)) != 0);
-    figures.push_back(std::move(raw_figure));
-  }
+  figures.push_back(cleanedOutputFigure(*result_, *content_, name, content_->fps()));
+  if (include_raw) figures.push_back(rawOutputFigure(*result_, *content_, tr("%1 raw").arg(name), content_->fps()));
   return figures;
 }
 

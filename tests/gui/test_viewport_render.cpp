@@ -43,6 +43,27 @@ class ViewportRenderTest : public QObject {
     QVERIFY(cmu_.frameCount() > 100);
   }
 
+  void aReferenceRootAboveTheHipsIsLeftOut() {
+    // Bandai-like: joint 0 stays at the origin, the hips (1) carry the body 5 m away; joint 3 hangs
+    // off the reference root, outside the body. The contact is on the leg (2).
+    FigureData rig;
+    rig.parents = {-1, 0, 1, 0};
+    rig.frame_count = 2;
+    rig.positions = {0, 0, 0, 500, 90, 0, 500, 10, 0, 1, 1, 1,    // frame 0
+                     0, 0, 0, 510, 90, 0, 510, 10, 0, 1, 1, 1};  // frame 1
+    rig.contact_joints = {2};
+    rig.contacts = {1, 0};
+    const FigureData body = keepBodySubtree(rig, 1);
+    QCOMPARE(body.parents, (std::vector<int>{-1, 0}));
+    QCOMPARE(body.frame_count, 2);
+    QCOMPARE(body.x(1, 0), 510.0);  // the hips are joint 0 now: placement and follow use them
+    QCOMPARE(body.y(0, 1), 10.0);
+    QCOMPARE(body.contact_joints, (std::vector<int>{1}));
+    QCOMPARE(body.contacts, rig.contacts);
+    body.validate();
+    QCOMPARE(keepBodySubtree(rig, 0).parents, rig.parents);  // a rig rooted at its hips is unchanged
+  }
+
   void rejectsInvalidFigures() {
     SkeletonViewport viewport;
     FigureData bad = figureFromClip(cmu_, FigureRole::Content);

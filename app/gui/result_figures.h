@@ -1,0 +1,23 @@
+#pragma once
+// The viewport's figures of a stylize + clean-up result (cleanup_worker.h), shared by the Result panel
+// and the off-screen filmstrip renderer, so that both draw exactly what the user sees:
+//   - the cleaned clip on the content's own skeleton (blue), with the contacts the clean-up locked;
+//   - the raw network output, 21 canonical joints (grey), with the content's contacts (what the
+//     network was asked to respect, and what judges it).
+// Both are in the CONTENT's display space (same floor) and at `display_fps` (the timeline's rate).
+
+#include <QString>
+
+#include "cleanup_worker.h"
+#include "clip_loader.h"
+#include "figure_data.h"
+
+namespace motionstyle {
+
+// content must be mapped (it was stylized). Throws std::invalid_argument otherwise.
+FigureData cleanedOutputFigure(const CleanupResult& result, const LoadedClip& content, const QString& name,
+                               double display_fps);
+FigureData rawOutputFigure(const CleanupResult& result, const LoadedClip& content, const QString& name,
+                           double display_fps);
+
+}  // namespace motionstyle
