@@ -25,7 +25,7 @@ set(MOTIONSTYLE_DATA_INSTALL_DIR "${CMAKE_INSTALL_DATADIR}/motionstyle")
 # --- data ---------------------------------------------------------------------------------------
 # Only the files meant to ship: training leaves *.checkpoint and logs next to the networks.
 install(DIRECTORY "${_resources}/models/" DESTINATION "${MOTIONSTYLE_DATA_INSTALL_DIR}/models"
-        FILES_MATCHING PATTERN "*.net" PATTERN "NOTICE" PATTERN "README.md" PATTERN "train_models.sh")
+        FILES_MATCHING PATTERN "*.net" PATTERN "*.png" PATTERN "NOTICE" PATTERN "README.md" PATTERN "*.sh")
 install(DIRECTORY "${_resources}/samples/" DESTINATION "${MOTIONSTYLE_DATA_INSTALL_DIR}/samples"
         FILES_MATCHING PATTERN "*.bvh" PATTERN "LICENSE*" PATTERN "README.md")
 
