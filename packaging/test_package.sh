@@ -188,6 +188,13 @@ fi
 
 step "Installed motionstyle --help (no window: the offscreen platform)"
 expect 0 "--screenshot" env QT_QPA_PLATFORM=offscreen /usr/bin/motionstyle --help
+if command -v xvfb-run >/dev/null; then
+  # The installed app on its installed demo (samples and a shipped network found under /usr/share).
+  step "Installed motionstyle --demo, rendered once under Xvfb"
+  expect 0 "wrote $work/demo.png" xvfb-run -a -s "-screen 0 1440x900x24" /usr/bin/motionstyle --demo --screenshot "$work/demo.png"
+  cp "$work/demo.png" "$build/installed-demo-screenshot.png" 2>/dev/null &&
+    echo "screenshot of the installed app: $build/installed-demo-screenshot.png"
+fi
 step "Man pages"
 for page in motionstyle-cli motionstyle; do
   file="/usr/share/man/man1/$page.1.gz"
