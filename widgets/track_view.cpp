@@ -27,7 +27,7 @@ TrackView::TrackView(QWidget* parent) : QWidget(parent) {
 void TrackView::setFrameCount(int frames) {
   frames_ = std::max(0, frames);
   for (BoolTrack& track : bool_tracks_) track.values.resize(static_cast<size_t>(frames_), false);
-  if (!float_values_.empty()) float_values_.resize(static_cast<size_t>(frames_), float_min_);
+  for (FloatTrack& track : float_tracks_) track.values.resize(static_cast<size_t>(frames_), track.minimum);
   playhead_ = std::clamp(playhead_, 0, std::max(0, frames_ - 1));
   update();
 }
@@ -50,20 +50,29 @@ const std::vector<bool>& TrackView::boolValues(int track) const {
   return bool_tracks_.at(static_cast<size_t>(track)).values;
 }
 
-void TrackView::setFloatTrack(const QString& name, std::vector<float> values, float minimum, float maximum) {
-  float_name_ = name;
-  float_values_ = std::move(values);
-  float_values_.resize(name.isEmpty() ? 0 : static_cast<size_t>(frames_), minimum);
-  float_min_ = minimum;
-  float_max_ = maximum > minimum ? maximum : minimum + 1.0f;
+int TrackView::addFloatTrack(const QString& name, const QColor& color) {
+  float_tracks_.push_back({name, color, std::vector<float>(static_cast<size_t>(frames_), 0.0f), 0.0f, 1.0f});
   updateGeometry();
   update();
+  return static_cast<int>(float_tracks_.size()) - 1;
+}
+
+void TrackView::setFloatValues(int track, std::vector<float> values, float minimum, float maximum) {
+  FloatTrack& row = float_tracks_.at(static_cast<size_t>(track));
+  values.resize(static_cast<size_t>(frames_), minimum);
+  row.values = std::move(values);
+  row.minimum = minimum;
+  row.maximum = maximum > minimum ? maximum : minimum + 1.0f;
+  update();
+}
+
+const std::vector<float>& TrackView::floatValues(int track) const {
+  return float_tracks_.at(static_cast<size_t>(track)).values;
 }
 
 void TrackView::clearTracks() {
   bool_tracks_.clear();
-  float_name_.clear();
-  float_values_.clear();
+  float_tracks_.clear();
   updateGeometry();
   update();
 }
@@ -87,15 +96,16 @@ QRect TrackView::boolTrackRect(int track) const {
   return QRect(area.left(), kRulerHeight + kRowGap + track * (kBoolRowHeight + kRowGap), area.width(), kBoolRowHeight);
 }
 
-QRect TrackView::floatTrackRect() const {
+QRect TrackView::floatTrackRect(int track) const {
   const QRect area = timeArea();
-  return QRect(area.left(), kRulerHeight + kRowGap + boolTrackCount() * (kBoolRowHeight + kRowGap), area.width(),
-               kFloatRowHeight);
+  return QRect(area.left(),
+               kRulerHeight + kRowGap + boolTrackCount() * (kBoolRowHeight + kRowGap) + track * (kFloatRowHeight + kRowGap),
+               area.width(), kFloatRowHeight);
 }
 
 QSize TrackView::sizeHint() const {
   int height = kRulerHeight + kRowGap + boolTrackCount() * (kBoolRowHeight + kRowGap);
-  if (!float_name_.isEmpty()) height += kFloatRowHeight + kRowGap;
+  height += floatTrackCount() * (kFloatRowHeight + kRowGap);
   return {600, height + 2};
 }
 
@@ -164,24 +174,27 @@ void TrackView::paintEvent(QPaintEvent*) {
     }
   }
 
-  if (!float_name_.isEmpty() && frames_ > 0) {
-    const QRect row = floatTrackRect();
+  for (int t = 0; t < floatTrackCount() && frames_ > 0; ++t) {
+    const FloatTrack& track = float_tracks_[static_cast<size_t>(t)];
+    const QRect row = floatTrackRect(t);
     painter.fillRect(row, kRowBackground);
     painter.setPen(kHeaderText);
-    painter.drawText(QRect(6, row.top(), kHeaderWidth - 10, row.height()), Qt::AlignVCenter | Qt::AlignLeft, float_name_);
+    painter.drawText(QRect(6, row.top(), kHeaderWidth - 10, row.height()), Qt::AlignVCenter | Qt::AlignLeft, track.name);
     QPainterPath curve;
     curve.moveTo(row.left(), row.bottom());
     for (int f = 0; f < frames_; ++f) {
-      const double t = std::clamp((float_values_[static_cast<size_t>(f)] - float_min_) / (float_max_ - float_min_), 0.0f, 1.0f);
-      const double y = row.bottom() - t * (row.height() - 4);
+      const double v = std::clamp((track.values[static_cast<size_t>(f)] - track.minimum) / (track.maximum - track.minimum), 0.0f, 1.0f);
+      const double y = row.bottom() - v * (row.height() - 4);
       curve.lineTo(row.left() + f * cell, y);
       curve.lineTo(row.left() + (f + 1) * cell, y);
     }
     curve.lineTo(row.right(), row.bottom());
     curve.closeSubpath();
     painter.setRenderHint(QPainter::Antialiasing);
-    painter.fillPath(curve, QColor(120, 170, 230, 120));
-    painter.setPen(QColor(140, 190, 250));
+    QColor fill = track.color;
+    fill.setAlpha(120);
+    painter.fillPath(curve, fill);
+    painter.setPen(track.color.lighter(115));
     painter.drawPath(curve);
     painter.setRenderHint(QPainter::Antialiasing, false);
   }

@@ -3,7 +3,7 @@
 //   - a ruler with frame numbers (click or drag on it to scrub),
 //   - boolean tracks (e.g. left / right foot contact), editable by click-drag painting: the press
 //     toggles the frame under the cursor and the drag paints that value over every frame it crosses,
-//   - one optional float track (e.g. a quality score) drawn as a filled curve,
+//   - float tracks (quality figures per frame, e.g. foot skate) drawn as filled curves,
 //   - a playhead across all of them.
 // Frames are cells: frame f covers [f, f+1) of the track area's width; the playhead sits on the centre.
 
@@ -36,9 +36,14 @@ class TrackView : public QWidget {
   const std::vector<bool>& boolValues(int track) const;
   int boolTrackCount() const { return static_cast<int>(bool_tracks_.size()); }
 
-  // The float track, drawn scaled to [minimum, maximum]; an empty name hides it.
-  void setFloatTrack(const QString& name, std::vector<float> values, float minimum, float maximum);
-  void clearTracks();  // removes every boolean track and the float track
+  // Adds a float track (drawn below the boolean ones) and returns its index; then its values, drawn
+  // scaled to [minimum, maximum] and resized to frameCount() (new frames: minimum). A track without
+  // values draws as a flat row.
+  int addFloatTrack(const QString& name, const QColor& color);
+  void setFloatValues(int track, std::vector<float> values, float minimum, float maximum);
+  const std::vector<float>& floatValues(int track) const;
+  int floatTrackCount() const { return static_cast<int>(float_tracks_.size()); }
+  void clearTracks();  // removes every track
 
   // Whether boolean tracks can be painted with the mouse (default true).
   void setEditable(bool editable) { editable_ = editable; }
@@ -51,6 +56,7 @@ class TrackView : public QWidget {
   int frameAt(double x) const;
   double xForFrame(int frame) const;
   QRect boolTrackRect(int track) const;
+  QRect floatTrackRect(int track) const;
   QRect rulerRect() const;
 
   QSize sizeHint() const override;
@@ -87,7 +93,6 @@ class TrackView : public QWidget {
   };
 
   QRect timeArea() const;
-  QRect floatTrackRect() const;
   void paintRuler(QPainter& painter) const;
   void paintStroke(int frame);
 
@@ -95,10 +100,14 @@ class TrackView : public QWidget {
   int playhead_ = 0;
   bool editable_ = true;
   std::vector<BoolTrack> bool_tracks_;
-  QString float_name_;
-  std::vector<float> float_values_;
-  float float_min_ = 0.0f;
-  float float_max_ = 1.0f;
+  struct FloatTrack {
+    QString name;
+    QColor color;
+    std::vector<float> values;
+    float minimum = 0.0f;
+    float maximum = 1.0f;
+  };
+  std::vector<FloatTrack> float_tracks_;
   Stroke stroke_;
   bool scrubbing_ = false;
 };

@@ -36,7 +36,12 @@ ContactTrackController::ContactTrackController(TrackView* tracks, ContentProvide
   connect(tracks_, &TrackView::trackEdited, this, [this](int track, int first, int last, bool value) {
     if (track == kLeftFootTrack || track == kRightFootTrack) overrideFoot(track, first, last, value);
   });
-  setSkateTrack({});
+  // The rows are always there (flat without a result), so the timeline dock keeps one height.
+  if (tracks_->floatTrackCount() == 0) {
+    tracks_->addFloatTrack(tr("Skate cm/s"), QColor(120, 170, 230));
+    tracks_->addFloatTrack(tr("Raw bone cm"), QColor(170, 170, 175));
+  }
+  setQualityTracks({});
 }
 
 void ContactTrackController::refresh() {
@@ -45,11 +50,14 @@ void ContactTrackController::refresh() {
   for (int foot : {kLeftFootTrack, kRightFootTrack}) tracks_->setBoolValues(foot, footTrack(labels, foot, tracks_->frameCount()));
 }
 
-void ContactTrackController::setSkateTrack(const std::vector<float>& skate_cm_s) {
-  // The row is always there (flat without a result), so the timeline dock keeps one height.
-  // Scale: at least 5 cm/s full height, so that a clean result reads as flat, not as noise blown up.
-  const float top = skate_cm_s.empty() ? 5.0f : std::max(5.0f, *std::max_element(skate_cm_s.begin(), skate_cm_s.end()));
-  tracks_->setFloatTrack(tr("Skate cm/s"), skate_cm_s, 0.0f, top);
+void ContactTrackController::setQualityTracks(const QualityTracks& tracks) {
+  // Scales: at least 5 cm/s and 2 cm full height, so that a clean result reads as flat, not as noise
+  // blown up.
+  const auto top = [](const std::vector<float>& values, float floor) {
+    return values.empty() ? floor : std::max(floor, *std::max_element(values.begin(), values.end()));
+  };
+  tracks_->setFloatValues(kSkateTrack, tracks.skate_cm_s, 0.0f, top(tracks.skate_cm_s, 5.0f));
+  tracks_->setFloatValues(kRawBoneErrorTrack, tracks.raw_bone_error_cm, 0.0f, top(tracks.raw_bone_error_cm, 2.0f));
 }
 
 void ContactTrackController::overrideFoot(int foot, int first_frame, int last_frame, bool in_contact) {

@@ -7,7 +7,9 @@
 //   - Painting a track (click-drag) forces heel and toe of that foot on or off over the painted frames:
 //     overrides that the next clean-up applies (applyContactOverrides).
 //   - Save / Load write and read them beside the clip (ik/contact_file.h: clip.bvh.contacts.json).
-//   - The float track shows a per-frame quality figure of the output (foot skate, cm/s).
+//   - Two float tracks (TrackView float tracks 0 and 1, added by the controller) show the result's
+//     per-frame quality: the cleaned output's foot skate (cm/s) and the raw network output's bone
+//     error (cm; where the IK has to hold bones the network stretched).
 // Timeline frames are the content's own frames (MainWindow plays every clip at the content's rate).
 
 #include <QObject>
@@ -26,6 +28,13 @@ namespace motionstyle {
 
 class TrackView;
 
+// Per-frame quality of a result, one value per frame of the content.
+struct QualityTracks {
+  std::vector<float> skate_cm_s;         // the cleaned output: mean foot speed during contact
+  std::vector<float> raw_bone_error_cm;  // the raw network output: its largest bone-length error (the
+                                         // cleaned clip's is zero by construction)
+};
+
 class ContactTrackController : public QObject {
   Q_OBJECT
 
@@ -34,14 +43,16 @@ class ContactTrackController : public QObject {
   using ErrorReporter = std::function<void(const QString& title, const QString& message)>;
   static constexpr int kLeftFootTrack = 0;
   static constexpr int kRightFootTrack = 1;
+  static constexpr int kSkateTrack = 0;  // float tracks
+  static constexpr int kRawBoneErrorTrack = 1;
 
   // `tracks` must already hold the two foot tracks (indices above).
   ContactTrackController(TrackView* tracks, ContentProvider content, ErrorReporter reporter, QObject* parent = nullptr);
 
   // Redraws the foot tracks from the content clip (frames beyond it stay empty).
   void refresh();
-  // The quality track (cm/s per content frame); empty shows a flat row (no result yet).
-  void setSkateTrack(const std::vector<float>& skate_cm_s);
+  // The quality tracks (one value per content frame); empty ones show flat rows (no result yet).
+  void setQualityTracks(const QualityTracks& tracks);
   // Adds Save / Load / Reset actions to `menu`.
   void addActions(QMenu* menu);
 

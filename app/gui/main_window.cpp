@@ -308,7 +308,7 @@ void MainWindow::rebuildFigures() {
   timeline_->setFrameCount(viewport_->frameCount());
   viewport_->setFrame(timeline_->frame());
   contact_tracks_->refresh();
-  contact_tracks_->setSkateTrack(result_panel_->skateTrack());
+  contact_tracks_->setQualityTracks(result_panel_->qualityTracks());
 }
 
 void MainWindow::setRawOutputVisible(bool visible) {

@@ -401,15 +401,25 @@ std::vector<FigureData> ResultPanel::resultFigures(bool include_raw) const {
   return figures;
 }
 
-std::vector<float> ResultPanel::skateTrack() const {
-  if (!result_ || !content_) return {};
-  const std::vector<double>& track = result_->cleaned_metrics.skate_track_cm_s;
+namespace {
+
+// A per-frame metrics track (at the stylized rate) -> one value per frame at the content's rate.
+std::vector<float> trackAtRate(const std::vector<double>& track, double track_fps, double fps) {
   Eigen::MatrixXd rows(static_cast<Eigen::Index>(track.size()), 1);
   for (size_t i = 0; i < track.size(); ++i) rows(static_cast<Eigen::Index>(i), 0) = track[i];
-  const Eigen::MatrixXd at_rate = rowsAtRate(rows, result_->stylized.fps, content_->fps());
+  const Eigen::MatrixXd at_rate = rowsAtRate(rows, track_fps, fps);
   std::vector<float> values(static_cast<size_t>(at_rate.rows()));
   for (Eigen::Index i = 0; i < at_rate.rows(); ++i) values[static_cast<size_t>(i)] = static_cast<float>(at_rate(i, 0));
   return values;
+}
+
+}  // namespace
+
+QualityTracks ResultPanel::qualityTracks() const {
+  if (!result_ || !content_) return {};
+  const double track_fps = result_->stylized.fps;
+  return {trackAtRate(result_->cleaned_metrics.skate_track_cm_s, track_fps, content_->fps()),
+          trackAtRate(result_->raw_metrics.bone_error_track_cm, track_fps, content_->fps())};
 }
 
 bool ResultPanel::exportResult(const QString& file, bool overwrite) {

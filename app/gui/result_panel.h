@@ -25,6 +25,7 @@
 
 #include "cleanup_worker.h"
 #include "clip_loader.h"
+#include "contact_tracks.h"
 #include "figure_data.h"
 #include "nn/network_file.h"
 
@@ -79,8 +80,8 @@ class ResultPanel : public QWidget {
   // (blue) with its contacts, then, when `include_raw`, the raw network output (grey). Empty without a
   // result.
   std::vector<FigureData> resultFigures(bool include_raw) const;
-  // Per-frame foot skate of the cleaned output (cm/s) at the content's rate; empty without a result.
-  std::vector<float> skateTrack() const;
+  // The timeline's per-frame quality of the result at the content's rate; empty without a result.
+  QualityTracks qualityTracks() const;
 
  public slots:
   void stylize();  // reports when there is no content or network; ignored while busy

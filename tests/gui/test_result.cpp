@@ -10,6 +10,7 @@
 #include <QTemporaryDir>
 #include <QTreeWidget>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -265,6 +266,20 @@ class ResultTest : public QObject {
     QCOMPARE(window.viewport()->figureCount(), 4);
     QVERIFY(window.viewport()->figure(3).role == FigureRole::RawOutput);
     QCOMPARE(window.viewport()->figure(3).jointCount(), kCanonicalJointCount);
+    // The timeline's quality rows: the cleaned output's skate and the raw output's bone error, one
+    // value per timeline frame (the longest clip's), zero past the content; the raw output's bones are
+    // off somewhere (the table says so too).
+    const TrackView* tracks = window.timeline()->trackView();
+    QCOMPARE(tracks->floatTrackCount(), 2);
+    const std::vector<float>& skate = tracks->floatValues(ContactTrackController::kSkateTrack);
+    const std::vector<float>& bone = tracks->floatValues(ContactTrackController::kRawBoneErrorTrack);
+    QCOMPARE(static_cast<int>(skate.size()), tracks->frameCount());
+    QCOMPARE(static_cast<int>(bone.size()), tracks->frameCount());
+    const int content_frames = window.clip(0).frameCount();
+    QVERIFY(tracks->frameCount() > content_frames);  // the zombie style clip is longer
+    QVERIFY(*std::max_element(bone.begin(), bone.begin() + content_frames) > 0.1f);
+    QVERIFY(std::all_of(bone.begin() + content_frames, bone.end(), [](float v) { return v == 0.0f; }));
+    QVERIFY(std::all_of(skate.begin(), skate.end(), [](float v) { return std::isfinite(v) && v >= 0.0f; }));
     window.timeline()->setFrame(300);
     QTest::qWait(50);
     QVERIFY(window.saveScreenshot(screenshotPath(QStringLiteral("with_result"))));

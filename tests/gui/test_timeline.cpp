@@ -4,6 +4,8 @@
 #include <QSignalSpy>
 #include <QTest>
 
+#include <stdexcept>
+
 #include "gui_test_support.h"
 #include "playback_clock.h"
 #include "timeline_widget.h"
@@ -217,6 +219,34 @@ class TimelineTest : public QObject {
     QVERIFY(!tracks.boolValues(0)[70]);
   }
 
+  void floatTracksStackBelowTheBooleanOnes() {
+    TrackView tracks;
+    tracks.setFrameCount(50);
+    tracks.addBoolTrack(QStringLiteral("Left foot"), Qt::yellow);
+    const int height_without = tracks.sizeHint().height();
+    QCOMPARE(tracks.addFloatTrack(QStringLiteral("Skate"), Qt::blue), 0);
+    QCOMPARE(tracks.addFloatTrack(QStringLiteral("Bone"), Qt::gray), 1);
+    QCOMPARE(tracks.floatTrackCount(), 2);
+    QCOMPARE(tracks.sizeHint().height(), height_without + 2 * (TrackView::kFloatRowHeight + 2));
+    tracks.resize(600, tracks.sizeHint().height());
+    QVERIFY(tracks.floatTrackRect(0).top() > tracks.boolTrackRect(0).bottom());
+    QVERIFY(tracks.floatTrackRect(1).top() > tracks.floatTrackRect(0).bottom());
+    QVERIFY(tracks.floatTrackRect(1).bottom() < tracks.sizeHint().height());
+    // Values follow the frame count: short input is padded with the minimum, long input cut.
+    tracks.setFloatValues(0, {3.0f, 4.0f}, 1.0f, 5.0f);
+    QCOMPARE(tracks.floatValues(0).size(), size_t{50});
+    QCOMPARE(tracks.floatValues(0)[1], 4.0f);
+    QCOMPARE(tracks.floatValues(0)[2], 1.0f);
+    tracks.setFloatValues(1, std::vector<float>(80, 2.0f), 0.0f, 1.0f);
+    QCOMPARE(tracks.floatValues(1).size(), size_t{50});
+    tracks.setFrameCount(60);
+    QCOMPARE(tracks.floatValues(0).size(), size_t{60});
+    QCOMPARE(tracks.floatValues(0)[59], 1.0f);
+    QVERIFY_THROWS_EXCEPTION(std::out_of_range, tracks.setFloatValues(2, {}, 0.0f, 1.0f));
+    tracks.clearTracks();
+    QCOMPARE(tracks.floatTrackCount(), 0);
+  }
+
   void rulerScrubsTheTimeline() {
     TimelineWidget timeline;
     timeline.setFrameCount(200);
@@ -245,7 +275,9 @@ class TimelineTest : public QObject {
     }
     tracks->addBoolTrack(QStringLiteral("Left foot"), QColor(240, 170, 60), left);
     tracks->addBoolTrack(QStringLiteral("Right foot"), QColor(90, 200, 220), right);
-    tracks->setFloatTrack(QStringLiteral("Quality"), quality, 0.0f, 1.0f);
+    tracks->setFloatValues(tracks->addFloatTrack(QStringLiteral("Skate cm/s"), QColor(120, 170, 230)), quality, 0.0f, 1.0f);
+    std::vector<float> bone_error(quality.rbegin(), quality.rend());
+    tracks->setFloatValues(tracks->addFloatTrack(QStringLiteral("Raw bone cm"), QColor(170, 170, 175)), bone_error, 0.0f, 1.0f);
     timeline.setFrame(250);
     timeline.resize(1200, timeline.sizeHint().height());
     timeline.show();
