@@ -29,6 +29,7 @@
 #include <exception>
 
 #include "common/errors.h"
+#include "common/resource_paths.h"
 #include "loss_curve_widget.h"
 #include "main_window.h"
 #include "training_worker.h"
@@ -42,6 +43,13 @@ enum StyleColumn { kStyleLabel, kStyleFile };
 const char* const kLossNetworkKey = "networks/lossNetwork";
 const char* const kNetworkFolderKey = "networks/lastFolder";
 const QString kNetworkFilter = QStringLiteral("MotionStyle networks (*.net);;All files (*)");
+
+// <resources>/models/autoencoder.net when installed (resource_paths.h), else empty.
+QString shippedLossNetworkFile() {
+  const auto resources = resourceDirectory();
+  const auto file = resources ? shippedNetworkFile(*resources, kShippedAutoencoderName) : std::nullopt;
+  return file ? QString::fromStdString(file->string()) : QString();
+}
 
 QString propertyValue(const nn::NetworkMetadata& metadata, const std::string& key) {
   for (const auto& [name, value] : metadata.properties)
@@ -123,7 +131,11 @@ NetworkPanel::NetworkPanel(MainWindow* window, bool persist_settings)
   layout->setContentsMargins(4, 4, 4, 4);
   layout->addWidget(splitter);
 
-  if (persist_settings_) setLossNetworkFile(QSettings().value(kLossNetworkKey).toString());
+  // The loss network: the one last used if it is still there, else the shipped one, so that a first
+  // training needs nothing but clips.
+  QString loss_file = persist_settings_ ? QSettings().value(kLossNetworkKey).toString() : QString();
+  if (loss_file.isEmpty() || !QFileInfo::exists(loss_file)) loss_file = shippedLossNetworkFile();
+  loss_network_edit_->setText(loss_file);
   connect(window_, &MainWindow::clipsChanged, this, &NetworkPanel::onClipsChanged);
   refreshTrainingSummary();
   updateButtons();

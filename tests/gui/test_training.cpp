@@ -20,6 +20,7 @@
 #include <cmath>
 #include <limits>
 
+#include "common/resource_paths.h"
 #include "features/feature_layout.h"
 #include "gui_test_support.h"
 #include "loss_curve_widget.h"
@@ -226,6 +227,10 @@ class TrainingTest : public QObject {
     QVERIFY(window);
     NetworkPanel* panel = window->networkPanel();
     QVERIFY(panel != nullptr);
+    // A fresh panel offers the shipped loss network when there is one (there is in this repository).
+    const auto resources = resourceDirectory();
+    const auto shipped = resources ? shippedNetworkFile(*resources, kShippedAutoencoderName) : std::nullopt;
+    QCOMPARE(panel->lossNetworkFile(), shipped ? QString::fromStdString(shipped->string()) : QString());
 
     // No training database yet.
     QVERIFY(!panel->startTraining(false));
