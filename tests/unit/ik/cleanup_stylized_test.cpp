@@ -1,6 +1,6 @@
-// Acceptance on RAW STYLIZED OUTPUT, without trained networks (those come from licensed data and are
-// not in the repository): the test builds a style model whose output is damaged the way a trained
-// network's is, and runs it through the real pipeline, style::Stylizer (the float32 fast path,
+// Acceptance on RAW STYLIZED OUTPUT, without the shipped networks (resources/models: CC BY-NC data,
+// left out of some builds, and retrained now and then): the test builds a style model whose output is
+// damaged the way a trained network's is, and runs it through the real pipeline, style::Stylizer (the float32 fast path,
 // manifold projection included) then style::cleanUpStylizedClip (the content's contacts and those
 // detected on the output locked, the Ceres clean-up on the content's own skeleton, the metrics before
 // and after).
