@@ -22,10 +22,6 @@
 #include "common/resource_paths.h"
 #include "display_space.h"
 #include "result_figures.h"
-#include "motion/resample.h"
-#include "features/feature_layout.h"
-#include "ik/contacts.h"
-#include "motion/kinematics.h"
 #include "style/training.h"
 
 namespace motionstyle {
@@ -176,10 +172,7 @@ void ResultPanel::useNetwork(std::shared_ptr<const nn::StyleModel> model, const 
       report(tr("Could not use the style network"), QString::fromStdString(error.what()));
     }
   }
-  if (hasNetwork()) {
-    const int shipped = file.isEmpty() ? -1 : network_choice_->findData(file);
-    showNetworkInChoice(shipped >= 0 ? network_choice_->itemText(shipped) : network_name_, file);
-  }
+  if (hasNetwork()) showNetworkInChoice(network_name_, file);  // a listed file keeps its entry's label
   refreshControls();
 }
 

@@ -40,6 +40,13 @@ int decimationStep(double source_frame_time, double target_fps) {
   return wholeNumber(1.0 / (source_frame_time * target_fps));
 }
 
+// The schedule for a matrix with one row per frame (resampleSchedule takes an int frame count).
+std::vector<ResampleSample> rowSchedule(Eigen::Index frames, double source_frame_time, double target_fps) {
+  if (frames > static_cast<Eigen::Index>(std::numeric_limits<int>::max()))
+    throw std::invalid_argument("resample: too many frames");
+  return resampleSchedule(static_cast<int>(frames), source_frame_time, target_fps);
+}
+
 }  // namespace
 
 std::vector<ResampleSample> resampleSchedule(int source_frames, double source_frame_time, double target_fps) {
@@ -151,10 +158,7 @@ LocalPoses resampleLocalPoses(const LocalPoses& poses, double source_frame_time,
 }
 
 Eigen::MatrixXd resampleRowsLinear(const Eigen::MatrixXd& rows, double source_frame_time, double target_fps) {
-  if (rows.rows() > static_cast<Eigen::Index>(std::numeric_limits<int>::max()))
-    throw std::invalid_argument("resample: too many frames");
-  const std::vector<ResampleSample> schedule =
-      resampleSchedule(static_cast<int>(rows.rows()), source_frame_time, target_fps);
+  const std::vector<ResampleSample> schedule = rowSchedule(rows.rows(), source_frame_time, target_fps);
   Eigen::MatrixXd result(static_cast<Eigen::Index>(schedule.size()), rows.cols());
   for (Eigen::Index k = 0; k < result.rows(); ++k) {
     const ResampleSample sample = schedule[static_cast<size_t>(k)];
@@ -167,10 +171,7 @@ Eigen::MatrixXd resampleRowsLinear(const Eigen::MatrixXd& rows, double source_fr
 }
 
 Eigen::MatrixXi resampleRowsNearest(const Eigen::MatrixXi& rows, double source_frame_time, double target_fps) {
-  if (rows.rows() > static_cast<Eigen::Index>(std::numeric_limits<int>::max()))
-    throw std::invalid_argument("resample: too many frames");
-  const std::vector<ResampleSample> schedule =
-      resampleSchedule(static_cast<int>(rows.rows()), source_frame_time, target_fps);
+  const std::vector<ResampleSample> schedule = rowSchedule(rows.rows(), source_frame_time, target_fps);
   Eigen::MatrixXi result(static_cast<Eigen::Index>(schedule.size()), rows.cols());
   for (Eigen::Index k = 0; k < result.rows(); ++k) {
     const ResampleSample sample = schedule[static_cast<size_t>(k)];

@@ -11,8 +11,10 @@
 // enters the moments. Ordinary batches sit near the expected norm; one batch of extreme windows (the
 // Bandai data has spins whose turning velocity is 75 standard deviations out) would otherwise inflate
 // m and v at once and throw the network off (the loss network's loss went from 0.04 to 14-55 in one
-// epoch). Stateless beyond the moments, so a restored optimiser clips exactly as the original. The state (moments and step count) can be read and restored, so a
-// training checkpoint continues exactly where it stopped.
+// epoch). Stateless beyond the moments, so a restored optimiser clips exactly as the original.
+//
+// The state (moments and step count) can be read and restored, so a training checkpoint continues
+// exactly where it stopped.
 
 #include <vector>
 
