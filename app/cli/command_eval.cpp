@@ -5,6 +5,7 @@
 #include "commands.h"
 #include "common/atomic_file.h"
 #include "style/evaluation.h"
+#include "style/familiarity.h"
 #include "style/motion_dataset.h"
 #include "style/style_pairing.h"
 #include "style/training.h"
@@ -12,7 +13,7 @@
 namespace motionstyle::cli {
 
 int runEval(const Args& args) {
-  const ParsedArgs parsed = parseArgs(args, {{"ae"}, {"net"}, {"style", true, true}, {"json"}, {"unit"}});
+  const ParsedArgs parsed = parseArgs(args, {{"ae"}, {"net"}, {"style", true, true}, {"json"}, {"unit"}, {"path"}});
   if (parsed.positional.empty()) throw UsageError("eval needs the clips to evaluate (files or folders)");
   style::DatasetOptions dataset;
   if (auto unit = parsed.value("unit")) dataset.features.unit = *unit;
@@ -24,8 +25,7 @@ int runEval(const Args& args) {
   std::vector<style::StyleSource> sources;
   for (const std::string& style : parsed.values("style")) sources.push_back(style::parseStyleSource(style));
   if (sources.empty()) throw UsageError("eval needs --style CLIP.bvh (the style clip to measure against)");
-  style::DatasetOptions style_options = dataset;
-  style_options.minimum_frames = network.loss_network.shape().width;
+  const style::DatasetOptions style_options = style::styleClipOptions(dataset, network.loss_network.shape().width);
   std::vector<style::MotionClip> styles;
   for (const style::StyleSource& source : sources) styles.push_back(style::loadMotionClip(source.file, style_options));
 
@@ -35,7 +35,13 @@ int runEval(const Args& args) {
   for (const style::MotionClip& clip : clips) labels.push_back(clip.labels.content);
   const std::vector<int> pairing = style::pairStyles(labels, sources);
 
-  style::EvaluationReport report = style::evaluateStyleNetwork(autoencoder, network, clips, styles, pairing);
+  style::PathMode path = style::PathMode::Content;
+  if (auto value = parsed.value("path")) {
+    const std::optional<style::PathMode> mode = style::parsePathMode(*value);
+    if (!mode) throw UsageError("--path must be content or style, not '" + *value + "'");
+    path = *mode;
+  }
+  style::EvaluationReport report = style::evaluateStyleNetwork(autoencoder, network, clips, styles, pairing, path);
   report.autoencoder_file = ae_file.string();
   report.network_file = net_file.string();
   const std::string json = style::evaluationJson(report);
@@ -46,7 +52,10 @@ int runEval(const Args& args) {
               << m.style_distance_before << " -> " << m.style_distance_after << " (projection alone "
               << m.style_distance_projection << "), content distance "
               << m.content_distance_before << " -> " << m.content_distance_after << ", reconstruction "
-              << m.reconstruction_joint_error_cm << " cm, bone error " << m.bone_error_cm_output
+              << m.reconstruction_joint_error_cm << " cm ("
+              << style::familiarityName(style::familiarityLevel(m.reconstruction_joint_error_cm))
+              << "), the network's own path covers " << m.network_path_distance_ratio
+              << " x the content's distance, bone error " << m.bone_error_cm_output
               << " cm, foot skate " << m.foot_skate_cm_s_output << " cm/s\nwrote " << *file << "\n";
   } else {
     std::cout << json;

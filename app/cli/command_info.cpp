@@ -14,7 +14,10 @@
 #include "mapping/canonical_joints.h"
 #include "mapping/joint_mapping.h"
 #include "mapping/mapping_file.h"
+#include "common/resource_paths.h"
 #include "nn/network_file.h"
+#include "style/familiarity.h"
+#include "style/training.h"
 
 namespace motionstyle::cli {
 namespace {
@@ -35,8 +38,36 @@ ContactSummary summarize(const Eigen::RowVectorXd& labels) {
 
 constexpr const char* kContactNames[kContactCount] = {"left heel", "left toe", "right heel", "right toe"};
 
+// The loss network that judges familiarity: --ae, else the shipped one when it is installed, else none.
+struct LossNetwork {
+  std::optional<nn::AutoencoderModel> model;
+  std::string file;
+  std::string problem;  // why the shipped loss network could not be used, if it could not
+};
+
+LossNetwork lossNetworkFor(const ParsedArgs& parsed) {
+  LossNetwork loss;
+  std::filesystem::path file;
+  if (auto ae = parsed.value("ae")) {
+    file = resolveNetworkArgument(*ae);
+  } else if (auto resources = resourceDirectory()) {
+    if (auto shipped = shippedNetworkFile(*resources, kShippedAutoencoderName)) file = *shipped;
+  }
+  if (file.empty()) return loss;
+  FeatureOptions options;
+  if (auto unit = parsed.value("unit")) options.unit = *unit;
+  loss.file = file.string();
+  try {
+    loss.model = style::loadCompatibleAutoencoder(file, options);
+  } catch (const InputError& error) {
+    if (parsed.has("ae")) throw;  // the user's choice: their error
+    loss.problem = error.what();  // the shipped one is broken: the clip's facts still count
+  }
+  return loss;
+}
+
 nlohmann::ordered_json describeClip(const std::string& path, const std::optional<std::string>& mapping_file,
-                            const std::optional<std::string>& unit) {
+                                    const std::optional<std::string>& unit, const LossNetwork& loss_network) {
   const Motion motion = readBvh(path);
   nlohmann::ordered_json info;
   info["file"] = path;
@@ -75,6 +106,15 @@ nlohmann::ordered_json describeClip(const std::string& path, const std::optional
     contacts[kContactNames[label]] = {{"fraction", summary.fraction}, {"segments", summary.segments}};
   }
   info["contacts"] = {{"fps", features.anchor.fps}, {"labels", contacts}};
+  if (!loss_network.problem.empty()) info["familiarity"] = {{"error", loss_network.problem}};
+  if (loss_network.model) {
+    const style::Familiarity familiarity = style::measureFamiliarity(*loss_network.model, features.values);
+    info["familiarity"] = {{"loss_network", loss_network.file},
+                           {"mean_cm", familiarity.mean_cm},
+                           {"worst_second_cm", familiarity.worst_second_cm},
+                           {"level", style::familiarityName(familiarity.level)},
+                           {"summary", style::familiaritySummary(familiarity)}};
+  }
   return info;
 }
 
@@ -103,6 +143,13 @@ void printText(const nlohmann::ordered_json& info) {
   for (const auto& [name, summary] : info["contacts"]["labels"].items())
     std::printf(" %s %.0f%% (%d)", name.c_str(), 100.0 * summary["fraction"].get<double>(), summary["segments"].get<int>());
   std::printf("\n");
+  if (info.contains("familiarity") && info["familiarity"].contains("error"))
+    std::printf("  familiarity  unknown: %s\n", info["familiarity"]["error"].get<std::string>().c_str());
+  else if (info.contains("familiarity"))
+    std::printf("  familiarity  %s (worst second %.1f cm; loss network %s)\n",
+                info["familiarity"]["summary"].get<std::string>().c_str(),
+                info["familiarity"]["worst_second_cm"].get<double>(),
+                info["familiarity"]["loss_network"].get<std::string>().c_str());
 }
 
 // A network file starts with the magic "MSTYLNET" (core/nn/NETWORK_FORMAT.md); anything else is read as BVH.
@@ -116,8 +163,9 @@ bool isNetworkFile(const std::string& path) {
 }  // namespace
 
 int runInfo(const Args& args) {
-  const ParsedArgs parsed = parseArgs(args, {{"json", false}, {"mapping"}, {"unit"}});
+  const ParsedArgs parsed = parseArgs(args, {{"json", false}, {"mapping"}, {"unit"}, {"ae"}});
   if (parsed.positional.empty()) throw UsageError("info needs at least one FILE");
+  std::optional<LossNetwork> loss_network;  // loaded on the first clip (network files need none)
   nlohmann::ordered_json all = nlohmann::ordered_json::array();
   for (const std::string& argument : parsed.positional) {
     const std::string path = resolveNetworkArgument(argument).string();  // "elderly": a shipped network
@@ -129,7 +177,8 @@ int runInfo(const Args& args) {
         std::cout << path << "\n" << description << (description.empty() || description.back() == '\n' ? "" : "\n");
       continue;
     }
-    nlohmann::ordered_json info = describeClip(path, parsed.value("mapping"), parsed.value("unit"));
+    if (!loss_network) loss_network = lossNetworkFor(parsed);
+    nlohmann::ordered_json info = describeClip(path, parsed.value("mapping"), parsed.value("unit"), *loss_network);
     if (parsed.has("json"))
       all.push_back(std::move(info));
     else

@@ -15,6 +15,7 @@
 #include "common/errors.h"
 #include "style/motion_dataset.h"
 #include "style/position_clip.h"
+#include "style/familiarity.h"
 #include "style/stylizer.h"
 #include "style/training.h"
 #include "stylized_output.h"
@@ -27,6 +28,7 @@ struct StylizeRequest {
   std::optional<std::filesystem::path> autoencoder;  // checked against the network's own loss network
   std::filesystem::path input;
   double strength = 1.0;
+  style::PathMode path = style::PathMode::Content;
   style::DatasetOptions dataset;
 };
 
@@ -35,7 +37,7 @@ bool sameLossNetwork(const nn::Autoencoder<float>& a, const nn::Autoencoder<floa
          a.encoder.bias.value == b.encoder.bias.value && a.decoder.weight.value == b.decoder.weight.value;
 }
 
-style::StylizedClip stylizedTargets(const StylizeRequest& request, double& seconds) {
+style::StylizedClip stylizedTargets(const StylizeRequest& request, double& seconds, style::Familiarity& familiarity) {
   nn::StyleModel model = style::loadCompatibleStyleModel(request.network, request.dataset.features);
   if (request.autoencoder) {
     const nn::AutoencoderModel autoencoder = style::loadCompatibleAutoencoder(*request.autoencoder, request.dataset.features);
@@ -45,9 +47,10 @@ style::StylizedClip stylizedTargets(const StylizeRequest& request, double& secon
                            request.autoencoder->string() + " (it embeds its own; omit --ae to use it)");
   }
   const style::MotionClip clip = style::loadMotionClip(request.input, request.dataset);
+  familiarity = style::measureFamiliarity(model, clip.features.values);
   const style::Stylizer stylizer(std::move(model));
   const auto start = std::chrono::steady_clock::now();
-  style::StylizedClip result = stylizer.stylize(clip.features, request.strength);
+  style::StylizedClip result = stylizer.stylize(clip.features, request.strength, request.path);
   seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
@@ -65,15 +68,17 @@ int runStylize(const Args& args) {
   if (auto ae = parsed.value("ae")) request.autoencoder = resolveNetworkArgument(*ae);
   request.input = parsed.positional[0];
   request.strength = parsed.number("strength", 1.0);
+  request.path = output_options.path;
   if (!(request.strength >= 0.0 && request.strength <= 1.0)) throw UsageError("--strength must be in [0, 1]");
   if (auto unit = parsed.value("unit")) request.dataset.features.unit = *unit;
   const std::filesystem::path output = parsed.required("out");
 
   double seconds = 0;
-  const style::StylizedClip clip = stylizedTargets(request, seconds);
+  style::Familiarity familiarity;
+  const style::StylizedClip clip = stylizedTargets(request, seconds, familiarity);
   std::cout << "stylized " << clip.frameCount() << " frames (60 fps) at strength " << request.strength << " in "
-            << seconds * 1000.0 << " ms\n";
-  writeStylizedOutput(request.input, clip, output_options, output, std::cout);
+            << seconds * 1000.0 << " ms (path: " << style::pathModeName(request.path) << ")\n";
+  writeStylizedOutput(request.input, clip, output_options, output, std::cout, &familiarity);
   return 0;
 }
 

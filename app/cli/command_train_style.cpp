@@ -1,6 +1,5 @@
 // motionstyle-cli train-style: trains one style network against a loss network.
 #include <cmath>
-#include <sstream>
 
 #include "cli_args.h"
 #include "commands.h"
@@ -15,20 +14,7 @@ namespace {
 // nn::LossWeights defaults (style_loss.h).
 nn::LossWeights parseWeights(const std::string& text) {
   nn::LossWeights weights;
-  std::stringstream items(text);
-  std::string item;
-  while (std::getline(items, item, ',')) {
-    const std::size_t equals = item.find('=');
-    if (equals == std::string::npos) throw UsageError("--weights expects NAME=VALUE pairs, got '" + item + "'");
-    const std::string name = item.substr(0, equals);
-    double value = 0;
-    try {
-      std::size_t used = 0;
-      value = std::stod(item.substr(equals + 1), &used);
-      if (used != item.size() - equals - 1) throw std::invalid_argument(item);
-    } catch (const std::exception&) {
-      throw UsageError("--weights: '" + item + "' is not NAME=NUMBER");
-    }
+  for (const auto& [name, value] : parseNamedNumbers(text, "--weights")) {
     if (!(value >= 0.0) || !std::isfinite(value)) throw UsageError("--weights: " + name + " must be finite and >= 0");
     if (name == "content") weights.content = value;
     else if (name == "style") weights.style = value;
@@ -51,13 +37,15 @@ int runTrainStyle(const Args& args) {
   const ParsedArgs parsed = parseArgs(args, specs);
 
   style::StyleTrainingConfig config;
-  config.settings = trainingSettings(parsed, 1e-3);
+  config.settings = trainingSettings(parsed, {1e-3, 100, style::defaultContentAugmentation()});
   config.autoencoder = resolveNetworkArgument(parsed.required("ae"));
   for (const std::string& content : parsed.values("content")) config.content.emplace_back(content);
   for (const std::string& content : parsed.positional) config.content.emplace_back(content);  // --content A B
   if (config.content.empty()) throw UsageError("train-style needs --content DIR (folders or .bvh files)");
   for (const std::string& style : parsed.values("style")) config.styles.push_back(style::parseStyleSource(style));
-  if (config.styles.empty()) throw UsageError("train-style needs --style CLIP.bvh (or --style LABEL=CLIP.bvh)");
+  if (config.styles.empty() && config.settings.init.empty())
+    throw UsageError("train-style needs --style CLIP.bvh (or --style LABEL=CLIP.bvh), or --init NET to retrain NET "
+                     "with the style targets it stores");
   if (auto weights = parsed.value("weights")) config.weights = parseWeights(*weights);
   config.shape.hidden = parsed.integer("hidden", config.shape.hidden);
   if (config.shape.hidden < 1 || config.shape.hidden > 4096) throw UsageError("--hidden must be in [1, 4096]");

@@ -7,6 +7,7 @@
 #include "stylized_output.h"
 #include "progress_bar.h"
 #include "style/motion_dataset.h"
+#include "style/evaluation.h"
 #include "style/optimization_transfer.h"
 #include "style/training.h"
 
@@ -25,7 +26,8 @@ int runTransfer(const Args& args) {
                                              {"unit"},
                                              {"no-cleanup", false},
                                              {"metrics"},
-                                             {"fps"}});
+                                             {"fps"},
+                                             {"path"}});
   const OutputOptions output_options = outputOptions(parsed);
   if (parsed.positional.size() != 1) throw UsageError("transfer needs exactly one input clip IN.bvh");
   style::OptimizationOptions options;
@@ -34,6 +36,7 @@ int runTransfer(const Args& args) {
   options.style_weight = parsed.number("style-weight", options.style_weight);
   options.learning_rate = parsed.number("lr", options.learning_rate);
   options.start_from_noise = parsed.has("noise-start");
+  options.path = output_options.path;
   if (options.iterations < 0 || options.iterations > 100000 || options.constraint_iterations < 0 ||
       options.constraint_iterations > 100000)
     throw UsageError("--iterations and --constraint-iterations must be in [0, 100000]");
@@ -47,7 +50,8 @@ int runTransfer(const Args& args) {
       style::loadCompatibleAutoencoder(resolveNetworkArgument(parsed.required("ae")), dataset.features);
   const std::filesystem::path style_file = parsed.required("style");
   const style::MotionClip content = style::loadMotionClip(parsed.positional[0], dataset);
-  const style::MotionClip style_clip = style::loadMotionClip(style_file, dataset);
+  const style::MotionClip style_clip =
+      style::loadMotionClip(style_file, style::styleClipOptions(dataset, autoencoder.network.shape().width));
 
   InterruptGuard guard;
   ProgressBar bar(std::cout, ProgressBar::stdoutIsTerminal());
@@ -71,8 +75,19 @@ int runTransfer(const Args& args) {
     std::cout << "interrupted: nothing written\n";
     return kInterruptedExitCode;
   }
-  std::cout << "optimised in " << formatDuration(result.seconds) << "\n";
-  writeStylizedOutput(parsed.positional[0], result.clip, output_options, output, std::cout);
+  // How much style the optimisation added (eval's definitions), printed and in --metrics.
+  const style::StyleDistances distances = style::measureStyleDistances(
+      autoencoder.network, autoencoder.normalisation, content.features.values, result.clip.features,
+      style::styleGramOf(autoencoder.network, autoencoder.normalisation, style_clip.features.values));
+  std::cout << "optimised in " << formatDuration(result.seconds) << ": style distance " << distances.style_before
+            << " -> " << distances.style_after << " (ratio " << distances.styleRatio() << "), content distance "
+            << distances.content_after << "\n";
+  OutputOptions with_distances = output_options;
+  with_distances.extra_metrics = {{"style_distance", {{"before", distances.style_before},
+                                                      {"after", distances.style_after},
+                                                      {"ratio", distances.styleRatio()}}},
+                                  {"content_distance", distances.content_after}};
+  writeStylizedOutput(parsed.positional[0], result.clip, with_distances, output, std::cout);
   return 0;
 }
 

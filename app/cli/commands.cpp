@@ -7,14 +7,18 @@ namespace motionstyle::cli {
 const std::vector<Command>& commands() {
   static const std::vector<Command> table = {
       {"info", "describe BVH files (joints, frames, fps, units, mapping, contacts) or network files",
-       "usage: motionstyle-cli info FILE... [--json] [--mapping MAP.json] [--unit UNIT]\n\n"
+       "usage: motionstyle-cli info FILE... [--json] [--mapping MAP.json] [--unit UNIT] [--ae NET]\n\n"
        "Prints what MotionStyle reads from each BVH file: joints, frames, frame rate, the up axis and\n"
-       "length unit it assumed, the mapping to the 21 canonical joints, and a foot-contact summary.\n"
+       "length unit it assumed, the mapping to the 21 canonical joints, a foot-contact summary and how\n"
+       "familiar the clip is to the networks (the loss network's reconstruction error: familiar up to\n"
+       "1.5 cm, unusual up to 2.5 cm, far beyond: results will be weak; adapt the networks to such clips).\n"
        "For a network file (train-ae, train-style): its kind, shapes, representation, training settings,\n"
        "style clips and loss history, and the file's format version and weight precision (f32/f16, see pack).\n\n"
        "  --json            print JSON instead of text\n"
        "  --mapping FILE    use this joint-mapping JSON instead of the automatic mapping\n"
-       "  --unit UNIT       the file's length unit: cm, m, mm, inch, ft, dm or cmu (default: guessed)\n",
+       "  --unit UNIT       the file's length unit: cm, m, mm, inch, ft, dm or cmu (default: guessed)\n"
+       "  --ae NET          the loss network that judges how familiar the clip is (default: the shipped\n"
+       "                    one): its reconstruction error, read as familiar, unusual or far\n",
        runInfo},
       {"convert", "read a BVH file, optionally resample it, write it",
        "usage: motionstyle-cli convert IN.bvh OUT.bvh [--fps N]\n\n"
@@ -30,11 +34,11 @@ const std::vector<Command>& commands() {
        "(FILE.checkpoint and FILE.checkpoint.state); Ctrl-C stops within a second and keeps it.\n\n"
        "  --data DIR|FILE   training clips (repeatable; more may follow as plain arguments)\n"
        "  --out FILE        the network file to write (atomically, when training completes)\n"
-       "  --epochs N        epochs (default 100)\n"
+       "  --epochs N        epochs (default 40)\n"
        "  --seed S          seed for initialisation, shuffling and dropout (default 1); same seed and\n"
        "                    thread count give identical networks\n"
        "  --batch B         windows per step (default 16)\n"
-       "  --lr LR           Adam learning rate at the start (default 0.001)\n"
+       "  --lr LR           Adam learning rate (default 0.0005; warm-up over the first 100 steps)\n"
        "  --lr-schedule S   cosine (default: decays to 1% of --lr over the run) or constant\n"
        "  --clip K          scale a batch's gradient down to K x its expected norm (default 3; 0 = off):\n"
        "                    one batch of extreme windows (fast spins) cannot throw the network off\n"
@@ -46,8 +50,17 @@ const std::vector<Command>& commands() {
        "  --skip-bad        skip unreadable or unmappable files found in folders (default: stop on them)\n"
        "  --unit UNIT       length unit of the clips (cm, m, mm, inch, ft, dm, cmu; default: guessed)\n"
        "  --hidden H        hidden units (default 256)\n"
-       "  --sparsity A      L1 weight of eq. 3 on the mean |w| (default 0.1)\n"
-       "  --dropout P       input dropout while training (default 0.25)\n",
+       "  --sparsity A      L1 weight of eq. 3 on the mean |w| (default 0)\n"
+       "  --dropout P       input dropout while training (default 0: a denoising network cannot reconstruct\n"
+       "                    other studios' clips)\n"
+       "  --foot F          weight of eq. 7 (planted feet stay planted) on the reconstruction, per cm^2\n"
+       "                    (default 0): the projection then keeps the clips' foot contacts\n"
+       "  --augment A       train on randomly varied copies of the clips every epoch, as clips of other\n"
+       "                    studios, actors and rigs vary: on (the default: girdle=75,offsets=20,mirror=0.5),\n"
+       "                    off, or changes to the default: girdle=DEG (hip, shoulder and toe joints'\n"
+       "                    placement turned by up to DEG), offsets=DEG (the other joints'), proportions=J\n"
+       "                    (bone lengths x 1+-J), warp=W (speed x 1/W..W), mirror=P (left/right swapped\n"
+       "                    with probability P)\n",
        runTrainAutoencoder},
       {"train-style", "train a style network (transformation network) for one style",
        "usage: motionstyle-cli train-style --ae AE --content DIR... --style CLIP.bvh [--style LABEL=CLIP.bvh ...]\n"
@@ -60,17 +73,42 @@ const std::vector<Command>& commands() {
        "(dataset-2_walk_elderly_001.bvh: content 'walk', style 'elderly'; other names: the first word, e.g.\n"
        "walk_fast.bvh: 'walk'). A plain --style CLIP pairs by its own label and is the default for labels\n"
        "without a clip; --style LABEL=CLIP pairs that label explicitly. Labels left without a style clip\n"
-       "are an error that lists them.\n\n"
+       "are an error that lists them. Without --style, --init NET retrains NET with the style targets it\n"
+       "stores (networks from this version on), e.g. against a loss network adapted to your clips (adapt).\n\n"
        "  --ae AE             the trained loss network (train-ae)\n"
        "  --content DIR|FILE  content clips (repeatable; more may follow as plain arguments)\n"
        "  --style [LABEL=]CLIP  style clip(s), at least 25 frames at 60 fps (repeatable)\n"
        "  --out FILE          the style network file (embeds the loss network)\n"
-       "  --weights LIST      loss weights, any subset (defaults content=1,style=100,foot=0.01,bone=0.01,traj=0.01)\n"
-       "  --init NET          warm start from an existing style network (adjust the weights and retrain)\n"
-       "  --epochs N, --seed S, --batch B, --lr LR, --lr-schedule S, --clip K, --threads T, --resume,\n"
-       "  --checkpoint FILE, --holdout N, --skip-bad, --unit UNIT: as for train-ae; --hidden H: hidden\n"
-       "  units (default 128)\n",
+       "  --weights LIST      loss weights, any subset (defaults content=1,style=100,foot=0.03,bone=0.03,traj=0.01)\n"
+       "  --init NET          warm start from an existing style network (adjust the weights and retrain; a\n"
+       "                      shipped network's name works)\n"
+       "  --augment A         train on randomly varied copies of the content every epoch: on (the default:\n"
+       "                      offsets=20,mirror=0.5), off, or changes to it as for train-ae\n"
+       "  --epochs N          epochs (default 100)\n"
+       "  --lr LR             Adam learning rate (default 0.001; warm-up over the first 100 steps)\n"
+       "  --hidden H          hidden units (default 128)\n"
+       "  --seed S, --batch B, --lr-schedule S, --clip K, --threads T, --resume, --checkpoint FILE,\n"
+       "  --holdout N, --skip-bad, --unit UNIT: as for train-ae\n",
        runTrainStyle},
+      {"adapt", "fine-tune the loss network on your own clips (other studios, actors, rigs)",
+       "usage: motionstyle-cli adapt --ae AE --data DIR... --out FILE [--epochs N] [--lr LR]\n"
+       "                             [--replay DIR...] [--replay-ratio R] [--train-encoder] [options]\n\n"
+       "Fine-tunes the loss network AE on your clips (no labels needed) so that it reconstructs them: the\n"
+       "manifold projection then keeps their content, and 'info' reads them as familiar. By default only\n"
+       "the decoder learns and the encoder is kept, so every style network keeps its style targets:\n"
+       "retrain one against FILE on your clips with 'train-style --ae FILE --init STYLE --content DIR'.\n"
+       "Prints how familiar each clip was before and after. A checkpoint is written every epoch; Ctrl-C\n"
+       "stops within a second and keeps it.\n\n"
+       "  --ae AE            the loss network to adapt (a file, or 'autoencoder' for the shipped one)\n"
+       "  --data DIR|FILE    your clips (repeatable; more may follow as plain arguments)\n"
+       "  --out FILE         the adapted loss network (records what it was adapted on)\n"
+       "  --epochs N         epochs (default 40)\n"
+       "  --lr LR            Adam learning rate at the start, cosine decay (default 0.0005)\n"
+       "  --replay DIR|FILE  clips of the original training data to mix in, so nothing is forgotten\n"
+       "  --replay-ratio R   replay frames per frame of yours (default 1)\n"
+       "  --train-encoder    let the encoder learn too (style networks then need their style clips again)\n"
+       "  --seed S, --threads T, --checkpoint FILE, --skip-bad, --unit UNIT: as for train-ae\n",
+       runAdapt},
       {"stylize", "apply a trained style network to a clip",
        "usage: motionstyle-cli stylize --net NET [--ae AE] IN.bvh --out OUT.bvh [--strength S]\n"
        "                              [--no-cleanup] [--metrics FILE.json] [--fps N]\n\n"
@@ -86,10 +124,15 @@ const std::vector<Command>& commands() {
        "usage: motionstyle-cli transfer --ae AE --style CLIP.bvh IN.bvh --out OUT.bvh [--iterations N]\n\n"
        "Optimises the loss network's hidden units so that the decoded motion keeps IN's content and takes\n"
        "the style clip's Gram matrix (Adam, lr 0.01), starting from IN's own hidden units, then runs a\n"
-       "constraint pass (feet, bone lengths, trajectory). OUT as for stylize (IK clean-up by default).\n\n"
+       "constraint pass (feet, bone lengths, trajectory). OUT as for stylize (IK clean-up by default).\n"
+       "Prints how much style was added: the style distance to the clip before and after (eval's).\n\n"
+       "The weights: content (1) keeps IN's hidden units, style (--style-weight) pulls their Gram matrix\n"
+       "to the style clip's; both are renormalised to sum 1. The constraint pass adds planted feet, bone\n"
+       "lengths and IN's root velocities at 0.1 per cm^2 each.\n\n"
        "  --iterations N             style iterations (default 250)\n"
        "  --constraint-iterations N  constraint iterations (default 100)\n"
-       "  --style-weight S           style weight against content 1, renormalised to sum 1 (default 1)\n"
+       "  --style-weight S           style weight against content 1 (default 30: a style distance ratio of\n"
+       "                             0.2-0.4 on held-out walks; 1 barely moves a walk)\n"
        "  --lr LR                    Adam learning rate (default 0.01)\n"
        "  --noise-start              start from noise like the 2016 code (for comparison)\n"
        "  --unit UNIT                length unit of the clips (default: guessed)\n" MOTIONSTYLE_OUTPUT_OPTIONS_HELP,
@@ -111,15 +154,17 @@ const std::vector<Command>& commands() {
        runCleanup},
       {"eval", "evaluate a style network on held-out clips (JSON report)",
        "usage: motionstyle-cli eval --ae AE --net NET --style CLIP.bvh [--style LABEL=CLIP.bvh ...] CLIPS...\n"
-       "                            [--json FILE]\n\n"
+       "                            [--json FILE] [--path content|style]\n\n"
        "For each clip (files or folders): the autoencoder's reconstruction error (normalised MSE, mean joint\n"
-       "error in cm), the content distance (eq. 4) and style distance (eq. 5, against the paired style clip)\n"
+       "error in cm; the familiarity reading: familiar, unusual, far), the content distance (eq. 4) and style distance (eq. 5, against the paired style clip)\n"
        "before and after stylizing (and the style distance of the projection decode(encode(.)) alone, to\n"
        "separate what the projection does from what the network does), bone-length error and foot skate\n"
        "(cm/s of feet labelled in contact) of\n"
-       "the raw output, and run time; plus frame-weighted means. Use clips the network never trained on\n"
-       "(train-* --holdout N lists them). Pairing as for train-style.\n\n"
+       "the raw output, how far the network's own root path strays from the content's (distance ratio,\n"
+       "end point error as a fraction of the distance), and run time; plus frame-weighted means. Use clips\n"
+       "the network never trained on (train-* --holdout N lists them). Pairing as for train-style.\n\n"
        "  --json FILE   write the report to FILE (atomically) and print a summary; default: JSON on stdout\n"
+       "  --path P      the output judged keeps the content's path (content, default) or the network's (style)\n"
        "  --unit UNIT   length unit of the clips (default: guessed)\n",
        runEval},
       {"pack", "rewrite a network file with f16 (half the size) or f32 weights",

@@ -28,6 +28,7 @@ int runInfo(const Args& args);
 int runConvert(const Args& args);
 int runTrainAutoencoder(const Args& args);
 int runTrainStyle(const Args& args);
+int runAdapt(const Args& args);
 int runStylize(const Args& args);
 int runTransfer(const Args& args);
 int runEval(const Args& args);

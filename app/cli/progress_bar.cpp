@@ -1,5 +1,7 @@
 #include "progress_bar.h"
 
+#include "commands.h"
+
 #include <signal.h>
 #include <stdlib.h>
 #include <unistd.h>
@@ -148,20 +150,70 @@ void applyThreadOption(int threads) {
 
 std::vector<OptionSpec> trainingOptionSpecs() {
   return {{"out"},     {"epochs"},     {"seed"},    {"batch"},          {"lr"},   {"lr-schedule"}, {"clip"}, {"threads"},
-          {"resume", false}, {"init"},    {"checkpoint"}, {"holdout"}, {"skip-bad", false}, {"unit"}, {"hidden"}};
+          {"resume", false}, {"init"},    {"checkpoint"}, {"holdout"}, {"skip-bad", false}, {"unit"}, {"hidden"}, {"augment"}};
 }
 
-style::TrainingSettings trainingSettings(const ParsedArgs& parsed, double default_lr) {
+std::vector<std::pair<std::string, double>> parseNamedNumbers(const std::string& text, const std::string& option) {
+  std::vector<std::pair<std::string, double>> pairs;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t end = std::min(text.find(',', start), text.size());
+    const std::string item = text.substr(start, end - start);
+    const std::size_t equals = item.find('=');
+    if (equals == std::string::npos || equals == 0 || equals + 1 == item.size())
+      throw UsageError(option + " expects NAME=NUMBER pairs separated by commas, got '" + item + "'");
+    double value = 0;
+    try {
+      std::size_t used = 0;
+      value = std::stod(item.substr(equals + 1), &used);
+      if (used != item.size() - equals - 1) throw std::invalid_argument(item);
+    } catch (const std::exception&) {
+      throw UsageError(option + ": '" + item + "' is not NAME=NUMBER");
+    }
+    pairs.emplace_back(item.substr(0, equals), value);
+    start = end + 1;
+  }
+  return pairs;
+}
+
+namespace {
+
+// "off", "on" (the command's default) or any of girdle=DEG,offsets=DEG,proportions=J,warp=W,
+// mirror=P over the command's default.
+style::AugmentationOptions parseAugmentation(const std::string& text, const style::AugmentationOptions& defaults) {
+  if (text == "off") return {};
+  style::AugmentationOptions options = defaults;
+  if (text == "on") return options;
+  for (const auto& [name, value] : parseNamedNumbers(text, "--augment")) {
+    if (name == "girdle") options.girdle_offset_degrees = value;
+    else if (name == "offsets") options.offset_degrees = value;
+    else if (name == "proportions") options.proportion_jitter = value;
+    else if (name == "warp") options.time_warp = value;
+    else if (name == "mirror") options.mirror_probability = value;
+    else throw UsageError("--augment: unknown setting '" + name + "' (girdle, offsets, proportions, warp, mirror)");
+  }
+  try {
+    options.validate();
+  } catch (const std::invalid_argument& error) {
+    throw UsageError(std::string("--augment: ") + error.what());
+  }
+  return options;
+}
+
+}  // namespace
+
+style::TrainingSettings trainingSettings(const ParsedArgs& parsed, const TrainingDefaults& defaults) {
   style::TrainingSettings settings;
+  settings.augmentation = defaults.augmentation;
   settings.output = parsed.required("out");
-  settings.epochs = parsed.integer("epochs", settings.epochs);
+  settings.epochs = parsed.integer("epochs", defaults.epochs);
   if (settings.epochs < 1) throw UsageError("--epochs must be >= 1");
   const int seed = parsed.integer("seed", 1);
   if (seed < 0) throw UsageError("--seed must be >= 0");
   settings.seed = static_cast<std::uint32_t>(seed);
   settings.batch_size = parsed.integer("batch", settings.batch_size);
   if (settings.batch_size < 1 || settings.batch_size > 4096) throw UsageError("--batch must be in [1, 4096]");
-  settings.learning_rate = parsed.number("lr", default_lr);
+  settings.learning_rate = parsed.number("lr", defaults.learning_rate);
   if (!(settings.learning_rate > 0.0)) throw UsageError("--lr must be > 0");
   if (auto schedule = parsed.value("lr-schedule")) {
     if (*schedule == "cosine")
@@ -178,13 +230,14 @@ style::TrainingSettings trainingSettings(const ParsedArgs& parsed, double defaul
     applyThreadOption(settings.threads);
   }
   settings.resume = parsed.has("resume");
-  if (auto init = parsed.value("init")) settings.init = *init;
+  if (auto init = parsed.value("init")) settings.init = resolveNetworkArgument(*init);  // "elderly": shipped
   if (settings.resume && !settings.init.empty()) throw UsageError("--resume and --init exclude each other");
   if (auto checkpoint = parsed.value("checkpoint")) settings.checkpoint = *checkpoint;
   settings.holdout_every = parsed.integer("holdout", 0);
   if (settings.holdout_every < 0 || settings.holdout_every == 1) throw UsageError("--holdout must be >= 2");
   if (parsed.has("skip-bad")) settings.dataset.bad_files = style::BadFilePolicy::Skip;
   if (auto unit = parsed.value("unit")) settings.dataset.features.unit = *unit;
+  if (auto augment = parsed.value("augment")) settings.augmentation = parseAugmentation(*augment, defaults.augmentation);
   return settings;
 }
 
@@ -213,3 +266,4 @@ template int reportTraining(const style::StyleTrainingResult&, const style::Trai
                             ProgressBar&);
 
 }  // namespace motionstyle::cli
+

@@ -12,6 +12,7 @@
 #include <chrono>
 #include <ostream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cli_args.h"
@@ -76,12 +77,24 @@ constexpr int kInterruptedExitCode = 130;
 // any network does (each command calls it first). UsageError unless 1 <= T <= 8.
 void applyThreadOption(int threads);
 
+// "a=1,b=2.5" as (name, number) pairs in order, for list options such as --weights and --augment.
+// Throws UsageError naming `option` for an empty list or item, a missing name or number, or a number
+// with trailing text ("style=1," and "style=1x" are errors, not "style=1").
+std::vector<std::pair<std::string, double>> parseNamedNumbers(const std::string& text, const std::string& option);
+
 // Options shared by train-ae and train-style (their specs, then the settings they give):
 //   --out FILE --epochs N --seed S --batch B --lr LR --threads T --resume --init NET --checkpoint FILE
 //   --holdout N --skip-bad --unit UNIT --hidden H
 std::vector<OptionSpec> trainingOptionSpecs();
-// Throws UsageError for out-of-range values. `default_lr` differs per network kind.
-style::TrainingSettings trainingSettings(const ParsedArgs& parsed, double default_lr);
+// Throws UsageError for out-of-range values.
+// The command's defaults: `learning_rate` and `epochs` differ per network kind; `augmentation` is
+// what --augment on means and what runs without --augment.
+struct TrainingDefaults {
+  double learning_rate = 1e-3;
+  int epochs = 100;
+  style::AugmentationOptions augmentation;
+};
+style::TrainingSettings trainingSettings(const ParsedArgs& parsed, const TrainingDefaults& defaults);
 
 // Prints a finished training's outcome (held-out files, output or where the checkpoint is). Returns the
 // exit code: 0 done, 130 cancelled by Ctrl-C (checkpoint kept).

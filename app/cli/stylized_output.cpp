@@ -6,6 +6,7 @@
 #include "bvh/bvh_reader.h"
 #include "bvh/bvh_writer.h"
 #include "common/atomic_file.h"
+#include "features/root_path.h"
 #include "ik/metrics.h"
 #include "motion/kinematics.h"
 #include "motion/resample.h"
@@ -14,7 +15,17 @@
 
 namespace motionstyle::cli {
 
-std::vector<OptionSpec> outputOptionSpecs() { return {{"no-cleanup", false}, {"metrics"}, {"fps"}}; }
+std::vector<OptionSpec> outputOptionSpecs() { return {{"no-cleanup", false}, {"metrics"}, {"fps"}, {"path"}}; }
+
+nlohmann::ordered_json familiarityJson(const style::Familiarity& familiarity) {
+  nlohmann::ordered_json json;
+  json["mean_cm"] = familiarity.mean_cm;
+  json["worst_second_cm"] = familiarity.worst_second_cm;
+  json["level"] = style::familiarityName(familiarity.level);
+  json["summary"] = style::familiaritySummary(familiarity);
+  json["per_frame_cm"] = familiarity.per_frame_cm;
+  return json;
+}
 
 OutputOptions outputOptions(const ParsedArgs& parsed) {
   OutputOptions options;
@@ -22,11 +33,18 @@ OutputOptions outputOptions(const ParsedArgs& parsed) {
   if (auto metrics = parsed.value("metrics")) options.metrics = *metrics;
   options.fps = parsed.number("fps", 0.0);
   if (parsed.has("fps") && !(options.fps > 0.0 && options.fps <= 1000.0)) throw UsageError("--fps must be in (0, 1000]");
+  if (auto path = parsed.value("path")) {
+    const std::optional<style::PathMode> mode = style::parsePathMode(*path);
+    if (!mode) throw UsageError("--path must be content or style, not '" + *path + "'");
+    options.path = *mode;
+  }
   return options;
 }
 
 void writeStylizedOutput(const std::filesystem::path& content_file, const style::StylizedClip& stylized,
-                         const OutputOptions& options, const std::filesystem::path& output, std::ostream& log) {
+                         const OutputOptions& options, const std::filesystem::path& output, std::ostream& log,
+                         const style::Familiarity* familiarity) {
+  if (familiarity) log << "familiarity: " << style::familiaritySummary(*familiarity) << "\n";
   if (!options.cleanup) {
     Motion positions = style::canonicalPositionsMotion(stylized.world_positions, stylized.fps, output.string());
     if (options.fps > 0.0) positions = resampleMotion(positions, options.fps);
@@ -40,6 +58,8 @@ void writeStylizedOutput(const std::filesystem::path& content_file, const style:
       raw.fps = stylized.fps;
       nlohmann::ordered_json json;
       json["raw"] = nlohmann::json::parse(metricsToJson(computeMetrics(raw)));
+      if (familiarity) json["familiarity"] = familiarityJson(*familiarity);
+      for (const auto& [key, value] : options.extra_metrics.items()) json[key] = value;
       writeFileAtomically(*options.metrics, json.dump(2) + "\n");
     }
     log << "wrote " << output.string() << ": " << positions.frameCount() << " frames at " << positions.fps()
@@ -54,9 +74,15 @@ void writeStylizedOutput(const std::filesystem::path& content_file, const style:
     nlohmann::ordered_json json;
     json["raw"] = nlohmann::json::parse(metricsToJson(cleaned.raw));
     json["cleaned"] = nlohmann::json::parse(metricsToJson(cleaned.cleaned));
+    const RootPathComparison path = compareClipPaths(content, cleaned.motion, mapping, stylized.anchor.convention);
+    json["path"] = {{"mode", style::pathModeName(stylized.path)},
+                    {"distance_ratio", path.distance_ratio},
+                    {"end_error_fraction", path.end_error_fraction}};
     json["cleanup"] = {{"seconds", cleaned.report.seconds},
                        {"iterations", cleaned.report.total_iterations},
                        {"warnings", cleaned.report.warnings}};
+    if (familiarity) json["familiarity"] = familiarityJson(*familiarity);
+    for (const auto& [key, value] : options.extra_metrics.items()) json[key] = value;
     writeFileAtomically(*options.metrics, json.dump(2) + "\n");
   }
   for (const std::string& warning : cleaned.report.warnings) log << "warning: " << warning << "\n";

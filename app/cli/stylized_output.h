@@ -6,9 +6,11 @@
 
 #include <filesystem>
 #include <optional>
+#include <nlohmann/json.hpp>
 #include <ostream>
 
 #include "cli_args.h"
+#include "style/familiarity.h"
 #include "style/stylizer.h"
 
 // The --help lines of those options (a literal, so command tables can concatenate it).
@@ -17,23 +19,31 @@
   "                  60 fps (default: a clean clip on IN's own skeleton and frame rate, feet locked\n"   \
   "                  during contact, bone lengths exact, feet on the floor)\n"                          \
   "  --metrics FILE  write quality figures (foot skate, floor penetration, bone error, residual,\n"    \
-  "                  jerk) of the raw output and of the cleaned clip as JSON\n"                          \
-  "  --fps N         output frame rate (default: IN's own)\n"
+  "                  jerk) of the raw output and of the cleaned clip, the input's familiarity and the\n" \
+  "                  output's path against the input's as JSON\n"                                       \
+  "  --fps N         output frame rate (default: IN's own)\n"                                         \
+  "  --path P        content (default): the output keeps IN's root path and timing; style: the style\n" \
+  "                  may change the pace and the path\n"
 
 namespace motionstyle::cli {
 
 struct OutputOptions {
   bool cleanup = true;
+  style::PathMode path = style::PathMode::Content;  // applied by the caller when stylizing
   std::optional<std::filesystem::path> metrics;  // JSON report
   double fps = 0.0;                              // output frame rate; 0 = the content's own
+  nlohmann::ordered_json extra_metrics = nlohmann::ordered_json::object();  // added to --metrics
 };
 
-// Reads --no-cleanup, --metrics FILE and --fps N from parsed arguments (declare them with outputOptionSpecs).
+// Reads --no-cleanup, --metrics FILE, --fps N and --path P from parsed arguments (declare them with
+// outputOptionSpecs).
 OutputOptions outputOptions(const ParsedArgs& parsed);
 std::vector<OptionSpec> outputOptionSpecs();
 
-// content_file: the clip that was stylized (read again for its full skeleton).
+// content_file: the clip that was stylized (read again for its full skeleton). `familiarity`, when
+// given, is printed and goes into the metrics.
 void writeStylizedOutput(const std::filesystem::path& content_file, const style::StylizedClip& stylized,
-                         const OutputOptions& options, const std::filesystem::path& output, std::ostream& log);
+                         const OutputOptions& options, const std::filesystem::path& output, std::ostream& log,
+                         const style::Familiarity* familiarity = nullptr);
 
 }  // namespace motionstyle::cli

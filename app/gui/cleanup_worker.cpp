@@ -19,7 +19,7 @@ CleanupResult runCleanupJob(const CleanupJob& job, const std::atomic<bool>& canc
     if (!job.stylizer) throw std::invalid_argument("no style network and no stylized clip to clean up");
     const MotionFeatures features = extractFeatures(job.content, job.mapping);
     style::throwIfCancelled(&cancel);
-    result.stylized = job.stylizer->stylize(features, job.strength);
+    result.stylized = job.stylizer->stylize(features, job.strength, job.path);
   }
   style::throwIfCancelled(&cancel);
   style::StylizedCleanup cleanup =

@@ -32,6 +32,7 @@ struct CleanupJob {
   // method's output) for the same content.
   std::shared_ptr<const style::Stylizer> stylizer;
   double strength = 1.0;
+  style::PathMode path = style::PathMode::Content;  // whose root path the output follows
   std::optional<style::StylizedClip> stylized;
   // User contact overrides at the CONTENT's rate (frames x 4, -1 auto / 0 off / 1 on); empty: none.
   Eigen::MatrixXi contact_overrides;

@@ -9,6 +9,7 @@
 
 #include "common/errors.h"
 #include "ik/contact_file.h"
+#include "style/familiarity.h"
 #include "track_view.h"
 
 namespace motionstyle {
@@ -40,6 +41,7 @@ ContactTrackController::ContactTrackController(TrackView* tracks, ContentProvide
   if (tracks_->floatTrackCount() == 0) {
     tracks_->addFloatTrack(tr("Skate cm/s"), QColor(120, 170, 230));
     tracks_->addFloatTrack(tr("Raw bone cm"), QColor(170, 170, 175));
+    tracks_->addFloatTrack(tr("Unfamiliar"), QColor(214, 150, 70));
   }
   setQualityTracks({});
 }
@@ -58,6 +60,9 @@ void ContactTrackController::setQualityTracks(const QualityTracks& tracks) {
   };
   tracks_->setFloatValues(kSkateTrack, tracks.skate_cm_s, 0.0f, top(tracks.skate_cm_s, 5.0f));
   tracks_->setFloatValues(kRawBoneErrorTrack, tracks.raw_bone_error_cm, 0.0f, top(tracks.raw_bone_error_cm, 2.0f));
+  // Full height at the "far" threshold, so the row reads against the reading's scale.
+  tracks_->setFloatValues(kFamiliarityTrack, tracks.familiarity_cm, 0.0f,
+                          top(tracks.familiarity_cm, static_cast<float>(style::kUnusualMaxCm)));
 }
 
 void ContactTrackController::overrideFoot(int foot, int first_frame, int last_frame, bool in_contact) {

@@ -33,6 +33,8 @@ struct QualityTracks {
   std::vector<float> skate_cm_s;         // the cleaned output: mean foot speed during contact
   std::vector<float> raw_bone_error_cm;  // the raw network output: its largest bone-length error (the
                                          // cleaned clip's is zero by construction)
+  std::vector<float> familiarity_cm;     // the content: the style network's loss network's
+                                         // reconstruction error (style/familiarity.h), before any result
 };
 
 class ContactTrackController : public QObject {
@@ -45,6 +47,7 @@ class ContactTrackController : public QObject {
   static constexpr int kRightFootTrack = 1;
   static constexpr int kSkateTrack = 0;  // float tracks
   static constexpr int kRawBoneErrorTrack = 1;
+  static constexpr int kFamiliarityTrack = 2;
 
   // `tracks` must already hold the two foot tracks (indices above).
   ContactTrackController(TrackView* tracks, ContentProvider content, ErrorReporter reporter, QObject* parent = nullptr);

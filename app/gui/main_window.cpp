@@ -128,6 +128,8 @@ void MainWindow::createResultDock() {
   contact_tracks_ = new ContactTrackController(timeline_->trackView(), content,
                                                [this](const QString& title, const QString& message) { report(title, message); }, this);
   connect(contact_tracks_, &ContactTrackController::overridesChanged, result_panel_, &ResultPanel::setContactOverrides);
+  connect(result_panel_, &ResultPanel::familiarityChanged, this,
+          [this] { contact_tracks_->setQualityTracks(result_panel_->qualityTracks()); });
 }
 
 void MainWindow::createMenus() {

@@ -38,6 +38,10 @@ void MainWindow::createNetworkDock() {
             result_panel_->setStyleNetwork(std::move(model), network_panel_->currentNetworkName());
           });
   connect(network_panel_, &NetworkPanel::stylizedClipReady, result_panel_, &ResultPanel::setStylizedClip);
+  // The familiarity row's "Adapt..." link: the Adapt tab with the content clip checked.
+  connect(result_panel_, &ResultPanel::adaptRequested, this, [this] {
+    network_panel_->showAdaptTab(content_ >= 0 ? clip(content_).path : QString());
+  });
   // A real result replaces the training preview (both are blue "output" figures).
   connect(result_panel_, &ResultPanel::resultChanged, this, [this] {
     if (!training_preview_ || result_panel_->resultFigures(false).empty()) return;

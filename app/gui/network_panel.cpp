@@ -30,6 +30,7 @@
 
 #include "common/errors.h"
 #include "common/resource_paths.h"
+#include "adapt_tab.h"
 #include "loss_curve_widget.h"
 #include "main_window.h"
 #include "training_worker.h"
@@ -98,6 +99,7 @@ NetworkPanel::NetworkPanel(MainWindow* window, bool persist_settings)
   train_scroll->setFrameShape(QFrame::NoFrame);
   tabs_->addTab(train_scroll, tr("Train"));
   tabs_->addTab(createOptimiseTab(), tr("Optimise"));
+  tabs_->addTab(createAdaptTab(), tr("Adapt"));
 
   progress_bar_ = new QProgressBar(this);
   progress_bar_->setObjectName(QStringLiteral("TrainingProgress"));
@@ -661,6 +663,8 @@ void NetworkPanel::onClipsChanged() {
     emit previewCleared();
   }
 }
+
+bool NetworkPanel::isBusy() const { return thread_ != nullptr || (adapt_tab_ && adapt_tab_->isBusy()); }
 
 void NetworkPanel::updateButtons() {
   const bool busy = isBusy();

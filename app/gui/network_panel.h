@@ -8,6 +8,8 @@
 //     style clips per content label (style_pairing.h), the loss network, the loss weights (defaults
 //     from nn::LossWeights), epochs, learning rate and hidden units; Train, Retrain (warm start from
 //     the selected network with the new weights) and Cancel.
+//   Adapt tab (adapt_tab.h): adapts the loss network and chosen styles to the user's own clips; the
+//     results join the networks list unsaved, the adapted loss network becomes the Train tab's.
 //   Optimise tab: the optimisation method (Holden 2016) for MainWindow's content and style clips; the
 //     result goes out as stylizedClipReady() (the result panel cleans it up and shows it).
 //   Below the tabs: a progress bar with ETA, a status line and the live loss curve.
@@ -52,6 +54,7 @@ class QTreeWidget;
 
 namespace motionstyle {
 
+class AdaptTab;
 class LossCurveWidget;
 class MainWindow;
 class TrainingWorker;
@@ -116,7 +119,7 @@ class NetworkPanel : public QWidget {
   // The optimisation method on MainWindow's content and style clips (stage-1 iterations; the
   // constraint stage gets 100 / 250 of them).
   bool startTransfer(int iterations);
-  bool isBusy() const { return thread_ != nullptr; }
+  bool isBusy() const;  // a training, optimisation or adaptation job is running
   // Requests cancellation of the running job (returns at once; jobFinished() follows).
   void cancelJob();
   // The checkpoint file of the latest training run (its network loads with nn::loadStyleModel).
@@ -126,6 +129,9 @@ class NetworkPanel : public QWidget {
   bool prepareToClose();
 
   LossCurveWidget* lossCurve() const { return loss_curve_; }
+  AdaptTab* adaptTab() const { return adapt_tab_; }
+  // Shows the Adapt tab with just this clip checked (the Result panel's "Adapt..." link).
+  void showAdaptTab(const QString& clip_path);
   QProgressBar* progressBar() const { return progress_bar_; }
   QString statusText() const;
 
@@ -156,6 +162,7 @@ class NetworkPanel : public QWidget {
   QWidget* createNetworksTab();
   QWidget* createTrainTab();
   QWidget* createOptimiseTab();
+  AdaptTab* createAdaptTab();
   void addNetwork(NetworkEntry entry);
   void refreshNetworkList();
   void refreshTrainingSummary();
@@ -180,6 +187,7 @@ class NetworkPanel : public QWidget {
 
   MainWindow* window_;
   bool persist_settings_;
+  AdaptTab* adapt_tab_ = nullptr;
   Confirmer confirmer_;
   std::vector<NetworkEntry> networks_;
 

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <exception>
 
+#include "adapt_tab.h"
 #include "features/feature_layout.h"
 #include "loss_curve_widget.h"
 #include "main_window.h"
@@ -333,7 +334,13 @@ void NetworkPanel::onTrainingFinished(const TrainingOutcome& outcome) {
 }
 
 bool NetworkPanel::prepareToClose() {
-  if (isBusy()) {
+  if (adapt_tab_->isBusy()) {
+    if (ask(tr("Stop and close?"), tr("Adapting the networks to your clips. Stop it and close?\n\nNothing is changed."),
+            QMessageBox::Yes | QMessageBox::No) != QMessageBox::Yes)
+      return false;
+    adapt_tab_->cancel();
+  }
+  if (thread_ != nullptr) {
     const QString what = training_worker_ ? tr("A training run is in progress. Stop it and close?\n\nThe network of the last "
                                                "completed epoch is kept; no network file is left half-written.")
                                           : tr("The optimisation method is running. Stop it and close?");

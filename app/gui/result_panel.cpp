@@ -1,5 +1,6 @@
 #include "result_panel.h"
 
+#include <QCheckBox>
 #include <QComboBox>
 #include <QDir>
 #include <QFileDialog>
@@ -21,6 +22,7 @@
 #include "common/errors.h"
 #include "common/resource_paths.h"
 #include "display_space.h"
+#include "familiarity_label.h"
 #include "result_figures.h"
 #include "style/training.h"
 
@@ -67,9 +69,15 @@ ResultPanel::ResultPanel(QWidget* parent) : QWidget(parent), cancel_(std::make_s
   connect(strength_slider_, &QSlider::valueChanged, this,
           [this](int value) { strength_label_->setText(QString::number(value / double(kStrengthSteps), 'f', 2)); });
   // A result follows the slider once the user lets go (one job per release, not per step).
-  connect(strength_slider_, &QSlider::sliderReleased, this, [this] {
-    if (result_ && !given_stylized_ && hasNetwork()) stylize();
-  });
+  connect(strength_slider_, &QSlider::sliderReleased, this, &ResultPanel::restylizeIfShown);
+  keep_path_ = new QCheckBox(tr("Keep the content's path"), this);
+  keep_path_->setObjectName(QStringLiteral("KeepPathCheck"));
+  keep_path_->setChecked(true);
+  keep_path_->setToolTip(tr("On: the output covers the same ground and turns the same way as the content, in the "
+                            "same time.\nOff: the style may change the pace (an elderly walk covers less ground)."));
+  connect(keep_path_, &QCheckBox::toggled, this, &ResultPanel::restylizeIfShown);
+  familiarity_label_ = new FamiliarityLabel(this);
+  connect(familiarity_label_, &FamiliarityLabel::adaptRequested, this, &ResultPanel::adaptRequested);
   strength_label_->setText(QStringLiteral("1.00"));
   auto* strength_row = new QHBoxLayout;
   strength_row->addWidget(strength_slider_, 1);
@@ -118,7 +126,9 @@ ResultPanel::ResultPanel(QWidget* parent) : QWidget(parent), cancel_(std::make_s
   auto* form = new QFormLayout;
   form->addRow(tr("Style:"), network_row);
   form->addRow(tr("Content:"), content_label_);
+  form->addRow(tr("Familiarity:"), familiarity_label_);
   form->addRow(tr("Strength:"), strength_row);
+  form->addRow(QString(), keep_path_);
   auto* layout = new QVBoxLayout(this);
   layout->addLayout(form);
   layout->addLayout(buttons);
@@ -174,6 +184,7 @@ void ResultPanel::useNetwork(std::shared_ptr<const nn::StyleModel> model, const 
   }
   if (hasNetwork()) showNetworkInChoice(network_name_, file);  // a listed file keeps its entry's label
   refreshControls();
+  refreshFamiliarity();
 }
 
 void ResultPanel::listShippedNetworks() {
@@ -228,6 +239,7 @@ void ResultPanel::setContentClip(const LoadedClip* clip) {
   given_stylized_.reset();
   clearResult();
   refreshControls();
+  refreshFamiliarity();
 }
 
 void ResultPanel::setContactOverrides(const Eigen::MatrixXi& overrides) {
@@ -246,6 +258,23 @@ void ResultPanel::setStylizedClip(style::StylizedClip clip, const QString& label
 }
 
 double ResultPanel::strength() const { return strength_slider_->value() / double(kStrengthSteps); }
+
+style::PathMode ResultPanel::pathMode() const {
+  return keep_path_->isChecked() ? style::PathMode::Content : style::PathMode::Style;
+}
+
+void ResultPanel::setPathMode(style::PathMode mode) { keep_path_->setChecked(mode == style::PathMode::Content); }
+
+const std::optional<style::Familiarity>& ResultPanel::familiarity() const { return familiarity_label_->familiarity(); }
+
+void ResultPanel::restylizeIfShown() {
+  if (result_ && !given_stylized_ && hasNetwork() && !busy_) stylize();
+}
+
+void ResultPanel::refreshFamiliarity() {
+  familiarity_label_->measure(content_.get(), stylizer_ ? &stylizer_->model() : nullptr);
+  emit familiarityChanged();
+}
 
 void ResultPanel::setStrength(double strength) {
   strength_slider_->setValue(static_cast<int>(std::lround(std::clamp(strength, 0.0, 1.0) * kStrengthSteps)));
@@ -272,6 +301,7 @@ void ResultPanel::stylize() {
   job->mapping = *content_->mapping;
   job->stylizer = stylizer_;
   job->strength = strength();
+  job->path = pathMode();
   job->stylized = given_stylized_;
   job->contact_overrides = overrides_;
   startJob(std::move(job));
@@ -346,6 +376,7 @@ void ResultPanel::refreshControls() {
   const bool ready = content_ && content_->mapping && (hasNetwork() || given_stylized_);
   stylize_button_->setEnabled(ready && !busy_);
   strength_slider_->setEnabled(!given_stylized_);
+  keep_path_->setEnabled(!given_stylized_);
   cancel_button_->setEnabled(busy_);
   export_button_->setEnabled(result_ != nullptr && !busy_);
 }
@@ -409,10 +440,15 @@ std::vector<float> trackAtRate(const std::vector<double>& track, double track_fp
 }  // namespace
 
 QualityTracks ResultPanel::qualityTracks() const {
-  if (!result_ || !content_) return {};
+  QualityTracks tracks;
+  if (!content_) return tracks;
+  if (const auto& familiarity = familiarity_label_->familiarity())
+    tracks.familiarity_cm = trackAtRate(familiarity->per_frame_cm, kDefaultFeatureFps, content_->fps());
+  if (!result_) return tracks;
   const double track_fps = result_->stylized.fps;
-  return {trackAtRate(result_->cleaned_metrics.skate_track_cm_s, track_fps, content_->fps()),
-          trackAtRate(result_->raw_metrics.bone_error_track_cm, track_fps, content_->fps())};
+  tracks.skate_cm_s = trackAtRate(result_->cleaned_metrics.skate_track_cm_s, track_fps, content_->fps());
+  tracks.raw_bone_error_cm = trackAtRate(result_->raw_metrics.bone_error_track_cm, track_fps, content_->fps());
+  return tracks;
 }
 
 bool ResultPanel::exportResult(const QString& file, bool overwrite) {

@@ -6,6 +6,10 @@
 //     skeleton in a worker QThread (cleanup_worker.h): the UI never waits; Cancel drops the job.
 //   - The metrics table shows foot skate, floor penetration, bone error and residual of the raw
 //     network output (before) and of the cleaned clip (after), in cm and cm/s.
+//   - Keep the content's path (on by default): the output covers the same ground and turns in the same
+//     time as the content (style/path_mode.h); off lets the style change the pace.
+//   - Familiarity: how close the content is to what the networks know (style/familiarity.h), with the
+//     next step when it is not (adapt the networks: the Style networks panel's Adapt tab).
 //   - Export writes the cleaned clip as BVH on the content's skeleton, atomically (bvh_writer.h), and
 //     never overwrites silently (the save dialog asks; exportResult() refuses unless told to).
 // The panel owns no clip: MainWindow hands it a copy of the content clip, the user's contact overrides
@@ -28,7 +32,9 @@
 #include "contact_tracks.h"
 #include "figure_data.h"
 #include "nn/network_file.h"
+#include "style/familiarity.h"
 
+class QCheckBox;
 class QComboBox;
 class QLabel;
 class QProgressBar;
@@ -37,6 +43,8 @@ class QSlider;
 class QTableWidget;
 
 namespace motionstyle {
+
+class FamiliarityLabel;
 
 class ResultPanel : public QWidget {
   Q_OBJECT
@@ -72,6 +80,12 @@ class ResultPanel : public QWidget {
 
   double strength() const;  // in [0, 1]: 0 = the content, 1 = fully styled
   void setStrength(double strength);
+  // Whose root path and timing the output follows (style/path_mode.h): the content's by default.
+  style::PathMode pathMode() const;
+  void setPathMode(style::PathMode mode);
+  // How familiar the content is to the chosen network (style/familiarity.h); nullopt without a mapped
+  // content clip and a network.
+  const std::optional<style::Familiarity>& familiarity() const;
   bool isBusy() const { return busy_; }
   const CleanupResult* result() const { return result_.get(); }
   QTableWidget* metricsTable() const { return metrics_; }
@@ -94,6 +108,9 @@ class ResultPanel : public QWidget {
 
  signals:
   void resultChanged();           // a new result, or none any more
+  void familiarityChanged();      // the content or the network changed: familiarity() is new
+  // The user asked to adapt the networks to clips like the content (the familiarity row's link).
+  void adaptRequested();
   void busyChanged(bool busy);
   void jobEnded(bool succeeded);  // after finished, failed or cancelled
   void statusMessage(const QString& message);
@@ -109,6 +126,9 @@ class ResultPanel : public QWidget {
   void clearResult();
   void refreshMetrics();
   void refreshControls();
+  void refreshFamiliarity();
+  // Runs again after a change of strength or path when there is a network result to update.
+  void restylizeIfShown();
   void report(const QString& title, const QString& message);
   void listShippedNetworks();
   // setStyleNetwork / loadNetworkFile: `file` is the network's file ("" when it has none).
@@ -135,6 +155,8 @@ class ResultPanel : public QWidget {
   QLabel* content_label_ = nullptr;
   QSlider* strength_slider_ = nullptr;
   QLabel* strength_label_ = nullptr;
+  QCheckBox* keep_path_ = nullptr;
+  FamiliarityLabel* familiarity_label_ = nullptr;
   QPushButton* stylize_button_ = nullptr;
   QPushButton* cancel_button_ = nullptr;
   QProgressBar* progress_ = nullptr;

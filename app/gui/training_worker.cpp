@@ -165,9 +165,8 @@ void TransferWorker::run() {
   };
   runReportingErrors(tr("run the optimisation method"), [&] {
     const style::MotionClip content = style::loadMotionClip(job_.content);
-    style::DatasetOptions style_options;
-    style_options.minimum_frames = job_.autoencoder.network.shape().width;
-    const style::MotionClip style_clip = style::loadMotionClip(job_.style, style_options);
+    const style::MotionClip style_clip =
+        style::loadMotionClip(job_.style, style::styleClipOptions({}, job_.autoencoder.network.shape().width));
     if (cancel_.load()) {
       emit finished(nullptr, true, secondsSince(started));
       return;

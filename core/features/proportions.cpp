@@ -90,4 +90,29 @@ void retargetFeatures(Eigen::MatrixXd& features, const Proportions& from, const 
   }
 }
 
+void enforceBoneLengths(Eigen::MatrixXd& features, const Proportions& proportions) {
+  if (features.rows() != kFeatureCount)
+    throw std::invalid_argument("enforceBoneLengths: features must have 66 rows, got " + std::to_string(features.rows()));
+  proportions.validate();
+  std::array<Eigen::Vector3d, kCanonicalJointCount> source, target;
+  for (Eigen::Index f = 0; f < features.cols(); ++f) {
+    for (int c = 0; c < kCanonicalJointCount; ++c) source[static_cast<std::size_t>(c)] = jointAt(features, f, c);
+    target[0] = source[0];
+    for (int c = 1; c < kCanonicalJointCount; ++c) {
+      const auto joint = static_cast<std::size_t>(c);
+      const auto parent = static_cast<std::size_t>(kCanonicalParent[joint]);
+      const Eigen::Vector3d bone = source[joint] - source[parent];
+      Eigen::Vector3d direction = Eigen::Vector3d::UnitY();
+      if (bone.norm() >= kMinimumBoneLengthCm) {
+        direction = bone.normalized();
+      } else if (parent != 0) {
+        const Eigen::Vector3d parent_bone = target[parent] - target[static_cast<std::size_t>(kCanonicalParent[parent])];
+        if (parent_bone.norm() >= kMinimumBoneLengthCm) direction = parent_bone.normalized();
+      }
+      target[joint] = target[parent] + proportions.bone_length[joint] * direction;
+    }
+    for (int c = 0; c < kCanonicalJointCount; ++c) features.col(f).segment<3>(3 * c) = target[static_cast<std::size_t>(c)];
+  }
+}
+
 }  // namespace motionstyle

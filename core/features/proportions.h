@@ -60,4 +60,12 @@ Proportions measureProportions(const Eigen::MatrixXd& features);
 // Throws std::invalid_argument for features that are not 66 rows or invalid proportions.
 void retargetFeatures(Eigen::MatrixXd& features, const Proportions& from, const Proportions& to);
 
+// Sets every bone of root-frame features (66 x frames) to its length in `proportions`, frame by frame,
+// keeping its direction: joints are rebuilt from the hips outward, p_c = p_parent + l_c * unit(p_c -
+// p_parent) with the bone as the features had it (a bone without direction, shorter than
+// kMinimumBoneLengthCm, is laid along its parent bone as in retargetFeatures). Network outputs get it
+// so that their targets are reachable by the character's own limbs (the IK clean-up keeps bones
+// exact: a target 2 cm beyond reach is a 2 cm residual). Throws std::invalid_argument as retargetFeatures.
+void enforceBoneLengths(Eigen::MatrixXd& features, const Proportions& proportions);
+
 }  // namespace motionstyle

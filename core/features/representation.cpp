@@ -159,6 +159,10 @@ MotionFeatures extractFeatures(const Motion& motion, const JointMapping& mapping
     try {
       anchor.proportions = measureProportions(result.values);
       retargetFeatures(result.values, anchor.proportions, referenceProportions());
+      if (options.canonical_rig) {
+        anchor.rig = measureRigCorrection(result.values);
+        applyRigCorrection(result.values, anchor.rig);
+      }
       anchor.retarget_height_shift = -softFloor(result.values);
       shiftHeights(result.values, anchor.retarget_height_shift);
     } catch (const std::invalid_argument& error) {
@@ -181,8 +185,9 @@ Eigen::MatrixXd referenceWorldPositions(const Eigen::MatrixXd& features, const F
   if (features.rows() != kFeatureCount)
     throw std::invalid_argument("referenceWorldPositions: features must have 66 rows, got " + std::to_string(features.rows()));
   const Eigen::Index frames = features.cols();
-  Eigen::MatrixXd own = features;  // back to the clip's own proportions
+  Eigen::MatrixXd own = features;  // back to the clip's own rig and proportions
   shiftHeights(own, -anchor.retarget_height_shift);
+  applyRigCorrection(own, anchor.rig, /*inverse=*/true);
   retargetFeatures(own, referenceProportions(), anchor.proportions);
   Eigen::MatrixXd world(frames, 3 * kJoints);
   Eigen::Vector2d root = anchor.start_root;

@@ -12,9 +12,11 @@
 //   6. joints expressed in the root frame; root velocities (sideways, forward, turning) per frame,
 //   7. retargeted from the clip's own proportions to the reference proportions (proportions.h): the
 //      networks see every rig with one actor's bone lengths; the clip's own are kept in the anchor;
+//   8. content clips: the rig's girdle placement (hip joints, shoulders, toes) turned to the reference
+//      actor's (rig_canonicalisation.h); the correction is kept in the anchor;
 //      heights are then shifted so that the feet's soft minimum is on the floor again.
-// Contacts are detected on the clip's own positions (step 5's frame, before 7). The inverse retargets
-// back to the clip's proportions, integrates the velocities from the anchor and undoes steps 2-4,
+// Contacts are detected on the clip's own positions (step 5's frame, before 7). The inverse undoes 8,
+// retargets back to the clip's proportions, integrates the velocities from the anchor and undoes steps 2-4,
 // giving world positions of the canonical joints in the clip's own file space (units and axes).
 
 #include <Eigen/Core>
@@ -23,6 +25,7 @@
 
 #include "features/feature_layout.h"
 #include "features/proportions.h"
+#include "features/rig_canonicalisation.h"
 #include "features/space_convention.h"
 #include "mapping/joint_mapping.h"
 #include "motion/motion.h"
@@ -35,6 +38,9 @@ struct FeatureOptions {
   double root_smoothing_frames = 3.0;
   double facing_smoothing_frames = 20.0;
   bool retarget_proportions = true;  // step 7; off only to reproduce networks trained without it
+  // Step 8, for content clips (what the networks transform, and how familiar it is); off for style
+  // clips, whose girdle posture is part of the style, and the loss network's own training data.
+  bool canonical_rig = true;
 };
 
 // Everything needed to map features back to the clip's file space.
@@ -48,9 +54,11 @@ struct FeatureAnchor {
   // The clip's own proportions (reference cm), which the inverse retargets the features back to. The
   // reference proportions when the features were not retargeted (the inverse then changes nothing).
   Proportions proportions = referenceProportions();
-  // Added to every height after the retargeting, reference cm: new bone lengths move the planted feet
-  // up or down (CMU's hip joints hang 4 cm lower than the actor's), so the feet's soft minimum is put
-  // back on the floor. The inverse subtracts it before retargeting back.
+  // The girdle correction of step 8 (identity when off).
+  RigCorrection rig;
+  // Added to every height after steps 7 and 8, reference cm: new bone lengths and girdle placement move
+  // the planted feet up or down (CMU's hip joints hang 4 cm lower than the actor's), so the feet's soft
+  // minimum is put back on the floor. The inverse subtracts it before undoing them.
   double retarget_height_shift = 0.0;
 };
 

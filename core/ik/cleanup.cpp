@@ -168,6 +168,7 @@ ContactLocks contactLocks(const CleanupInput& input, const CleanupOptions& optio
 
 void CleanupOptions::validate() const {
   requireWeight(position_weight, "position_weight");
+  requireWeight(hips_weight, "hips_weight");
   requireWeight(contact_weight, "contact_weight");
   requireWeight(floor_weight, "floor_weight");
   requireWeight(root_smoothness_weight, "root_smoothness_weight");

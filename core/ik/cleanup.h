@@ -28,6 +28,10 @@ struct CleanupOptions {
   // --- Cost weights. Each residual is (weight x error), errors in cm or radians, so the weights do not
   // depend on the file's unit. Ceres minimises the sum of squared residuals.
   double position_weight = 1.0;         // mapped joint world position vs target, per cm
+  // The hips follow their target more firmly than the other joints, so that the character keeps the
+  // output's root path (the content's, when its path is kept: style/path_mode.h) while the locked feet
+  // and the legs take up what the targets cannot all have. Per cm.
+  double hips_weight = 1.0;
   // 40 rather than 20: a quarter of the skate after clean-up (0.58 -> 0.16 cm/s on the shipped
   // masculine network's CMU output, 0.11 -> 0.03 on the damaged CMU fixture) for the same residual
   // (+-0.1 cm), for ~25 % more solver iterations (bench_ik: 1,640 instead of 1,970 frames/s).

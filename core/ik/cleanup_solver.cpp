@@ -139,8 +139,10 @@ class WindowProblem {
 
   void addSlotTerms(int s, const CleanupOptions& options) {
     const FrameData* data = &frames_[static_cast<size_t>(s)];
-    for (int c = 0; c < kCanonicalJointCount; ++c)
-      addChainTerm(s, kPositionTerm, new MappedPositionCost{data, &constants_, c, options.position_weight}, c, 3);
+    for (int c = 0; c < kCanonicalJointCount; ++c) {
+      const double weight = c == index(CanonicalJoint::Hips) ? options.hips_weight : options.position_weight;
+      addChainTerm(s, kPositionTerm, new MappedPositionCost{data, &constants_, c, weight}, c, 3);
+    }
     for (int i = 0; i < kContactCount; ++i) {
       const int canonical = index(kContactJoint[static_cast<size_t>(i)]);
       if (options.lock_contacts)

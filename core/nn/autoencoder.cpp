@@ -63,7 +63,8 @@ Mat<S> Autoencoder<S>::encodeBackward(const Mat<S>& grad_hidden) {
 
 template <typename S>
 ReconstructionTerms Autoencoder<S>::accumulateReconstruction(const Mat<S>& x, int frames, S alpha,
-                                                             S dropout_rate, std::mt19937* rng) {
+                                                             S dropout_rate, std::mt19937* rng,
+                                                             const ReconstructionFootTerm<S>& foot) {
   checkBatch("Autoencoder::accumulateReconstruction", x.rows(), x.cols(), shape_.features, frames);
   if (dropout_rate > S(0) && rng == nullptr)
     throw std::invalid_argument("Autoencoder::accumulateReconstruction: dropout needs an rng");
@@ -82,6 +83,12 @@ ReconstructionTerms Autoencoder<S>::accumulateReconstruction(const Mat<S>& x, in
   terms.mse = static_cast<double>(meanSquaredError(output, x, S(1), &grad_output));
   terms.sparsity = static_cast<double>(meanAbsoluteWeight<S>({&encoder.weight, &decoder.weight}, alpha));
   terms.total = terms.mse + static_cast<double>(alpha) * terms.sparsity;
+  if (foot.weight > S(0)) {
+    if (foot.contacts == nullptr || foot.normalisation == nullptr)
+      throw std::invalid_argument("Autoencoder::accumulateReconstruction: the foot term needs contacts and statistics");
+    terms.foot = static_cast<double>(footContactLoss(output, frames, *foot.contacts, *foot.normalisation, foot.weight, &grad_output));
+    terms.total += static_cast<double>(foot.weight) * terms.foot;
+  }
 
   // Backward: b0 collects its gradient from both the encoder and the decoder's subtraction.
   const Mat<S> grad_shifted = decoder.backward(uncropGradient(grad_output, frames), Gradients::All);

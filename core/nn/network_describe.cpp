@@ -71,6 +71,11 @@ std::string describe(const StyleModel& model) {
   Autoencoder<float> ac = model.loss_network;
   out << "  parameters: " << parameterCount(tc.parameters()) << " + " << parameterCount(ac.parameters())
       << " (loss network)\n";
+  out << "  style targets: ";
+  if (model.style_targets.empty()) out << "none stored (retraining needs the style clips)";
+  for (std::size_t i = 0; i < model.style_targets.size(); ++i)
+    out << (i ? ", " : "") << (model.style_targets[i].label.empty() ? "(default)" : model.style_targets[i].label);
+  out << "\n";
   describeMetadata(out, model.metadata, true);
   return out.str();
 }

@@ -18,6 +18,8 @@ constexpr std::size_t kCrcBytes = 4;
 constexpr std::uintmax_t kMaxFileBytes = 256u << 20;  // a default style file is ~7 MB
 constexpr std::uint32_t kMaxDimension = 4096;
 constexpr std::uint32_t kMaxWidth = 255;
+constexpr std::uint32_t kMaxStyleTargets = 64;
+constexpr std::string_view kStyleTargetPrefix = "style_target:";
 
 const char* kindName(NetworkKind kind) {
   return kind == NetworkKind::Autoencoder ? "autoencoder (loss network)" : "style (transformation network)";
@@ -42,7 +44,8 @@ void requireWritable(const Normalisation& normalisation, const NetworkMetadata& 
 // format_version 1 has no weight-encoding field and is always f32.
 std::string serialise(NetworkKind kind, const Normalisation& normalisation, const NetworkMetadata& m,
                       const Autoencoder<float>& ae, const Transformer<float>* transformer,
-                      WeightPrecision precision, std::uint32_t format_version) {
+                      WeightPrecision precision, std::uint32_t format_version,
+                      const std::vector<StyleTarget>& targets = {}) {
   if (format_version == 1 && precision != WeightPrecision::F32)
     throw std::invalid_argument("network file format 1 stores f32 weights only");
   requireWritable(normalisation, m);
@@ -90,7 +93,9 @@ std::string serialise(NetworkKind kind, const Normalisation& normalisation, cons
     body.u32(static_cast<std::uint32_t>(transformer->shape().width));
     body.u8(transformer->shape().residual ? 1 : 0);
   }
-  body.u32(transformer != nullptr ? 9u : 3u);
+  if (format_version < 3 && !targets.empty())
+    throw std::invalid_argument("network file formats before 3 store no style targets");
+  body.u32(static_cast<std::uint32_t>((transformer != nullptr ? 9u : 3u) + targets.size()));
   if (transformer != nullptr) {
     writeConvTensors(body, transformer->conv1, precision);
     writeConvTensors(body, transformer->conv2, precision);
@@ -98,6 +103,11 @@ std::string serialise(NetworkKind kind, const Normalisation& normalisation, cons
   }
   writeConvTensors(body, ae.encoder, precision);
   writeConvTensors(body, ae.decoder, precision);
+  for (const StyleTarget& target : targets) {
+    if (target.gram.rows() != ae.shape().hidden || target.gram.cols() != ae.shape().hidden || !target.gram.allFinite())
+      throw std::invalid_argument("style target '" + target.label + "' must be a finite hidden x hidden matrix");
+    body.tensor(std::string(kStyleTargetPrefix) + target.label, target.gram, precision);
+  }
 
   ByteWriter file;
   file.raw(kMagic);
@@ -216,7 +226,8 @@ void readMetadata(ByteReader& r, Parsed& p) {
 void validateRepresentation(const ByteReader& r, const Parsed& p) {
   const RepresentationInfo& rep = p.metadata.representation;
   if (rep.feature_count != kFeatureCount ||
-      (rep.joint_set != kRetargetedJointSetName && rep.joint_set != kCanonicalJointSetName))
+      (rep.joint_set != kRetargetedJointSetName && rep.joint_set != kProportionsJointSetName &&
+       rep.joint_set != kCanonicalJointSetName))
     r.fail("network file uses a different representation (" + std::to_string(rep.feature_count) + " features, joint set '" +
            rep.joint_set + "'); this build uses " + std::to_string(kFeatureCount) + " features of '" +
            std::string(kRetargetedJointSetName) + "'");
@@ -296,6 +307,7 @@ Parsed parse(std::string_view bytes, const std::string& source, NetworkKind want
   readArchitecture(r, p);
   validateRepresentation(r, p);
   const std::uint32_t count = readCount(r, "tensor count", 12);
+  if (count > 9 + kMaxStyleTargets) r.fail("corrupt network file: " + std::to_string(count) + " tensors");
   for (std::uint32_t i = 0; i < count; ++i) p.tensors.push_back(r.tensor(p.precision));
   if (r.remaining() != 0) r.fail("corrupt network file: " + std::to_string(r.remaining()) + " unread bytes");
   return p;
@@ -331,7 +343,7 @@ std::string serialiseStyleModel(const StyleModel& model, WeightPrecision precisi
   if (model.transformer.shape().features != model.loss_network.shape().features)
     throw std::invalid_argument("StyleModel: transformer and loss network feature counts differ");
   return serialise(NetworkKind::Style, model.normalisation, model.metadata, model.loss_network, &model.transformer,
-                   precision, kNetworkFormatVersion);
+                   precision, kNetworkFormatVersion, model.style_targets);
 }
 
 void saveAutoencoder(const AutoencoderModel& model, const std::filesystem::path& file, WeightPrecision precision) {
@@ -359,14 +371,26 @@ StyleModel parseStyleModel(std::string_view bytes, const std::string& source_nam
   if (p.t_shape.features != p.ae_shape.features)
     r.fail("network file: transformer and loss network feature counts differ");
   StyleModel model{Transformer<float>(p.t_shape), Autoencoder<float>(p.ae_shape), std::move(p.normalisation),
-                   std::move(p.metadata)};
+                   std::move(p.metadata), {}};
   std::size_t next = 0;
   assignConv(r, p.tensors, next, model.transformer.conv1);
   assignConv(r, p.tensors, next, model.transformer.conv2);
   assignConv(r, p.tensors, next, model.transformer.conv3);
   assignConv(r, p.tensors, next, model.loss_network.encoder);
   assignConv(r, p.tensors, next, model.loss_network.decoder);
-  if (next != p.tensors.size()) r.fail("network file: unexpected extra tensors");
+  const auto hidden = static_cast<Eigen::Index>(p.ae_shape.hidden);
+  for (; next < p.tensors.size(); ++next) {
+    ByteReader::Tensor& t = p.tensors[next];
+    if (p.version < 3 || t.name.rfind(kStyleTargetPrefix, 0) != 0)
+      r.fail("network file: unexpected extra tensor '" + t.name + "'");
+    if (t.value.rows() != hidden || t.value.cols() != hidden || !t.value.allFinite())
+      r.fail("network file: style target '" + t.name + "' must be a finite " + std::to_string(hidden) + " x " +
+             std::to_string(hidden) + " matrix");
+    std::string label = t.name.substr(std::string_view(kStyleTargetPrefix).size());
+    for (const StyleTarget& earlier : model.style_targets)
+      if (earlier.label == label) r.fail("network file: style target '" + t.name + "' appears twice");
+    model.style_targets.push_back({std::move(label), std::move(t.value)});
+  }
   return model;
 }
 
@@ -402,6 +426,8 @@ void checkCompatible(const RepresentationInfo& actual, const RepresentationInfo&
     differences << " joint set '" << actual.joint_set << "' (expected '" << expected.joint_set << "'";
     if (actual.joint_set == kCanonicalJointSetName && expected.joint_set == kRetargetedJointSetName)
       differences << ": trained before proportion retargeting, retrain it with this version";
+    if (actual.joint_set == kProportionsJointSetName && expected.joint_set == kRetargetedJointSetName)
+      differences << ": trained before rig canonicalisation, retrain it with this version";
     differences << ");";
   }
   if (std::abs(actual.fps - expected.fps) > 1e-6 * expected.fps)

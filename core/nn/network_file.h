@@ -20,13 +20,16 @@
 
 namespace motionstyle::nn {
 
-// Version 2 added the weight encoding (f32 or f16). Readers read 1 and 2; writers write 2.
-constexpr std::uint32_t kNetworkFormatVersion = 2;
+// Version 2 added the weight encoding (f32 or f16), version 3 the style targets of style files.
+// Readers read 1 to 3; writers write 3.
+constexpr std::uint32_t kNetworkFormatVersion = 3;
 // The joint sets of the 66-value representation (feature_layout.h) this build reads: the 21 canonical
-// joints retargeted to the reference proportions (features/proportions.h; what this build computes
-// by default), and the same joints in each clip's own proportions (networks trained before that step;
-// still described by `info`, but refused for use unless FeatureOptions::retarget_proportions is off).
-inline constexpr std::string_view kRetargetedJointSetName = "canonical-21-reference-proportions";
+// joints in the reference proportions and, for content clips, the reference rig's girdle placement
+// (features/proportions.h, features/rig_canonicalisation.h; what this build computes by default). Older
+// sets are still described by `info`, but refused for use: the same joints in the reference proportions
+// only, and in each clip's own proportions (networks trained before those steps).
+inline constexpr std::string_view kRetargetedJointSetName = "canonical-21-reference-rig";
+inline constexpr std::string_view kProportionsJointSetName = "canonical-21-reference-proportions";
 inline constexpr std::string_view kCanonicalJointSetName = "canonical-21";
 
 enum class NetworkKind : std::uint32_t { Autoencoder = 1, Style = 2 };
@@ -82,13 +85,24 @@ struct AutoencoderModel {
   NetworkMetadata metadata;
 };
 
+// The target of eq. 5 for the content clips of one label: Gram(L(S)) of its style clip S through the
+// style network's own loss network (nn::styleGram), hidden x hidden.
+struct StyleTarget {
+  std::string label;  // content label ("walk", "run", ...); "" for the default (every other label)
+  Mat<float> gram;
+  bool operator==(const StyleTarget&) const = default;
+};
+
 // A style network is self-contained: it embeds the loss network it was trained against, which is also
-// the one whose projection cleans its output (the two must not be mixed up).
+// the one whose projection cleans its output (the two must not be mixed up), and its style targets, so
+// that it can be retrained (on other content, against a loss network with the same encoder) without
+// the style clips it was made from. Files before format 3 have no targets.
 struct StyleModel {
   Transformer<float> transformer;
   Autoencoder<float> loss_network;
   Normalisation normalisation;
   NetworkMetadata metadata;
+  std::vector<StyleTarget> style_targets;
 };
 
 // Serialise to bytes (the exact file content, format kNetworkFormatVersion) / save atomically, the

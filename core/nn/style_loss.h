@@ -17,22 +17,17 @@
 
 namespace motionstyle::nn {
 
-// Per-term user weights (eq. 10). Content 1.0 is the paper's value. Style 100 is the paper's s = 0.01
-// rescaled to OUR Gram: the paper sums eq. 6 over the ~120 pooled frames of a 240-frame window, we
-// divide by the frame count (gramMatrix), so its squared Gram difference is ~120^2 times ours and
-// s = 0.01 corresponds to ~144 here. Evidence (Bandai dataset-2, 30-epoch loss network, normal walk ->
-// elderly walk, 16 training / 4 held-out clips, 10 epochs, style distance after/before on held-out
-// clips): style 0.01-10 -> 0.77-0.80 (the manifold projection alone gives ~0.75: the network had
-// learnt almost nothing), 30 -> 0.50, 100 -> 0.20, 300 -> 0.19 with a larger content distance. At
-// initialisation the style gradient per unit weight is ~0.15 against ~240 for the bone term, so with
-// style 0.01 the constraints outweighed the style ~1000:1.
-// The constraint weights are ours: the terms are in cm^2 (foot, bone) and (cm/frame)^2 (trajectory); the
-// defaults make a 1 cm error cost about as much as a 0.1-std content error. Tune with the training loop.
+// Per-term user weights (eq. 10). Content 1 is the paper's value; style 100 is the paper's s = 0.01
+// rescaled to OUR Gram (gramMatrix divides by the frame count: the paper's squared Gram difference is
+// ~120^2 times ours for a 240-frame window). The constraint terms are in cm^2 (foot, bone) and
+// (cm/frame)^2 (trajectory): trajectory 0.01 lets a style change the stride, and the output keeps
+// the content's path anyway (path_mode.h); foot and bone 0.03 keep feet planted and bones whole
+// without holding the style back. The measurements behind each value are in docs/decisions.md.
 struct LossWeights {
   double content = 1.0;
   double style = 100.0;
-  double foot = 0.01;
-  double bone = 0.01;
+  double foot = 0.03;
+  double bone = 0.03;
   double trajectory = 0.01;
 
   // Throws std::invalid_argument unless every weight is finite and >= 0.

@@ -19,7 +19,9 @@ void Transformer<S>::initialise(std::uint32_t seed) {
   initialiseConv(conv1, InitScheme::HeUniform, rng);
   initialiseConv(conv2, InitScheme::HeUniform, rng);
   initialiseConv(conv3, InitScheme::GlorotUniform, rng);
-  if (shape_.residual) conv3.weight.value *= S(0.1);
+  // A residual network starts as (nearly) the identity: the losses start small, so the first steps do not
+  // fill Adam's second moments with huge gradients that then hold every later step back (docs/decisions.md).
+  if (shape_.residual) conv3.weight.value *= S(0.001);
 }
 
 template <typename S>

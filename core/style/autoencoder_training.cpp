@@ -12,7 +12,9 @@ namespace {
 
 std::vector<std::string> settingsParts(const AutoencoderTrainingConfig& config) {
   return {"autoencoder", "hidden=" + std::to_string(config.shape.hidden), "width=" + std::to_string(config.shape.width),
-          "sparsity=" + std::to_string(config.sparsity), "dropout=" + std::to_string(config.dropout)};
+          "sparsity=" + std::to_string(config.sparsity), "dropout=" + std::to_string(config.dropout),
+          "foot=" + std::to_string(config.foot_weight),
+          config.train_encoder ? "encoder=trained" : "encoder=frozen"};
 }
 
 }  // namespace
@@ -20,13 +22,17 @@ std::vector<std::string> settingsParts(const AutoencoderTrainingConfig& config) 
 AutoencoderTrainingResult trainAutoencoder(const AutoencoderTrainingConfig& config, const TrainingCallbacks& callbacks) {
   config.validate();
   const TrainingSettings& settings = config.settings;
+  // The loss network learns motion as captured: its files without rig canonicalisation (the styles'
+  // girdle posture included); content clips are canonicalised toward what it learnt.
+  TrainingSettings loading = settings;
+  loading.dataset.features.canonical_rig = false;
   const auto started = std::chrono::steady_clock::now();
   AutoencoderTrainingResult result;
   result.model.network = nn::Autoencoder<float>(config.shape);
 
   TrainingClips data;
   try {
-    data = loadTrainingClips(config.data, config.clips, settings, callbacks, "training", started);
+    data = loadTrainingClips(config.data, config.clips, loading, callbacks, "training", started);
   } catch (const OperationCancelled&) {
     markCancelledBeforeTraining(result, started);
     return result;
@@ -52,10 +58,11 @@ AutoencoderTrainingResult trainAutoencoder(const AutoencoderTrainingConfig& conf
     first_epoch = restoreFromState(checkpoint.state, nn::NetworkKind::Autoencoder, fingerprint,
                                    settings.checkpointPath(), optimiser, history);
     if (callbacks.log) callbacks.log("resuming after epoch " + std::to_string(first_epoch - 1));
-  } else if (!settings.init.empty()) {
+  } else if (config.init_model || !settings.init.empty()) {
     // Warm start: the earlier network's weights AND its normalisation (the weights only make sense on
     // inputs normalised the way they were trained).
-    nn::AutoencoderModel initial = loadCompatibleAutoencoder(settings.init, settings.dataset.features);
+    nn::AutoencoderModel initial =
+        config.init_model ? *config.init_model : loadCompatibleAutoencoder(settings.init, settings.dataset.features);
     if (!(initial.network.shape() == config.shape))
       throw InputError(settings.init.string(), 0, "the --init autoencoder has another shape than requested");
     model.network = std::move(initial.network);
@@ -69,7 +76,12 @@ AutoencoderTrainingResult trainAutoencoder(const AutoencoderTrainingConfig& conf
     model.network.initialise(settings.seed);
   }
 
-  const WindowSet windows = makeWindows(data.clips, toStatistics(model.normalisation), settings.windows);
+  if (!config.train_encoder) {
+    parameters = {&model.network.decoder.weight};
+    optimiser = nn::Adam<float>(parameters, settings.adamOptions());
+  }
+  const FeatureStatistics statistics = toStatistics(model.normalisation);
+  WindowSet windows = makeWindows(data.clips, statistics, settings.windows);
   if (callbacks.log)
     callbacks.log(std::to_string(windows.count()) + " windows of " + std::to_string(windows.frames) + " frames");
   const int frames = windows.frames;
@@ -83,24 +95,42 @@ AutoencoderTrainingResult trainAutoencoder(const AutoencoderTrainingConfig& conf
   setup.parameters = parameters;
   setup.optimiser = &optimiser;
   setup.started = started;
+  if (settings.augmentation.enabled())
+    setup.begin_epoch = [&](int epoch) {
+      windows = makeWindows(augmentedEpoch(data.clips, settings.augmentation, settings.seed, epoch, loading.dataset),
+                            statistics, settings.windows);
+      return windows.count();
+    };
+  const nn::Normalisation normalisation = model.normalisation;
   setup.micro_step = [&](const std::vector<int>& indices, std::mt19937& rng) {
     const nn::Mat<float> batch = gatherWindows(windows.values, frames, indices);
+    const nn::Mat<float> contacts = gatherWindows(windows.contacts, frames, indices);
+    const nn::ReconstructionFootTerm<float> foot{&contacts, &normalisation, static_cast<float>(config.foot_weight)};
     const nn::ReconstructionTerms terms =
-        model.network.accumulateReconstruction(batch, frames, alpha, dropout, dropout > 0.0f ? &rng : nullptr);
+        model.network.accumulateReconstruction(batch, frames, alpha, dropout, dropout > 0.0f ? &rng : nullptr, foot);
+    if (!config.train_encoder) {  // the frozen encoder's gradients are never used
+      model.network.encoder.weight.zeroGrad();
+      model.network.encoder.bias.zeroGrad();
+    }
+    if (config.foot_weight > 0.0)
+      return StepLosses{terms.total, {{"mse", terms.mse}, {"sparsity", terms.sparsity}, {"foot", terms.foot}}};
     return StepLosses{terms.total, {{"mse", terms.mse}, {"sparsity", terms.sparsity}}};
   };
+  const auto metadata = [&](const std::vector<EpochRecord>& so_far) {
+    nn::NetworkMetadata m = trainingMetadata(settings, so_far, data);
+    m.training.sparsity = config.sparsity;
+    m.training.dropout = config.dropout;
+    if (config.foot_weight > 0.0) m.properties.emplace_back("foot_weight", std::to_string(config.foot_weight));
+    return m;
+  };
   setup.end_epoch = [&](const std::vector<EpochRecord>& so_far) {
-    model.metadata = trainingMetadata(settings, so_far, data);
-    model.metadata.training.sparsity = config.sparsity;
-    model.metadata.training.dropout = config.dropout;
+    model.metadata = metadata(so_far);
     saveCheckpoint(settings, nn::serialiseAutoencoder(model), nn::NetworkKind::Autoencoder, optimiser, so_far, fingerprint);
     if (callbacks.autoencoder_snapshot) callbacks.autoencoder_snapshot(model);
   };
 
   runTrainingLoop(setup, history, callbacks, result);
-  model.metadata = trainingMetadata(settings, history, data);
-  model.metadata.training.sparsity = config.sparsity;
-  model.metadata.training.dropout = config.dropout;
+  model.metadata = metadata(history);
   if (result.status == TrainingStatus::Completed && !settings.output.empty()) nn::saveAutoencoder(model, settings.output);
   result.seconds = secondsSince(started);
   return result;

@@ -3,7 +3,9 @@
 #include <chrono>
 #include <nlohmann/json.hpp>
 
+#include "features/root_path.h"
 #include "nn/losses.h"
+#include "style/familiarity.h"
 #include "nn/style_loss.h"
 #include "style/stylizer.h"
 
@@ -36,6 +38,8 @@ void accumulate(ClipEvaluation& sum, const ClipEvaluation& clip) {
   sum.bone_error_cm_output += w * clip.bone_error_cm_output;
   sum.foot_skate_cm_s_content += w * clip.foot_skate_cm_s_content;
   sum.foot_skate_cm_s_output += w * clip.foot_skate_cm_s_output;
+  sum.network_path_distance_ratio += w * clip.network_path_distance_ratio;
+  sum.network_path_end_error_fraction += w * clip.network_path_end_error_fraction;
   sum.stylize_seconds += clip.stylize_seconds;
 }
 
@@ -45,6 +49,7 @@ nlohmann::json clipJson(const ClipEvaluation& c) {
           {"style_clip", c.style_clip},
           {"frames", c.frames},
           {"reconstruction", {{"mse_normalised", c.reconstruction_mse}, {"joint_error_cm", c.reconstruction_joint_error_cm}}},
+          {"familiarity", familiarityName(familiarityLevel(c.reconstruction_joint_error_cm))},
           {"content_distance",
            {{"before", c.content_distance_before}, {"after", c.content_distance_after}}},
           {"style_distance",
@@ -55,10 +60,32 @@ nlohmann::json clipJson(const ClipEvaluation& c) {
             {"projection_ratio", ratio(c.style_distance_projection, c.style_distance_before)}}},
           {"bone_error_cm", {{"content", c.bone_error_cm_content}, {"output", c.bone_error_cm_output}}},
           {"foot_skate_cm_s", {{"content", c.foot_skate_cm_s_content}, {"output", c.foot_skate_cm_s_output}}},
+          {"network_path", {{"distance_ratio", c.network_path_distance_ratio},
+                            {"end_error_fraction", c.network_path_end_error_fraction}}},
           {"stylize_seconds", c.stylize_seconds}};
 }
 
 }  // namespace
+
+StyleDistances measureStyleDistances(const nn::Autoencoder<float>& encoder, const nn::Normalisation& normalisation,
+                                     const Eigen::MatrixXd& content, const Eigen::MatrixXd& output,
+                                     const nn::Mat<float>& style_gram) {
+  const int frames = static_cast<int>(content.cols());
+  const int pooled = nn::evenFrames(frames) / 2;
+  const nn::Mat<float> h_content = encoder.encode(normalised(content, normalisation), frames);
+  const nn::Mat<float> h_output = encoder.encode(normalised(output, normalisation), frames);
+  const std::vector<nn::Mat<float>> gram = {style_gram};
+  StyleDistances d;
+  d.content_after = static_cast<double>(nn::meanSquaredError<float>(h_output, h_content, 0.0f, nullptr));
+  d.style_before = static_cast<double>(nn::styleLoss<float>(h_content, pooled, gram, 0.0f, nullptr));
+  d.style_after = static_cast<double>(nn::styleLoss<float>(h_output, pooled, gram, 0.0f, nullptr));
+  return d;
+}
+
+nn::Mat<float> styleGramOf(const nn::Autoencoder<float>& encoder, const nn::Normalisation& normalisation,
+                           const Eigen::MatrixXd& style) {
+  return nn::styleGram(encoder, normalised(style, normalisation));
+}
 
 double boneLengthError(const Eigen::MatrixXd& features, const Eigen::VectorXd& bone_lengths) {
   if (features.cols() == 0) return 0.0;
@@ -90,7 +117,7 @@ double footSkate(const Eigen::MatrixXd& features, const Eigen::MatrixXd& contact
 
 EvaluationReport evaluateStyleNetwork(const nn::AutoencoderModel& autoencoder, const nn::StyleModel& network,
                                       const std::vector<MotionClip>& clips, const std::vector<MotionClip>& styles,
-                                      const std::vector<int>& pairing) {
+                                      const std::vector<int>& pairing, PathMode path) {
   if (pairing.size() != clips.size()) throw std::invalid_argument("evaluateStyleNetwork: one pairing per clip");
   const auto started = Clock::now();
   EvaluationReport report;
@@ -99,13 +126,12 @@ EvaluationReport evaluateStyleNetwork(const nn::AutoencoderModel& autoencoder, c
   const nn::Autoencoder<float>& loss = network.loss_network;
   const nn::Normalisation& norm = network.normalisation;
   std::vector<nn::Mat<float>> style_grams;
-  for (const MotionClip& style : styles) style_grams.push_back(nn::styleGram(loss, normalised(style.features.values, norm)));
+  for (const MotionClip& style : styles) style_grams.push_back(styleGramOf(loss, norm, style.features.values));
 
   for (std::size_t i = 0; i < clips.size(); ++i) {
     const MotionClip& clip = clips[i];
     const Eigen::MatrixXd& content = clip.features.values;
     const int frames = clip.frameCount();
-    const int pooled = nn::evenFrames(frames) / 2;
     ClipEvaluation e;
     e.file = clip.file.string();
     e.style_clip = styles.at(static_cast<std::size_t>(pairing[i])).file.filename().string();
@@ -121,18 +147,23 @@ EvaluationReport evaluateStyleNetwork(const nn::AutoencoderModel& autoencoder, c
     e.reconstruction_joint_error_cm = joint_error / (static_cast<double>(frames) * kCanonicalJointCount);
 
     const auto t0 = Clock::now();
-    const Eigen::MatrixXd output = stylizer.stylizeFeatures(content, 1.0);
+    const Eigen::MatrixXd own = stylizer.stylizeFeatures(content, 1.0, PathMode::Style);
     e.stylize_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    Eigen::MatrixXd output = own;
+    applyPathMode(output, content, path);
+    const RootPathComparison network_path = compareRootPaths(summariseRootPath(content), summariseRootPath(own));
+    e.network_path_distance_ratio = network_path.distance_ratio;
+    e.network_path_end_error_fraction = network_path.end_error_fraction;
 
-    const nn::Mat<float> h_content = loss.encode(normalised(content, norm), frames);
-    const nn::Mat<float> h_projected = loss.encode(normalised(projectFeatures({loss, norm, {}}, content), norm), frames);
-    const nn::Mat<float> h_output = loss.encode(normalised(output, norm), frames);
-    e.content_distance_before = static_cast<double>(nn::meanSquaredError<float>(h_projected, h_content, 0.0f, nullptr));
-    e.content_distance_after = static_cast<double>(nn::meanSquaredError<float>(h_output, h_content, 0.0f, nullptr));
-    const std::vector<nn::Mat<float>> gram = {style_grams[static_cast<std::size_t>(pairing[i])]};
-    e.style_distance_before = static_cast<double>(nn::styleLoss<float>(h_content, pooled, gram, 0.0f, nullptr));
-    e.style_distance_after = static_cast<double>(nn::styleLoss<float>(h_output, pooled, gram, 0.0f, nullptr));
-    e.style_distance_projection = static_cast<double>(nn::styleLoss<float>(h_projected, pooled, gram, 0.0f, nullptr));
+    const nn::Mat<float>& gram = style_grams[static_cast<std::size_t>(pairing[i])];
+    const Eigen::MatrixXd projected = projectFeatures({loss, norm, {}}, content);
+    const StyleDistances after = measureStyleDistances(loss, norm, content, output, gram);
+    const StyleDistances projection = measureStyleDistances(loss, norm, content, projected, gram);
+    e.content_distance_before = projection.content_after;
+    e.content_distance_after = after.content_after;
+    e.style_distance_before = after.style_before;
+    e.style_distance_after = after.style_after;
+    e.style_distance_projection = projection.style_after;
 
     e.bone_error_cm_content = boneLengthError(content, clip.bone_lengths);
     e.bone_error_cm_output = boneLengthError(output, clip.bone_lengths);
@@ -149,7 +180,8 @@ EvaluationReport evaluateStyleNetwork(const nn::AutoencoderModel& autoencoder, c
                       &mean.content_distance_after, &mean.style_distance_before, &mean.style_distance_after,
                       &mean.style_distance_projection,
                       &mean.bone_error_cm_content, &mean.bone_error_cm_output, &mean.foot_skate_cm_s_content,
-                      &mean.foot_skate_cm_s_output})
+                      &mean.foot_skate_cm_s_output, &mean.network_path_distance_ratio,
+                      &mean.network_path_end_error_fraction})
       *v /= n;
     report.stylize_frames_per_second = mean.stylize_seconds > 0 ? n / mean.stylize_seconds : 0.0;
   }

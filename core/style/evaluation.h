@@ -19,6 +19,10 @@
 //   foot_skate_cm_s           mean horizontal speed of a foot joint over the frame pairs (t, t+1) that
 //                             the CONTENT labels in contact at both frames, world positions at the
 //                             reference scale, cm per second; for C and for Y
+//   familiarity               the reading of reconstruction_joint_error_cm (familiarity.h)
+//   network_path              how far the NETWORK's own root motion strays from C's (root_path.h):
+//                             distance_ratio, end_error_fraction; the output judged above follows
+//                             `path` (path_mode.h), by default C's own path
 //   stylize_seconds           wall time of stylize(C)
 // "Reference cm": characters are scaled to kReferenceSkeletalHeightCm (features/representation.h), so
 // figures compare across characters; the Bandai actors are at about their real size.
@@ -31,6 +35,7 @@
 
 #include "nn/network_file.h"
 #include "style/motion_dataset.h"
+#include "style/path_mode.h"
 
 namespace motionstyle::style {
 
@@ -49,6 +54,8 @@ struct ClipEvaluation {
   double bone_error_cm_output = 0;
   double foot_skate_cm_s_content = 0;
   double foot_skate_cm_s_output = 0;
+  double network_path_distance_ratio = 1;
+  double network_path_end_error_fraction = 0;
   double stylize_seconds = 0;
 };
 
@@ -65,7 +72,23 @@ struct EvaluationReport {
 // clips: the content clips; styles: the style clips; pairing[i] indexes `styles` for clips[i].
 EvaluationReport evaluateStyleNetwork(const nn::AutoencoderModel& autoencoder, const nn::StyleModel& network,
                                       const std::vector<MotionClip>& clips, const std::vector<MotionClip>& styles,
-                                      const std::vector<int>& pairing);
+                                      const std::vector<int>& pairing, PathMode path = PathMode::Content);
+
+// The distances of the report for one output: eq. 4 between `output` and `content`, eq. 5 of `content`
+// and of `output` to the style clip's Gram matrix, all through `encoder` (features 66 x frames in
+// representation units; `style_gram` from nn::styleGram). The style ratio says how much style was added.
+struct StyleDistances {
+  double content_after = 0;
+  double style_before = 0;
+  double style_after = 0;
+  double styleRatio() const { return style_before > 0 ? style_after / style_before : 0.0; }
+};
+StyleDistances measureStyleDistances(const nn::Autoencoder<float>& encoder, const nn::Normalisation& normalisation,
+                                     const Eigen::MatrixXd& content, const Eigen::MatrixXd& output,
+                                     const nn::Mat<float>& style_gram);
+// Gram(L(S)) of a style clip's features (representation units) through `encoder`.
+nn::Mat<float> styleGramOf(const nn::Autoencoder<float>& encoder, const nn::Normalisation& normalisation,
+                           const Eigen::MatrixXd& style);
 
 // Figures used by the report, public for tests and the GUI's metrics panel. features: 66 x frames,
 // representation units. foot skate uses `contacts` (4 x frames) and the anchor's fps.

@@ -50,6 +50,13 @@ std::vector<FoundFile> findFiles(const std::vector<fs::path>& inputs) {
 
 }  // namespace
 
+DatasetOptions styleClipOptions(const DatasetOptions& base, int minimum_frames) {
+  DatasetOptions options = base;
+  options.features.canonical_rig = false;
+  options.minimum_frames = std::max(options.minimum_frames, minimum_frames);
+  return options;
+}
+
 std::vector<fs::path> findBvhFiles(const std::vector<fs::path>& inputs) {
   std::vector<fs::path> files;
   for (FoundFile& file : findFiles(inputs)) files.push_back(std::move(file.path));
@@ -57,9 +64,16 @@ std::vector<fs::path> findBvhFiles(const std::vector<fs::path>& inputs) {
 }
 
 MotionClip loadMotionClip(const fs::path& file, const DatasetOptions& options) {
+  auto motion = std::make_shared<const Motion>(readBvh(file));  // InputError with the line, NaN included
+  const JointMapping mapping = mapJoints(motion->skeleton, file.string());  // InputError naming the file
+  MotionClip clip = makeMotionClip(*motion, mapping, file, options);
+  if (options.keep_motion) clip.motion = std::move(motion);
+  return clip;
+}
+
+MotionClip makeMotionClip(const Motion& motion, const JointMapping& mapping, const fs::path& file,
+                          const DatasetOptions& options) {
   const std::string name = file.string();
-  const Motion motion = readBvh(file);  // InputError with the line for malformed text, NaN included
-  const JointMapping mapping = mapJoints(motion.skeleton, name);  // InputError naming the file
   MotionClip clip;
   clip.file = file;
   clip.labels = parseClipLabels(file);

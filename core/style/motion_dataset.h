@@ -12,6 +12,7 @@
 #include <atomic>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -28,7 +29,14 @@ struct DatasetOptions {
   // Clips with fewer frames AT THE FEATURE RATE are rejected (InputError naming the file). Style clips
   // use the loss network's filter width (25): a shorter clip gives no full receptive field.
   int minimum_frames = 2;
+  // Keep each clip's Motion (MotionClip::motion) for training-time augmentation (augmentation.h).
+  bool keep_motion = false;
 };
+
+// The options for a STYLE clip: `base` with rig canonicalisation off (features/rig_canonicalisation.h:
+// a style clip's girdle posture is part of its style) and at least `minimum_frames` frames (the loss
+// network's filter width: a shorter clip gives no full receptive field).
+DatasetOptions styleClipOptions(const DatasetOptions& base, int minimum_frames);
 
 // One clip ready for training or evaluation (computed data; the BVH file is the editable source).
 struct MotionClip {
@@ -36,6 +44,7 @@ struct MotionClip {
   ClipLabels labels;
   MotionFeatures features;       // values 66 x frames (representation units), contacts 4 x frames
   Eigen::VectorXd bone_lengths;  // nn::kBoneCount (20): bone c-1 = canonical joint c to its parent, reference cm
+  std::shared_ptr<const Motion> motion;  // the source, only with DatasetOptions::keep_motion (augmentation)
 
   int frameCount() const { return features.frameCount(); }
 };
@@ -48,6 +57,10 @@ std::vector<std::filesystem::path> findBvhFiles(const std::vector<std::filesyste
 
 // Reads, maps and featurises one file. Throws InputError naming the file (see the top of this file).
 MotionClip loadMotionClip(const std::filesystem::path& file, const DatasetOptions& options = {});
+
+// The same for a clip already in memory (`file` names it in errors and gives its labels).
+MotionClip makeMotionClip(const Motion& motion, const JointMapping& mapping, const std::filesystem::path& file,
+                          const DatasetOptions& options = {});
 
 // loadMotionClip over findBvhFiles(inputs). With BadFilePolicy::Skip, files from a folder that fail
 // are skipped and a line "skipped FILE: reason" is appended to *warnings (if given); if every file is

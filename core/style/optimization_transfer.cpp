@@ -150,6 +150,9 @@ OptimizationResult optimizeStyleTransfer(const nn::AutoencoderModel& autoencoder
   if (!hidden.value.allFinite()) throw std::runtime_error("the optimisation diverged (non-finite hidden units)");
 
   result.clip.features = denormalised(Decoder(network, frames).forward(hidden.value), norm);
+  applyPathMode(result.clip.features, content, options.path);
+  enforceBoneLengths(result.clip.features, referenceProportions());
+  result.clip.path = options.path;
   result.clip.contacts = content_contacts;
   result.final_terms = progress;
   result.seconds = std::chrono::duration<double>(Clock::now() - started).count();

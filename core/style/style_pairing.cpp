@@ -57,4 +57,27 @@ std::vector<int> pairStyles(const std::vector<std::string>& content_labels, cons
   return pairing;
 }
 
+std::vector<int> pairTargets(const std::vector<std::string>& content_labels, const std::vector<std::string>& target_labels,
+                             const std::string& source) {
+  int fallback = -1;
+  for (std::size_t i = 0; i < target_labels.size() && fallback < 0; ++i)
+    if (target_labels[i].empty()) fallback = static_cast<int>(i);
+  std::vector<int> pairing;
+  std::set<std::string> lacking;
+  for (const std::string& label : content_labels) {
+    int target = fallback;
+    for (std::size_t i = 0; i < target_labels.size(); ++i)
+      if (!label.empty() && target_labels[i] == label) target = static_cast<int>(i);
+    if (target < 0) lacking.insert(label.empty() ? "(no label)" : label);
+    pairing.push_back(target);
+  }
+  if (!lacking.empty()) {
+    std::string list;
+    for (const std::string& label : lacking) list += (list.empty() ? "" : ", ") + label;
+    throw InputError(source, 0, "the network's stored style targets cover no default and not the content label(s): " +
+                                    list + " (give --style LABEL=CLIP.bvh for them)");
+  }
+  return pairing;
+}
+
 }  // namespace motionstyle::style

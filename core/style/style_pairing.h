@@ -33,6 +33,12 @@ StyleSource parseStyleSource(const std::string& text);
 // labels without a style clip (when there is no default) or for an empty `styles`.
 std::vector<int> pairStyles(const std::vector<std::string>& content_labels, const std::vector<StyleSource>& styles);
 
+// The same rule against stored style targets (nn::StyleTarget: a label per target, "" = the default):
+// pairing[i] = index into `target_labels` of the target with label content_labels[i], else of the
+// default. Throws InputError naming `source` and listing the labels left without a target.
+std::vector<int> pairTargets(const std::vector<std::string>& content_labels, const std::vector<std::string>& target_labels,
+                             const std::string& source);
+
 // The label -> style index table (before the default is applied), for messages and the network file.
 std::map<std::string, int> styleLabelTable(const std::vector<StyleSource>& styles);
 

@@ -40,6 +40,30 @@ nn::Mat<float> encodeAllWindows(const nn::Autoencoder<float>& loss_network, cons
   return hidden;
 }
 
+bool sameEncoder(const nn::Autoencoder<float>& a, const nn::Autoencoder<float>& b) {
+  return a.shape() == b.shape() && a.encoder.weight.value == b.encoder.weight.value &&
+         a.encoder.bias.value == b.encoder.bias.value;
+}
+
+std::string gramHash(const nn::Mat<float>& gram) {
+  return nn::contentHash(std::string_view(reinterpret_cast<const char*>(gram.data()),
+                                          static_cast<std::size_t>(gram.size()) * sizeof(float)));
+}
+
+// The targets a network trained on `styles` stores: one per label of the pairing table, and the
+// default ("") when there is one, so that pairTargets pairs as pairStyles did.
+std::vector<nn::StyleTarget> targetsOf(const std::vector<StyleSource>& styles, const std::vector<nn::Mat<float>>& grams) {
+  std::vector<nn::StyleTarget> targets;
+  for (const auto& [label, style] : styleLabelTable(styles))
+    if (!label.empty()) targets.push_back({label, grams[static_cast<std::size_t>(style)]});
+  for (std::size_t i = 0; i < styles.size(); ++i)
+    if (!styles[i].label) {
+      targets.push_back({"", grams[i]});
+      break;
+    }
+  return targets;
+}
+
 std::string fileHash(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
   std::ostringstream bytes;
@@ -75,14 +99,33 @@ StyleTrainingResult trainStyleNetwork(const StyleTrainingConfig& config, const T
   const FeatureStatistics statistics = toStatistics(loss.normalisation);
 
   // Style clips: every one must cover the loss network's filter (25 frames at 60 fps).
-  DatasetOptions style_options = settings.dataset;
-  style_options.minimum_frames = loss.network.shape().width;
+  const DatasetOptions style_options = styleClipOptions(settings.dataset, loss.network.shape().width);
   std::vector<MotionClip> style_clips;
   std::vector<std::string> style_hashes;
   for (const StyleSource& source : config.styles) {
     style_clips.push_back(loadMotionClip(source.file, style_options));
     style_hashes.push_back(fileHash(source.file));
   }
+
+  // Without style clips: stored targets, given or taken from the network the run starts from.
+  std::vector<nn::StyleTarget> stored = config.style_targets;
+  nn::NetworkMetadata stored_metadata;  // the style clips the stored targets came from
+  std::string stored_source = "the given style targets";
+  if (config.styles.empty() && stored.empty()) {
+    const nn::StyleModel initial =
+        config.init_model ? *config.init_model : loadCompatibleStyleModel(settings.init, settings.dataset.features);
+    stored_source = config.init_model ? std::string("the network to retrain") : settings.init.string();
+    if (initial.style_targets.empty())
+      throw InputError(stored_source, 0, "the network stores no style targets (made before format 3): give its style "
+                                         "clips with --style");
+    if (!sameEncoder(initial.loss_network, loss.network))
+      throw InputError(stored_source, 0, "the network's style targets were computed by another encoder than this "
+                                         "loss network's (adapt keeps the encoder unless --train-encoder): give the "
+                                         "style clips with --style");
+    stored = initial.style_targets;
+    stored_metadata = initial.metadata;
+  }
+  for (const nn::StyleTarget& target : stored) style_hashes.push_back("stored:" + target.label + ":" + gramHash(target.gram));
 
   TrainingClips data;
   try {
@@ -95,7 +138,16 @@ StyleTrainingResult trainStyleNetwork(const StyleTrainingConfig& config, const T
   result.held_out_files = data.held_out_files;
   std::vector<std::string> labels;
   for (const MotionClip& clip : data.clips) labels.push_back(clip.labels.content);
-  result.pairing = pairStyles(labels, config.styles);
+  std::vector<std::string> target_names;  // per style clip or stored target, for the log
+  if (!config.styles.empty()) {
+    result.pairing = pairStyles(labels, config.styles);
+    for (const StyleSource& source : config.styles) target_names.push_back(source.file.filename().string());
+  } else {
+    std::vector<std::string> target_labels;
+    for (const nn::StyleTarget& target : stored) target_labels.push_back(target.label);
+    result.pairing = pairTargets(labels, target_labels, stored_source);
+    for (const std::string& label : target_labels) target_names.push_back("stored target '" + label + "'");
+  }
   if (callbacks.log) {
     std::map<std::string, std::pair<int, int>> table;  // label -> (clips, style)
     for (std::size_t i = 0; i < labels.size(); ++i) {
@@ -105,18 +157,19 @@ StyleTrainingResult trainStyleNetwork(const StyleTrainingConfig& config, const T
     }
     for (const auto& [label, entry] : table)
       callbacks.log("pairing: " + (label.empty() ? std::string("(no label)") : label) + " (" +
-                    std::to_string(entry.first) + " clips) -> " +
-                    config.styles[static_cast<std::size_t>(entry.second)].file.filename().string());
+                    std::to_string(entry.first) + " clips) -> " + target_names[static_cast<std::size_t>(entry.second)]);
   }
 
-  // Targets computed once: style Gram matrices per style clip, L(I) per content window.
+  // Targets computed once: style Gram matrices per style clip (or stored), L(I) per content window.
   std::vector<nn::Mat<float>> style_grams;
   for (const MotionClip& clip : style_clips) {
     Eigen::MatrixXd values = clip.features.values;
     statistics.normalize(values);
     style_grams.push_back(nn::styleGram(loss.network, nn::Mat<float>(values.cast<float>())));
   }
-  const WindowSet windows = makeWindows(data.clips, statistics, settings.windows);
+  for (const nn::StyleTarget& target : stored) style_grams.push_back(target.gram);
+  result.model.style_targets = config.styles.empty() ? stored : targetsOf(config.styles, style_grams);
+  WindowSet windows = makeWindows(data.clips, statistics, settings.windows);
   nn::Mat<float> content_hidden;
   try {
     content_hidden = encodeAllWindows(loss.network, windows, callbacks, started);
@@ -146,14 +199,15 @@ StyleTrainingResult trainStyleNetwork(const StyleTrainingConfig& config, const T
     first_epoch = restoreFromState(checkpoint.state, nn::NetworkKind::Style, fingerprint, settings.checkpointPath(),
                                    optimiser, history);
     if (callbacks.log) callbacks.log("resuming after epoch " + std::to_string(first_epoch - 1));
-  } else if (!settings.init.empty()) {
-    nn::StyleModel initial = loadCompatibleStyleModel(settings.init, settings.dataset.features);
+  } else if (config.init_model || !settings.init.empty()) {
+    nn::StyleModel initial =
+        config.init_model ? *config.init_model : loadCompatibleStyleModel(settings.init, settings.dataset.features);
     if (!(initial.transformer.shape() == config.shape))
       throw InputError(settings.init.string(), 0, "the --init network has another shape than requested");
     model.transformer = std::move(initial.transformer);
     parameters = model.transformer.parameters();
     optimiser = nn::Adam<float>(parameters, settings.adamOptions());
-    if (callbacks.log) callbacks.log("warm start from " + settings.init.string());
+    if (callbacks.log) callbacks.log("warm start from " + (config.init_model ? stored_source : settings.init.string()));
   } else {
     model.transformer.initialise(settings.seed);
   }
@@ -169,6 +223,15 @@ StyleTrainingResult trainStyleNetwork(const StyleTrainingConfig& config, const T
   setup.parameters = parameters;
   setup.optimiser = &optimiser;
   setup.started = started;
+  if (settings.augmentation.enabled())
+    setup.begin_epoch = [&](int epoch) {
+      windows = makeWindows(augmentedEpoch(data.clips, settings.augmentation, settings.seed, epoch, settings.dataset),
+                            statistics, settings.windows);
+      TrainingCallbacks quiet;  // re-encoding is part of the epoch: no "loading" progress mid-run
+      quiet.cancel = callbacks.cancel;
+      content_hidden = encodeAllWindows(loss.network, windows, quiet, started);
+      return windows.count();
+    };
   setup.micro_step = [&](const std::vector<int>& indices, std::mt19937&) {
     nn::StyleBatch<float> batch;
     batch.frames = frames;
@@ -196,6 +259,12 @@ StyleTrainingResult trainStyleNetwork(const StyleTrainingConfig& config, const T
     for (const auto& [label, style] : styleLabelTable(config.styles))
       m.properties.emplace_back("style_for_" + (label.empty() ? std::string("unlabelled") : label),
                                 config.styles[static_cast<std::size_t>(style)].file.filename().string());
+    if (config.styles.empty()) {  // trained from stored targets: the clips they came from
+      m.style_clips = stored_metadata.style_clips;
+      for (const auto& [key, value] : stored_metadata.properties)
+        if (key.rfind("style_for_", 0) == 0) m.properties.emplace_back(key, value);
+      m.properties.emplace_back("style_targets_from", std::filesystem::path(stored_source).filename().string());
+    }
     return m;
   };
   setup.end_epoch = [&](const std::vector<EpochRecord>& so_far) {

@@ -28,6 +28,35 @@ Eigen::MatrixXi overridesAtRate(const Eigen::MatrixXi& overrides, double content
   return out;
 }
 
+// The content's contact segments on which the stylized foot really rests: a segment is kept when the
+// output's foot joint moves at most kLockableSpeedCmS on average over it (horizontally, the
+// character's cm per second). A
+// style that changes the stepping lifts a foot where the content's was down; locking it there pulls
+// the foot 15-30 cm off its targets for a whole stance (docs/decisions.md).
+constexpr double kLockableSpeedCmS = 20.0;
+
+Eigen::MatrixXi restingContacts(const Eigen::MatrixXi& content_contacts, const StylizedClip& stylized) {
+  Eigen::MatrixXi kept = Eigen::MatrixXi::Zero(content_contacts.rows(), content_contacts.cols());
+  const SpaceConvention& convention = stylized.anchor.convention;
+  const Eigen::Vector3d up = convention.fileUp();
+  for (int label = 0; label < kContactCount; ++label) {
+    const int column = 3 * index(kContactJoint[static_cast<std::size_t>(label)]);
+    for (const ContactSegment& segment : contactSegments(content_contacts, label)) {
+      double travelled = 0.0;
+      for (int f = segment.first; f < segment.last; ++f) {
+        Eigen::Vector3d step = (stylized.world_positions.block<1, 3>(f + 1, column) -
+                                stylized.world_positions.block<1, 3>(f, column)).transpose();
+        step -= up.dot(step) * up;
+        travelled += step.norm();
+      }
+      const double seconds = (segment.last - segment.first) / stylized.fps;
+      const double speed = seconds > 0.0 ? travelled * convention.cm_per_unit / seconds : 0.0;
+      if (speed <= kLockableSpeedCmS) kept.block(segment.first, label, segment.last - segment.first + 1, 1).setOnes();
+    }
+  }
+  return kept;
+}
+
 }  // namespace
 
 double fileFloorHeight(const FeatureAnchor& anchor) {
@@ -56,12 +85,14 @@ StylizedCleanup cleanUpStylizedClip(const Motion& content, const JointMapping& m
   // its feet slide at 70-100 cm/s where the content is planted, above any speed threshold (measured
   // on a held-back Bandai run with three style networks: 0-6 contact frames of 159, vs 15-35 per
   // foot joint in the content), so the clean-up locked almost nothing and the cleaned feet still slid
-  // at 60-90 cm/s there. Contacts found on the output as well keep any stance a style lengthens.
-  // The user's overrides (edited tracks) come last and win.
+  // at 60-90 cm/s there. Contacts found on the output as well keep any stance a style lengthens. A
+  // content contact on which the output's foot does not rest (restingContacts: the style moved the
+  // step) is not locked. The user's overrides (edited tracks) come last and win.
   const Eigen::MatrixXi content_contacts = contactsPerFrame(stylized.contacts);
   Eigen::MatrixXi contacts =
-      content_contacts.cwiseMax(detectContacts(stylized.world_positions, canonicalContactJoints(), up, floor,
-                                               stylized.fps, restPoseBodyHeight(content.skeleton, up)));
+      restingContacts(content_contacts, stylized)
+          .cwiseMax(detectContacts(stylized.world_positions, canonicalContactJoints(), up, floor, stylized.fps,
+                                   restPoseBodyHeight(content.skeleton, up)));
   if (contact_overrides.size() > 0)
     contacts = applyContactOverrides(
         contacts, overridesAtRate(contact_overrides, content.fps(), stylized.fps, stylized.frameCount()));

@@ -13,6 +13,28 @@ void requireFeatures(const Eigen::MatrixXd& features, const char* what) {
                                 std::to_string(features.rows()) + " x " + std::to_string(features.cols()));
 }
 
+// Frames of the first and last pose added at each end before the networks run (then cropped): the
+// convolutions see a clip's edges as the training windows had them (cutWindow pads short slices the same
+// way) instead of the zero padding of a bare convolution. It covers the receptive field of the
+// transformation network and the projection together; without it the edges of short clips were
+// reconstructed far worse (other studios' 1-3 s clips: 1.72 -> 1.42 cm; docs/decisions.md).
+constexpr int kEdgePaddingFrames = 64;
+
+Eigen::MatrixXd padEdges(const Eigen::MatrixXd& features) {
+  const Eigen::Index frames = features.cols();
+  Eigen::MatrixXd padded(features.rows(), frames + 2 * kEdgePaddingFrames);
+  padded.leftCols(kEdgePaddingFrames) = features.col(0).replicate(1, kEdgePaddingFrames);
+  padded.middleCols(kEdgePaddingFrames, frames) = features;
+  padded.rightCols(kEdgePaddingFrames) = features.col(frames - 1).replicate(1, kEdgePaddingFrames);
+  padded.block(kSidewaysVelocity, 0, 3, kEdgePaddingFrames).setZero();  // the added poses stand still
+  padded.block(kSidewaysVelocity, kEdgePaddingFrames + frames, 3, kEdgePaddingFrames).setZero();
+  return padded;
+}
+
+Eigen::MatrixXd cropEdges(const Eigen::MatrixXd& padded) {
+  return padded.middleCols(kEdgePaddingFrames, padded.cols() - 2 * kEdgePaddingFrames);
+}
+
 nn::Mat<float> normalised(const Eigen::MatrixXd& features, const nn::Normalisation& n) {
   return ((features.colwise() - n.mean).array().colwise() / n.std.array()).matrix().cast<float>();
 }
@@ -30,23 +52,26 @@ Stylizer::Stylizer(nn::StyleModel model) : model_(std::move(model)) {
   fast_ = std::make_unique<nn::FastStylizer>(model_.transformer, model_.loss_network);
 }
 
-Eigen::MatrixXd Stylizer::stylizeFeatures(const Eigen::MatrixXd& features, double strength) const {
+Eigen::MatrixXd Stylizer::stylizeFeatures(const Eigen::MatrixXd& features, double strength, PathMode path) const {
   requireFeatures(features, "Stylizer::stylizeFeatures");
   if (!(strength >= 0.0 && strength <= 1.0)) throw std::invalid_argument("stylize strength must be in [0, 1]");
   if (strength == 0.0) return features;  // exactly the content, no network run
   nn::Mat<float> styled;
   {
     const std::lock_guard<std::mutex> lock(mutex_);
-    styled = fast_->stylize(normalised(features, model_.normalisation));
+    styled = fast_->stylize(normalised(padEdges(features), model_.normalisation));
   }
-  const Eigen::MatrixXd projected = denormalised(styled, model_.normalisation);
-  if (strength == 1.0) return projected;
-  return features + strength * (projected - features);
+  Eigen::MatrixXd result = cropEdges(denormalised(styled, model_.normalisation));
+  if (strength != 1.0) result = features + strength * (result - features);
+  applyPathMode(result, features, path);
+  enforceBoneLengths(result, referenceProportions());
+  return result;
 }
 
-StylizedClip Stylizer::stylize(const MotionFeatures& content, double strength) const {
+StylizedClip Stylizer::stylize(const MotionFeatures& content, double strength, PathMode path) const {
   StylizedClip clip;
-  clip.features = stylizeFeatures(content.values, strength);
+  clip.features = stylizeFeatures(content.values, strength, path);
+  clip.path = path;
   clip.contacts = content.contacts;
   clip.anchor = content.anchor;
   clip.fps = content.anchor.fps;
@@ -57,7 +82,8 @@ StylizedClip Stylizer::stylize(const MotionFeatures& content, double strength) c
 Eigen::MatrixXd projectFeatures(const nn::AutoencoderModel& autoencoder, const Eigen::MatrixXd& features) {
   requireFeatures(features, "projectFeatures");
   nn::FastStylizer fast(autoencoder.network);
-  return denormalised(fast.project(normalised(features, autoencoder.normalisation)), autoencoder.normalisation);
+  return cropEdges(denormalised(fast.project(normalised(padEdges(features), autoencoder.normalisation)),
+                                autoencoder.normalisation));
 }
 
 }  // namespace motionstyle::style

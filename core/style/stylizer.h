@@ -9,7 +9,9 @@
 // so s = 0 returns the content's features exactly (bit for bit) and s = 1 the fully styled motion.
 //
 // The output is at the representation's rate (60 fps), with the CONTENT's foot contacts (the paper's
-// foot loss teaches T to respect them; the IK clean-up locks them).
+// foot loss teaches T to respect them; the IK clean-up locks them). Its root path and timing are the
+// content's unless PathMode::Style lets the style change the pace (path_mode.h), and its bones have the
+// reference lengths exactly (enforceBoneLengths: every target is reachable by the character's limbs).
 
 #include <Eigen/Core>
 #include <memory>
@@ -18,6 +20,7 @@
 #include "features/representation.h"
 #include "nn/fast_stylizer.h"
 #include "nn/network_file.h"
+#include "style/path_mode.h"
 
 namespace motionstyle::style {
 
@@ -29,6 +32,7 @@ struct StylizedClip {
                                     // space (file units and axes), canonicalWorldPositions()
   FeatureAnchor anchor;             // the content's: maps features back to file space
   double fps = kDefaultFeatureFps;  // frames per second of all of the above
+  PathMode path = PathMode::Content;  // whose root path the features follow
 
   int frameCount() const { return static_cast<int>(features.cols()); }
 };
@@ -44,10 +48,11 @@ class Stylizer {
   // Throws std::invalid_argument for a strength outside [0, 1] or NaN, or a wrong shape; InputError is
   // not used here (the features come from extractFeatures, already validated). Thread-safe (one call
   // at a time runs the fast path; others wait).
-  Eigen::MatrixXd stylizeFeatures(const Eigen::MatrixXd& features, double strength) const;
+  Eigen::MatrixXd stylizeFeatures(const Eigen::MatrixXd& features, double strength,
+                                  PathMode path = PathMode::Content) const;
 
   // The whole clip: features, contacts and world positions in the clip's file space.
-  StylizedClip stylize(const MotionFeatures& content, double strength) const;
+  StylizedClip stylize(const MotionFeatures& content, double strength, PathMode path = PathMode::Content) const;
 
  private:
   nn::StyleModel model_;

@@ -12,9 +12,11 @@ namespace motionstyle::style {
 
 double scheduledLearningRate(LearningRateSchedule schedule, double learning_rate, long step, long total_steps) {
   if (schedule == LearningRateSchedule::Constant || total_steps <= 1) return learning_rate;
+  const long warmup = std::min(kWarmupSteps, total_steps / 10);
+  const double warming = step < warmup ? static_cast<double>(step + 1) / static_cast<double>(warmup) : 1.0;
   const double progress = std::clamp(static_cast<double>(step) / static_cast<double>(total_steps - 1), 0.0, 1.0);
   const double cosine = 0.5 * (1.0 + std::cos(std::numbers::pi * progress));  // 1 -> 0
-  return learning_rate * (kFinalLearningRateFraction + (1.0 - kFinalLearningRateFraction) * cosine);
+  return warming * learning_rate * (kFinalLearningRateFraction + (1.0 - kFinalLearningRateFraction) * cosine);
 }
 
 const char* scheduleName(LearningRateSchedule schedule) {
@@ -50,6 +52,7 @@ void TrainingSettings::validate() const {
   if (resume && !init.empty()) throw std::invalid_argument("--resume and --init exclude each other");
   if (holdout_every < 0 || holdout_every == 1) throw std::invalid_argument("hold-out must be 0 (none) or every N >= 2");
   windows.validate();
+  augmentation.validate();
 }
 
 void AutoencoderTrainingConfig::validate() const {
@@ -57,6 +60,9 @@ void AutoencoderTrainingConfig::validate() const {
   if (data.empty() && clips.empty()) throw std::invalid_argument("no training data (folders, files or clips)");
   if (!std::isfinite(sparsity) || sparsity < 0) throw std::invalid_argument("sparsity must be >= 0");
   if (!std::isfinite(dropout) || dropout < 0 || dropout >= 1) throw std::invalid_argument("dropout must be in [0, 1)");
+  if (!std::isfinite(foot_weight) || foot_weight < 0) throw std::invalid_argument("foot weight must be >= 0");
+  if (!train_encoder && settings.resume)
+    throw std::invalid_argument("a run that trains only the decoder cannot be resumed: start it again");
   if (shape.features != kFeatureCount) throw std::invalid_argument("the autoencoder must take 66 features");
   if (shape.hidden < 1 || shape.width < 1 || shape.width % 2 == 0)
     throw std::invalid_argument("autoencoder hidden units must be >= 1 and the width odd");
@@ -66,7 +72,8 @@ void StyleTrainingConfig::validate() const {
   settings.validate();
   if (autoencoder.empty() && !autoencoder_model) throw std::invalid_argument("no loss network (--ae) given");
   if (content.empty() && content_clips.empty()) throw std::invalid_argument("no content clips given");
-  if (styles.empty()) throw std::invalid_argument("no style clip given");
+  if (styles.empty() && style_targets.empty() && settings.init.empty() && !init_model)
+    throw std::invalid_argument("no style clip given (nor stored style targets or a network to take them from)");
   weights.validate();
   if (shape.features != kFeatureCount) throw std::invalid_argument("the transformation network must take 66 features");
   if (shape.hidden < 1 || shape.width < 1 || shape.width % 2 == 0)

@@ -38,6 +38,7 @@
 
 #include "nn/adam.h"
 #include "nn/network_file.h"
+#include "style/augmentation.h"
 #include "style/motion_dataset.h"
 #include "style/style_pairing.h"
 #include "style/training_windows.h"
@@ -91,8 +92,13 @@ enum class TrainingStatus { Completed, Cancelled };
 // steps per epoch, resumed epochs included), so that training ends at a small rate instead of
 // wherever a late spike left it: with a constant 1e-3 the loss network's epoch loss on the Bandai data
 // jumped from 0.04 to 55 at epoch 20 and to 1.3 at epoch 57 of 60 (seed 1; README).
+// Cosine also warms up: the rate rises linearly over the first kWarmupSteps steps (at most a tenth of
+// the run), because Adam's first steps move every weight by about the full rate whatever its gradient,
+// and a wide layer's output then jumps (a style network's loss rose from ~1 to 10^4 in its first
+// steps and the network collapsed to the identity; docs/decisions.md).
 enum class LearningRateSchedule { Constant, Cosine };
 constexpr double kFinalLearningRateFraction = 0.01;
+constexpr long kWarmupSteps = 100;
 
 // The learning rate of (0-based) step `step` of `total_steps` under `schedule`.
 double scheduledLearningRate(LearningRateSchedule schedule, double learning_rate, long step, long total_steps);
@@ -119,6 +125,9 @@ struct TrainingSettings {
   WindowOptions windows;
   DatasetOptions dataset;
   int holdout_every = 0;             // splitHoldout(): every N-th file is kept out of training
+  // Every epoch trains on a fresh augmented copy of each clip (augmentation.h); off = the clips as
+  // loaded. Training clips then keep their Motion in memory.
+  AugmentationOptions augmentation;
 
   std::filesystem::path checkpointPath() const;
   void validate() const;  // std::invalid_argument naming the bad field
@@ -138,11 +147,19 @@ struct TrainingResult {
 
 struct AutoencoderTrainingConfig {
   TrainingSettings settings;
-  std::vector<std::filesystem::path> data;  // folders and/or files (ignored when `clips` is not empty)
+  // Folders and/or files (ignored when `clips` is not empty), featurised without rig canonicalisation:
+  // the loss network learns motion as captured (features/rig_canonicalisation.h).
+  std::vector<std::filesystem::path> data;
   std::vector<MotionClip> clips;            // preloaded clips (the GUI's library)
   nn::AutoencoderShape shape;
   double sparsity = nn::kDefaultSparsity;       // alpha of eq. 3 (mean |w|)
   double dropout = nn::kDefaultInputDropout;    // input dropout rate in [0, 1)
+  double foot_weight = 0.0;  // eq. 7 on the reconstruction (nn::ReconstructionFootTerm), per cm^2
+  // Warm start from a model in memory (wins over settings.init): its weights and normalisation.
+  std::optional<nn::AutoencoderModel> init_model;
+  // false: only the decoder (eq. 2's W~0) learns; the encoder (W0, b0), and with it every content and
+  // style target computed through it, stays as it was (adaptation.h).
+  bool train_encoder = true;
 
   void validate() const;
 };
@@ -165,6 +182,11 @@ struct StyleTrainingConfig {
   std::vector<std::filesystem::path> content;  // content folders/files (ignored when content_clips set)
   std::vector<MotionClip> content_clips;       // preloaded content
   std::vector<StyleSource> styles;             // style clips and their pairing (style_pairing.h)
+  // Without style clips: these stored targets (pairTargets), else those of the settings.init network,
+  // whose loss network must then have the same encoder as this run's (adaptation.h).
+  std::vector<nn::StyleTarget> style_targets;
+  // Warm start from a network in memory (wins over settings.init): its transformation network.
+  std::optional<nn::StyleModel> init_model;
   nn::LossWeights weights;                     // content 1, style 100, foot/bone/trajectory 0.01
   nn::TransformerShape shape;
 
@@ -173,7 +195,7 @@ struct StyleTrainingConfig {
 
 struct StyleTrainingResult : TrainingResult {
   nn::StyleModel model;      // transformer + the loss network it was trained against + normalisation
-  std::vector<int> pairing;  // per training clip: index into config.styles
+  std::vector<int> pairing;  // per training clip: index into config.styles (or the stored targets)
 };
 
 // The representation this build's features use (fps from the options, 21 canonical joints, the

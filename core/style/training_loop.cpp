@@ -84,8 +84,8 @@ TrainingStatus runTrainingLoop(const LoopSetup& setup, std::vector<EpochRecord>&
                                const TrainingCallbacks& callbacks) {
   const TrainingSettings& settings = *setup.settings;
   const int batch = settings.batch_size;
-  const int steps_per_epoch = (setup.window_count + batch - 1) / batch;
-  const long total_steps = static_cast<long>(steps_per_epoch) * (settings.epochs - setup.first_epoch + 1);
+  const long total_steps =
+      static_cast<long>((setup.window_count + batch - 1) / batch) * (settings.epochs - setup.first_epoch + 1);
   long steps_done = 0;
   const auto loop_start = std::chrono::steady_clock::now();
   GradientAccumulator accumulator(setup.parameters);
@@ -94,13 +94,22 @@ TrainingStatus runTrainingLoop(const LoopSetup& setup, std::vector<EpochRecord>&
     const auto epoch_start = std::chrono::steady_clock::now();
     std::mt19937 shuffle_rng = epochGenerator(settings.seed, epoch, 1);
     std::mt19937 layer_rng = epochGenerator(settings.seed, epoch, 2);
-    const std::vector<int> order = shuffledIndices(setup.window_count, shuffle_rng);
+    int window_count = setup.window_count;
+    if (setup.begin_epoch) {
+      try {
+        window_count = setup.begin_epoch(epoch);
+      } catch (const OperationCancelled&) {
+        return TrainingStatus::Cancelled;
+      }
+    }
+    const int steps_per_epoch = (window_count + batch - 1) / batch;
+    const std::vector<int> order = shuffledIndices(window_count, shuffle_rng);
     EpochRecord record;
     record.epoch = epoch;
     int clipped_steps = 0;
     for (int step = 0; step < steps_per_epoch; ++step) {
       const int begin = step * batch;
-      const int end = std::min(setup.window_count, begin + batch);
+      const int end = std::min(window_count, begin + batch);
       accumulator.begin();
       StepLosses losses;
       for (int micro = begin; micro < end; micro += kMicroBatchWindows) {
@@ -142,7 +151,7 @@ TrainingStatus runTrainingLoop(const LoopSetup& setup, std::vector<EpochRecord>&
         progress.terms = losses.terms;
         progress.elapsed_seconds = secondsSince(setup.started);
         const double per_step = secondsSince(loop_start) / static_cast<double>(steps_done);
-        progress.eta_seconds = per_step * static_cast<double>(total_steps - steps_done);
+        progress.eta_seconds = per_step * static_cast<double>(std::max(0L, total_steps - steps_done));
         callbacks.progress(progress);
       }
     }
@@ -163,7 +172,7 @@ TrainingStatus runTrainingLoop(const LoopSetup& setup, std::vector<EpochRecord>&
       progress.terms = record.terms;
       progress.elapsed_seconds = secondsSince(setup.started);
       progress.eta_seconds = secondsSince(loop_start) / static_cast<double>(steps_done) *
-                             static_cast<double>(total_steps - steps_done);
+                             static_cast<double>(std::max(0L, total_steps - steps_done));
       callbacks.progress(progress);
     }
   }
@@ -207,12 +216,14 @@ TrainingClips loadTrainingClips(const std::vector<std::filesystem::path>& inputs
     };
     int done = 0;
     const int total = static_cast<int>(split.training.size());
+    DatasetOptions dataset = settings.dataset;
+    dataset.keep_motion = dataset.keep_motion || settings.augmentation.enabled();
     for (const std::filesystem::path& file : split.training) {
       throwIfCancelled(callbacks.cancel);
       const bool from_folder =
           std::find(explicit_files.begin(), explicit_files.end(), file) == explicit_files.end();
       try {
-        data.clips.push_back(loadMotionClip(file, settings.dataset));
+        data.clips.push_back(loadMotionClip(file, dataset));
         data.training_files.push_back(file);
       } catch (const InputError& error) {
         if (settings.dataset.bad_files == BadFilePolicy::Fail || !from_folder) throw;
@@ -260,6 +271,7 @@ nn::NetworkMetadata trainingMetadata(const TrainingSettings& settings, const std
   if (settings.holdout_every > 0) metadata.properties.emplace_back("holdout_every", std::to_string(settings.holdout_every));
   metadata.properties.emplace_back("window_step", std::to_string(settings.windows.step));
   metadata.properties.emplace_back("nn_threads", std::to_string(nn::computePool().threadCount()));
+  if (settings.augmentation.enabled()) metadata.properties.emplace_back("augmentation", describe(settings.augmentation));
   return metadata;
 }
 
@@ -274,6 +286,7 @@ std::uint64_t dataFingerprint(const TrainingClips& data, const TrainingSettings&
   parts.push_back("clip=" + std::to_string(settings.gradient_clip));
   parts.push_back("seed=" + std::to_string(settings.seed));
   parts.push_back("window=" + std::to_string(settings.windows.frames) + "/" + std::to_string(settings.windows.step));
+  if (settings.augmentation.enabled()) parts.push_back("augmentation=" + describe(settings.augmentation));
   parts.insert(parts.end(), extra.begin(), extra.end());
   return fingerprint(parts);
 }

@@ -52,7 +52,7 @@ struct StepLosses {
 
 struct LoopSetup {
   const TrainingSettings* settings = nullptr;
-  int window_count = 0;
+  int window_count = 0;  // windows per epoch (the first epoch's when begin_epoch changes it)
   int first_epoch = 1;  // 1-based; > 1 when resuming
   std::vector<nn::Parameter<float>*> parameters;
   nn::Adam<float>* optimiser = nullptr;
@@ -60,6 +60,9 @@ struct LoopSetup {
   // (unscaled) and returns its unweighted terms and weighted total. `rng` is the epoch's generator for
   // stochastic layers (dropout).
   std::function<StepLosses(const std::vector<int>& windows, std::mt19937& rng)> micro_step;
+  // Optional: called before each epoch's first step (augmentation: a fresh window set); returns that
+  // epoch's window count, which micro_step's indices then refer to.
+  std::function<int(int epoch)> begin_epoch;
   // Called after each completed epoch (history already appended): checkpoint, snapshot.
   std::function<void(const std::vector<EpochRecord>& history)> end_epoch;
   std::chrono::steady_clock::time_point started;

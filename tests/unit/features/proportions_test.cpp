@@ -49,6 +49,8 @@ TEST(ProportionsInvalid, RejectsBadLengthsAndShapes) {
   Eigen::MatrixXd features = Eigen::MatrixXd::Zero(kFeatureCount, 3);
   EXPECT_THROW(retargetFeatures(features, legless, referenceProportions()), std::invalid_argument);
   EXPECT_THROW(measureProportions(Eigen::MatrixXd::Zero(kFeatureCount, 0)), std::invalid_argument);
+  EXPECT_THROW(enforceBoneLengths(wrong, referenceProportions()), std::invalid_argument);
+  EXPECT_THROW(enforceBoneLengths(features, legless), std::invalid_argument);
 }
 
 TEST(Proportions, TheReferenceIsTheBandaiActorsAndValid) {
@@ -81,6 +83,32 @@ TEST(Proportions, RetargetingGivesTheTargetBonesKeepsDirectionsAndFeetOnTheFloor
     EXPECT_NEAR(retargeted.row(kForwardVelocity).sum(), ratio * own.row(kForwardVelocity).sum(), 1e-9);
     EXPECT_EQ(retargeted.row(kTurningVelocity), own.row(kTurningVelocity));
   }
+}
+
+// Network outputs get exact bone lengths: every frame's bones, not just their mean, keep their
+// directions, the hips stay, the velocities are untouched, and doing it twice changes nothing.
+TEST(Proportions, EnforcingBoneLengthsSetsEveryFrameAndKeepsDirections) {
+  Eigen::MatrixXd noisy = ownFeatures("zombie.bvh");
+  std::mt19937 rng(5);
+  std::normal_distribution<double> noise(0.0, 1.5);
+  for (Eigen::Index f = 0; f < noisy.cols(); ++f)
+    for (int r = 3; r < 63; ++r) noisy(r, f) += noise(rng);  // every joint but the hips, by ~1.5 cm
+  const Proportions& reference = referenceProportions();
+  Eigen::MatrixXd fixed = noisy;
+  enforceBoneLengths(fixed, reference);
+  for (Eigen::Index f = 0; f < fixed.cols(); f += 7)
+    for (int c = 1; c < kCanonicalJointCount; ++c) {
+      const int parent = kCanonicalParent[static_cast<std::size_t>(c)];
+      const Eigen::Vector3d before = noisy.col(f).segment<3>(3 * c) - noisy.col(f).segment<3>(3 * parent);
+      const Eigen::Vector3d after = fixed.col(f).segment<3>(3 * c) - fixed.col(f).segment<3>(3 * parent);
+      EXPECT_NEAR(after.norm(), reference.bone_length[static_cast<std::size_t>(c)], 1e-9) << "bone " << c << " frame " << f;
+      EXPECT_GT(before.normalized().dot(after.normalized()), 1.0 - 1e-12);
+    }
+  EXPECT_EQ(fixed.topRows(3), noisy.topRows(3));
+  EXPECT_EQ(fixed.bottomRows(3), noisy.bottomRows(3));
+  Eigen::MatrixXd twice = fixed;
+  enforceBoneLengths(twice, reference);
+  EXPECT_LT((twice - fixed).cwiseAbs().maxCoeff(), 1e-9);
 }
 
 TEST(Proportions, RetargetingThereAndBackIsTheIdentity) {

@@ -36,7 +36,7 @@ NetworkMetadata sampleMetadata() {
 StyleModel smallStyleModel() {
   std::mt19937 rng(1);
   StyleModel model{Transformer<float>({kFeatureCount, 3, 3, true}), Autoencoder<float>({kFeatureCount, 4, 3}),
-                   test::randomNormalisation(rng), sampleMetadata()};
+                   test::randomNormalisation(rng), sampleMetadata(), {}};
   model.transformer.initialise(2);
   model.loss_network.initialise(3);
   model.loss_network.encoder.bias.value.setConstant(0.25f);

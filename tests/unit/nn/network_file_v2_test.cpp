@@ -23,7 +23,7 @@ constexpr std::size_t kHeaderBytes = 24;
 StyleModel smallStyleModel() {
   std::mt19937 rng(11);
   StyleModel model{Transformer<float>({kFeatureCount, 3, 3, true}), Autoencoder<float>({kFeatureCount, 4, 3}),
-                   test::randomNormalisation(rng), {}};
+                   test::randomNormalisation(rng), {}, {}};
   model.transformer.initialise(12);
   model.loss_network.initialise(13);
   model.loss_network.encoder.bias.value.setConstant(0.125f);
@@ -147,17 +147,17 @@ TEST(NetworkFileV2Invalid, WeightsOutsideTheHalfRangeAreNotWrittenAsF16) {
   EXPECT_EQ(loaded.transformer.conv1.weight.value(0, 0), -kHalfMax);
 }
 
-TEST(NetworkFileV2, F32RoundTripIsExactAndWritesFormat2) {
+TEST(NetworkFileV2, F32RoundTripIsExactAndWritesTheCurrentFormat) {
   const StyleModel model = smallStyleModel();
   const std::string bytes = serialiseStyleModel(model);
-  EXPECT_EQ(readU32(bytes, 8), 2u);
-  EXPECT_EQ(kNetworkFormatVersion, 2u);
+  EXPECT_EQ(readU32(bytes, 8), 3u);
+  EXPECT_EQ(kNetworkFormatVersion, 3u);
   const StyleModel loaded = parseStyleModel(bytes, "net.msn");
   EXPECT_EQ(weightsOf(loaded.transformer), weightsOf(model.transformer));
   EXPECT_EQ(weightsOf(loaded.loss_network), weightsOf(model.loss_network));
   EXPECT_EQ(loaded.metadata, model.metadata);
   const NetworkFileInfo info = networkFileInfo(bytes, "net.msn");
-  EXPECT_EQ(info.format_version, 2u);
+  EXPECT_EQ(info.format_version, 3u);
   EXPECT_EQ(info.kind, NetworkKind::Style);
   EXPECT_EQ(info.precision, WeightPrecision::F32);
   EXPECT_EQ(info.bytes, bytes.size());
@@ -232,9 +232,35 @@ TEST(NetworkFileV2, SavedFilesDescribeTheirPrecision) {
   EXPECT_EQ(networkFileInfo(dir / "half.msn").precision, WeightPrecision::F16);
   EXPECT_EQ(networkFileInfo(dir / "full.msn").precision, WeightPrecision::F32);
   const std::string half = describeNetworkFile(dir / "half.msn");
-  EXPECT_NE(half.find("format 2, weights f16"), std::string::npos) << half;
-  EXPECT_NE(describeNetworkFile(dir / "full.msn").find("format 2, weights f32"), std::string::npos);
+  EXPECT_NE(half.find("format 3, weights f16"), std::string::npos) << half;
+  EXPECT_NE(describeNetworkFile(dir / "full.msn").find("format 3, weights f32"), std::string::npos);
   std::filesystem::remove_all(dir);
+}
+
+// Format 3: style files carry their style targets (eq. 5's Gram per content label).
+TEST(NetworkFileV3, StyleTargetsAreCheckedThenRoundTrip) {
+  StyleModel model = smallStyleModel();
+  const Eigen::Index hidden = model.loss_network.shape().hidden;
+  model.style_targets = {{"walk", Mat<float>::Constant(hidden, hidden, 0.5f)}, {"", Mat<float>::Identity(hidden, hidden)}};
+  StyleModel wrong_shape = model;
+  wrong_shape.style_targets[0].gram = Mat<float>::Zero(hidden + 1, hidden);
+  EXPECT_THROW(serialiseStyleModel(wrong_shape), std::invalid_argument);
+  StyleModel not_finite = model;
+  not_finite.style_targets[1].gram(0, 0) = std::numeric_limits<float>::infinity();
+  EXPECT_THROW(serialiseStyleModel(not_finite), std::invalid_argument);
+  StyleModel twice = model;
+  twice.style_targets[1].label = "walk";
+  EXPECT_THROW(parseStyleModel(serialiseStyleModel(twice), "net.msn"), InputError);
+
+  for (WeightPrecision precision : {WeightPrecision::F32, WeightPrecision::F16}) {
+    const StyleModel loaded = parseStyleModel(serialiseStyleModel(model, precision), "net.msn");
+    ASSERT_EQ(loaded.style_targets.size(), 2u);
+    EXPECT_EQ(loaded.style_targets[0].label, "walk");
+    EXPECT_EQ(loaded.style_targets[1].label, "");
+    EXPECT_EQ(loaded.style_targets[0].gram, model.style_targets[0].gram);  // 0.5 and 1 are exact in f16
+    EXPECT_EQ(loaded.style_targets[1].gram, model.style_targets[1].gram);
+  }
+  EXPECT_TRUE(parseStyleModel(serialiseStyleModel(smallStyleModel()), "net.msn").style_targets.empty());
 }
 
 }  // namespace

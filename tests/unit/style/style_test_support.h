@@ -114,7 +114,7 @@ inline nn::AutoencoderModel tinyAutoencoderModel(std::uint32_t seed = 3) {
 
 inline nn::StyleModel tinyStyleModel(std::uint32_t seed = 5) {
   const nn::AutoencoderModel loss = tinyAutoencoderModel();
-  nn::StyleModel model{nn::Transformer<float>(tinyTransformerShape()), loss.network, loss.normalisation, {}};
+  nn::StyleModel model{nn::Transformer<float>(tinyTransformerShape()), loss.network, loss.normalisation, {}, {}};
   model.transformer.initialise(seed);
   model.metadata.representation = style::currentRepresentation();
   return model;

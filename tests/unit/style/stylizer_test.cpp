@@ -36,13 +36,19 @@ TEST(Stylizer, StrengthZeroReturnsTheContentExactly) {
   EXPECT_EQ(clip.fps, 60.0);
 }
 
-TEST(Stylizer, StrengthBlendsLinearlyInFeatureSpace) {
+// The blend is linear in feature space; the bone lengths are then set (enforceBoneLengths), so the
+// root velocities (no bones) blend exactly and the joints to within the bones' adjustment.
+TEST(Stylizer, StrengthBlendsLinearlyInFeatureSpaceThenSetsBoneLengths) {
   const style::Stylizer stylizer(test::tinyStyleModel());
   const Eigen::MatrixXd& content = test::fixtureClips()[0].features.values;
-  const Eigen::MatrixXd full = stylizer.stylizeFeatures(content, 1.0);
-  const Eigen::MatrixXd half = stylizer.stylizeFeatures(content, 0.5);
+  const Eigen::MatrixXd full = stylizer.stylizeFeatures(content, 1.0, style::PathMode::Style);
+  const Eigen::MatrixXd half = stylizer.stylizeFeatures(content, 0.5, style::PathMode::Style);
   EXPECT_GT((full - content).cwiseAbs().maxCoeff(), 1e-3);  // the network does something
-  EXPECT_TRUE(half.isApprox(0.5 * (content + full), 1e-9));
+  const auto velocities = [](const Eigen::MatrixXd& f) { return Eigen::MatrixXd(f.middleRows<3>(kSidewaysVelocity)); };
+  EXPECT_TRUE(velocities(half).isApprox(0.5 * (velocities(content) + velocities(full)), 1e-9));
+  const Eigen::VectorXd reference = Eigen::Map<const Eigen::VectorXd>(referenceProportions().bone_length.data(), kCanonicalJointCount);
+  for (const Eigen::MatrixXd* output : {&full, &half})
+    EXPECT_LT((canonicalBoneLengths(*output) - reference).cwiseAbs().maxCoeff(), 1e-9);
 }
 
 TEST(Stylizer, OutputHasTheInputLengthForOddAndLongClips) {
@@ -60,7 +66,7 @@ TEST(Stylizer, OutputHasTheInputLengthForOddAndLongClips) {
 // of the cut. With the full-size networks (width 25) the field is T's 3 x 12 frames plus the
 // autoencoder's ~3 x 12 (encode, pool, decode): 120 frames of margin is ample.
 TEST(Stylizer, NoSeamsAwayFromACut) {
-  nn::StyleModel model{nn::Transformer<float>(), nn::Autoencoder<float>(), test::tinyAutoencoderModel().normalisation, {}};
+  nn::StyleModel model{nn::Transformer<float>(), nn::Autoencoder<float>(), test::tinyAutoencoderModel().normalisation, {}, {}};
   model.transformer.initialise(21);
   model.loss_network.initialise(22);
   model.metadata.representation = style::currentRepresentation();
@@ -113,8 +119,19 @@ TEST(OptimizationTransfer, ZeroIterationsGiveTheProjectionAndCancellationStops) 
   style::OptimizationOptions none;
   none.iterations = 0;
   none.constraint_iterations = 0;
+  none.path = style::PathMode::Style;
   const auto projected = style::optimizeStyleTransfer(ae, content, test::fixtureClips()[1].features, "z", none);
-  EXPECT_TRUE(projected.clip.features.isApprox(style::projectFeatures(ae, content.values), 1e-5));
+  // The projection (its root velocities: the joints then get their bone lengths), away from the clip's
+  // edges, where the projection pads and the optimisation's bare convolution does not.
+  const Eigen::MatrixXd reference = style::projectFeatures(ae, content.values);
+  const Eigen::Index inner = content.values.cols() - 2 * 80;
+  ASSERT_GT(inner, 100);
+  EXPECT_TRUE(projected.clip.features.block(kSidewaysVelocity, 80, 3, inner)
+                  .isApprox(reference.block(kSidewaysVelocity, 80, 3, inner), 1e-4));
+  none.path = style::PathMode::Content;  // the default: the projection's poses on the content's path
+  const auto on_path = style::optimizeStyleTransfer(ae, content, test::fixtureClips()[1].features, "z", none);
+  EXPECT_EQ(on_path.clip.features.middleRows<3>(kSidewaysVelocity), content.values.middleRows<3>(kSidewaysVelocity));
+  EXPECT_TRUE(on_path.clip.features.topRows(63).isApprox(projected.clip.features.topRows(63), 1e-6));
 
   std::atomic<bool> cancel{false};
   style::OptimizationCallbacks callbacks;

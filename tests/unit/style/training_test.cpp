@@ -3,6 +3,8 @@
 // stops with an error and keeps the last good checkpoint.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <atomic>
 #include <chrono>
 #include <thread>
@@ -26,14 +28,28 @@ constexpr double kCancelBoundSeconds = 1.0;
 
 using test::TempDir;
 
-TEST(LearningRateSchedule, CosineDecaysFromTheRateToOnePercentAndConstantStays) {
+TEST(LearningRateSchedule, CosineWarmsUpThenDecaysToOnePercentAndConstantStays) {
   using style::LearningRateSchedule;
   using style::scheduledLearningRate;
-  EXPECT_DOUBLE_EQ(scheduledLearningRate(LearningRateSchedule::Cosine, 1e-3, 0, 100), 1e-3);
+  // 100 steps: the half cosine, scaled by a warm-up over the first 10 (a tenth of the run).
+  const auto cosine = [](double step, double total) {
+    return 1e-3 * (0.01 + 0.99 * 0.5 * (1.0 + std::cos(3.14159265358979323846 * step / (total - 1))));
+  };
+  EXPECT_DOUBLE_EQ(scheduledLearningRate(LearningRateSchedule::Cosine, 1e-3, 0, 100), 1e-4);
+  EXPECT_NEAR(scheduledLearningRate(LearningRateSchedule::Cosine, 1e-3, 4, 100), 0.5 * cosine(4, 100), 1e-15);
+  EXPECT_NEAR(scheduledLearningRate(LearningRateSchedule::Cosine, 1e-3, 9, 100), cosine(9, 100), 1e-15);
   EXPECT_DOUBLE_EQ(scheduledLearningRate(LearningRateSchedule::Cosine, 1e-3, 99, 100), 1e-5);
   EXPECT_NEAR(scheduledLearningRate(LearningRateSchedule::Cosine, 1e-3, 99, 199), 0.505e-3, 1e-12);  // halfway
-  double previous = 1.0;
-  for (long step = 0; step < 50; ++step) {
+  // Long runs warm up over kWarmupSteps.
+  EXPECT_NEAR(scheduledLearningRate(LearningRateSchedule::Cosine, 1.0, style::kWarmupSteps / 2 - 1, 100000), 0.5, 1e-4);
+  EXPECT_NEAR(scheduledLearningRate(LearningRateSchedule::Cosine, 1.0, style::kWarmupSteps, 100000), 1.0, 1e-4);
+  double previous = 0.0;
+  for (long step = 0; step < 5; ++step) {  // warm-up of 5 in a run of 50
+    const double rate = scheduledLearningRate(LearningRateSchedule::Cosine, 1.0, step, 50);
+    EXPECT_GT(rate, previous);
+    previous = rate;
+  }
+  for (long step = 5; step < 50; ++step) {
     const double rate = scheduledLearningRate(LearningRateSchedule::Cosine, 1.0, step, 50);
     EXPECT_LT(rate, previous + 1e-15);
     previous = rate;

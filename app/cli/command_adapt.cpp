@@ -1,0 +1,83 @@
+// motionstyle-cli adapt: fine-tunes the loss network on the user's own clips (style/adaptation.h).
+#include <cstdio>
+#include <iostream>
+
+#include "cli_args.h"
+#include "commands.h"
+#include "progress_bar.h"
+#include "style/adaptation.h"
+#include "style/training.h"
+
+namespace motionstyle::cli {
+
+int runAdapt(const Args& args) {
+  const ParsedArgs parsed = parseArgs(args, {{"ae"}, {"data", true, true}, {"out"}, {"epochs"}, {"lr"}, {"seed"},
+                                             {"replay", true, true}, {"replay-ratio"}, {"train-encoder", false},
+                                             {"threads"}, {"skip-bad", false}, {"unit"}, {"checkpoint"}});
+  style::AdaptationJob job;
+  style::AdaptationSettings& settings = job.settings;
+  settings.output = parsed.required("out");
+  settings.epochs = parsed.integer("epochs", settings.epochs);
+  if (settings.epochs < 1 || settings.epochs > 100000) throw UsageError("--epochs must be in [1, 100000]");
+  settings.learning_rate = parsed.number("lr", settings.learning_rate);
+  if (!(settings.learning_rate > 0.0 && settings.learning_rate <= 1.0)) throw UsageError("--lr must be in (0, 1]");
+  const int seed = parsed.integer("seed", 1);
+  if (seed < 0) throw UsageError("--seed must be >= 0");
+  settings.seed = static_cast<std::uint32_t>(seed);
+  settings.replay_ratio = parsed.number("replay-ratio", settings.replay_ratio);
+  if (!(settings.replay_ratio >= 0.0 && settings.replay_ratio <= 100.0)) throw UsageError("--replay-ratio must be in [0, 100]");
+  settings.train_encoder = parsed.has("train-encoder");
+  if (auto checkpoint = parsed.value("checkpoint")) settings.checkpoint = *checkpoint;
+  if (parsed.has("threads")) applyThreadOption(parsed.integer("threads", 0));
+
+  style::DatasetOptions dataset;
+  if (auto unit = parsed.value("unit")) dataset.features.unit = *unit;
+  if (parsed.has("skip-bad")) dataset.bad_files = style::BadFilePolicy::Skip;
+  std::vector<std::filesystem::path> data;
+  for (const std::string& value : parsed.values("data")) data.emplace_back(value);
+  for (const std::string& value : parsed.positional) data.emplace_back(value);  // --data A B C
+  if (data.empty()) throw UsageError("adapt needs --data with your clips (folders or .bvh files)");
+  const std::filesystem::path ae_file = resolveNetworkArgument(parsed.required("ae"));
+  job.loss_network = style::loadCompatibleAutoencoder(ae_file, dataset.features);
+  job.loss_network_name = ae_file.filename().string();
+
+  InterruptGuard guard;
+  ProgressBar bar(std::cout, ProgressBar::stdoutIsTerminal());
+  std::vector<std::string> warnings;
+  job.clips = style::loadMotionClips(data, dataset, &warnings, guard.flag());
+  std::vector<std::filesystem::path> replay;
+  for (const std::string& value : parsed.values("replay")) replay.emplace_back(value);
+  if (!replay.empty()) {
+    style::DatasetOptions replay_options = dataset;
+    replay_options.bad_files = style::BadFilePolicy::Skip;
+    replay_options.features.canonical_rig = false;  // as the loss network learnt them
+    job.replay = style::loadMotionClips(replay, replay_options, &warnings, guard.flag());
+  }
+  for (const std::string& warning : warnings) bar.line("warning: " + warning);
+
+  TrainingReporter reporter(bar);
+  style::TrainingCallbacks callbacks;
+  callbacks.progress = [&](const style::TrainingProgress& p) { reporter(p); };
+  callbacks.log = [&](const std::string& text) { bar.line(text); };
+  callbacks.cancel = guard.flag();
+  const style::AdaptationResult result = job.run(callbacks);
+  bar.finish();
+  if (result.status == style::TrainingStatus::Cancelled) {
+    std::cout << (guard.interrupted() ? "interrupted" : "cancelled") << ": nothing written; the last checkpoint is "
+              << (settings.checkpoint.empty() ? settings.output.string() + ".checkpoint" : settings.checkpoint.string())
+              << "\n";
+    return kInterruptedExitCode;
+  }
+  std::printf("familiarity of your clips (mean reconstruction error, cm): before -> after\n");
+  for (const style::ClipFamiliarity& clip : result.clips)
+    std::printf("  %-40s %5.2f -> %5.2f\n", clip.file.filename().string().c_str(), clip.before_cm, clip.after_cm);
+  std::printf("  %-40s %5.2f -> %5.2f (%s -> %s)\n", "all clips", result.mean_before_cm, result.mean_after_cm,
+              style::familiarityName(style::familiarityLevel(result.mean_before_cm)),
+              style::familiarityName(style::familiarityLevel(result.mean_after_cm)));
+  std::printf("wrote %s in %s; retrain a style against it with\n  motionstyle-cli train-style --ae %s --init STYLE "
+              "--content YOUR_CLIPS... --out STYLE_ADAPTED.net\n",
+              settings.output.string().c_str(), formatDuration(result.seconds).c_str(), settings.output.string().c_str());
+  return 0;
+}
+
+}  // namespace motionstyle::cli

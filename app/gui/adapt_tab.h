@@ -1,0 +1,88 @@
+#pragma once
+// AdaptTab: the Style networks panel's "Adapt" tab: one action that adapts the networks to the user's
+// own clips (style/adaptation.h: AdaptNetworksJob): the loss network learns to reconstruct them, then
+// the chosen style networks are retrained on them, warm-started, with the style targets they store.
+//
+//   - Your clips: the mapped clips loaded in the app (checked by default) and any folders added.
+//   - Styles to retrain: the shipped styles and the panel's networks that store style targets.
+//   - Adapt runs on a JobRunner (job_runner.h): progress with ETA per stage, Cancel within a second.
+//   - Before/after: each clip's familiarity (style/familiarity.h) with the original and the adapted
+//     loss network.
+// When it completes, adapted() hands over the adapted loss network and the retrained style networks
+// (the panel lists them as unsaved networks: nothing is lost without a prompt).
+
+#include <QWidget>
+
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "clip_loader.h"
+#include "nn/network_file.h"
+#include "style/adaptation.h"
+
+class QLabel;
+class QListWidget;
+class QProgressBar;
+class QPushButton;
+class QSpinBox;
+class QTableWidget;
+
+namespace motionstyle {
+
+class JobRunner;
+
+class AdaptTab : public QWidget {
+  Q_OBJECT
+
+ public:
+  // A network the user may retrain: its name and model (only those storing style targets are listed).
+  struct NamedNetwork {
+    QString name;
+    std::shared_ptr<const nn::StyleModel> model;
+  };
+  using ClipsProvider = std::function<std::vector<const LoadedClip*>()>;   // the app's loaded clips
+  using NetworksProvider = std::function<std::vector<NamedNetwork>()>;     // besides the shipped ones
+
+  AdaptTab(ClipsProvider clips, NetworksProvider networks, QWidget* parent = nullptr);
+  ~AdaptTab() override;
+
+  // Rebuilds the two lists (keeps the user's checks by name).
+  void refresh();
+  // Checks just this clip (by path) among the listed ones (the Result panel's "Adapt..." link).
+  void focusClip(const QString& path);
+  void setStyleChecked(const QString& name, bool checked);
+  void setEpochs(int loss_epochs, int style_epochs);
+  bool start();  // false and a report when it cannot start
+  void cancel();
+  bool isBusy() const;
+  QTableWidget* familiarityTable() const { return table_; }
+  QString statusText() const;
+
+ signals:
+  void adapted(std::shared_ptr<const nn::AutoencoderModel> loss_network,
+               std::vector<motionstyle::style::StyleToRetrain> styles);
+  void errorOccurred(const QString& title, const QString& message);
+  void busyChanged(bool busy);
+
+ private:
+  void showResult(const style::AdaptNetworksJob::Result& result);
+  void onProgress(const style::TrainingProgress& progress);
+
+  ClipsProvider clips_;
+  NetworksProvider networks_;
+  JobRunner* runner_ = nullptr;
+  std::filesystem::path scratch_;
+  QListWidget* clip_list_ = nullptr;
+  QListWidget* style_list_ = nullptr;
+  QSpinBox* loss_epochs_ = nullptr;
+  QSpinBox* style_epochs_ = nullptr;
+  QPushButton* adapt_button_ = nullptr;
+  QPushButton* cancel_button_ = nullptr;
+  QProgressBar* progress_ = nullptr;
+  QLabel* status_ = nullptr;
+  QTableWidget* table_ = nullptr;
+};
+
+}  // namespace motionstyle

@@ -1,0 +1,42 @@
+#include "familiarity_label.h"
+
+#include <exception>
+
+#include "features/representation.h"
+
+namespace motionstyle {
+
+FamiliarityLabel::FamiliarityLabel(QWidget* parent) : QLabel(parent) {
+  setObjectName(QStringLiteral("FamiliarityLabel"));
+  setWordWrap(true);
+  setTextFormat(Qt::RichText);
+  setToolTip(tr("How close the content is to the motion the networks learnt from: the loss network's "
+                "reconstruction error (familiar up to %1 cm, unusual up to %2 cm)")
+                 .arg(style::kFamiliarMaxCm)
+                 .arg(style::kUnusualMaxCm));
+  connect(this, &QLabel::linkActivated, this, [this](const QString&) { emit adaptRequested(); });
+  setText(QStringLiteral("-"));
+}
+
+void FamiliarityLabel::measure(const LoadedClip* clip, const nn::StyleModel* network) {
+  familiarity_.reset();
+  if (clip != nullptr && clip->mapping && network != nullptr) {
+    try {
+      familiarity_ = style::measureFamiliarity(*network, extractFeatures(clip->motion, *clip->mapping).values);
+    } catch (const std::exception&) {
+      familiarity_.reset();
+    }
+  }
+  if (!familiarity_) {
+    setText(QStringLiteral("-"));
+    return;
+  }
+  static const char* kColours[] = {"#4caf50", "#d08a2a", "#d04a3a"};  // familiar, unusual, far
+  QString text = QStringLiteral("<span style=\"color:%1\">&#9679;</span> %2")
+                     .arg(QLatin1String(kColours[static_cast<int>(familiarity_->level)]),
+                          QString::fromStdString(style::familiaritySummary(*familiarity_)).toHtmlEscaped());
+  if (familiarity_->level != style::FamiliarityLevel::Familiar) text += tr(" <a href=\"adapt\">Adapt...</a>");
+  setText(text);
+}
+
+}  // namespace motionstyle

@@ -1,0 +1,65 @@
+// NetworkPanel's Adapt tab wiring (adapt_tab.h): what the tab may adapt (the app's clips, the listed
+// networks) and what becomes of its results (the adapted loss network for the Train tab, the retrained
+// styles in the list, unsaved).
+#include <QDateTime>
+
+#include <exception>
+
+#include "adapt_tab.h"
+#include "main_window.h"
+#include "network_panel.h"
+
+namespace motionstyle {
+
+AdaptTab* NetworkPanel::createAdaptTab() {
+  const auto clips = [this] {
+    std::vector<const LoadedClip*> all;
+    for (int i = 0; i < window_->clipCount(); ++i) all.push_back(&window_->clip(i));
+    return all;
+  };
+  const auto networks = [this] {
+    std::vector<AdaptTab::NamedNetwork> all;
+    for (const NetworkEntry& entry : networks_) all.push_back({entry.name, entry.model});
+    return all;
+  };
+  adapt_tab_ = new AdaptTab(clips, networks, this);
+  connect(window_, &MainWindow::clipsChanged, adapt_tab_, &AdaptTab::refresh);
+  connect(adapt_tab_, &AdaptTab::errorOccurred, this, &NetworkPanel::report);
+  connect(adapt_tab_, &AdaptTab::busyChanged, this, [this](bool) { updateButtons(); });
+  connect(adapt_tab_, &AdaptTab::adapted, this,
+          [this](std::shared_ptr<const nn::AutoencoderModel> loss, std::vector<style::StyleToRetrain> styles) {
+            // The adapted loss network is saved in the scratch folder and becomes the Train tab's, so
+            // that new styles train against it; the retrained styles join the list, unsaved.
+            const std::filesystem::path file = scratchFile(QStringLiteral("adapted-loss-network.net"));
+            try {
+              if (!file.empty()) {
+                nn::saveAutoencoder(*loss, file);
+                setLossNetworkFile(QString::fromStdString(file.string()));
+              }
+            } catch (const std::exception& error) {
+              report(tr("Could not keep the adapted loss network"), QString::fromStdString(error.what()));
+            }
+            for (style::StyleToRetrain& style : styles) {
+              NetworkEntry entry;
+              entry.model = std::make_shared<const nn::StyleModel>(std::move(style.model));
+              entry.name = tr("%1 adapted %2").arg(QString::fromStdString(style.name),
+                                                   QDateTime::currentDateTime().toString(QStringLiteral("MM-dd hh:mm")));
+              addNetwork(std::move(entry));  // the last one becomes current: the Result panel uses it
+            }
+          });
+  return adapt_tab_;
+}
+
+void NetworkPanel::showAdaptTab(const QString& clip_path) {
+  adapt_tab_->refresh();
+  if (!clip_path.isEmpty()) adapt_tab_->focusClip(clip_path);
+  tabs_->setCurrentWidget(adapt_tab_);
+  for (QWidget* ancestor = parentWidget(); ancestor != nullptr; ancestor = ancestor->parentWidget())
+    if (ancestor->inherits("QDockWidget")) {
+      ancestor->show();
+      ancestor->raise();
+      break;
+    }
+}
+
+}  // namespace motionstyle

@@ -1,0 +1,141 @@
+// bench_adaptation: "ten clips of a new studio adapted, with one style retrained" (issue 12), timed on
+// this machine, with what it changes: the clips' familiarity before and after, the retrained style's
+// style ratio on them, and what the loss network forgets (its Bandai held-out error before and after).
+//
+//   bench_adaptation [--models DIR] [--style elderly] [--fixtures SHARED_FIXTURES] [--data BANDAI_ROOT]
+//                    [--loss-epochs N] [--style-epochs N]
+//
+// The ten clips: the five ../shared/fixtures/cmu_walks clips (without their rest-pose frame 0) and
+// ../shared/fixtures/cmu/131_01.bvh cut into five pieces: CMU's studio, skeleton and 120 fps, other
+// actors than the networks trained on. Runs style::AdaptNetworksJob, the job the app's Adapt tab and
+// the CLI run.
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "bvh/bvh_reader.h"
+#include "common/resource_paths.h"
+#include "mapping/joint_mapping.h"
+#include "style/adaptation.h"
+#include "style/evaluation.h"
+#include "style/stylizer.h"
+#include "nn/compute_pool.h"
+#include "style/training.h"
+
+namespace fs = std::filesystem;
+using namespace motionstyle;
+
+namespace {
+
+style::MotionClip clipOf(const Motion& motion, const std::string& name) {
+  return style::makeMotionClip(motion, mapJoints(motion.skeleton, name), name);
+}
+
+Motion framesOf(const Motion& motion, Eigen::Index first, Eigen::Index count) {
+  Motion part = motion;
+  part.values = motion.values.middleRows(first, count);
+  return part;
+}
+
+std::vector<style::MotionClip> newStudioClips(const fs::path& fixtures) {
+  std::vector<style::MotionClip> clips;
+  std::vector<fs::path> walks;
+  for (const auto& entry : fs::directory_iterator(fixtures / "cmu_walks"))
+    if (entry.path().extension() == ".bvh") walks.push_back(entry.path());
+  std::sort(walks.begin(), walks.end());
+  for (const fs::path& file : walks) {
+    const Motion motion = readBvh(file);
+    clips.push_back(clipOf(framesOf(motion, 1, motion.values.rows() - 1), file.filename().string()));
+  }
+  const Motion long_clip = readBvh(fixtures / "cmu" / "131_01.bvh");
+  const Eigen::Index piece = long_clip.values.rows() / 5;
+  for (int i = 0; i < 5; ++i)
+    clips.push_back(clipOf(framesOf(long_clip, i * piece, piece), "131_01_part" + std::to_string(i + 1) + ".bvh"));
+  return clips;
+}
+
+double meanFamiliarity(const nn::AutoencoderModel& ae, const std::vector<style::MotionClip>& clips) {
+  double sum = 0.0;
+  for (const style::MotionClip& clip : clips) sum += style::measureFamiliarity(ae, clip.features.values).mean_cm;
+  return clips.empty() ? 0.0 : sum / static_cast<double>(clips.size());
+}
+
+double meanStyleRatio(const nn::StyleModel& model, const std::vector<style::MotionClip>& clips) {
+  const style::Stylizer stylizer(model);
+  double sum = 0.0;
+  for (const style::MotionClip& clip : clips) {
+    const nn::StyleTarget& target = model.style_targets.back();  // the default (the walk)
+    sum += style::measureStyleDistances(model.loss_network, model.normalisation, clip.features.values,
+                                        stylizer.stylizeFeatures(clip.features.values, 1.0), target.gram)
+               .styleRatio();
+  }
+  return sum / static_cast<double>(clips.size());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const fs::path resources = resourceDirectory().value_or(fs::path("resources"));
+  fs::path models = resources / "models";
+  fs::path fixtures = fs::path(MOTIONSTYLE_SHARED_DATA_DIR).parent_path() / "fixtures";
+  fs::path data = fs::path(MOTIONSTYLE_SHARED_DATA_DIR) / "bandai";
+  std::string style_name = "elderly";
+  int loss_epochs = style::AdaptationSettings{}.epochs;
+  int style_epochs = style::kDefaultStyleAdaptationEpochs;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    const std::string a = argv[i], v = argv[i + 1];
+    if (a == "--models") models = v;
+    else if (a == "--style") style_name = v;
+    else if (a == "--fixtures") fixtures = v;
+    else if (a == "--data") data = v;
+    else if (a == "--loss-epochs") loss_epochs = std::stoi(v);
+    else if (a == "--style-epochs") style_epochs = std::stoi(v);
+    else { std::fprintf(stderr, "unknown argument %s\n", a.c_str()); return 2; }
+  }
+  if (!fs::is_directory(fixtures / "cmu_walks") || !fs::exists(fixtures / "cmu" / "131_01.bvh")) {
+    std::printf("skipped: the CMU fixtures are not at %s\n", fixtures.string().c_str());
+    return 0;
+  }
+  try {
+    const nn::StyleModel style_model = style::loadCompatibleStyleModel(models / (style_name + ".net"));
+    style::AdaptNetworksJob job;
+    job.loss.loss_network = {style_model.loss_network, style_model.normalisation, style_model.metadata};
+    job.loss.loss_network_name = style_name + "'s loss network";
+    job.loss.clips = newStudioClips(fixtures);
+    job.loss.settings.epochs = loss_epochs;
+    const fs::path scratch = fs::temp_directory_path() / ("motionstyle-bench-adaptation-" + std::to_string(::getpid()));
+    fs::create_directories(scratch);
+    job.loss.settings.output = scratch / "adapted.net";
+    job.scratch = scratch;
+    job.style_epochs = style_epochs;
+    job.styles = {{style_name, style_model}};
+    std::printf("adapting on %zu clips of CMU's studio, retraining %s (%d + %d epochs, %d threads)\n",
+                job.loss.clips.size(), style_name.c_str(), loss_epochs, style_epochs, nn::computePool().threadCount());
+    const auto started = std::chrono::steady_clock::now();
+    const style::AdaptNetworksJob::Result result = job.run();
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    if (result.status != style::TrainingStatus::Completed || result.styles.empty()) throw std::runtime_error("did not complete");
+    std::printf("time: %.1f s for the whole action (goal: at most 180 s)\n", seconds);
+    std::printf("familiarity of the ten clips: %.2f -> %.2f cm\n", result.loss.mean_before_cm, result.loss.mean_after_cm);
+    std::printf("%s style ratio on them: %.3f -> %.3f\n", style_name.c_str(), meanStyleRatio(style_model, job.loss.clips),
+                meanStyleRatio(result.styles.front().model, job.loss.clips));
+    const fs::path d1 = data / "dataset-1" / "data", d2 = data / "dataset-2" / "data";
+    if (fs::is_directory(d1) && fs::is_directory(d2)) {
+      std::vector<style::MotionClip> held;
+      for (const fs::path& f : style::splitHoldout(style::findBvhFiles({d1, d2}), 10).held_out) held.push_back(style::loadMotionClip(f));
+      std::printf("forgetting: Bandai held-out familiarity %.2f -> %.2f cm (%zu clips)\n",
+                  meanFamiliarity(job.loss.loss_network, held), meanFamiliarity(result.loss.model, held), held.size());
+    }
+    std::error_code ignored;
+    fs::remove_all(scratch, ignored);
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "bench_adaptation: %s\n", error.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,357 @@
+// eval_generalisation: how the loss network and the style networks hold on clips of studios, actors
+// and rigs they never trained on, against the same figures on held-out Bandai clips (issue 12's
+// goals). Prints tables; --json FILE writes every figure.
+//
+//   eval_generalisation [--models DIR] [--ae FILE] [--styles elderly,sad,...] [--data BANDAI_ROOT]
+//                       [--fixtures SHARED_FIXTURES] [--samples DIR] [--no-cleanup] [--per-joint]
+//                       [--path content|style] [--probes] [--json FILE]
+//
+// Clip sets:
+//   bandai-ae-heldout     every 10th file of dataset-1 then dataset-2 (train_models.sh's train-ae split)
+//   bandai-style-heldout  every 5th dataset-2 normal-style walk, run or turn (train_models.sh's train-style split)
+//   other-studios         the two samples (CMU 131_01 trimmed, the zombie) and ../shared/fixtures/
+//                         cmu_walks/*.bvh without their rest-pose frame 0 (their README)
+// Per network and clip: style distance ratio and content distance (eval's definitions), familiarity
+// (style/familiarity.h), and unless --no-cleanup the IK clean-up's residual, skate and "unreachable"
+// warnings, and the cleaned output's root path against the content's (features/root_path.h).
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "bvh/bvh_reader.h"
+#include "common/resource_paths.h"
+#include "features/root_path.h"
+#include "mapping/joint_mapping.h"
+#include "style/evaluation.h"
+#include "style/familiarity.h"
+#include "style/motion_dataset.h"
+#include "style/stylized_cleanup.h"
+#include "style/stylizer.h"
+#include "style/training.h"
+
+namespace fs = std::filesystem;
+using namespace motionstyle;
+
+namespace {
+
+struct EvalClip {
+  style::MotionClip clip;
+  Motion motion;
+  JointMapping mapping;
+  std::string label;  // the content label the style clip is paired by
+};
+
+struct ClipSet {
+  std::string name;
+  std::vector<EvalClip> clips;
+};
+
+EvalClip loadClip(const fs::path& file, bool drop_first_frame, const std::string& label) {
+  EvalClip e;
+  e.motion = readBvh(file);
+  if (drop_first_frame) {
+    const Eigen::Index frames = e.motion.values.rows() - 1;
+    MatrixRowMajor rest = e.motion.values.bottomRows(frames);
+    e.motion.values = rest;
+  }
+  e.mapping = mapJoints(e.motion.skeleton, file.string());
+  e.clip = style::makeMotionClip(e.motion, e.mapping, file);
+  e.label = label.empty() ? e.clip.labels.content : label;
+  return e;
+}
+
+std::string otherStudioLabel(const std::string& stem) {
+  static const std::map<std::string, std::string> labels = {
+      {"07_01", "walk"}, {"08_10", "walk"}, {"09_01", "run"}, {"127_07", "run"}, {"35_23", "run"},
+      {"cmu_131_01_walk", "walk"}, {"zombie_walk", "walk"}};
+  const auto it = labels.find(stem);
+  return it == labels.end() ? "walk" : it->second;
+}
+
+std::vector<ClipSet> loadClipSets(const fs::path& data, const fs::path& fixtures, const fs::path& samples) {
+  std::vector<ClipSet> sets;
+  const fs::path d1 = data / "dataset-1" / "data", d2 = data / "dataset-2" / "data";
+  if (fs::is_directory(d1) && fs::is_directory(d2)) {
+    ClipSet ae{"bandai-ae-heldout", {}};
+    for (const fs::path& f : style::splitHoldout(style::findBvhFiles({d1, d2}), 10).held_out)
+      ae.clips.push_back(loadClip(f, false, ""));
+    sets.push_back(std::move(ae));
+    // train_models.sh's style content: the dataset-2 normal-style locomotion clips, every 5th held out.
+    std::vector<fs::path> normal;
+    for (const fs::path& f : style::findBvhFiles({d2})) {
+      const style::ClipLabels labels = style::parseClipLabels(f);
+      if (labels.style == "normal" && (labels.content == "walk" || labels.content == "run" ||
+                                       labels.content.rfind("walk-turn", 0) == 0))
+        normal.push_back(f);
+    }
+    ClipSet st{"bandai-style-heldout", {}};
+    for (const fs::path& f : style::splitHoldout(normal, 5).held_out) st.clips.push_back(loadClip(f, false, ""));
+    sets.push_back(std::move(st));
+  } else {
+    std::printf("note: no Bandai data at %s: Bandai sets skipped\n", data.string().c_str());
+  }
+  ClipSet other{"other-studios", {}};
+  for (const char* name : {"cmu_131_01_walk.bvh", "zombie_walk.bvh"})
+    if (fs::exists(samples / name)) other.clips.push_back(loadClip(samples / name, false, otherStudioLabel(fs::path(name).stem())));
+  if (fs::is_directory(fixtures / "cmu_walks")) {
+    std::vector<fs::path> walks;
+    for (const auto& entry : fs::directory_iterator(fixtures / "cmu_walks"))
+      if (entry.path().extension() == ".bvh") walks.push_back(entry.path());
+    std::sort(walks.begin(), walks.end());
+    for (const fs::path& f : walks) other.clips.push_back(loadClip(f, true, otherStudioLabel(f.stem().string())));
+  }
+  sets.push_back(std::move(other));
+  return sets;
+}
+
+// Per-joint and per-clip reconstruction of the loss network.
+nlohmann::json evaluateLossNetwork(const nn::AutoencoderModel& ae, const std::vector<ClipSet>& sets, bool per_joint) {
+  nlohmann::json out = nlohmann::json::object();
+  std::printf("\nloss network: reconstruction (mean joint error, reference cm) and familiarity\n");
+  for (const ClipSet& set : sets) {
+    Eigen::VectorXd joint_sum = Eigen::VectorXd::Zero(kCanonicalJointCount);
+    double sum = 0.0, worst = 0.0, skate = 0.0, skate_content = 0.0;
+    long frames = 0;
+    nlohmann::json clips = nlohmann::json::array();
+    std::map<std::string, int> levels;
+    for (const EvalClip& e : set.clips) {
+      const Eigen::MatrixXd& x = e.clip.features.values;
+      const Eigen::MatrixXd y = style::projectFeatures(ae, x);
+      for (int c = 0; c < kCanonicalJointCount; ++c)
+        joint_sum[c] += (y.middleRows<3>(3 * c) - x.middleRows<3>(3 * c)).colwise().norm().sum();
+      const style::Familiarity fam = style::measureFamiliarity(ae, x);
+      // Foot skate (cm/s, by the content's contacts) of the projection and of the content itself.
+      skate += style::footSkate(y, e.clip.features.contacts, e.clip.features.anchor) * static_cast<double>(x.cols());
+      skate_content += style::footSkate(x, e.clip.features.contacts, e.clip.features.anchor) * static_cast<double>(x.cols());
+      sum += fam.mean_cm * static_cast<double>(x.cols());
+      frames += x.cols();
+      worst = std::max(worst, fam.mean_cm);
+      ++levels[style::familiarityName(fam.level)];
+      clips.push_back({{"file", e.clip.file.filename().string()}, {"frames", x.cols()}, {"error_cm", fam.mean_cm},
+                       {"worst_second_cm", fam.worst_second_cm}, {"level", style::familiarityName(fam.level)}});
+      if (set.name == "other-studios")
+        std::printf("  %-22s %-20s %5.2f cm (worst second %5.2f) %s\n", set.name.c_str(),
+                    e.clip.file.filename().string().c_str(), fam.mean_cm, fam.worst_second_cm,
+                    style::familiarityName(fam.level));
+    }
+    const double mean = frames > 0 ? sum / static_cast<double>(frames) : 0.0;
+    const double projection_skate = frames > 0 ? skate / static_cast<double>(frames) : 0.0;
+    const double content_skate = frames > 0 ? skate_content / static_cast<double>(frames) : 0.0;
+    std::printf("  %-22s %3zu clips: mean %.2f cm, worst clip %.2f cm  (familiar %d, unusual %d, far %d); "
+                "skate %.1f cm/s projected (content %.1f)\n",
+                set.name.c_str(), set.clips.size(), mean, worst, levels["familiar"], levels["unusual"], levels["far"],
+                projection_skate, content_skate);
+    nlohmann::json joints = nlohmann::json::object();
+    if (frames > 0) {
+      static const char* names[kCanonicalJointCount] = {
+          "Hips", "LHip", "LKnee", "LAnkle", "LToe", "RHip", "RKnee", "RAnkle", "RToe", "Spine", "Chest",
+          "Neck", "Head", "LArm", "LElbow", "LWrist", "LHand", "RArm", "RElbow", "RWrist", "RHand"};
+      if (per_joint) std::printf("    per joint:");
+      for (int c = 0; c < kCanonicalJointCount; ++c) {
+        const double j = joint_sum[c] / static_cast<double>(frames);
+        joints[names[c]] = j;
+        if (per_joint) std::printf(" %s %.1f", names[c], j);
+      }
+      if (per_joint) std::printf("\n");
+    }
+    out[set.name] = {{"mean_cm", mean}, {"worst_clip_cm", worst}, {"projection_skate_cm_s", projection_skate},
+                     {"content_skate_cm_s", content_skate}, {"per_joint_cm", joints}, {"clips", clips}};
+  }
+  return out;
+}
+
+// Familiarity of other studios' clips and of variations that take them further from the training
+// motion (played backwards, twice as fast, half as fast): what the thresholds are read against.
+void printFamiliarityProbes(const nn::AutoencoderModel& ae, const ClipSet& other) {
+  std::printf("\nfamiliarity probes (mean reconstruction error cm: as captured / backwards / x2 speed / x0.5 speed)\n");
+  for (const EvalClip& e : other.clips) {
+    std::vector<double> figures;
+    for (int variant = 0; variant < 4; ++variant) {
+      Motion motion = e.motion;
+      if (variant == 1) motion.values = e.motion.values.colwise().reverse().eval();
+      if (variant == 2) motion.frame_time = e.motion.frame_time / 2.0;
+      if (variant == 3) motion.frame_time = e.motion.frame_time * 2.0;
+      const MotionFeatures features = extractFeatures(motion, e.mapping);
+      figures.push_back(style::measureFamiliarity(ae, features.values).mean_cm);
+    }
+    std::printf("  %-22s %5.2f %5.2f %5.2f %5.2f\n", e.clip.file.filename().string().c_str(), figures[0], figures[1],
+                figures[2], figures[3]);
+  }
+}
+
+fs::path findStyleClip(const std::string& name, const fs::path& data) {
+  for (const char* part : {"dataset-1", "dataset-2"})
+    if (fs::exists(data / part / "data" / name)) return data / part / "data" / name;
+  return {};
+}
+
+struct NetworkFigures {
+  double style_ratio = 0, projection_ratio = 0, content_after = 0, familiarity = 0, network_distance = 0;
+  double residual_mean = 0, residual_max = 0, skate = 0;
+  int unreachable = 0, cleaned = 0;
+  double distance_ratio_min = 1e9, distance_ratio_max = 0, end_error_max = 0;
+  int clips = 0;
+};
+
+nlohmann::json evaluateNetwork(const nn::StyleModel& model, const nn::AutoencoderModel& ae, const ClipSet& set,
+                               const fs::path& data, bool cleanup, style::PathMode path, const CleanupOptions& cleanup_options,
+                               NetworkFigures& figures) {
+  // Style clips by label from the network's own metadata ("style_for_walk" -> file name).
+  std::map<std::string, std::string> style_for;
+  for (const auto& [key, value] : model.metadata.properties)
+    if (key.rfind("style_for_", 0) == 0) style_for[key.substr(10)] = value;
+  std::vector<style::MotionClip> styles;
+  std::map<std::string, int> style_index;
+  std::vector<style::MotionClip> clips;
+  std::vector<int> pairing;
+  std::vector<const EvalClip*> used;
+  for (const EvalClip& e : set.clips) {
+    std::string label = style_for.count(e.label) ? e.label : (style_for.count("walk") ? "walk" : "");
+    if (label.empty() && !style_for.empty()) label = style_for.begin()->first;
+    if (!style_index.count(label)) {
+      const fs::path file = findStyleClip(style_for[label], data);
+      if (file.empty()) continue;
+      style_index[label] = static_cast<int>(styles.size());
+      styles.push_back(style::loadMotionClip(file, style::styleClipOptions({}, model.loss_network.shape().width)));
+    }
+    clips.push_back(e.clip);
+    pairing.push_back(style_index[label]);
+    used.push_back(&e);
+  }
+  nlohmann::json out = nlohmann::json::object();
+  if (clips.empty()) return out;
+  const style::EvaluationReport report = style::evaluateStyleNetwork(ae, model, clips, styles, pairing, path);
+  const style::Stylizer stylizer(model);
+  nlohmann::json per_clip = nlohmann::json::array();
+  for (std::size_t i = 0; i < clips.size(); ++i) {
+    const style::ClipEvaluation& ev = report.clips[i];
+    const double ratio = ev.style_distance_before > 0 ? ev.style_distance_after / ev.style_distance_before : 0;
+    const double proj = ev.style_distance_before > 0 ? ev.style_distance_projection / ev.style_distance_before : 0;
+    nlohmann::json c = {{"file", clips[i].file.filename().string()}, {"frames", ev.frames}, {"style_ratio", ratio},
+                        {"projection_ratio", proj}, {"content_distance", ev.content_distance_after},
+                        {"familiarity_cm", ev.reconstruction_joint_error_cm},
+                        {"network_path_distance_ratio", ev.network_path_distance_ratio}};
+    figures.network_distance += ev.network_path_distance_ratio;
+    figures.style_ratio += ratio;
+    figures.projection_ratio += proj;
+    figures.content_after += ev.content_distance_after;
+    figures.familiarity += ev.reconstruction_joint_error_cm;
+    ++figures.clips;
+    if (cleanup) {
+      const EvalClip& e = *used[i];
+      const style::StylizedClip stylized = stylizer.stylize(e.clip.features, 1.0, path);
+      const style::StylizedCleanup cleaned = style::cleanUpStylizedClip(e.motion, e.mapping, stylized, cleanup_options);
+      int unreachable = 0;
+      for (const std::string& w : cleaned.report.warnings) unreachable += w.find("unreachable") != std::string::npos;
+      const RootPathComparison travelled =
+          compareClipPaths(e.motion, cleaned.motion, e.mapping, e.clip.features.anchor.convention);
+      c["residual_mean_cm"] = cleaned.cleaned.residual_mean_cm;
+      c["residual_max_cm"] = cleaned.cleaned.residual_max_cm;
+      c["skate_cm_s"] = cleaned.cleaned.foot_skate_cm_s;
+      c["unreachable_warnings"] = unreachable;
+      c["distance_ratio"] = travelled.distance_ratio;
+      c["end_error_fraction"] = travelled.end_error_fraction;
+      c["heading_error_deg"] = travelled.heading_error * 180.0 / 3.14159265358979;
+      figures.residual_mean += cleaned.cleaned.residual_mean_cm;
+      figures.residual_max = std::max(figures.residual_max, cleaned.cleaned.residual_max_cm);
+      figures.skate = std::max(figures.skate, cleaned.cleaned.foot_skate_cm_s);
+      figures.unreachable += unreachable;
+      figures.distance_ratio_min = std::min(figures.distance_ratio_min, travelled.distance_ratio);
+      figures.distance_ratio_max = std::max(figures.distance_ratio_max, travelled.distance_ratio);
+      figures.end_error_max = std::max(figures.end_error_max, travelled.end_error_fraction);
+      ++figures.cleaned;
+    }
+    per_clip.push_back(c);
+  }
+  out["clips"] = per_clip;
+  return out;
+}
+
+void printFigures(const std::string& network, const std::string& set, const NetworkFigures& f) {
+  const double n = std::max(1, f.clips);
+  std::printf("  %-10s %-22s style %.3f (proj %.3f) content %.3f fam %.2f net-path x%.2f", network.c_str(), set.c_str(),
+              f.style_ratio / n, f.projection_ratio / n, f.content_after / n, f.familiarity / n, f.network_distance / n);
+  if (f.cleaned > 0)
+    std::printf(" | residual %.2f max %.1f skate %.2f unreach %d | distance x%.2f-%.2f end %.0f%%",
+                f.residual_mean / f.cleaned, f.residual_max, f.skate, f.unreachable, f.distance_ratio_min,
+                f.distance_ratio_max, 100.0 * f.end_error_max);
+  std::printf("\n");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const fs::path resources = resourceDirectory().value_or(fs::path("resources"));
+  fs::path models = resources / "models";
+  fs::path ae_file, json_file;
+  fs::path data = fs::path(MOTIONSTYLE_SHARED_DATA_DIR) / "bandai";
+  fs::path fixtures = fs::path(MOTIONSTYLE_SHARED_DATA_DIR).parent_path() / "fixtures";
+  fs::path samples = resources / "samples";
+  std::vector<std::string> styles = {"elderly", "exhausted", "angry", "proud", "youthful",
+                                     "feminine", "masculine", "sad", "happy"};
+  bool cleanup = true, per_joint = false, probes = false;
+  style::PathMode path = style::PathMode::Content;
+  CleanupOptions cleanup_options;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    const auto next = [&]() -> std::string {
+      if (i + 1 >= argc) { std::fprintf(stderr, "%s needs a value\n", a.c_str()); std::exit(2); }
+      return argv[++i];
+    };
+    if (a == "--models") models = next();
+    else if (a == "--ae") ae_file = next();
+    else if (a == "--data") data = next();
+    else if (a == "--fixtures") fixtures = next();
+    else if (a == "--samples") samples = next();
+    else if (a == "--json") json_file = next();
+    else if (a == "--no-cleanup") cleanup = false;
+    else if (a == "--per-joint") per_joint = true;
+    else if (a == "--probes") probes = true;
+    else if (a == "--hips-weight") cleanup_options.hips_weight = std::stod(next());
+    else if (a == "--path") path = style::parsePathMode(next()).value_or(style::PathMode::Content);
+    else if (a == "--styles") {
+      styles.clear();
+      std::string list = next(), item;
+      for (char ch : list + ",") {
+        if (ch == ',') { if (!item.empty()) styles.push_back(item); item.clear(); }
+        else item += ch;
+      }
+    } else {
+      std::fprintf(stderr, "unknown argument %s (see the top of eval_generalisation.cpp)\n", a.c_str());
+      return 2;
+    }
+  }
+  if (ae_file.empty()) ae_file = models / "autoencoder.net";
+  try {
+    const std::vector<ClipSet> sets = loadClipSets(data, fixtures, samples);
+    const nn::AutoencoderModel ae = style::loadCompatibleAutoencoder(ae_file);
+    nlohmann::json json;
+    json["loss_network"] = ae_file.string();
+    json["reconstruction"] = evaluateLossNetwork(ae, sets, per_joint);
+    if (probes) printFamiliarityProbes(ae, sets.back());
+    if (!styles.empty()) std::printf("\nstyle networks (means over clips; clean-up: mean residual, worst residual cm, worst skate cm/s)\n");
+    for (const std::string& name : styles) {
+      const fs::path file = fs::exists(name) ? fs::path(name) : models / (name + ".net");
+      const nn::StyleModel model = style::loadCompatibleStyleModel(file);
+      for (const ClipSet& set : sets) {
+        if (set.name == "bandai-ae-heldout") continue;
+        NetworkFigures figures;
+        json["networks"][name][set.name] = evaluateNetwork(model, ae, set, data, cleanup, path, cleanup_options, figures);
+        printFigures(name, set.name, figures);
+      }
+    }
+    if (!json_file.empty()) {
+      std::ofstream(json_file) << json.dump(2) << "\n";
+      std::printf("wrote %s\n", json_file.string().c_str());
+    }
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "eval_generalisation: %s\n", error.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,189 @@
+// Other studios' clips in the real main window: the Result panel reads how familiar the content is
+// (a row with the next step, and a timeline track), keeps the content's path unless told otherwise,
+// and the Style networks panel's Adapt tab adapts the networks to the user's clips (progress, cancel,
+// a before/after table, the adapted networks listed unsaved). Bad input first: nothing checked.
+#include <QCheckBox>
+#include <QElapsedTimer>
+#include <QLabel>
+#include <QListWidget>
+#include <QPushButton>
+#include <QSettings>
+#include <QSignalSpy>
+#include <QTabWidget>
+#include <QTableWidget>
+#include <QTemporaryDir>
+
+#include <algorithm>
+#include <filesystem>
+
+#include "adapt_tab.h"
+#include "contact_tracks.h"
+#include "features/feature_statistics.h"
+#include "gui_test_support.h"
+#include "main_window.h"
+#include "network_panel.h"
+#include "nn/style_loss.h"
+#include "result_panel.h"
+#include "style/familiarity.h"
+#include "style/motion_dataset.h"
+#include "style/training.h"
+#include "timeline_widget.h"
+#include "track_view.h"
+
+using namespace motionstyle;
+
+namespace {
+
+constexpr int kJobTimeoutMs = 120000;  // a hang guard, not a speed test
+
+// A tiny style network (random weights, the fixtures' statistics) that stores a style target, so that
+// the Adapt tab can retrain it without its style clip.
+std::filesystem::path writeTinyNetwork(const QTemporaryDir& dir) {
+  std::vector<style::MotionClip> clips;
+  std::vector<Eigen::MatrixXd> values;
+  for (const char* name : {"cmu_131_01.bvh", "zombie.bvh"}) {
+    clips.push_back(style::loadMotionClip(test::fixture(QString::fromLatin1(name)).toStdString()));
+    values.push_back(clips.back().features.values);
+  }
+  nn::StyleModel model{nn::Transformer<float>({kFeatureCount, 8, 5, true}), nn::Autoencoder<float>({kFeatureCount, 16, 5}),
+                       style::toNormalisation(computeFeatureStatistics(values)), {}, {}};
+  model.transformer.initialise(5);
+  model.loss_network.initialise(3);
+  model.metadata.representation = style::currentRepresentation();
+  model.metadata.training.weights.style = 1.0;
+  Eigen::MatrixXd style = clips[1].features.values;
+  style::toStatistics(model.normalisation).normalize(style);
+  model.style_targets = {{"", nn::styleGram(model.loss_network, nn::Mat<float>(style.cast<float>()))}};
+  const std::filesystem::path file = dir.filePath(QStringLiteral("tiny_style.net")).toStdString();
+  nn::saveStyleModel(model, file);
+  return file;
+}
+
+}  // namespace
+
+class FamiliarityTest : public QObject {
+  Q_OBJECT
+
+  QTemporaryDir settings_dir_;
+  QTemporaryDir scratch_;
+  std::filesystem::path network_;
+
+ private slots:
+  void initTestCase() {
+    QVERIFY(settings_dir_.isValid() && scratch_.isValid());
+    QSettings::setPath(QSettings::NativeFormat, QSettings::UserScope, settings_dir_.path());
+    QCoreApplication::setOrganizationName(QStringLiteral("MotionStyleTests"));
+    QCoreApplication::setApplicationName(QStringLiteral("test_gui_familiarity"));
+    network_ = writeTinyNetwork(scratch_);
+  }
+
+  void theResultPanelReadsFamiliarityAndKeepsThePath() {
+    MainWindow window(false);
+    window.setErrorReporter([](const QString& title, const QString& message) { QFAIL(qPrintable(title + ": " + message)); });
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    QCOMPARE(window.openFiles({test::fixture(QStringLiteral("cmu_131_01.bvh"))}), 1);
+    ResultPanel* panel = window.resultPanel();
+    auto* label = panel->findChild<QLabel*>(QStringLiteral("FamiliarityLabel"));
+    QVERIFY(label != nullptr);
+    QCOMPARE(label->text(), QStringLiteral("-"));  // no network yet
+    QSignalSpy familiarity(panel, &ResultPanel::familiarityChanged);
+    QVERIFY(panel->loadNetworkFile(QString::fromStdString(network_.string())));
+    QVERIFY(familiarity.count() >= 1);
+    QVERIFY(panel->familiarity().has_value());
+    const char* level = style::familiarityName(panel->familiarity()->level);
+    QVERIFY2(label->text().contains(QLatin1String(level)), qPrintable(label->text()));
+    // An untrained network reconstructs nothing: far, with the next step offered.
+    QVERIFY2(label->text().contains(QStringLiteral("Adapt")), qPrintable(label->text()));
+    // Its per-frame figure is a timeline row, before any result.
+    const TrackView* tracks = window.timeline()->trackView();
+    const std::vector<float>& row = tracks->floatValues(ContactTrackController::kFamiliarityTrack);
+    QCOMPARE(static_cast<int>(row.size()), tracks->frameCount());
+    QVERIFY(*std::max_element(row.begin(), row.end()) > 0.0f);
+
+    // Keep the content's path (default): the output's root velocities are the content's.
+    auto* keep = panel->findChild<QCheckBox*>(QStringLiteral("KeepPathCheck"));
+    QVERIFY(keep != nullptr && keep->isChecked());
+    QSignalSpy ended(panel, &ResultPanel::jobEnded);
+    QTest::mouseClick(panel->findChild<QPushButton*>(QStringLiteral("StylizeButton")), Qt::LeftButton);
+    QVERIFY(QTest::qWaitFor([&] { return ended.count() >= 1; }, kJobTimeoutMs));
+    const MotionFeatures content = extractFeatures(window.clip(0).motion, *window.clip(0).mapping);
+    const auto velocities = [](const Eigen::MatrixXd& f) { return Eigen::MatrixXd(f.middleRows<3>(kSidewaysVelocity)); };
+    QVERIFY(panel->result() != nullptr);
+    QVERIFY(velocities(panel->result()->stylized.features) == velocities(content.values));
+    // Unticking it runs again and lets the network set the pace.
+    QTest::mouseClick(keep, Qt::LeftButton, {}, QPoint(8, keep->height() / 2));
+    QVERIFY(!keep->isChecked());
+    QVERIFY(QTest::qWaitFor([&] { return ended.count() >= 2; }, kJobTimeoutMs));
+    QVERIFY(panel->pathMode() == style::PathMode::Style);
+    QVERIFY(velocities(panel->result()->stylized.features) != velocities(content.values));
+
+    // The reading's next step: "Adapt..." opens the Style networks panel's Adapt tab with this clip.
+    QVERIFY(label->text().contains(QStringLiteral("href")));
+    emit label->linkActivated(QStringLiteral("adapt"));
+    auto* tabs = window.networkPanel()->findChild<QTabWidget*>();
+    QVERIFY(tabs != nullptr);
+    QCOMPARE(tabs->currentWidget(), static_cast<QWidget*>(window.networkPanel()->adaptTab()));
+    auto* clips = window.networkPanel()->adaptTab()->findChild<QListWidget*>(QStringLiteral("AdaptClips"));
+    QCOMPARE(clips->count(), 1);
+    QCOMPARE(clips->item(0)->checkState(), Qt::Checked);
+  }
+
+  void theAdaptTabAdaptsTheNetworksToTheUsersClips() {
+    MainWindow window(false);
+    std::vector<QString> reports;
+    window.setErrorReporter([&](const QString& title, const QString& message) { reports.push_back(title + ": " + message); });
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    NetworkPanel* networks = window.networkPanel();
+    QVERIFY(networks->loadNetworkFile(QString::fromStdString(network_.string())));
+    const int listed = networks->networkCount();
+    AdaptTab* tab = networks->adaptTab();
+    auto* adapt = tab->findChild<QPushButton*>(QStringLiteral("AdaptButton"));
+    QVERIFY(adapt != nullptr);
+
+    // Nothing loaded: nothing to adapt to, said so.
+    networks->showAdaptTab(QString());
+    QTest::mouseClick(adapt, Qt::LeftButton);
+    QCOMPARE(reports.size(), size_t{1});
+    QVERIFY2(reports[0].contains(QStringLiteral("clips")), qPrintable(reports[0]));
+
+    // The user's clips: both fixtures (another studio each). The tiny network is the style to retrain.
+    QCOMPARE(window.openFiles({test::fixture(QStringLiteral("cmu_131_01.bvh")), test::fixture(QStringLiteral("zombie.bvh"))}), 2);
+    auto* styles = tab->findChild<QListWidget*>(QStringLiteral("AdaptStyles"));
+    auto* clips = tab->findChild<QListWidget*>(QStringLiteral("AdaptClips"));
+    QCOMPARE(clips->count(), 2);
+    for (int i = 0; i < styles->count(); ++i) styles->item(i)->setCheckState(Qt::Unchecked);
+    tab->setStyleChecked(QStringLiteral("tiny_style"), true);
+    tab->setEpochs(3, 2);
+    QSignalSpy adapted(tab, &AdaptTab::adapted);
+    QTest::mouseClick(adapt, Qt::LeftButton);
+    QVERIFY(tab->isBusy());
+    QVERIFY(!adapt->isEnabled());
+    QVERIFY(QTest::qWaitFor([&] { return adapted.count() >= 1 || reports.size() > 1; }, kJobTimeoutMs));
+    QVERIFY2(reports.size() == 1, qPrintable(reports.back()));
+    QVERIFY(QTest::qWaitFor([&] { return !tab->isBusy(); }, kJobTimeoutMs));
+    // Before/after per clip and for all, and the retrained network listed unsaved and selected.
+    const QTableWidget* table = tab->familiarityTable();
+    QCOMPARE(table->rowCount(), 3);
+    QVERIFY2(tab->statusText().contains(QStringLiteral("Adapted")), qPrintable(tab->statusText()));
+    QCOMPARE(networks->networkCount(), listed + 1);
+    QVERIFY(!networks->isNetworkSaved(networks->networkCount() - 1));
+    QVERIFY(networks->currentNetworkName().startsWith(QStringLiteral("tiny_style adapted")));
+    QVERIFY(test::saveScreenshot(window.grab().toImage(), QStringLiteral("adapt_tab")).size() > 0);
+
+    // Cancel stops a run within a second and changes nothing.
+    tab->setEpochs(1000, 2);
+    QTest::mouseClick(adapt, Qt::LeftButton);
+    QTest::qWait(300);
+    QElapsedTimer timer;
+    timer.start();
+    tab->cancel();
+    QVERIFY(QTest::qWaitFor([&] { return !tab->isBusy(); }, 5000));
+    qInfo("adaptation stopped %lld ms after Cancel", static_cast<long long>(timer.elapsed()));
+    QCOMPARE(networks->networkCount(), listed + 1);
+  }
+};
+
+MOTIONSTYLE_GUI_TEST_MAIN(FamiliarityTest)
+#include "test_familiarity.moc"
