@@ -50,7 +50,7 @@ AdaptTab::AdaptTab(ClipsProvider clips, NetworksProvider networks, QWidget* pare
   runner_ = new JobRunner(this);
   auto* intro = new QLabel(tr("Make the networks hold on your own clips (another studio, actor or rig): the loss "
                               "network learns to reconstruct them, then the styles you choose are retrained on "
-                              "them. Takes about a minute for ten clips and one style."),
+                              "them. Ten clips and one style take about 15 s."),
                            this);
   intro->setWordWrap(true);
   clip_list_ = new QListWidget(this);
@@ -185,10 +185,19 @@ void AdaptTab::refresh() {
     if (network.model && !network.model->style_targets.empty()) addStyle(network.name, QStringLiteral("panel:") + network.name);
 }
 
-void AdaptTab::focusClip(const QString& path) {
-  for (int i = 0; i < clip_list_->count(); ++i) {
-    QListWidgetItem* item = clip_list_->item(i);
-    item->setCheckState(item->data(kPathRole).toString() == path ? Qt::Checked : Qt::Unchecked);
+void AdaptTab::focus(const QString& clip_path, const QString& style) {
+  if (!clip_path.isEmpty())
+    for (int i = 0; i < clip_list_->count(); ++i) {
+      QListWidgetItem* item = clip_list_->item(i);
+      item->setCheckState(item->data(kPathRole).toString() == clip_path ? Qt::Checked : Qt::Unchecked);
+    }
+  const auto matches = [&](int i) { return style_list_->item(i)->text().compare(style, Qt::CaseInsensitive) == 0; };
+  bool listed = false;
+  for (int i = 0; i < style_list_->count() && !style.isEmpty(); ++i) listed = listed || matches(i);
+  if (!listed) return;
+  for (int i = 0; i < style_list_->count(); ++i) {
+    style_list_->item(i)->setCheckState(matches(i) ? Qt::Checked : Qt::Unchecked);
+    if (matches(i)) style_list_->scrollToItem(style_list_->item(i));
   }
 }
 

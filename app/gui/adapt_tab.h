@@ -50,8 +50,9 @@ class AdaptTab : public QWidget {
 
   // Rebuilds the two lists (keeps the user's checks by name).
   void refresh();
-  // Checks just this clip (by path) among the listed ones (the Result panel's "Adapt..." link).
-  void focusClip(const QString& path);
+  // Checks just this clip (by path) among the listed ones and, when `style` names a listed network
+  // (case aside), just that style: the Result panel's "Adapt..." link adapts what is on screen.
+  void focus(const QString& clip_path, const QString& style);
   void setStyleChecked(const QString& name, bool checked);
   void setEpochs(int loss_epochs, int style_epochs);
   bool start();  // false and a report when it cannot start

@@ -38,9 +38,10 @@ void MainWindow::createNetworkDock() {
             result_panel_->setStyleNetwork(std::move(model), network_panel_->currentNetworkName());
           });
   connect(network_panel_, &NetworkPanel::stylizedClipReady, result_panel_, &ResultPanel::setStylizedClip);
-  // The familiarity row's "Adapt..." link: the Adapt tab with the content clip checked.
+  // The familiarity row's "Adapt..." link: the Adapt tab with the content clip and the chosen style
+  // checked.
   connect(result_panel_, &ResultPanel::adaptRequested, this, [this] {
-    network_panel_->showAdaptTab(content_ >= 0 ? clip(content_).path : QString());
+    network_panel_->showAdaptTab(content_ >= 0 ? clip(content_).path : QString(), result_panel_->networkName());
   });
   // A real result replaces the training preview (both are blue "output" figures).
   connect(result_panel_, &ResultPanel::resultChanged, this, [this] {

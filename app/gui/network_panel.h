@@ -130,8 +130,9 @@ class NetworkPanel : public QWidget {
 
   LossCurveWidget* lossCurve() const { return loss_curve_; }
   AdaptTab* adaptTab() const { return adapt_tab_; }
-  // Shows the Adapt tab with just this clip checked (the Result panel's "Adapt..." link).
-  void showAdaptTab(const QString& clip_path);
+  // Shows the Adapt tab with just this clip and this style checked (the Result panel's "Adapt..."
+  // link; AdaptTab::focus).
+  void showAdaptTab(const QString& clip_path, const QString& style = {});
   QProgressBar* progressBar() const { return progress_bar_; }
   QString statusText() const;
 

@@ -50,9 +50,9 @@ AdaptTab* NetworkPanel::createAdaptTab() {
   return adapt_tab_;
 }
 
-void NetworkPanel::showAdaptTab(const QString& clip_path) {
+void NetworkPanel::showAdaptTab(const QString& clip_path, const QString& style) {
   adapt_tab_->refresh();
-  if (!clip_path.isEmpty()) adapt_tab_->focusClip(clip_path);
+  adapt_tab_->focus(clip_path, style);
   tabs_->setCurrentWidget(adapt_tab_);
   for (QWidget* ancestor = parentWidget(); ancestor != nullptr; ancestor = ancestor->parentWidget())
     if (ancestor->inherits("QDockWidget")) {

@@ -17,6 +17,7 @@
 #include <filesystem>
 
 #include "adapt_tab.h"
+#include "common/resource_paths.h"
 #include "contact_tracks.h"
 #include "features/feature_statistics.h"
 #include "gui_test_support.h"
@@ -127,6 +128,20 @@ class FamiliarityTest : public QObject {
     auto* clips = window.networkPanel()->adaptTab()->findChild<QListWidget*>(QStringLiteral("AdaptClips"));
     QCOMPARE(clips->count(), 1);
     QCOMPARE(clips->item(0)->checkState(), Qt::Checked);
+
+    // With a shipped style chosen, the link checks that style (and only it) to retrain.
+    const auto resources = resourceDirectory();
+    QVERIFY2(resources.has_value(), "the repository's resources/ (shipped networks) were not found");
+    const auto masculine = shippedNetworkFile(*resources, "masculine");
+    QVERIFY(masculine.has_value());
+    QVERIFY(panel->loadNetworkFile(QString::fromStdString(masculine->string())));
+    emit label->linkActivated(QStringLiteral("adapt"));
+    auto* styles = window.networkPanel()->adaptTab()->findChild<QListWidget*>(QStringLiteral("AdaptStyles"));
+    QVERIFY(styles->count() >= 9);
+    QStringList checked;
+    for (int i = 0; i < styles->count(); ++i)
+      if (styles->item(i)->checkState() == Qt::Checked) checked << styles->item(i)->text();
+    QCOMPARE(checked, QStringList{QStringLiteral("masculine")});
   }
 
   void theAdaptTabAdaptsTheNetworksToTheUsersClips() {
