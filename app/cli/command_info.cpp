@@ -17,6 +17,7 @@
 #include "common/resource_paths.h"
 #include "nn/network_file.h"
 #include "style/familiarity.h"
+#include "stylized_output.h"
 #include "style/training.h"
 
 namespace motionstyle::cli {
@@ -109,11 +110,8 @@ nlohmann::ordered_json describeClip(const std::string& path, const std::optional
   if (!loss_network.problem.empty()) info["familiarity"] = {{"error", loss_network.problem}};
   if (loss_network.model) {
     const style::Familiarity familiarity = style::measureFamiliarity(*loss_network.model, features.values);
-    info["familiarity"] = {{"loss_network", loss_network.file},
-                           {"mean_cm", familiarity.mean_cm},
-                           {"worst_second_cm", familiarity.worst_second_cm},
-                           {"level", style::familiarityName(familiarity.level)},
-                           {"summary", style::familiaritySummary(familiarity)}};
+    info["familiarity"] = {{"loss_network", loss_network.file}};
+    info["familiarity"].update(familiarityJson(familiarity, /*per_frame=*/false));
   }
   return info;
 }

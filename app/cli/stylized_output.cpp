@@ -17,13 +17,13 @@ namespace motionstyle::cli {
 
 std::vector<OptionSpec> outputOptionSpecs() { return {{"no-cleanup", false}, {"metrics"}, {"fps"}, {"path"}}; }
 
-nlohmann::ordered_json familiarityJson(const style::Familiarity& familiarity) {
+nlohmann::ordered_json familiarityJson(const style::Familiarity& familiarity, bool per_frame) {
   nlohmann::ordered_json json;
   json["mean_cm"] = familiarity.mean_cm;
   json["worst_second_cm"] = familiarity.worst_second_cm;
   json["level"] = style::familiarityName(familiarity.level);
   json["summary"] = style::familiaritySummary(familiarity);
-  json["per_frame_cm"] = familiarity.per_frame_cm;
+  if (per_frame) json["per_frame_cm"] = familiarity.per_frame_cm;
   return json;
 }
 
@@ -58,7 +58,7 @@ void writeStylizedOutput(const std::filesystem::path& content_file, const style:
       raw.fps = stylized.fps;
       nlohmann::ordered_json json;
       json["raw"] = nlohmann::json::parse(metricsToJson(computeMetrics(raw)));
-      if (familiarity) json["familiarity"] = familiarityJson(*familiarity);
+      if (familiarity) json["familiarity"] = familiarityJson(*familiarity, /*per_frame=*/true);
       for (const auto& [key, value] : options.extra_metrics.items()) json[key] = value;
       writeFileAtomically(*options.metrics, json.dump(2) + "\n");
     }
@@ -81,7 +81,7 @@ void writeStylizedOutput(const std::filesystem::path& content_file, const style:
     json["cleanup"] = {{"seconds", cleaned.report.seconds},
                        {"iterations", cleaned.report.total_iterations},
                        {"warnings", cleaned.report.warnings}};
-    if (familiarity) json["familiarity"] = familiarityJson(*familiarity);
+    if (familiarity) json["familiarity"] = familiarityJson(*familiarity, /*per_frame=*/true);
     for (const auto& [key, value] : options.extra_metrics.items()) json[key] = value;
     writeFileAtomically(*options.metrics, json.dump(2) + "\n");
   }

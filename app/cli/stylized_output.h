@@ -35,6 +35,10 @@ struct OutputOptions {
   nlohmann::ordered_json extra_metrics = nlohmann::ordered_json::object();  // added to --metrics
 };
 
+// A familiarity reading as JSON: mean_cm, worst_second_cm, level, summary and, with `per_frame`,
+// per_frame_cm (one shape for info, stylize --metrics and transfer --metrics).
+nlohmann::ordered_json familiarityJson(const style::Familiarity& familiarity, bool per_frame);
+
 // Reads --no-cleanup, --metrics FILE, --fps N and --path P from parsed arguments (declare them with
 // outputOptionSpecs).
 OutputOptions outputOptions(const ParsedArgs& parsed);

@@ -141,10 +141,7 @@ EvaluationReport evaluateStyleNetwork(const nn::AutoencoderModel& autoencoder, c
     const nn::Mat<float> content_ae = normalised(content, autoencoder.normalisation);
     e.reconstruction_mse = static_cast<double>(
         nn::meanSquaredError<float>(normalised(reconstructed, autoencoder.normalisation), content_ae, 0.0f, nullptr));
-    double joint_error = 0.0;
-    for (int c = 0; c < kCanonicalJointCount; ++c)
-      joint_error += (reconstructed.middleRows<3>(3 * c) - content.middleRows<3>(3 * c)).colwise().norm().sum();
-    e.reconstruction_joint_error_cm = joint_error / (static_cast<double>(frames) * kCanonicalJointCount);
+    e.reconstruction_joint_error_cm = familiarityFromReconstruction(content, reconstructed).mean_cm;
 
     const auto t0 = Clock::now();
     const Eigen::MatrixXd own = stylizer.stylizeFeatures(content, 1.0, PathMode::Style);

@@ -9,7 +9,17 @@
 namespace motionstyle::style {
 namespace {
 
-Familiarity fromReconstruction(const Eigen::MatrixXd& features, const Eigen::MatrixXd& reconstructed) {
+void requireFeatures(const Eigen::MatrixXd& features) {
+  if (features.rows() != kFeatureCount || features.cols() < 1)
+    throw std::invalid_argument("measureFamiliarity: expected 66 x frames (frames >= 1)");
+}
+
+}  // namespace
+
+Familiarity familiarityFromReconstruction(const Eigen::MatrixXd& features, const Eigen::MatrixXd& reconstructed) {
+  requireFeatures(features);
+  if (reconstructed.rows() != features.rows() || reconstructed.cols() != features.cols())
+    throw std::invalid_argument("familiarityFromReconstruction: the reconstruction must match the features' shape");
   Familiarity result;
   const Eigen::Index frames = features.cols();
   result.per_frame_cm.assign(static_cast<std::size_t>(frames), 0.0);
@@ -34,21 +44,14 @@ Familiarity fromReconstruction(const Eigen::MatrixXd& features, const Eigen::Mat
   return result;
 }
 
-void requireFeatures(const Eigen::MatrixXd& features) {
-  if (features.rows() != kFeatureCount || features.cols() < 1)
-    throw std::invalid_argument("measureFamiliarity: expected 66 x frames (frames >= 1)");
-}
-
-}  // namespace
-
 Familiarity measureFamiliarity(const nn::AutoencoderModel& loss_network, const Eigen::MatrixXd& features) {
   requireFeatures(features);
-  return fromReconstruction(features, projectFeatures(loss_network, features));
+  return familiarityFromReconstruction(features, projectFeatures(loss_network, features));
 }
 
 Familiarity measureFamiliarity(const nn::StyleModel& network, const Eigen::MatrixXd& features) {
   requireFeatures(features);
-  return fromReconstruction(features, projectFeatures({network.loss_network, network.normalisation, {}}, features));
+  return familiarityFromReconstruction(features, projectFeatures({network.loss_network, network.normalisation, {}}, features));
 }
 
 FamiliarityLevel familiarityLevel(double mean_cm) {

@@ -37,6 +37,9 @@ struct Familiarity {
 Familiarity measureFamiliarity(const nn::AutoencoderModel& loss_network, const Eigen::MatrixXd& features);
 // The same through a style network's own loss network.
 Familiarity measureFamiliarity(const nn::StyleModel& network, const Eigen::MatrixXd& features);
+// The reading from a reconstruction already computed: reconstructed = L(features), both 66 x frames
+// (for callers that need L(C) for more than this, e.g. evaluation.h).
+Familiarity familiarityFromReconstruction(const Eigen::MatrixXd& features, const Eigen::MatrixXd& reconstructed);
 
 FamiliarityLevel familiarityLevel(double mean_cm);
 // "familiar", "unusual", "far"

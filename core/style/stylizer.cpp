@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "style/training_windows.h"
+
 namespace motionstyle::style {
 namespace {
 
@@ -14,21 +16,15 @@ void requireFeatures(const Eigen::MatrixXd& features, const char* what) {
 }
 
 // Frames of the first and last pose added at each end before the networks run (then cropped): the
-// convolutions see a clip's edges as the training windows had them (cutWindow pads short slices the same
-// way) instead of the zero padding of a bare convolution. It covers the receptive field of the
+// convolutions see a clip's edges as the training windows had them (cutWindow's padding, standing
+// poses) instead of the zero padding of a bare convolution. It covers the receptive field of the
 // transformation network and the projection together; without it the edges of short clips were
 // reconstructed far worse (other studios' 1-3 s clips: 1.72 -> 1.42 cm; docs/decisions.md).
 constexpr int kEdgePaddingFrames = 64;
 
 Eigen::MatrixXd padEdges(const Eigen::MatrixXd& features) {
-  const Eigen::Index frames = features.cols();
-  Eigen::MatrixXd padded(features.rows(), frames + 2 * kEdgePaddingFrames);
-  padded.leftCols(kEdgePaddingFrames) = features.col(0).replicate(1, kEdgePaddingFrames);
-  padded.middleCols(kEdgePaddingFrames, frames) = features;
-  padded.rightCols(kEdgePaddingFrames) = features.col(frames - 1).replicate(1, kEdgePaddingFrames);
-  padded.block(kSidewaysVelocity, 0, 3, kEdgePaddingFrames).setZero();  // the added poses stand still
-  padded.block(kSidewaysVelocity, kEdgePaddingFrames + frames, 3, kEdgePaddingFrames).setZero();
-  return padded;
+  const int frames = static_cast<int>(features.cols());
+  return cutWindow(features, {0, frames}, frames + 2 * kEdgePaddingFrames, /*zero_velocities=*/true);
 }
 
 Eigen::MatrixXd cropEdges(const Eigen::MatrixXd& padded) {
