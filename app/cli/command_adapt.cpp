@@ -4,16 +4,19 @@
 
 #include "cli_args.h"
 #include "commands.h"
+#include "common/output_paths.h"
 #include "progress_bar.h"
 #include "style/adaptation.h"
 #include "style/training.h"
+#include "style/training_state.h"
 
 namespace motionstyle::cli {
 
 int runAdapt(const Args& args) {
   const ParsedArgs parsed = parseArgs(args, {{"ae"}, {"data", true, true}, {"out"}, {"epochs"}, {"lr"}, {"seed"},
                                              {"replay", true, true}, {"replay-ratio"}, {"train-encoder", false},
-                                             {"threads"}, {"skip-bad", false}, {"unit"}, {"checkpoint"}});
+                                             {"threads"}, {"skip-bad", false}, {"unit"}, {"checkpoint"},
+                                             {"keep-checkpoints", false}});
   style::AdaptationJob job;
   style::AdaptationSettings& settings = job.settings;
   settings.output = parsed.required("out");
@@ -28,6 +31,7 @@ int runAdapt(const Args& args) {
   if (!(settings.replay_ratio >= 0.0 && settings.replay_ratio <= 100.0)) throw UsageError("--replay-ratio must be in [0, 100]");
   settings.train_encoder = parsed.has("train-encoder");
   if (auto checkpoint = parsed.value("checkpoint")) settings.checkpoint = *checkpoint;
+  settings.keep_checkpoint = parsed.has("keep-checkpoints");
   if (parsed.has("threads")) applyThreadOption(parsed.integer("threads", 0));
 
   style::DatasetOptions dataset;
@@ -38,6 +42,16 @@ int runAdapt(const Args& args) {
   for (const std::string& value : parsed.positional) data.emplace_back(value);  // --data A B C
   if (data.empty()) throw UsageError("adapt needs --data with your clips (folders or .bvh files)");
   const std::filesystem::path ae_file = resolveNetworkArgument(parsed.required("ae"));
+  {  // before any work: the outputs can be written and none of them is an input
+    const std::filesystem::path checkpoint =
+        settings.checkpoint.empty() ? std::filesystem::path(settings.output.string() + ".checkpoint") : settings.checkpoint;
+    std::vector<NamedPath> inputs = {{ae_file, "--ae"}};
+    for (const auto& value : data) inputs.push_back({value, "--data"});
+    for (const std::string& value : parsed.values("replay")) inputs.push_back({value, "--replay"});
+    checkOutputPaths(inputs, {{settings.output, "--out"},
+                              {checkpoint, "the checkpoint"},
+                              {style::statePath(checkpoint), "the checkpoint's state"}});
+  }
   job.loss_network = style::loadCompatibleAutoencoder(ae_file, dataset.features);
   job.loss_network_name = ae_file.filename().string();
 

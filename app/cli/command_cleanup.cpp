@@ -14,6 +14,7 @@
 #include "commands.h"
 #include "common/atomic_file.h"
 #include "common/errors.h"
+#include "common/output_paths.h"
 #include "features/foot_contacts.h"
 #include "features/representation.h"
 #include "ik/cleanup.h"
@@ -49,6 +50,13 @@ int runCleanup(const Args& args) {
   const double output_fps = parsed.number("fps", 0.0);  // 0: IN's own rate
   if (parsed.has("fps") && !(output_fps > 0.0 && output_fps <= 1000.0)) throw UsageError("--fps must be in (0, 1000]");
 
+  std::vector<NamedPath> inputs = {{input_file, "the input clip"}, {contactTracksPath(input_file), "the clip's contact tracks"}};
+  if (auto contacts = parsed.value("contacts")) inputs.push_back({*contacts, "--contacts"});
+  if (auto mapping = parsed.value("mapping")) inputs.push_back({*mapping, "--mapping"});
+  std::vector<NamedPath> outputs = {{output, "--out"}};
+  if (auto metrics = parsed.value("metrics")) outputs.push_back({*metrics, "--metrics"});
+  checkOutputPaths(inputs, outputs);
+
   const Motion motion = readBvh(input_file);
   const JointMapping mapping = mapJoints(motion.skeleton, input_file.string(),
                                          parsed.value("mapping") ? std::optional<std::filesystem::path>(*parsed.value("mapping"))
@@ -81,7 +89,8 @@ int runCleanup(const Args& args) {
   const Motion cleaned = cleanupMotion(input, CleanupOptions{}, &report);
   const bool resample = output_fps > 0.0 && std::abs(output_fps - cleaned.fps()) > 1e-6 * output_fps;
   const Motion exported = resample ? resampleMotion(cleaned, output_fps) : cleaned;
-  writeBvh(exported, output);
+  AtomicFileBatch files;  // the clip and its metrics: both or neither
+  files.stage(output, formatBvh(exported));
 
   const ClipMetrics before = measure(motion, mapping, contacts, nullptr, convention, floor);
   const ClipMetrics after = measure(cleaned, mapping, contacts, &targets, convention, floor);
@@ -90,8 +99,9 @@ int runCleanup(const Args& args) {
     json["input"] = nlohmann::json::parse(metricsToJson(before));
     json["cleaned"] = nlohmann::json::parse(metricsToJson(after));
     json["cleanup"] = {{"seconds", report.seconds}, {"iterations", report.total_iterations}, {"warnings", report.warnings}};
-    writeFileAtomically(*metrics_file, json.dump(2) + "\n");
+    files.stage(*metrics_file, json.dump(2) + "\n");
   }
+  files.commit();
   for (const std::string& warning : report.warnings) std::cout << "warning: " << warning << "\n";
   std::printf("wrote %s: %d frames at %.4g fps in %.2f s\n  foot skate %.2f -> %.2f cm/s, floor penetration %.2f -> %.2f cm, "
               "residual %.2f cm, bone error %.1e cm\n",

@@ -5,6 +5,7 @@
 #include "bvh/bvh_writer.h"
 #include "cli_args.h"
 #include "commands.h"
+#include "common/output_paths.h"
 #include "motion/resample.h"
 
 namespace motionstyle::cli {
@@ -12,6 +13,7 @@ namespace motionstyle::cli {
 int runConvert(const Args& args) {
   const ParsedArgs parsed = parseArgs(args, {{"fps"}});
   if (parsed.positional.size() != 2) throw UsageError("convert needs IN and OUT");
+  checkOutputPaths({{parsed.positional[0], "IN"}}, {{parsed.positional[1], "OUT"}});
   Motion motion = readBvh(parsed.positional[0]);
   if (parsed.has("fps")) {
     const double fps = parsed.number("fps", 0.0);

@@ -4,6 +4,7 @@
 #include "cli_args.h"
 #include "commands.h"
 #include "common/atomic_file.h"
+#include "common/output_paths.h"
 #include "style/evaluation.h"
 #include "style/familiarity.h"
 #include "style/motion_dataset.h"
@@ -19,6 +20,10 @@ int runEval(const Args& args) {
   if (auto unit = parsed.value("unit")) dataset.features.unit = *unit;
   const std::filesystem::path ae_file = resolveNetworkArgument(parsed.required("ae"));
   const std::filesystem::path net_file = resolveNetworkArgument(parsed.required("net"));
+  std::vector<NamedPath> read = {{ae_file, "--ae"}, {net_file, "--net"}};
+  for (const std::string& clip : parsed.positional) read.push_back({clip, "an evaluated clip"});
+  for (const std::string& style : parsed.values("style")) read.push_back({style::parseStyleSource(style).file, "--style"});
+  if (auto file = parsed.value("json")) checkOutputPaths(read, {{*file, "--json"}});
   const nn::AutoencoderModel autoencoder = style::loadCompatibleAutoencoder(ae_file, dataset.features);
   const nn::StyleModel network = style::loadCompatibleStyleModel(net_file, dataset.features);
 

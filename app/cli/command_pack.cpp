@@ -5,6 +5,7 @@
 
 #include "cli_args.h"
 #include "commands.h"
+#include "common/output_paths.h"
 #include "nn/network_file.h"
 
 namespace motionstyle::cli {
@@ -32,6 +33,7 @@ int runPack(const Args& args) {
   const std::filesystem::path output = parsed.required("out");
   const nn::WeightPrecision precision = parsePrecision(parsed.value("precision").value_or("f16"));
 
+  checkOutputPaths({}, {{output, "--out"}});  // OUT may be IN itself: pack rewrites a file in place
   const nn::NetworkFileInfo before = nn::networkFileInfo(input);  // full validation
   if (before.kind == nn::NetworkKind::Style)
     nn::saveStyleModel(nn::loadStyleModel(input), output, precision);

@@ -72,6 +72,9 @@ int runStylize(const Args& args) {
   if (!(request.strength >= 0.0 && request.strength <= 1.0)) throw UsageError("--strength must be in [0, 1]");
   if (auto unit = parsed.value("unit")) request.dataset.features.unit = *unit;
   const std::filesystem::path output = parsed.required("out");
+  std::vector<NamedPath> inputs = {{request.input, "the input clip"}, {request.network, "--net"}};
+  if (request.autoencoder) inputs.push_back({*request.autoencoder, "--ae"});
+  checkOutputPaths(inputs, outputPaths(output_options, output));
 
   double seconds = 0;
   style::Familiarity familiarity;

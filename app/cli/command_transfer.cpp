@@ -45,10 +45,12 @@ int runTransfer(const Args& args) {
   style::DatasetOptions dataset;
   if (auto unit = parsed.value("unit")) dataset.features.unit = *unit;
   const std::filesystem::path output = parsed.required("out");
-
-  const nn::AutoencoderModel autoencoder =
-      style::loadCompatibleAutoencoder(resolveNetworkArgument(parsed.required("ae")), dataset.features);
+  const std::filesystem::path ae_file = resolveNetworkArgument(parsed.required("ae"));
   const std::filesystem::path style_file = parsed.required("style");
+  checkOutputPaths({{parsed.positional[0], "the input clip"}, {ae_file, "--ae"}, {style_file, "--style"}},
+                   outputPaths(output_options, output));
+
+  const nn::AutoencoderModel autoencoder = style::loadCompatibleAutoencoder(ae_file, dataset.features);
   const style::MotionClip content = style::loadMotionClip(parsed.positional[0], dataset);
   const style::MotionClip style_clip =
       style::loadMotionClip(style_file, style::styleClipOptions(dataset, autoencoder.network.shape().width));

@@ -46,6 +46,8 @@ const std::vector<Command>& commands() {
        "  --resume          continue from the checkpoint (same data and settings)\n"
        "  --init NET        warm start from an existing autoencoder (its weights and normalisation)\n"
        "  --checkpoint FILE checkpoint path (default FILE.checkpoint)\n"
+       "  --keep-checkpoints keep the checkpoint (FILE.checkpoint and its .state) after a completed run\n"
+       "                    (default: removed once FILE is written; an interrupted run always keeps it)\n"
        "  --holdout N       keep every N-th clip (sorted by path) out of training, for eval; listed at the end\n"
        "  --skip-bad        skip unreadable or unmappable files found in folders (default: stop on them)\n"
        "  --unit UNIT       length unit of the clips (cm, m, mm, inch, ft, dm, cmu; default: guessed)\n"
@@ -88,7 +90,7 @@ const std::vector<Command>& commands() {
        "  --lr LR             Adam learning rate (default 0.001; warm-up over the first 100 steps)\n"
        "  --hidden H          hidden units (default 128)\n"
        "  --seed S, --batch B, --lr-schedule S, --clip K, --threads T, --resume, --checkpoint FILE,\n"
-       "  --holdout N, --skip-bad, --unit UNIT: as for train-ae\n",
+       "  --keep-checkpoints, --holdout N, --skip-bad, --unit UNIT: as for train-ae\n",
        runTrainStyle},
       {"adapt", "fine-tune the loss network on your own clips (other studios, actors, rigs)",
        "usage: motionstyle-cli adapt --ae AE --data DIR... --out FILE [--epochs N] [--lr LR]\n"
@@ -107,7 +109,8 @@ const std::vector<Command>& commands() {
        "  --replay DIR|FILE  clips of the original training data to mix in, so nothing is forgotten\n"
        "  --replay-ratio R   replay frames per frame of yours (default 1)\n"
        "  --train-encoder    let the encoder learn too (style networks then need their style clips again)\n"
-       "  --seed S, --threads T, --checkpoint FILE, --skip-bad, --unit UNIT: as for train-ae\n",
+       "  --seed S, --threads T, --checkpoint FILE, --keep-checkpoints, --skip-bad, --unit UNIT: as for\n"
+       "  train-ae\n",
        runAdapt},
       {"stylize", "apply a trained style network to a clip",
        "usage: motionstyle-cli stylize --net NET [--ae AE] IN.bvh --out OUT.bvh [--strength S]\n"

@@ -16,7 +16,9 @@ void printUsage(std::ostream& out) {
   for (const auto& command : motionstyle::cli::commands())
     out << "  " << command.name << std::string(14 - std::string(command.name).size(), ' ') << command.summary << "\n";
   out << "\nRun 'motionstyle-cli <command> --help' for a command's options.\n"
-         "Exit codes: 0 ok, 2 bad input (message names the file and line), 1 internal error,\n"
+         "Exit codes: 0 ok, 2 bad input (message names the file and line) or an output that cannot or\n"
+         "must not be written (an input, a folder, a read-only place: checked before any work starts),\n"
+         "1 internal error,\n"
          "130 interrupted (Ctrl-C; a training run keeps its last checkpoint).\n";
 }
 
@@ -57,9 +59,9 @@ int main(int argc, char** argv) {
   } catch (const InputError& error) {
     std::cerr << "error: " << error.what() << "\n";
     return 2;
-  } catch (const WriteError& error) {
+  } catch (const WriteError& error) {  // the user's path or disk is the problem, not the program
     std::cerr << "error: " << error.what() << "\n";
-    return 1;
+    return 2;
   } catch (const std::bad_alloc&) {
     std::cerr << "internal error: out of memory\n";
     return 1;

@@ -150,7 +150,8 @@ void applyThreadOption(int threads) {
 
 std::vector<OptionSpec> trainingOptionSpecs() {
   return {{"out"},     {"epochs"},     {"seed"},    {"batch"},          {"lr"},   {"lr-schedule"}, {"clip"}, {"threads"},
-          {"resume", false}, {"init"},    {"checkpoint"}, {"holdout"}, {"skip-bad", false}, {"unit"}, {"hidden"}, {"augment"}};
+          {"resume", false}, {"init"},    {"checkpoint"}, {"holdout"}, {"skip-bad", false}, {"unit"}, {"hidden"}, {"augment"},
+          {"keep-checkpoints", false}};
 }
 
 std::vector<std::pair<std::string, double>> parseNamedNumbers(const std::string& text, const std::string& option) {
@@ -233,6 +234,7 @@ style::TrainingSettings trainingSettings(const ParsedArgs& parsed, const Trainin
   if (auto init = parsed.value("init")) settings.init = resolveNetworkArgument(*init);  // "elderly": shipped
   if (settings.resume && !settings.init.empty()) throw UsageError("--resume and --init exclude each other");
   if (auto checkpoint = parsed.value("checkpoint")) settings.checkpoint = *checkpoint;
+  settings.keep_checkpoint = parsed.has("keep-checkpoints");
   settings.holdout_every = parsed.integer("holdout", 0);
   if (settings.holdout_every < 0 || settings.holdout_every == 1) throw UsageError("--holdout must be >= 2");
   if (parsed.has("skip-bad")) settings.dataset.bad_files = style::BadFilePolicy::Skip;

@@ -27,6 +27,12 @@ nlohmann::ordered_json familiarityJson(const style::Familiarity& familiarity, bo
   return json;
 }
 
+std::vector<NamedPath> outputPaths(const OutputOptions& options, const std::filesystem::path& output) {
+  std::vector<NamedPath> paths = {{output, "--out"}};
+  if (options.metrics) paths.push_back({*options.metrics, "--metrics"});
+  return paths;
+}
+
 OutputOptions outputOptions(const ParsedArgs& parsed) {
   OutputOptions options;
   options.cleanup = !parsed.has("no-cleanup");
@@ -48,7 +54,8 @@ void writeStylizedOutput(const std::filesystem::path& content_file, const style:
   if (!options.cleanup) {
     Motion positions = style::canonicalPositionsMotion(stylized.world_positions, stylized.fps, output.string());
     if (options.fps > 0.0) positions = resampleMotion(positions, options.fps);
-    writeBvh(positions, output);
+    AtomicFileBatch outputs;  // the clip and its metrics: both or neither
+    outputs.stage(output, formatBvh(positions));
     if (options.metrics) {
       MetricsInput raw(stylized.world_positions, identityCanonicalJoints());
       raw.contacts = (stylized.contacts.transpose().array() > 0.5).cast<int>().matrix();
@@ -60,8 +67,9 @@ void writeStylizedOutput(const std::filesystem::path& content_file, const style:
       json["raw"] = nlohmann::json::parse(metricsToJson(computeMetrics(raw)));
       if (familiarity) json["familiarity"] = familiarityJson(*familiarity, /*per_frame=*/true);
       for (const auto& [key, value] : options.extra_metrics.items()) json[key] = value;
-      writeFileAtomically(*options.metrics, json.dump(2) + "\n");
+      outputs.stage(*options.metrics, json.dump(2) + "\n");
     }
+    outputs.commit();
     log << "wrote " << output.string() << ": " << positions.frameCount() << " frames at " << positions.fps()
         << " fps (raw positions of the 21 canonical joints; no clean-up)\n";
     return;
@@ -69,7 +77,8 @@ void writeStylizedOutput(const std::filesystem::path& content_file, const style:
   const Motion content = readBvh(content_file);
   const JointMapping mapping = mapJoints(content.skeleton, content_file.string());
   const style::StylizedCleanup cleaned = style::cleanUpStylizedClip(content, mapping, stylized, {}, options.fps);
-  writeBvh(cleaned.motion, output);
+  AtomicFileBatch outputs;  // the clip and its metrics: both or neither
+  outputs.stage(output, formatBvh(cleaned.motion));
   if (options.metrics) {
     nlohmann::ordered_json json;
     json["raw"] = nlohmann::json::parse(metricsToJson(cleaned.raw));
@@ -83,8 +92,9 @@ void writeStylizedOutput(const std::filesystem::path& content_file, const style:
                        {"warnings", cleaned.report.warnings}};
     if (familiarity) json["familiarity"] = familiarityJson(*familiarity, /*per_frame=*/true);
     for (const auto& [key, value] : options.extra_metrics.items()) json[key] = value;
-    writeFileAtomically(*options.metrics, json.dump(2) + "\n");
+    outputs.stage(*options.metrics, json.dump(2) + "\n");
   }
+  outputs.commit();
   for (const std::string& warning : cleaned.report.warnings) log << "warning: " << warning << "\n";
   char figures[256];
   std::snprintf(figures, sizeof figures,

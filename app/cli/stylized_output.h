@@ -10,6 +10,7 @@
 #include <ostream>
 
 #include "cli_args.h"
+#include "common/output_paths.h"
 #include "style/familiarity.h"
 #include "style/stylizer.h"
 
@@ -44,6 +45,10 @@ nlohmann::ordered_json familiarityJson(const style::Familiarity& familiarity, bo
 OutputOptions outputOptions(const ParsedArgs& parsed);
 std::vector<OptionSpec> outputOptionSpecs();
 
+// OUT (--out) and the --metrics file, for checkOutputPaths before any work starts.
+std::vector<NamedPath> outputPaths(const OutputOptions& options, const std::filesystem::path& output);
+
+// Writes OUT and the --metrics file all or none (AtomicFileBatch).
 // content_file: the clip that was stylized (read again for its full skeleton). `familiarity`, when
 // given, is printed and goes into the metrics.
 void writeStylizedOutput(const std::filesystem::path& content_file, const style::StylizedClip& stylized,

@@ -20,6 +20,7 @@
 
 #include "bvh/bvh_writer.h"
 #include "common/errors.h"
+#include "common/output_paths.h"
 #include "common/resource_paths.h"
 #include "display_space.h"
 #include "familiarity_label.h"
@@ -461,7 +462,8 @@ bool ResultPanel::exportResult(const QString& file, bool overwrite) {
     report(title, tr("%1 already exists; it was not overwritten.").arg(file));
     return false;
   }
-  try {
+  try {  // the content clip itself is never overwritten, even when the user confirmed the file dialog
+    if (content_) checkOutputPaths({{content_->path.toStdString(), "the content clip"}}, {{file.toStdString(), "the export"}});
     writeBvh(result_->cleaned, file.toStdString());
   } catch (const std::exception& error) {
     report(title, QString::fromStdString(error.what()));

@@ -8,6 +8,7 @@
 
 #include "common/errors.h"
 #include "style/training_loop.h"
+#include "style/training_state.h"
 
 namespace motionstyle::style {
 namespace {
@@ -127,7 +128,10 @@ AdaptationResult AdaptationJob::run(const TrainingCallbacks& callbacks) const {
     }
     result.mean_before_cm = before / static_cast<double>(frameCount(clips));
     result.mean_after_cm = after / static_cast<double>(frameCount(clips));
-    if (!settings.output.empty()) nn::saveAutoencoder(result.model, settings.output);
+    if (!settings.output.empty()) {
+      nn::saveAutoencoder(result.model, settings.output);
+      if (!settings.keep_checkpoint) removeCheckpoint(training.checkpoint);
+    }
   }
   result.seconds = secondsSince(started);
   return result;

@@ -34,6 +34,7 @@ struct AdaptationSettings {
   std::uint32_t seed = 1;
   std::filesystem::path output;     // the adapted network file (written at the end); may be empty
   std::filesystem::path checkpoint; // default: output + ".checkpoint"
+  bool keep_checkpoint = false;     // as TrainingSettings::keep_checkpoint
 
   void validate() const;  // std::invalid_argument naming the field
 };

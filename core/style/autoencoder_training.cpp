@@ -6,6 +6,7 @@
 #include "style/cancellation.h"
 #include "style/training.h"
 #include "style/training_loop.h"
+#include "style/training_state.h"
 
 namespace motionstyle::style {
 namespace {
@@ -131,7 +132,10 @@ AutoencoderTrainingResult trainAutoencoder(const AutoencoderTrainingConfig& conf
 
   runTrainingLoop(setup, history, callbacks, result);
   model.metadata = metadata(history);
-  if (result.status == TrainingStatus::Completed && !settings.output.empty()) nn::saveAutoencoder(model, settings.output);
+  if (result.status == TrainingStatus::Completed && !settings.output.empty()) {
+    nn::saveAutoencoder(model, settings.output);
+    if (!settings.keep_checkpoint) removeCheckpoint(settings.checkpointPath());
+  }
   result.seconds = secondsSince(started);
   return result;
 }

@@ -10,6 +10,7 @@
 #include "style/cancellation.h"
 #include "style/training.h"
 #include "style/training_loop.h"
+#include "style/training_state.h"
 
 namespace motionstyle::style {
 namespace {
@@ -275,7 +276,10 @@ StyleTrainingResult trainStyleNetwork(const StyleTrainingConfig& config, const T
 
   runTrainingLoop(setup, history, callbacks, result);
   model.metadata = metadata(history);
-  if (result.status == TrainingStatus::Completed && !settings.output.empty()) nn::saveStyleModel(model, settings.output);
+  if (result.status == TrainingStatus::Completed && !settings.output.empty()) {
+    nn::saveStyleModel(model, settings.output);
+    if (!settings.keep_checkpoint) removeCheckpoint(settings.checkpointPath());
+  }
   result.seconds = secondsSince(started);
   return result;
 }

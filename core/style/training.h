@@ -120,6 +120,9 @@ struct TrainingSettings {
   int threads = 0;
   std::filesystem::path output;      // the trained network file, written atomically at the end
   std::filesystem::path checkpoint;  // default: output + ".checkpoint"
+  // false: a completed run that wrote `output` removes its checkpoint (the network file and its .state
+  // sidecar, megabytes the user did not ask for); a cancelled or failed run always keeps it.
+  bool keep_checkpoint = false;
   bool resume = false;               // continue from `checkpoint` (its epoch count must be < epochs)
   std::filesystem::path init;        // warm start from this network file (not with resume)
   WindowOptions windows;

@@ -116,6 +116,12 @@ void writeCheckpoint(const std::filesystem::path& checkpoint, const std::string&
   writeFileAtomically(statePath(checkpoint), state_bytes);
 }
 
+void removeCheckpoint(const std::filesystem::path& checkpoint) {
+  std::error_code ignored;
+  std::filesystem::remove(checkpoint, ignored);
+  std::filesystem::remove(statePath(checkpoint), ignored);
+}
+
 LoadedCheckpoint readCheckpoint(const std::filesystem::path& checkpoint) {
   LoadedCheckpoint loaded;
   loaded.network_bytes = readWholeFile(checkpoint, "checkpoint (nothing to resume: train without --resume)");

@@ -50,6 +50,10 @@ std::filesystem::path statePath(const std::filesystem::path& checkpoint);
 // state write fails after the network was replaced, the pair no longer matches and resume says so).
 void writeCheckpoint(const std::filesystem::path& checkpoint, const std::string& network_bytes, TrainingState state);
 
+// Removes a checkpoint's network file and its state sidecar (the ones that exist). Never throws: a
+// checkpoint left behind costs disk space, not correctness.
+void removeCheckpoint(const std::filesystem::path& checkpoint);
+
 // Reads the checkpoint's network bytes and its state and checks they belong together. InputError
 // naming the file on a missing, corrupt or mismatched pair.
 struct LoadedCheckpoint {

@@ -351,6 +351,15 @@ class ResultTest : public QObject {
     QCOMPARE(locked.col(0).sum() + locked.col(1).sum(), 0);  // the left foot was never locked
     QVERIFY(locked.col(2).sum() + locked.col(3).sum() > 0);  // the right one was
 
+    // Exporting over the content clip itself (even with the overwrite confirmed) is refused.
+    const QByteArray original = [&] { QFile f(clip); f.open(QIODevice::ReadOnly); return f.readAll(); }();
+    QVERIFY(!panel->exportResult(clip, /*overwrite=*/true));
+    QCOMPARE(reports.size(), size_t{1});
+    QVERIFY2(reports.back().message.contains(QStringLiteral("refusing to overwrite an input")),
+             qPrintable(reports.back().message));
+    QCOMPARE([&] { QFile f(clip); f.open(QIODevice::ReadOnly); return f.readAll(); }(), original);
+    reports.clear();
+
     // Saved beside the clip, reset, and loaded back.
     QVERIFY(contacts->saveTracks());
     QVERIFY(QFile::exists(clip + QStringLiteral(".contacts.json")));
