@@ -23,6 +23,7 @@
 #include "mapping/mapping_file.h"
 #include "motion/kinematics.h"
 #include "motion/resample.h"
+#include "stylized_output.h"
 
 namespace motionstyle::cli {
 namespace {
@@ -43,7 +44,7 @@ ClipMetrics measure(const Motion& motion, const JointMapping& mapping, const Eig
 }  // namespace
 
 int runCleanup(const Args& args) {
-  const ParsedArgs parsed = parseArgs(args, {{"out"}, {"contacts"}, {"metrics"}, {"unit"}, {"mapping"}, {"fps"}});
+  const ParsedArgs parsed = parseArgs(args, {{"out"}, {"contacts"}, {"metrics"}, {"unit"}, {"mapping"}, {"fps"}, {"time-limit"}});
   if (parsed.positional.size() != 1) throw UsageError("cleanup needs exactly one input clip IN.bvh");
   const std::filesystem::path input_file = parsed.positional[0];
   const std::filesystem::path output = parsed.required("out");
@@ -86,7 +87,9 @@ int runCleanup(const Args& args) {
   const Eigen::MatrixXd targets = canonicalJointPositions(motion, mapping);
   CleanupReport report;
   const CleanupInput input(motion, mapping, targets, contacts, up, floor, convention.cm_per_unit);
-  const Motion cleaned = cleanupMotion(input, CleanupOptions{}, &report);
+  CleanupOptions options;
+  options.max_total_seconds = timeLimitOption(parsed);
+  const Motion cleaned = cleanupMotion(input, options, &report);
   const bool resample = output_fps > 0.0 && std::abs(output_fps - cleaned.fps()) > 1e-6 * output_fps;
   const Motion exported = resample ? resampleMotion(cleaned, output_fps) : cleaned;
   AtomicFileBatch files;  // the clip and its metrics: both or neither

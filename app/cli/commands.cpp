@@ -142,7 +142,7 @@ const std::vector<Command>& commands() {
        runTransfer},
       {"cleanup", "IK clean-up of a clip on its own skeleton: feet locked, bones exact, on the floor",
        "usage: motionstyle-cli cleanup IN.bvh --out OUT.bvh [--contacts FILE] [--metrics FILE.json]\n"
-       "                              [--unit UNIT] [--mapping MAP.json] [--fps N]\n\n"
+       "                              [--unit UNIT] [--mapping MAP.json] [--fps N] [--time-limit S]\n\n"
        "Solves every frame's joint rotations and root position with Ceres so that the clip's canonical\n"
        "joints stay where they are, while heels and toes stay locked during contact, no foot goes below\n"
        "the floor and bone lengths stay exactly the skeleton's. OUT keeps IN's hierarchy, joint names,\n"
@@ -153,7 +153,8 @@ const std::vector<Command>& commands() {
        "                    and after clean-up as JSON\n"
        "  --unit UNIT       the file's length unit (default: guessed; see info)\n"
        "  --mapping FILE    joint-mapping JSON for a rig the automatic mapping cannot read\n"
-       "  --fps N           output frame rate (default: IN's own); the solve and metrics use IN's rate\n",
+       "  --fps N           output frame rate (default: IN's own); the solve and metrics use IN's rate\n"
+       MOTIONSTYLE_TIME_LIMIT_HELP,
        runCleanup},
       {"eval", "evaluate a style network on held-out clips (JSON report)",
        "usage: motionstyle-cli eval --ae AE --net NET --style CLIP.bvh [--style LABEL=CLIP.bvh ...] CLIPS...\n"

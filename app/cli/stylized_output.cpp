@@ -1,5 +1,6 @@
 #include "stylized_output.h"
 
+#include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
@@ -15,7 +16,16 @@
 
 namespace motionstyle::cli {
 
-std::vector<OptionSpec> outputOptionSpecs() { return {{"no-cleanup", false}, {"metrics"}, {"fps"}, {"path"}}; }
+std::vector<OptionSpec> outputOptionSpecs() {
+  return {{"no-cleanup", false}, {"metrics"}, {"fps"}, {"path"}, {"time-limit"}};
+}
+
+double timeLimitOption(const ParsedArgs& parsed) {
+  if (!parsed.has("time-limit")) return std::numeric_limits<double>::infinity();
+  const double seconds = parsed.number("time-limit", 0.0);
+  if (!(seconds > 0.0 && std::isfinite(seconds))) throw UsageError("--time-limit must be a positive number of seconds");
+  return seconds;
+}
 
 nlohmann::ordered_json familiarityJson(const style::Familiarity& familiarity, bool per_frame) {
   nlohmann::ordered_json json;
@@ -38,6 +48,7 @@ OutputOptions outputOptions(const ParsedArgs& parsed) {
   options.cleanup = !parsed.has("no-cleanup");
   if (auto metrics = parsed.value("metrics")) options.metrics = *metrics;
   options.fps = parsed.number("fps", 0.0);
+  options.time_limit_seconds = timeLimitOption(parsed);
   if (parsed.has("fps") && !(options.fps > 0.0 && options.fps <= 1000.0)) throw UsageError("--fps must be in (0, 1000]");
   if (auto path = parsed.value("path")) {
     const std::optional<style::PathMode> mode = style::parsePathMode(*path);
@@ -76,7 +87,9 @@ void writeStylizedOutput(const std::filesystem::path& content_file, const style:
   }
   const Motion content = readBvh(content_file);
   const JointMapping mapping = mapJoints(content.skeleton, content_file.string());
-  const style::StylizedCleanup cleaned = style::cleanUpStylizedClip(content, mapping, stylized, {}, options.fps);
+  CleanupOptions cleanup_options;
+  cleanup_options.max_total_seconds = options.time_limit_seconds;
+  const style::StylizedCleanup cleaned = style::cleanUpStylizedClip(content, mapping, stylized, cleanup_options, options.fps);
   AtomicFileBatch outputs;  // the clip and its metrics: both or neither
   outputs.stage(output, formatBvh(cleaned.motion));
   if (options.metrics) {

@@ -5,6 +5,7 @@
 // quality figures (before and after clean-up) as JSON.
 
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <nlohmann/json.hpp>
 #include <ostream>
@@ -24,7 +25,13 @@
   "                  output's path against the input's as JSON\n"                                       \
   "  --fps N         output frame rate (default: IN's own)\n"                                         \
   "  --path P        content (default): the output keeps IN's root path and timing; style: the style\n" \
-  "                  may change the pace and the path\n"
+  "                  may change the pace and the path\n"                                                \
+  MOTIONSTYLE_TIME_LIMIT_HELP
+
+// --time-limit, shared with cleanup.
+#define MOTIONSTYLE_TIME_LIMIT_HELP                                                                     \
+  "  --time-limit S  stop the clean-up after S seconds: frames past it keep their first guess and are\n" \
+  "                  named in a warning (default: no limit, every frame is solved)\n"
 
 namespace motionstyle::cli {
 
@@ -33,6 +40,8 @@ struct OutputOptions {
   style::PathMode path = style::PathMode::Content;  // applied by the caller when stylizing
   std::optional<std::filesystem::path> metrics;  // JSON report
   double fps = 0.0;                              // output frame rate; 0 = the content's own
+  // --time-limit: the clean-up's wall-clock budget (CleanupOptions::max_total_seconds); none by default.
+  double time_limit_seconds = std::numeric_limits<double>::infinity();
   nlohmann::ordered_json extra_metrics = nlohmann::ordered_json::object();  // added to --metrics
 };
 
@@ -40,7 +49,10 @@ struct OutputOptions {
 // per_frame_cm (one shape for info, stylize --metrics and transfer --metrics).
 nlohmann::ordered_json familiarityJson(const style::Familiarity& familiarity, bool per_frame);
 
-// Reads --no-cleanup, --metrics FILE, --fps N and --path P from parsed arguments (declare them with
+// --time-limit S: > 0 and finite, else UsageError; infinity when absent.
+double timeLimitOption(const ParsedArgs& parsed);
+
+// Reads --no-cleanup, --metrics FILE, --fps N, --path P and --time-limit S from parsed arguments (declare them with
 // outputOptionSpecs).
 OutputOptions outputOptions(const ParsedArgs& parsed);
 std::vector<OptionSpec> outputOptionSpecs();

@@ -183,7 +183,7 @@ void CleanupOptions::validate() const {
   if (window_overlap < 0 || window_overlap >= window_frames)
     throw std::invalid_argument("cleanup options: window_overlap must lie in [0, window_frames)");
   if (max_iterations < 1) throw std::invalid_argument("cleanup options: max_iterations must be >= 1");
-  if (!std::isfinite(max_total_seconds) || !(max_total_seconds > 0.0))
+  if (!(max_total_seconds > 0.0))  // +infinity: no budget
     throw std::invalid_argument("cleanup options: max_total_seconds must be positive");
   if (threads < 1) throw std::invalid_argument("cleanup options: threads must be >= 1");
 }

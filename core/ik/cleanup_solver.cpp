@@ -106,7 +106,7 @@ class WindowProblem {
   }
 
   ceres::Solver::Summary solve(double seconds) {
-    solver_options_.max_solver_time_in_seconds = std::max(seconds, 1e-3);
+    solver_options_.max_solver_time_in_seconds = std::clamp(seconds, 1e-3, 1e9);  // Ceres' own default cap
     ceres::Solver::Summary summary;
     ceres::Solve(solver_options_, &problem_, &summary);
     return summary;

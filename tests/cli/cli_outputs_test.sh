@@ -118,5 +118,13 @@ expect 0 "before -> after" "$cli" adapt --ae "$work/ae.net" --data "$work/style.
 ls "$work"/adapted.net.checkpoint* >/dev/null 2>&1 && fail "adapt left its checkpoint"
 ls -A "$work" | grep -q '\.tmp-' && fail "temporaries left: $(ls -A "$work" | grep '\.tmp-')"
 
+# A result that was not produced never passes for one: no time limit unless the user sets one, and
+# then the frames it cut are named.
+expect 2 "--time-limit" "$cli" cleanup "$work/in.bvh" --out "$work/c.bvh" --time-limit 0
+expect 2 "--time-limit" "$cli" stylize --net "$work/net.net" "$work/in.bvh" --out "$work/s.bvh" --time-limit nan
+expect 0 "time budget of 0.00 s exhausted" "$cli" cleanup "$work/in.bvh" --out "$work/c.bvh" --time-limit 0.000001
+expect 0 "wrote" "$cli" cleanup "$work/in.bvh" --out "$work/c.bvh"
+grep -q "time budget" "$work/out" && fail "a clean-up without --time-limit was cut short"
+
 if [ "$failures" -ne 0 ]; then echo "$failures output check(s) failed"; exit 1; fi
 echo "all output checks passed"

@@ -96,6 +96,9 @@ TEST_F(CleanupInvalidInput, RejectsBadOptions) {
   options.max_total_seconds = 0.0;
   EXPECT_NE(failure(mapping, targets, contacts, Eigen::Vector3d::UnitY(), 1.0, options).find("max_total_seconds"),
             std::string::npos);
+  options.max_total_seconds = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_NE(failure(mapping, targets, contacts, Eigen::Vector3d::UnitY(), 1.0, options).find("max_total_seconds"),
+            std::string::npos);
 }
 
 TEST_F(CleanupInvalidInput, RejectsAnEmptyClip) {

@@ -129,6 +129,13 @@ TEST_F(CleanupHumanoid, UnreachableTargetsGiveAWarningAndABestEffortResult) {
   EXPECT_GT((hand - base).norm(), 52.0);  // upper arm 28 + forearm 25 = 53 cm
 }
 
+TEST_F(CleanupHumanoid, ByDefaultEveryFrameIsSolvedHoweverLong) {
+  EXPECT_FALSE(std::isfinite(CleanupOptions{}.max_total_seconds));  // a budget is the caller's choice
+  CleanupReport report;
+  cleanupMotion(input(targets, no_contacts), CleanupOptions{}, &report);
+  EXPECT_EQ(report.frames_unsolved, 0);
+}
+
 TEST_F(CleanupHumanoid, TheTimeBudgetBoundsTheSolve) {
   CleanupOptions options;
   options.max_total_seconds = 1e-9;
