@@ -16,6 +16,8 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev xvfb xauth libgl1-mesa-dri
   # packaging
   dpkg-dev file
+  # the CLI mutation test (tests/cli/mutation_test.py)
+  python3
 )
 
 missing=()
