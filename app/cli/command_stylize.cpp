@@ -48,7 +48,7 @@ style::StylizedClip stylizedTargets(const StylizeRequest& request, double& secon
   }
   const style::MotionClip clip = style::loadMotionClip(request.input, request.dataset);
   familiarity = style::measureFamiliarity(model, clip.features.values);
-  const style::Stylizer stylizer(std::move(model));
+  const style::Stylizer stylizer(std::move(model), request.network.string());
   const auto start = std::chrono::steady_clock::now();
   style::StylizedClip result = stylizer.stylize(clip.features, request.strength, request.path);
   seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

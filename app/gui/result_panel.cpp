@@ -177,7 +177,7 @@ void ResultPanel::useNetwork(std::shared_ptr<const nn::StyleModel> model, const 
   given_stylized_.reset();
   if (model) {
     try {
-      stylizer_ = std::make_shared<const style::Stylizer>(*model);
+      stylizer_ = std::make_shared<const style::Stylizer>(*model, (file.isEmpty() ? name : file).toStdString());
       network_name_ = name.isEmpty() ? tr("style network") : name;
     } catch (const std::exception& error) {
       report(tr("Could not use the style network"), QString::fromStdString(error.what()));

@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "common/errors.h"
 #include "style/training_windows.h"
 
 namespace motionstyle::style {
@@ -41,7 +42,8 @@ Eigen::MatrixXd denormalised(const nn::Mat<float>& x, const nn::Normalisation& n
 
 }  // namespace
 
-Stylizer::Stylizer(nn::StyleModel model) : model_(std::move(model)) {
+Stylizer::Stylizer(nn::StyleModel model, std::string source_name)
+    : model_(std::move(model)), source_name_(std::move(source_name)) {
   model_.normalisation.validate();
   if (model_.transformer.shape().features != kFeatureCount || model_.loss_network.shape().features != kFeatureCount)
     throw std::invalid_argument("Stylizer: the networks must take 66 features");
@@ -61,6 +63,10 @@ Eigen::MatrixXd Stylizer::stylizeFeatures(const Eigen::MatrixXd& features, doubl
   if (strength != 1.0) result = features + strength * (result - features);
   applyPathMode(result, features, path);
   enforceBoneLengths(result, referenceProportions());
+  if (!result.allFinite() || result.cwiseAbs().maxCoeff() > kMaxPhysicalFeature)
+    throw InputError(source_name_, 0,
+                     "the network's output is not physical (a joint 100 m away, or not a number): its weights are "
+                     "damaged");
   return result;
 }
 

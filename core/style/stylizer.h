@@ -16,6 +16,7 @@
 #include <Eigen/Core>
 #include <memory>
 #include <mutex>
+#include <string>
 
 #include "features/representation.h"
 #include "nn/fast_stylizer.h"
@@ -37,17 +38,22 @@ struct StylizedClip {
   int frameCount() const { return static_cast<int>(features.cols()); }
 };
 
+constexpr double kMaxPhysicalFeature = 1e4;
+
 class Stylizer {
  public:
   // Throws std::invalid_argument if the model is inconsistent (feature counts, normalisation).
-  explicit Stylizer(nn::StyleModel model);
+  // source_name names the network in errors (its file, where there is one).
+  explicit Stylizer(nn::StyleModel model, std::string source_name = "the style network");
 
   const nn::StyleModel& model() const { return model_; }
 
   // features: 66 x frames (frames >= 1) in representation units. Returns the same shape and units.
-  // Throws std::invalid_argument for a strength outside [0, 1] or NaN, or a wrong shape; InputError is
-  // not used here (the features come from extractFeatures, already validated). Thread-safe (one call
-  // at a time runs the fast path; others wait).
+  // Throws std::invalid_argument for a strength outside [0, 1] or NaN, or a wrong shape (the features
+  // come from extractFeatures, already validated); InputError naming source_name when the output is
+  // not physical: a value that is not finite or beyond kMaxPhysicalFeature (reference cm, or cm per
+  // frame; a body is 170 cm) - only damaged weights produce one, and the clean-up cannot mend it.
+  // Thread-safe (one call at a time runs the fast path; others wait).
   Eigen::MatrixXd stylizeFeatures(const Eigen::MatrixXd& features, double strength,
                                   PathMode path = PathMode::Content) const;
 
@@ -56,6 +62,7 @@ class Stylizer {
 
  private:
   nn::StyleModel model_;
+  std::string source_name_;
   mutable std::mutex mutex_;
   mutable std::unique_ptr<nn::FastStylizer> fast_;
 };

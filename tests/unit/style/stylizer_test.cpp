@@ -4,6 +4,7 @@
 #include <atomic>
 #include <nlohmann/json.hpp>
 
+#include "common/errors.h"
 #include "style/evaluation.h"
 #include "style/optimization_transfer.h"
 #include "style/stylizer.h"
@@ -24,6 +25,22 @@ Eigen::MatrixXd longFeatures(int frames) {
       if (filled == frames) break;
     }
   return out;
+}
+
+// Damaged weights that pass the file's checks can still throw a joint kilometres away: an error that
+// names the network, not a clip the clean-up chokes on.
+TEST(Stylizer, RefusesANetworkWhoseOutputIsNotPhysical) {
+  nn::StyleModel model = test::tinyStyleModel();
+  for (nn::Parameter<float>* p : model.transformer.parameters())
+    if (p->value.cols() == 1) p->value.setConstant(1e5f);
+  const style::Stylizer stylizer(std::move(model), "damaged.net");
+  try {
+    stylizer.stylizeFeatures(test::fixtureClips()[0].features.values, 1.0);
+    FAIL() << "no error";
+  } catch (const InputError& error) {
+    EXPECT_EQ(error.file(), "damaged.net");
+    EXPECT_NE(error.detail().find("not physical"), std::string::npos) << error.what();
+  }
 }
 
 TEST(Stylizer, StrengthZeroReturnsTheContentExactly) {
