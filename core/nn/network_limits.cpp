@@ -1,6 +1,6 @@
 #include "nn/network_limits.h"
 
-#include <climits>
+#include <limits>
 #include <cmath>
 #include <sstream>
 
@@ -47,7 +47,7 @@ std::string metadataProblem(const NetworkMetadata& m) {
                 "[1, 1e4] cm"),
         countProblem("epochs", t.epochs), countProblem("batch windows", t.batch_windows),
         countProblem("window frames", t.window_frames),
-        outside("learning rate", t.learning_rate, 0.0, kMaxTrainingCoefficient, "[0, 1e9]"),
+        outside("learning rate", t.learning_rate, 0.0, std::numeric_limits<double>::max(), "[0, finite]"),
         outside("sparsity", t.sparsity, 0.0, kMaxTrainingCoefficient, "[0, 1e9]"),
         outside("loss weight (content)", w.content, 0.0, kMaxTrainingCoefficient, "[0, 1e9]"),
         outside("loss weight (style)", w.style, 0.0, kMaxTrainingCoefficient, "[0, 1e9]"),

@@ -17,9 +17,10 @@
 //   style targets       |g| <= 1e12 per Gram entry: a mean of products of hidden units (shipped: < 5).
 //   representation      fps in [1, 1e4] (the representation's is 60), reference body height in
 //                       [1, 1e4] cm (the shipped networks': 127).
-//   training            epochs, batch windows, window frames fit an int; learning rate, sparsity and
-//                       each loss weight in [0, 1e9] (defaults <= 100); dropout in [0, 1) (the
-//                       trainer's own rule).
+//   training            epochs, batch windows, window frames fit an int; sparsity and each loss weight
+//                       in [0, 1e9] (defaults <= 100); dropout in [0, 1) (the trainer's own rule); the
+//                       learning rate finite and >= 0 (only shown, and the trainer bounds it no further:
+//                       a bound here could refuse to save a finished run).
 //   loss history        every value finite and within float32's range (|v| <= 3.4e38): the trainer
 //                       computes in float32 and stops on a non-finite loss.
 // Strings (valid UTF-8 without control characters) are checked by ByteReader::str (binary_io.h).
@@ -37,7 +38,7 @@ inline constexpr float kMaxWeightMagnitude = 1e5f;
 inline constexpr float kMaxStyleTargetMagnitude = 1e12f;
 inline constexpr double kMinRepresentationValue = 1.0;  // fps, reference body height (cm)
 inline constexpr double kMaxRepresentationValue = 1e4;
-inline constexpr double kMaxTrainingCoefficient = 1e9;  // learning rate, sparsity, loss weights
+inline constexpr double kMaxTrainingCoefficient = 1e9;  // sparsity, loss weights
 inline constexpr double kMaxLossValue = 3.4e38;         // float32's largest finite value, rounded down
 
 // "" when the metadata's numbers are within the bounds above; otherwise what is wrong, naming the field

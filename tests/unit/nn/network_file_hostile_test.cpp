@@ -154,7 +154,7 @@ TEST(NetworkFileHostile, TrainingSettingsThatLaterCodeUsesAreChecked) {
   };
   for (double dropout : {1.0, 1.5, -0.1, kNaN}) expectBothKindsRefuse(f64At(&Offsets::dropout, dropout), "dropout");
   for (double sparsity : {-1.0, kInf, 1e300}) expectBothKindsRefuse(f64At(&Offsets::sparsity, sparsity), "sparsity");
-  for (double lr : {kNaN, -1e-3, 1e300}) expectBothKindsRefuse(f64At(&Offsets::learning_rate, lr), "learning rate");
+  for (double lr : {kNaN, -1e-3, kInf}) expectBothKindsRefuse(f64At(&Offsets::learning_rate, lr), "learning rate");
   for (std::size_t term = 0; term < 5; ++term)
     for (double weight : {-1.0, kInf, 1e300})
       expectBothKindsRefuse(f64At(&Offsets::loss_weights, weight, 8 * term), "loss weight");
