@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
 # The whole test suite, from a fresh Debian 12 machine: installs the dependencies, builds everything
-# with warnings as errors, fuzzes the BVH parser for a bounded time, runs the unit tests under
-# AddressSanitizer + UBSan, then runs every ctest test: unit, gui (a real window under xvfb-run) and
-# data (tests over ../shared/data, which skip with a message when the licensed dataset is absent).
+# with warnings as errors, fuzzes the BVH parser and the network file reader for a bounded time, runs
+# the unit tests under AddressSanitizer + UBSan, then runs every ctest test: unit, gui (a real window
+# under xvfb-run) and data (tests over ../shared/data, which skip with a message when the licensed
+# dataset is absent).
 #
-# Environment: MOTIONSTYLE_BUILD_ROOT (default <repo>/build), MOTIONSTYLE_FUZZ_SECONDS (default 60),
-# MOTIONSTYLE_SKIP_SANITIZERS=1 to skip the sanitizer pass (local iteration only).
+# Environment: MOTIONSTYLE_BUILD_ROOT (default <repo>/build), MOTIONSTYLE_FUZZ_SECONDS (seconds PER fuzz
+# target, default 30: two targets, 60 s in all), MOTIONSTYLE_SKIP_SANITIZERS=1 to skip the sanitizer
+# pass (local iteration only).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build_root="${MOTIONSTYLE_BUILD_ROOT:-$root/build}"
@@ -17,8 +19,8 @@ echo "== build (Release, strict warnings)"
 cmake -S "$root" -B "$build_root/release" -G Ninja -DCMAKE_BUILD_TYPE=Release -DMOTIONSTYLE_STRICT_WARNINGS=ON
 cmake --build "$build_root/release" -j"$jobs"
 
-echo "== fuzz the BVH parser (${MOTIONSTYLE_FUZZ_SECONDS:-60} s)"
-MOTIONSTYLE_FUZZ_BUILD="$build_root/fuzz" bash "$root/tests/fuzz/run_fuzz.sh" "${MOTIONSTYLE_FUZZ_SECONDS:-60}"
+echo "== fuzz the BVH parser and the network file reader (${MOTIONSTYLE_FUZZ_SECONDS:-30} s each)"
+MOTIONSTYLE_FUZZ_BUILD="$build_root/fuzz" bash "$root/tests/fuzz/run_fuzz.sh" "${MOTIONSTYLE_FUZZ_SECONDS:-30}" all
 
 if [ "${MOTIONSTYLE_SKIP_SANITIZERS:-0}" != "1" ]; then
   echo "== unit tests under AddressSanitizer + UBSan"

@@ -1,4 +1,5 @@
-// motionstyle-cli info FILE...: what MotionStyle reads from each BVH file.
+// motionstyle-cli info FILE...: what MotionStyle reads from each BVH file. Every string read from a file
+// is printed as safe text (common/text_safety.h), and the JSON is always valid UTF-8.
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -15,6 +16,7 @@
 #include "mapping/joint_mapping.h"
 #include "mapping/mapping_file.h"
 #include "common/resource_paths.h"
+#include "common/text_safety.h"
 #include "nn/network_file.h"
 #include "style/familiarity.h"
 #include "stylized_output.h"
@@ -116,38 +118,41 @@ nlohmann::ordered_json describeClip(const std::string& path, const std::optional
   return info;
 }
 
+// The value of a string field as safe text, for the terminal.
+std::string text(const nlohmann::ordered_json& value) { return safeText(value.get<std::string>()); }
+
 void printText(const nlohmann::ordered_json& info) {
-  std::printf("%s\n", info["file"].get<std::string>().c_str());
+  std::printf("%s\n", text(info["file"]).c_str());
   std::printf("  joints       %d (+%d end sites), %d channels\n", info["joints"].get<int>(), info["end_sites"].get<int>(),
               info["channels"].get<int>());
   std::printf("  frames       %d at %.4g fps (%.2f s)\n", info["frames"].get<int>(), info["fps"].get<double>(),
               info["duration_s"].get<double>());
   const auto& mapping = info["mapping"];
   if (!mapping["complete"].get<bool>()) {
-    std::printf("  mapping      INCOMPLETE: %s\n", mapping["error"].get<std::string>().c_str());
+    std::printf("  mapping      INCOMPLETE: %s\n", text(mapping["error"]).c_str());
     return;
   }
-  std::printf("  up axis      %s (detected)\n", info["up_axis"].get<std::string>().c_str());
+  std::printf("  up axis      %s (detected)\n", text(info["up_axis"]).c_str());
   const auto& unit = info["unit"];
-  std::printf("  unit         %s, 1 unit = %.4g cm (%s)\n", unit["name"].get<std::string>().c_str(),
+  std::printf("  unit         %s, 1 unit = %.4g cm (%s)\n", text(unit["name"]).c_str(),
               unit["cm_per_unit"].get<double>(), unit["guessed"].get<bool>() ? "guessed from the skeleton's size; override with --unit" : "given");
   std::printf("  skeletal height %.1f cm (hip-knee-ankle + hips-spine-chest-neck-head)\n", info["skeletal_height_cm"].get<double>());
-  std::printf("  mapping      complete (%s):", mapping["convention"].get<std::string>().c_str());
+  std::printf("  mapping      complete (%s):", text(mapping["convention"]).c_str());
   int column = 0;
   for (const auto& [canonical, joint] : mapping["joints"].items()) {
-    std::printf("%s%s=%s", column++ % 4 == 0 ? "\n               " : "  ", canonical.c_str(), joint.get<std::string>().c_str());
+    std::printf("%s%s=%s", column++ % 4 == 0 ? "\n               " : "  ", canonical.c_str(), text(joint).c_str());
   }
   std::printf("\n  contacts     at %.4g fps:", info["contacts"]["fps"].get<double>());
   for (const auto& [name, summary] : info["contacts"]["labels"].items())
     std::printf(" %s %.0f%% (%d)", name.c_str(), 100.0 * summary["fraction"].get<double>(), summary["segments"].get<int>());
   std::printf("\n");
   if (info.contains("familiarity") && info["familiarity"].contains("error"))
-    std::printf("  familiarity  unknown: %s\n", info["familiarity"]["error"].get<std::string>().c_str());
+    std::printf("  familiarity  unknown: %s\n", text(info["familiarity"]["error"]).c_str());
   else if (info.contains("familiarity"))
     std::printf("  familiarity  %s (worst second %.1f cm; loss network %s)\n",
-                info["familiarity"]["summary"].get<std::string>().c_str(),
+                text(info["familiarity"]["summary"]).c_str(),
                 info["familiarity"]["worst_second_cm"].get<double>(),
-                info["familiarity"]["loss_network"].get<std::string>().c_str());
+                text(info["familiarity"]["loss_network"]).c_str());
 }
 
 // A network file starts with the magic "MSTYLNET" (core/nn/NETWORK_FORMAT.md); anything else is read as BVH.
@@ -170,9 +175,10 @@ int runInfo(const Args& args) {
     if (isNetworkFile(path)) {
       const std::string description = nn::describeNetworkFile(path);
       if (parsed.has("json"))
-        all.push_back({{"file", path}, {"network", description}});
+        all.push_back({{"file", safeText(path)}, {"network", safeLines(description)}});
       else
-        std::cout << path << "\n" << description << (description.empty() || description.back() == '\n' ? "" : "\n");
+        std::cout << safeText(path) << "\n" << safeLines(description)
+                  << (description.empty() || description.back() == '\n' ? "" : "\n");
       continue;
     }
     if (!loss_network) loss_network = lossNetworkFor(parsed);
@@ -182,7 +188,9 @@ int runInfo(const Args& args) {
     else
       printText(info);
   }
-  if (parsed.has("json")) std::cout << (all.size() == 1 ? all[0] : all).dump(2) << "\n";
+  if (parsed.has("json"))  // "replace": a BVH joint name in Latin-1 becomes U+FFFD, not a type error
+    std::cout << (all.size() == 1 ? all[0] : all).dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace)
+              << "\n";
   return 0;
 }
 

@@ -1,6 +1,7 @@
 // motionstyle-cli models: the networks shipped in <resources>/models (common/resource_paths.h), and
 // resolveNetworkArgument(), which lets every network option take a shipped network's bare name
-// (--net elderly, --ae autoencoder).
+// (--net elderly, --ae autoencoder). Names, paths and messages are printed as safe text
+// (common/text_safety.h): a file name must not drive the terminal or break the JSON.
 #include <algorithm>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -10,6 +11,7 @@
 #include "commands.h"
 #include "common/errors.h"
 #include "common/resource_paths.h"
+#include "common/text_safety.h"
 #include "nn/network_file.h"
 
 namespace motionstyle::cli {
@@ -26,7 +28,7 @@ struct ShippedNetwork {
 
 ShippedNetwork describeShipped(const std::filesystem::path& file) {
   ShippedNetwork network;
-  network.name = file.stem().string();
+  network.name = safeText(file.stem().string());
   network.file = file;
   try {
     const nn::NetworkMetadata metadata = [&] {
@@ -38,9 +40,9 @@ ShippedNetwork describeShipped(const std::filesystem::path& file) {
       return nn::loadAutoencoder(file).metadata;
     }();
     network.epochs = metadata.training.epochs;
-    for (const nn::StyleClipRef& clip : metadata.style_clips) network.style_clips.push_back(clip.name);
+    for (const nn::StyleClipRef& clip : metadata.style_clips) network.style_clips.push_back(safeText(clip.name));
   } catch (const InputError& error) {
-    network.error = error.what();
+    network.error = safeLines(error.what());
   }
   return network;
 }
@@ -89,7 +91,7 @@ int runModels(const Args& args) {
   if (parsed.has("json")) {
     nlohmann::ordered_json list = nlohmann::ordered_json::array();
     for (const ShippedNetwork& n : networks) {
-      nlohmann::ordered_json entry = {{"name", n.name}, {"file", n.file.string()}};
+      nlohmann::ordered_json entry = {{"name", n.name}, {"file", safeText(n.file.string())}};
       if (!n.error.empty()) {
         entry["error"] = n.error;
       } else {
@@ -99,13 +101,15 @@ int runModels(const Args& args) {
       }
       list.push_back(std::move(entry));
     }
-    std::cout << nlohmann::ordered_json{{"resources", resources->string()}, {"networks", list}}.dump(2) << "\n";
+    std::cout << nlohmann::ordered_json{{"resources", safeText(resources->string())}, {"networks", list}}.dump(
+                     2, ' ', false, nlohmann::ordered_json::error_handler_t::replace)
+              << "\n";
     return all_readable ? 0 : 2;
   }
 
-  std::cout << "resources: " << resources->string() << "\n";
+  std::cout << "resources: " << safeText(resources->string()) << "\n";
   if (networks.empty()) {
-    std::cout << "no shipped networks in " << (*resources / "models").string()
+    std::cout << "no shipped networks in " << safeText((*resources / "models").string())
               << " (train your own: motionstyle-cli train-ae, train-style)\n";
     return 0;
   }

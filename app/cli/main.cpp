@@ -7,6 +7,7 @@
 #include "commands.h"
 #include "common/allocator_tuning.h"
 #include "common/errors.h"
+#include "common/text_safety.h"
 
 namespace {
 
@@ -53,20 +54,20 @@ int main(int argc, char** argv) {
   try {
     return command->run(args);
   } catch (const cli::UsageError& error) {
-    std::cerr << "motionstyle-cli " << command->name << ": " << error.what() << "\n(see 'motionstyle-cli "
+    std::cerr << "motionstyle-cli " << command->name << ": " << safeLines(error.what()) << "\n(see 'motionstyle-cli "
               << command->name << " --help')\n";
     return 2;
-  } catch (const InputError& error) {
-    std::cerr << "error: " << error.what() << "\n";
+  } catch (const InputError& error) {  // messages name files: never let a file name drive the terminal
+    std::cerr << "error: " << safeLines(error.what()) << "\n";
     return 2;
   } catch (const WriteError& error) {  // the user's path or disk is the problem, not the program
-    std::cerr << "error: " << error.what() << "\n";
+    std::cerr << "error: " << safeLines(error.what()) << "\n";
     return 2;
   } catch (const std::bad_alloc&) {
     std::cerr << "internal error: out of memory\n";
     return 1;
   } catch (const std::exception& error) {
-    std::cerr << "internal error: " << error.what() << "\n";
+    std::cerr << "internal error: " << safeLines(error.what()) << "\n";
     return 1;
   }
 }

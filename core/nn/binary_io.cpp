@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "common/errors.h"
+#include "common/text_safety.h"
 #include "nn/half_float.h"
 
 namespace motionstyle::nn {
@@ -68,8 +69,9 @@ void ByteWriter::f64(double v) {
 }
 
 void ByteWriter::str(std::string_view s) {
-  u32(static_cast<std::uint32_t>(s.size()));
-  bytes_.append(s);
+  const std::string safe = safeText(s);
+  u32(static_cast<std::uint32_t>(safe.size()));
+  bytes_.append(safe);
 }
 
 void ByteWriter::f64Vector(const Eigen::VectorXd& v) {
@@ -133,7 +135,10 @@ std::string ByteReader::str(const char* what, std::uint32_t max_length) {
   const std::uint32_t length = u32(what);
   if (length > max_length)
     fail(std::string("corrupt network file: ") + what + " claims " + std::to_string(length) + " bytes");
-  return std::string(take(length, what));
+  std::string text(take(length, what));
+  if (const std::string problem = textSafetyProblem(text); !problem.empty())
+    fail(std::string("corrupt network file: ") + what + " is not safe text (" + problem + ")");
+  return text;
 }
 
 Eigen::VectorXd ByteReader::f64Vector(const char* what) {

@@ -34,7 +34,7 @@ class ByteWriter {
   void u32(std::uint32_t v);
   void u64(std::uint64_t v);
   void f64(double v);
-  void str(std::string_view s);                 // u32 length + bytes
+  void str(std::string_view s);                 // u32 length + the bytes of safeText(s)
   void f64Vector(const Eigen::VectorXd& v);     // u32 count + f64 values
   // str name, u32 rows, u32 cols, then the values column-major in `precision`. F16 throws
   // std::invalid_argument naming the tensor for a value that is not finite in binary16 (|w| >= 65520,
@@ -57,7 +57,8 @@ class ByteReader {
   std::uint32_t u32(const char* what);
   std::uint64_t u64(const char* what);
   double f64(const char* what);
-  // Strings longer than max_length are rejected as corrupt.
+  // Strings longer than max_length, or not safe text (valid UTF-8 without control characters,
+  // common/text_safety.h), are rejected as corrupt; the message names the offending byte, never echoes it.
   std::string str(const char* what, std::uint32_t max_length = 1u << 20);
   Eigen::VectorXd f64Vector(const char* what);
   struct Tensor {

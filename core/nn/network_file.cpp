@@ -8,6 +8,7 @@
 #include "common/atomic_file.h"
 #include "common/errors.h"
 #include "nn/binary_io.h"
+#include "nn/network_limits.h"
 
 namespace motionstyle::nn {
 namespace {
@@ -27,13 +28,23 @@ const char* kindName(NetworkKind kind) {
 
 // ---------------------------------------------------------------- writing
 
+// A tensor the reader would refuse (network_limits.h) is never written.
+void writeChecked(ByteWriter& w, const std::string& name, const Mat<float>& values, WeightPrecision precision,
+                  float max_magnitude) {
+  if (std::string problem = valuesProblem(name, values, max_magnitude); !problem.empty())
+    throw std::invalid_argument("network file: " + problem);
+  w.tensor(name, values, precision);
+}
+
 void writeConvTensors(ByteWriter& w, const Conv1d<float>& conv, WeightPrecision precision) {
-  w.tensor(conv.weight.name, conv.weight.value, precision);
-  if (conv.hasBias()) w.tensor(conv.bias.name, conv.bias.value, precision);
+  writeChecked(w, conv.weight.name, conv.weight.value, precision, kMaxWeightMagnitude);
+  if (conv.hasBias()) writeChecked(w, conv.bias.name, conv.bias.value, precision, kMaxWeightMagnitude);
 }
 
 void requireWritable(const Normalisation& normalisation, const NetworkMetadata& metadata) {
   normalisation.validate();
+  for (const std::string& problem : {normalisationProblem(normalisation), metadataProblem(metadata)})
+    if (!problem.empty()) throw std::invalid_argument("network file: " + problem);
   if (metadata.representation.feature_count != kFeatureCount)
     throw std::invalid_argument("network file: representation.feature_count must be " + std::to_string(kFeatureCount));
   for (const auto& epoch : metadata.loss_history.epochs)
@@ -106,7 +117,7 @@ std::string serialise(NetworkKind kind, const Normalisation& normalisation, cons
   for (const StyleTarget& target : targets) {
     if (target.gram.rows() != ae.shape().hidden || target.gram.cols() != ae.shape().hidden || !target.gram.allFinite())
       throw std::invalid_argument("style target '" + target.label + "' must be a finite hidden x hidden matrix");
-    body.tensor(std::string(kStyleTargetPrefix) + target.label, target.gram, precision);
+    writeChecked(body, std::string(kStyleTargetPrefix) + target.label, target.gram, precision, kMaxStyleTargetMagnitude);
   }
 
   ByteWriter file;
@@ -231,14 +242,9 @@ void validateRepresentation(const ByteReader& r, const Parsed& p) {
     r.fail("network file uses a different representation (" + std::to_string(rep.feature_count) + " features, joint set '" +
            rep.joint_set + "'); this build uses " + std::to_string(kFeatureCount) + " features of '" +
            std::string(kRetargetedJointSetName) + "'");
-  if (!std::isfinite(rep.fps) || rep.fps <= 0 || !std::isfinite(rep.reference_body_height_cm) ||
-      rep.reference_body_height_cm <= 0)
-    r.fail("corrupt network file: fps and reference body height must be finite and positive");
-  try {
-    p.normalisation.validate();
-  } catch (const std::invalid_argument& e) {
-    r.fail(std::string("corrupt network file: ") + e.what());
-  }
+  // Non-physical numbers (network_limits.h): the writer never writes them, later code trusts them.
+  for (const std::string& problem : {metadataProblem(p.metadata), normalisationProblem(p.normalisation)})
+    if (!problem.empty()) r.fail("corrupt network file: " + problem);
   if (p.ae_shape.features != rep.feature_count)
     r.fail("network file: the autoencoder has " + std::to_string(p.ae_shape.features) + " features, the representation " +
            std::to_string(rep.feature_count));
@@ -286,6 +292,8 @@ void assignConv(ByteReader& r, std::vector<ByteReader::Tensor>& tensors, std::si
              std::to_string(t.value.cols()) + " where '" + param->name + "' " + std::to_string(param->value.rows()) +
              " x " + std::to_string(param->value.cols()) + " was expected");
     if (!t.value.allFinite()) r.fail("network file: tensor '" + t.name + "' has non-finite values");
+    if (std::string problem = valuesProblem(t.name, t.value, kMaxWeightMagnitude); !problem.empty())
+      r.fail("corrupt network file: " + problem);
     param->value = std::move(t.value);
     param->zeroGrad();
   }
@@ -386,6 +394,8 @@ StyleModel parseStyleModel(std::string_view bytes, const std::string& source_nam
     if (t.value.rows() != hidden || t.value.cols() != hidden || !t.value.allFinite())
       r.fail("network file: style target '" + t.name + "' must be a finite " + std::to_string(hidden) + " x " +
              std::to_string(hidden) + " matrix");
+    if (std::string problem = valuesProblem(t.name, t.value, kMaxStyleTargetMagnitude); !problem.empty())
+      r.fail("corrupt network file: " + problem);
     std::string label = t.name.substr(std::string_view(kStyleTargetPrefix).size());
     for (const StyleTarget& earlier : model.style_targets)
       if (earlier.label == label) r.fail("network file: style target '" + t.name + "' appears twice");

@@ -106,9 +106,11 @@ struct StyleModel {
 };
 
 // Serialise to bytes (the exact file content, format kNetworkFormatVersion) / save atomically, the
-// weights stored in `precision` (F16: half the size; metadata and statistics stay f64). Throws
-// std::invalid_argument when the model is internally inconsistent (e.g. normalisation of the wrong
-// size) or, for F16, has a weight outside binary16's finite range; WriteError on I/O.
+// weights stored in `precision` (F16: half the size; metadata and statistics stay f64). Strings are
+// written as safeText() (common/text_safety.h: a Latin-1 file name becomes U+FFFD, not an unreadable
+// file). Throws std::invalid_argument when the model is internally inconsistent (e.g. normalisation of
+// the wrong size), holds a number outside network_limits.h's bounds or, for F16, has a weight outside
+// binary16's finite range (what the reader would refuse is never written); WriteError on I/O.
 std::string serialiseAutoencoder(const AutoencoderModel& model, WeightPrecision precision = WeightPrecision::F32);
 std::string serialiseStyleModel(const StyleModel& model, WeightPrecision precision = WeightPrecision::F32);
 void saveAutoencoder(const AutoencoderModel& model, const std::filesystem::path& file,
@@ -122,7 +124,9 @@ std::string serialiseAutoencoderFormat1(const AutoencoderModel& model);
 
 // Parse bytes (source_name names them in errors) / load a file. InputError on anything wrong, incl.
 // a file of the other kind, a feature count or joint set this build does not use, shapes that do
-// not match the declared architecture, non-finite weights or statistics.
+// not match the declared architecture, non-finite weights or statistics, numbers outside
+// network_limits.h's bounds, and strings that are not valid UTF-8 or hold control characters. The
+// message names the file and the field, and never echoes an unsafe string.
 AutoencoderModel parseAutoencoder(std::string_view bytes, const std::string& source_name);
 StyleModel parseStyleModel(std::string_view bytes, const std::string& source_name);
 AutoencoderModel loadAutoencoder(const std::filesystem::path& file);

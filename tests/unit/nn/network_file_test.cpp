@@ -60,8 +60,9 @@ void putU32(std::string& bytes, std::size_t offset, std::uint32_t v) {
   for (int i = 0; i < 4; ++i) bytes[offset + static_cast<std::size_t>(i)] = static_cast<char>((v >> (8 * i)) & 0xFFu);
 }
 
-// Offset of the representation's feature count: header, fps (8), joint set (4 + length), height (8).
-std::size_t featureCountOffset() { return kHeaderBytes + 8 + 4 + std::string(kCanonicalJointSetName).size() + 8; }
+// Offset of the representation's feature count: header, fps (8), joint set (4 + length), height (8). The
+// models here keep RepresentationInfo's default joint set.
+std::size_t featureCountOffset() { return kHeaderBytes + 8 + 4 + std::string(kRetargetedJointSetName).size() + 8; }
 
 template <typename F>
 void expectInputError(F&& f, const std::string& needle) {
@@ -129,7 +130,11 @@ TEST(NetworkFileInvalid, MismatchedRepresentationAndShapes) {
 
   StyleModel nan_weight = smallStyleModel();
   nan_weight.transformer.conv2.weight.value(0, 0) = std::numeric_limits<float>::quiet_NaN();
-  expectInputError([&] { parseStyleModel(serialiseStyleModel(nan_weight), "net.msn"); }, "non-finite");
+  EXPECT_THROW(serialiseStyleModel(nan_weight), std::invalid_argument);  // never written
+  std::string nan_bytes = serialiseStyleModel(smallStyleModel());         // so made by hand
+  putU32(nan_bytes, nan_bytes.find("transform2.weight") + std::string("transform2.weight").size() + 8, 0x7FC00000u);
+  fixCrc(nan_bytes);
+  expectInputError([&] { parseStyleModel(nan_bytes, "net.msn"); }, "non-finite");
 
   StyleModel bad_std = smallStyleModel();
   bad_std.normalisation.std(0) = 0.0;
