@@ -31,8 +31,7 @@ OutputOptions outputOptions(const ParsedArgs& parsed) {
   OutputOptions options;
   options.cleanup = !parsed.has("no-cleanup");
   if (auto metrics = parsed.value("metrics")) options.metrics = *metrics;
-  options.fps = parsed.number("fps", 0.0);
-  if (parsed.has("fps") && !(options.fps > 0.0 && options.fps <= 1000.0)) throw UsageError("--fps must be in (0, 1000]");
+  options.fps = parsed.number("fps", 0.0, kOutputFpsRange);
   if (auto path = parsed.value("path")) {
     const std::optional<style::PathMode> mode = style::parsePathMode(*path);
     if (!mode) throw UsageError("--path must be content or style, not '" + *path + "'");
@@ -66,7 +65,8 @@ void writeStylizedOutput(const std::filesystem::path& content_file, const style:
         << " fps (raw positions of the 21 canonical joints; no clean-up)\n";
     return;
   }
-  const Motion content = readBvh(content_file);
+  const Motion content = readBvh(content_file, /*minimum_frames=*/1);
+  if (options.fps > 0.0) requireResampleableTo(content, options.fps);
   const JointMapping mapping = mapJoints(content.skeleton, content_file.string());
   const style::StylizedCleanup cleaned = style::cleanUpStylizedClip(content, mapping, stylized, {}, options.fps);
   writeBvh(cleaned.motion, output);
