@@ -6,6 +6,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace motionstyle::cli {
@@ -15,6 +16,20 @@ class UsageError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+// The values a numeric option accepts: [min, max], open at either end where asked ("(0, 1]").
+struct Range {
+  double min;
+  double max;
+  bool min_open = false;
+  bool max_open = false;
+};
+
+// Ranges shared by the commands' numeric options, so that one option means the same everywhere.
+inline constexpr Range kOutputFpsRange{0.0, 1000.0, /*min_open=*/true};  // --fps, frames per second
+inline constexpr Range kLearningRateRange{0.0, 1.0, /*min_open=*/true};  // --lr: Adam diverges far below 1
+inline constexpr Range kLossWeightRange{0.0, 1e6};  // loss weights: beyond, float losses overflow (3e38)
+inline constexpr int kMaxEpochs = 100000;
 
 struct OptionSpec {
   std::string name;         // without the leading "--"
@@ -30,13 +45,27 @@ class ParsedArgs {
   std::optional<std::string> value(const std::string& name) const;
   const std::vector<std::string>& values(const std::string& name) const;
   std::string required(const std::string& name) const;
+  // The option as a number (parseDecimal) or integer, `fallback` when absent. UsageError naming the
+  // option when it is not one, and with a range when it lies outside it ("--lr must be in (0, 1]").
   double number(const std::string& name, double fallback) const;
+  double number(const std::string& name, double fallback, const Range& range) const;
   int integer(const std::string& name, int fallback) const;
+  int integer(const std::string& name, int fallback, int min, int max) const;
 
  private:
   friend ParsedArgs parseArgs(const std::vector<std::string>&, const std::vector<OptionSpec>&);
   std::map<std::string, std::vector<std::string>> values_;
 };
+
+// A decimal number as a user types it: [+|-]digits[.digits][(e|E)[+|-]digits], or with the digits only
+// after the point (".5"); the whole text, finite, within double range. nullopt for anything else,
+// notably what std::stod would take but nobody means: hex ("0x10"), "inf", "nan", blanks around it
+// (" 60"), trailing garbage ("60fps").
+std::optional<double> parseDecimal(std::string_view text);
+
+// The value of --unit (a length unit: cm, m, mm, inch, ft, dm or cmu), nullopt when absent.
+// UsageError listing the known units for any other name.
+std::optional<std::string> lengthUnit(const ParsedArgs& parsed);
 
 // Throws UsageError on an unknown option, a missing value or a repeated non-repeatable option.
 ParsedArgs parseArgs(const std::vector<std::string>& args, const std::vector<OptionSpec>& specs);

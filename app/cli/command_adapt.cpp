@@ -20,22 +20,17 @@ int runAdapt(const Args& args) {
   style::AdaptationJob job;
   style::AdaptationSettings& settings = job.settings;
   settings.output = parsed.required("out");
-  settings.epochs = parsed.integer("epochs", settings.epochs);
-  if (settings.epochs < 1 || settings.epochs > 100000) throw UsageError("--epochs must be in [1, 100000]");
-  settings.learning_rate = parsed.number("lr", settings.learning_rate);
-  if (!(settings.learning_rate > 0.0 && settings.learning_rate <= 1.0)) throw UsageError("--lr must be in (0, 1]");
-  const int seed = parsed.integer("seed", 1);
-  if (seed < 0) throw UsageError("--seed must be >= 0");
-  settings.seed = static_cast<std::uint32_t>(seed);
-  settings.replay_ratio = parsed.number("replay-ratio", settings.replay_ratio);
-  if (!(settings.replay_ratio >= 0.0 && settings.replay_ratio <= 100.0)) throw UsageError("--replay-ratio must be in [0, 100]");
+  settings.epochs = parsed.integer("epochs", settings.epochs, 1, kMaxEpochs);
+  settings.learning_rate = parsed.number("lr", settings.learning_rate, kLearningRateRange);
+  settings.seed = static_cast<std::uint32_t>(parsed.integer("seed", 1, 0, std::numeric_limits<int>::max()));
+  settings.replay_ratio = parsed.number("replay-ratio", settings.replay_ratio, {0.0, 100.0});
   settings.train_encoder = parsed.has("train-encoder");
   if (auto checkpoint = parsed.value("checkpoint")) settings.checkpoint = *checkpoint;
   settings.keep_checkpoint = parsed.has("keep-checkpoints");
   if (parsed.has("threads")) applyThreadOption(parsed.integer("threads", 0));
 
   style::DatasetOptions dataset;
-  if (auto unit = parsed.value("unit")) dataset.features.unit = *unit;
+  dataset.features.unit = lengthUnit(parsed);
   if (parsed.has("skip-bad")) dataset.bad_files = style::BadFilePolicy::Skip;
   std::vector<std::filesystem::path> data;
   for (const std::string& value : parsed.values("data")) data.emplace_back(value);

@@ -3,6 +3,8 @@
 // Contacts come from --contacts FILE, else from the tracks saved beside the clip
 // (IN.bvh.contacts.json, e.g. edited in the app), else are detected from height and speed.
 // The solve and the metrics run at IN's own rate; --fps N resamples the cleaned clip for export only.
+// Bad input is exit 2 before any solve: no frames (Frames: 0), a skeleton without height
+// (requireMeasurableRestPose), --fps beyond 100x IN's rate, an unknown --unit.
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -48,8 +50,8 @@ int runCleanup(const Args& args) {
   if (parsed.positional.size() != 1) throw UsageError("cleanup needs exactly one input clip IN.bvh");
   const std::filesystem::path input_file = parsed.positional[0];
   const std::filesystem::path output = parsed.required("out");
-  const double output_fps = parsed.number("fps", 0.0);  // 0: IN's own rate
-  if (parsed.has("fps") && !(output_fps > 0.0 && output_fps <= 1000.0)) throw UsageError("--fps must be in (0, 1000]");
+  const double output_fps = parsed.number("fps", 0.0, kOutputFpsRange);  // 0: IN's own rate
+  const std::optional<std::string> unit = lengthUnit(parsed);
 
   std::vector<NamedPath> inputs = {{input_file, "the input clip"}, {contactTracksPath(input_file), "the clip's contact tracks"}};
   if (auto contacts = parsed.value("contacts")) inputs.push_back({*contacts, "--contacts"});
@@ -58,12 +60,14 @@ int runCleanup(const Args& args) {
   if (auto metrics = parsed.value("metrics")) outputs.push_back({*metrics, "--metrics"});
   checkOutputPaths(inputs, outputs);
 
-  const Motion motion = readBvh(input_file);
+  const Motion motion = readBvh(input_file, /*minimum_frames=*/1);
+  if (output_fps > 0.0) requireResampleableTo(motion, output_fps);
   const JointMapping mapping = mapJoints(motion.skeleton, input_file.string(),
                                          parsed.value("mapping") ? std::optional<std::filesystem::path>(*parsed.value("mapping"))
                                                                  : std::nullopt);
   const Eigen::MatrixXd world = worldPositions(motion);
-  const SpaceConvention convention = detectSpaceConvention(motion.skeleton, world, mapping, parsed.value("unit"));
+  requireMeasurableRestPose(motion, mapping);
+  const SpaceConvention convention = detectSpaceConvention(motion.skeleton, world, mapping, unit);
   const Eigen::Vector3d up = convention.fileUp();
   const std::array<int, kContactCount> feet = contactJoints(mapping);
   const double floor = estimateFloorHeight(world, feet, up);

@@ -14,10 +14,11 @@ int runConvert(const Args& args) {
   const ParsedArgs parsed = parseArgs(args, {{"fps"}});
   if (parsed.positional.size() != 2) throw UsageError("convert needs IN and OUT");
   checkOutputPaths({{parsed.positional[0], "IN"}}, {{parsed.positional[1], "OUT"}});
-  Motion motion = readBvh(parsed.positional[0]);
+  const double fps = parsed.number("fps", 0.0, kOutputFpsRange);
+  // A skeleton-only file (Frames: 0) converts as it is; resampling needs motion.
+  Motion motion = readBvh(parsed.positional[0], parsed.has("fps") ? 1 : 0);
   if (parsed.has("fps")) {
-    const double fps = parsed.number("fps", 0.0);
-    if (!(fps > 0.0 && fps <= 1000.0)) throw UsageError("--fps must be in (0, 1000]");
+    requireResampleableTo(motion, fps);
     motion = resampleMotion(motion, fps);
   }
   writeBvh(motion, parsed.positional[1]);

@@ -17,7 +17,7 @@ int runEval(const Args& args) {
   const ParsedArgs parsed = parseArgs(args, {{"ae"}, {"net"}, {"style", true, true}, {"json"}, {"unit"}, {"path"}});
   if (parsed.positional.empty()) throw UsageError("eval needs the clips to evaluate (files or folders)");
   style::DatasetOptions dataset;
-  if (auto unit = parsed.value("unit")) dataset.features.unit = *unit;
+  dataset.features.unit = lengthUnit(parsed);
   const std::filesystem::path ae_file = resolveNetworkArgument(parsed.required("ae"));
   const std::filesystem::path net_file = resolveNetworkArgument(parsed.required("net"));
   std::vector<NamedPath> read = {{ae_file, "--ae"}, {net_file, "--net"}};

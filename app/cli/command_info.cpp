@@ -58,7 +58,7 @@ LossNetwork lossNetworkFor(const ParsedArgs& parsed) {
   }
   if (file.empty()) return loss;
   FeatureOptions options;
-  if (auto unit = parsed.value("unit")) options.unit = *unit;
+  options.unit = lengthUnit(parsed);
   loss.file = file.string();
   try {
     loss.model = style::loadCompatibleAutoencoder(file, options);
@@ -87,6 +87,7 @@ nlohmann::ordered_json describeClip(const std::string& path, const std::optional
   try {
     mapping = mapping_file ? loadJointMapping(*mapping_file, motion.skeleton) : mapJoints(motion.skeleton, path);
   } catch (const InputError& error) {
+    if (mapping_file) throw;  // the user's file (missing, malformed, not this rig): exit 2, as for cleanup
     info["mapping"] = {{"complete", false}, {"error", error.detail()}};
     return info;
   }
@@ -95,6 +96,7 @@ nlohmann::ordered_json describeClip(const std::string& path, const std::optional
     joints[std::string(canonicalJointName(static_cast<CanonicalJoint>(c)))] =
         motion.skeleton.joints[static_cast<size_t>(mapping.joints[static_cast<size_t>(c)])].name;
   info["mapping"] = {{"complete", true}, {"convention", mapping.convention}, {"joints", joints}};
+  if (motion.frameCount() == 0) return info;  // a skeleton only: the up axis and the rest need motion
 
   FeatureOptions options;
   options.unit = unit;
@@ -130,6 +132,11 @@ void printText(const nlohmann::ordered_json& info) {
   const auto& mapping = info["mapping"];
   if (!mapping["complete"].get<bool>()) {
     std::printf("  mapping      INCOMPLETE: %s\n", text(mapping["error"]).c_str());
+    return;
+  }
+  if (!info.contains("up_axis")) {
+    std::printf("  mapping      complete (%s)\n  motion       none (Frames: 0, a skeleton only): the up axis, unit, "
+                "contacts and familiarity need frames\n", text(mapping["convention"]).c_str());
     return;
   }
   std::printf("  up axis      %s (detected)\n", text(info["up_axis"]).c_str());
@@ -168,6 +175,7 @@ bool isNetworkFile(const std::string& path) {
 int runInfo(const Args& args) {
   const ParsedArgs parsed = parseArgs(args, {{"json", false}, {"mapping"}, {"unit"}, {"ae"}});
   if (parsed.positional.empty()) throw UsageError("info needs at least one FILE");
+  const std::optional<std::string> unit = lengthUnit(parsed);  // a usage error before any file is read
   std::optional<LossNetwork> loss_network;  // loaded on the first clip (network files need none)
   nlohmann::ordered_json all = nlohmann::ordered_json::array();
   for (const std::string& argument : parsed.positional) {
@@ -182,7 +190,7 @@ int runInfo(const Args& args) {
       continue;
     }
     if (!loss_network) loss_network = lossNetworkFor(parsed);
-    nlohmann::ordered_json info = describeClip(path, parsed.value("mapping"), parsed.value("unit"), *loss_network);
+    nlohmann::ordered_json info = describeClip(path, parsed.value("mapping"), unit, *loss_network);
     if (parsed.has("json"))
       all.push_back(std::move(info));
     else

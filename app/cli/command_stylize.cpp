@@ -67,10 +67,9 @@ int runStylize(const Args& args) {
   request.network = resolveNetworkArgument(parsed.required("net"));
   if (auto ae = parsed.value("ae")) request.autoencoder = resolveNetworkArgument(*ae);
   request.input = parsed.positional[0];
-  request.strength = parsed.number("strength", 1.0);
+  request.strength = parsed.number("strength", 1.0, {0.0, 1.0});
   request.path = output_options.path;
-  if (!(request.strength >= 0.0 && request.strength <= 1.0)) throw UsageError("--strength must be in [0, 1]");
-  if (auto unit = parsed.value("unit")) request.dataset.features.unit = *unit;
+  request.dataset.features.unit = lengthUnit(parsed);
   const std::filesystem::path output = parsed.required("out");
   std::vector<NamedPath> inputs = {{request.input, "the input clip"}, {request.network, "--net"}};
   if (request.autoencoder) inputs.push_back({*request.autoencoder, "--ae"});

@@ -23,14 +23,10 @@ int runTrainAutoencoder(const Args& args) {
   for (const std::string& data : parsed.values("data")) config.data.emplace_back(data);
   for (const std::string& data : parsed.positional) config.data.emplace_back(data);  // --data A B C
   if (config.data.empty()) throw UsageError("train-ae needs --data DIR (folders or .bvh files)");
-  config.shape.hidden = parsed.integer("hidden", config.shape.hidden);
-  if (config.shape.hidden < 1 || config.shape.hidden > 4096) throw UsageError("--hidden must be in [1, 4096]");
-  config.sparsity = parsed.number("sparsity", config.sparsity);
-  config.dropout = parsed.number("dropout", config.dropout);
-  if (config.sparsity < 0) throw UsageError("--sparsity must be >= 0");
-  if (config.dropout < 0 || config.dropout >= 1) throw UsageError("--dropout must be in [0, 1)");
-  config.foot_weight = parsed.number("foot", config.foot_weight);
-  if (!(config.foot_weight >= 0.0) || !std::isfinite(config.foot_weight)) throw UsageError("--foot must be >= 0");
+  config.shape.hidden = parsed.integer("hidden", config.shape.hidden, 1, 4096);
+  config.sparsity = parsed.number("sparsity", config.sparsity, kLossWeightRange);
+  config.dropout = parsed.number("dropout", config.dropout, {0.0, 1.0, false, /*max_open=*/true});
+  config.foot_weight = parsed.number("foot", config.foot_weight, kLossWeightRange);
 
   return runTrainingWithProgress(config);
 }

@@ -15,7 +15,8 @@ namespace {
 nn::LossWeights parseWeights(const std::string& text) {
   nn::LossWeights weights;
   for (const auto& [name, value] : parseNamedNumbers(text, "--weights")) {
-    if (!(value >= 0.0) || !std::isfinite(value)) throw UsageError("--weights: " + name + " must be finite and >= 0");
+    if (!(value >= kLossWeightRange.min && value <= kLossWeightRange.max))
+      throw UsageError("--weights: " + name + " must be in [0, 1e+06], got " + std::to_string(value));
     if (name == "content") weights.content = value;
     else if (name == "style") weights.style = value;
     else if (name == "foot") weights.foot = value;
@@ -47,8 +48,7 @@ int runTrainStyle(const Args& args) {
     throw UsageError("train-style needs --style CLIP.bvh (or --style LABEL=CLIP.bvh), or --init NET to retrain NET "
                      "with the style targets it stores");
   if (auto weights = parsed.value("weights")) config.weights = parseWeights(*weights);
-  config.shape.hidden = parsed.integer("hidden", config.shape.hidden);
-  if (config.shape.hidden < 1 || config.shape.hidden > 4096) throw UsageError("--hidden must be in [1, 4096]");
+  config.shape.hidden = parsed.integer("hidden", config.shape.hidden, 1, 4096);
 
   return runTrainingWithProgress(config);
 }

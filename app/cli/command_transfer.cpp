@@ -31,19 +31,14 @@ int runTransfer(const Args& args) {
   const OutputOptions output_options = outputOptions(parsed);
   if (parsed.positional.size() != 1) throw UsageError("transfer needs exactly one input clip IN.bvh");
   style::OptimizationOptions options;
-  options.iterations = parsed.integer("iterations", options.iterations);
-  options.constraint_iterations = parsed.integer("constraint-iterations", options.constraint_iterations);
-  options.style_weight = parsed.number("style-weight", options.style_weight);
-  options.learning_rate = parsed.number("lr", options.learning_rate);
+  options.iterations = parsed.integer("iterations", options.iterations, 0, 100000);
+  options.constraint_iterations = parsed.integer("constraint-iterations", options.constraint_iterations, 0, 100000);
+  options.style_weight = parsed.number("style-weight", options.style_weight, kLossWeightRange);
+  options.learning_rate = parsed.number("lr", options.learning_rate, kLearningRateRange);
   options.start_from_noise = parsed.has("noise-start");
   options.path = output_options.path;
-  if (options.iterations < 0 || options.iterations > 100000 || options.constraint_iterations < 0 ||
-      options.constraint_iterations > 100000)
-    throw UsageError("--iterations and --constraint-iterations must be in [0, 100000]");
-  if (!(options.style_weight >= 0.0)) throw UsageError("--style-weight must be >= 0");
-  if (!(options.learning_rate > 0.0)) throw UsageError("--lr must be > 0");
   style::DatasetOptions dataset;
-  if (auto unit = parsed.value("unit")) dataset.features.unit = *unit;
+  dataset.features.unit = lengthUnit(parsed);
   const std::filesystem::path output = parsed.required("out");
   const std::filesystem::path ae_file = resolveNetworkArgument(parsed.required("ae"));
   const std::filesystem::path style_file = parsed.required("style");

@@ -163,15 +163,9 @@ std::vector<std::pair<std::string, double>> parseNamedNumbers(const std::string&
     const std::size_t equals = item.find('=');
     if (equals == std::string::npos || equals == 0 || equals + 1 == item.size())
       throw UsageError(option + " expects NAME=NUMBER pairs separated by commas, got '" + item + "'");
-    double value = 0;
-    try {
-      std::size_t used = 0;
-      value = std::stod(item.substr(equals + 1), &used);
-      if (used != item.size() - equals - 1) throw std::invalid_argument(item);
-    } catch (const std::exception&) {
-      throw UsageError(option + ": '" + item + "' is not NAME=NUMBER");
-    }
-    pairs.emplace_back(item.substr(0, equals), value);
+    const std::optional<double> value = parseDecimal(std::string_view(item).substr(equals + 1));
+    if (!value) throw UsageError(option + ": '" + item + "' is not NAME=NUMBER");
+    pairs.emplace_back(item.substr(0, equals), *value);
     start = end + 1;
   }
   return pairs;
@@ -207,15 +201,10 @@ style::TrainingSettings trainingSettings(const ParsedArgs& parsed, const Trainin
   style::TrainingSettings settings;
   settings.augmentation = defaults.augmentation;
   settings.output = parsed.required("out");
-  settings.epochs = parsed.integer("epochs", defaults.epochs);
-  if (settings.epochs < 1) throw UsageError("--epochs must be >= 1");
-  const int seed = parsed.integer("seed", 1);
-  if (seed < 0) throw UsageError("--seed must be >= 0");
-  settings.seed = static_cast<std::uint32_t>(seed);
-  settings.batch_size = parsed.integer("batch", settings.batch_size);
-  if (settings.batch_size < 1 || settings.batch_size > 4096) throw UsageError("--batch must be in [1, 4096]");
-  settings.learning_rate = parsed.number("lr", defaults.learning_rate);
-  if (!(settings.learning_rate > 0.0)) throw UsageError("--lr must be > 0");
+  settings.epochs = parsed.integer("epochs", defaults.epochs, 1, kMaxEpochs);
+  settings.seed = static_cast<std::uint32_t>(parsed.integer("seed", 1, 0, std::numeric_limits<int>::max()));
+  settings.batch_size = parsed.integer("batch", settings.batch_size, 1, 4096);
+  settings.learning_rate = parsed.number("lr", defaults.learning_rate, kLearningRateRange);
   if (auto schedule = parsed.value("lr-schedule")) {
     if (*schedule == "cosine")
       settings.schedule = style::LearningRateSchedule::Cosine;
@@ -224,8 +213,7 @@ style::TrainingSettings trainingSettings(const ParsedArgs& parsed, const Trainin
     else
       throw UsageError("--lr-schedule must be cosine or constant, not '" + *schedule + "'");
   }
-  settings.gradient_clip = parsed.number("clip", settings.gradient_clip);
-  if (!(settings.gradient_clip >= 0.0) || !std::isfinite(settings.gradient_clip)) throw UsageError("--clip must be >= 0");
+  settings.gradient_clip = parsed.number("clip", settings.gradient_clip, {0.0, 1000.0});
   if (parsed.has("threads")) {
     settings.threads = parsed.integer("threads", 0);
     applyThreadOption(settings.threads);
@@ -235,10 +223,10 @@ style::TrainingSettings trainingSettings(const ParsedArgs& parsed, const Trainin
   if (settings.resume && !settings.init.empty()) throw UsageError("--resume and --init exclude each other");
   if (auto checkpoint = parsed.value("checkpoint")) settings.checkpoint = *checkpoint;
   settings.keep_checkpoint = parsed.has("keep-checkpoints");
-  settings.holdout_every = parsed.integer("holdout", 0);
+  settings.holdout_every = parsed.integer("holdout", 0, 0, 1000000);
   if (settings.holdout_every < 0 || settings.holdout_every == 1) throw UsageError("--holdout must be >= 2");
   if (parsed.has("skip-bad")) settings.dataset.bad_files = style::BadFilePolicy::Skip;
-  if (auto unit = parsed.value("unit")) settings.dataset.features.unit = *unit;
+  settings.dataset.features.unit = lengthUnit(parsed);
   if (auto augment = parsed.value("augment")) settings.augmentation = parseAugmentation(*augment, defaults.augmentation);
   return settings;
 }

@@ -47,9 +47,8 @@ OutputOptions outputOptions(const ParsedArgs& parsed) {
   OutputOptions options;
   options.cleanup = !parsed.has("no-cleanup");
   if (auto metrics = parsed.value("metrics")) options.metrics = *metrics;
-  options.fps = parsed.number("fps", 0.0);
+  options.fps = parsed.number("fps", 0.0, kOutputFpsRange);
   options.time_limit_seconds = timeLimitOption(parsed);
-  if (parsed.has("fps") && !(options.fps > 0.0 && options.fps <= 1000.0)) throw UsageError("--fps must be in (0, 1000]");
   if (auto path = parsed.value("path")) {
     const std::optional<style::PathMode> mode = style::parsePathMode(*path);
     if (!mode) throw UsageError("--path must be content or style, not '" + *path + "'");
@@ -85,7 +84,8 @@ void writeStylizedOutput(const std::filesystem::path& content_file, const style:
         << " fps (raw positions of the 21 canonical joints; no clean-up)\n";
     return;
   }
-  const Motion content = readBvh(content_file);
+  const Motion content = readBvh(content_file, /*minimum_frames=*/1);
+  if (options.fps > 0.0) requireResampleableTo(content, options.fps);
   const JointMapping mapping = mapJoints(content.skeleton, content_file.string());
   CleanupOptions cleanup_options;
   cleanup_options.max_total_seconds = options.time_limit_seconds;

@@ -1,5 +1,6 @@
 #include "bvh/bvh_hierarchy.h"
 
+#include <cmath>
 #include <optional>
 #include <unordered_map>
 #include <unordered_set>
@@ -168,7 +169,11 @@ class HierarchyParser {
   double number(std::string_view word, std::string_view context) const {
     double value = 0.0;
     switch (parseNumber(word, value)) {
-      case NumberStatus::Ok: return value;
+      case NumberStatus::Ok:
+        if (!(std::abs(value) <= kBvhMaxMagnitude))
+          fail("expected a value within +-" + formatBound(kBvhMaxMagnitude) + " in " + std::string(context) + ", got " +
+               excerpt(word) + " (no skeleton is that large)");
+        return value;
       case NumberStatus::NotFinite: fail("expected a finite number in " + std::string(context) + ", got " + excerpt(word));
       case NumberStatus::OutOfRange:
         fail("expected a number within double range in " + std::string(context) + ", got " + excerpt(word));

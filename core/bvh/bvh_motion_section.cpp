@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <climits>
+#include <cmath>
 #include <cstddef>
 
+#include "bvh/bvh_reader.h"
 #include "common/errors.h"
 
 namespace motionstyle::bvh_detail {
@@ -32,8 +34,8 @@ std::string describeChannel(const Skeleton& skeleton, std::size_t channel) {
 
 class MotionSectionParser {
  public:
-  MotionSectionParser(LineCursor& cursor, const std::string& source, Motion& motion)
-      : cursor_(cursor), source_(source), motion_(motion) {}
+  MotionSectionParser(LineCursor& cursor, const std::string& source, int minimum_frames, Motion& motion)
+      : cursor_(cursor), source_(source), minimum_frames_(minimum_frames), motion_(motion) {}
 
   void parse() {
     readLine("MOTION after the ROOT's closing '}' (no MOTION section)");
@@ -53,14 +55,21 @@ class MotionSectionParser {
       fail(line_number_, "expected a frame count from 0 to " + std::to_string(INT_MAX) + " after 'Frames:', got " +
                              excerpt(trim(rest)));
     frames_line_ = line_number_;
+    if (frames < minimum_frames_)
+      fail(line_number_, frames == 0 ? "the clip has no frames ('Frames: 0', a skeleton only); this needs motion"
+                                     : "expected at least " + frameCount(static_cast<std::size_t>(minimum_frames_)) +
+                                           ", got " + std::to_string(frames));
 
     readLine("'Frame Time: <seconds>'");
     rest = line_;
     if (!consumeLabel(rest, "Frame") || !consumeLabel(rest, "Time") || !consumeLabel(rest, ":"))
       fail(line_number_, "expected 'Frame Time: <seconds>', got " + excerpt(line_));
     double frame_time = 0.0;
-    if (parseNumber(trim(rest), frame_time) != NumberStatus::Ok || !(frame_time > 0.0))
-      fail(line_number_, "expected a positive, finite frame time in seconds, got " + excerpt(trim(rest)));
+    if (parseNumber(trim(rest), frame_time) != NumberStatus::Ok ||
+        !(frame_time >= kBvhMinFrameTime && frame_time <= kBvhMaxFrameTime))
+      fail(line_number_, "expected a positive, finite frame time from " + formatBound(kBvhMinFrameTime) + " to " +
+                             formatBound(kBvhMaxFrameTime) + " s (" + formatBound(1.0 / kBvhMinFrameTime) + " to " +
+                             formatBound(1.0 / kBvhMaxFrameTime) + " fps), got " + excerpt(trim(rest)));
     motion_.frame_time = frame_time;
 
     readFrames(static_cast<std::size_t>(frames));
@@ -111,6 +120,7 @@ class MotionSectionParser {
         NumberStatus status = NumberStatus::Ok;
         const char* stop = parseNumberAt(p, end, row[count], status);
         if (stop == nullptr) failValue(line, count, status, wordAt(p, end));
+        if (!(std::abs(row[count]) <= kBvhMaxMagnitude)) failMagnitude(line, count, wordAt(p, end));
         p = stop;
         ++count;
         while (p < end && isBlank(*p)) ++p;
@@ -153,8 +163,16 @@ class MotionSectionParser {
     fail(line, "expected a number" + where + ", got " + excerpt(word));
   }
 
+  [[noreturn]] void failMagnitude(int line, std::size_t channel, std::string_view word) const {
+    fail(line, "expected a value within +-" + formatBound(kBvhMaxMagnitude) + " for " +
+                   describeChannel(motion_.skeleton, channel) + " (value " + std::to_string(channel + 1) + " of " +
+                   std::to_string(motion_.skeleton.channelCount()) + "), got " + excerpt(word) +
+                   " (no capture moves that far or turns that often)");
+  }
+
   LineCursor& cursor_;
   const std::string& source_;
+  int minimum_frames_;
   Motion& motion_;
   std::string_view line_;
   int line_number_ = 0;
@@ -163,8 +181,8 @@ class MotionSectionParser {
 
 }  // namespace
 
-void parseMotionSection(LineCursor& cursor, const std::string& source, Motion& motion) {
-  MotionSectionParser(cursor, source, motion).parse();
+void parseMotionSection(LineCursor& cursor, const std::string& source, int minimum_frames, Motion& motion) {
+  MotionSectionParser(cursor, source, minimum_frames, motion).parse();
 }
 
 }  // namespace motionstyle::bvh_detail

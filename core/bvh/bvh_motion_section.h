@@ -11,7 +11,8 @@ namespace motionstyle::bvh_detail {
 
 // Reads from `cursor` (just after the hierarchy) to the end of the text and fills motion.frame_time
 // (seconds) and motion.values (frames x motion.skeleton.channelCount(), file units and degrees).
-// The skeleton must already be set. Throws InputError naming `source` and the line.
-void parseMotionSection(LineCursor& cursor, const std::string& source, Motion& motion);
+// The skeleton must already be set. Throws InputError naming `source` and the line, also when
+// "Frames:" states fewer than `minimum_frames` (the caller needs motion, the file holds less).
+void parseMotionSection(LineCursor& cursor, const std::string& source, int minimum_frames, Motion& motion);
 
 }  // namespace motionstyle::bvh_detail

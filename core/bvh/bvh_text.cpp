@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <system_error>
 
@@ -168,6 +169,17 @@ std::string_view wordAt(const char* p, const char* end) {
   const char* stop = p;
   while (stop < end && !isBlank(*stop) && *stop != '\n') ++stop;
   return std::string_view(p, static_cast<std::size_t>(stop - p));
+}
+
+std::string formatBound(double bound) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.10g", bound);
+  std::string text = buffer;
+  if (text.find('e') != std::string::npos) {  // %g switches to exponents at 1e6 and below 1e-4
+    std::snprintf(buffer, sizeof buffer, "%.0f", bound);
+    if (bound >= 1.0) text = buffer;
+  }
+  return text;
 }
 
 std::string excerpt(std::string_view text) {

@@ -57,6 +57,9 @@ const char* parseNumberAt(const char* p, const char* end, double& value, NumberS
 // The word starting at `p` (up to whitespace or the end), for messages.
 std::string_view wordAt(const char* p, const char* end);
 
+// A bound for an error message: shortest form ("0.0001", "1", "1000000"), never "1e+06".
+std::string formatBound(double bound);
+
 // `text` quoted for an error message: at most 40 characters, control and non-ASCII bytes escaped so
 // binary garbage cannot mangle a terminal or a dialog.
 std::string excerpt(std::string_view text);

@@ -84,6 +84,7 @@ MotionFeatures extractFeatures(const Motion& motion, const JointMapping& mapping
     throw InputError(motion.source, 0, "the clip is too short: it needs at least 2 frames at " +
                                            std::to_string(static_cast<int>(options.fps)) + " fps");
 
+  requireMeasurableRestPose(motion, mapping);  // InputError before anything divides by its height
   MotionFeatures result;
   result.mapping = mapping;
   FeatureAnchor& anchor = result.anchor;

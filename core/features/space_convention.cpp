@@ -1,10 +1,12 @@
 #include "features/space_convention.h"
 
+#include <Eigen/SVD>
 #include <array>
 #include <cmath>
 #include <stdexcept>
 #include <utility>
 
+#include "common/errors.h"
 #include "features/feature_layout.h"
 
 namespace motionstyle {
@@ -56,6 +58,27 @@ std::optional<double> centimetresPerUnit(const std::string& unit) {
   return std::nullopt;
 }
 
+std::string knownUnitNames() {
+  std::string names;
+  for (const UnitEntry& entry : kUnits) names.append(names.empty() ? "" : ", ").append(entry.name);
+  return names;
+}
+
+void requireMeasurableRestPose(const Motion& motion, const JointMapping& mapping) {
+  constexpr double kCollinear = 1e-6;  // second singular value / first
+  const std::vector<Eigen::Vector3d> rest = restPositions(motion.skeleton);
+  Eigen::MatrixXd points(kCanonicalJointCount, 3);
+  for (int c = 0; c < kCanonicalJointCount; ++c)
+    points.row(c) = rest[static_cast<size_t>(mapping.joints[static_cast<size_t>(c)])].transpose();
+  points.rowwise() -= points.colwise().mean();
+  const Eigen::Vector3d spread = Eigen::JacobiSVD<Eigen::MatrixXd>(points).singularValues();
+  const double height = skeletalHeight(motion.skeleton, mapping);
+  if (!(spread[1] > kCollinear * spread[0]) || !(height > 0.0) || !std::isfinite(height))
+    throw InputError(motion.source, 0,
+                     "the skeleton's rest pose (its OFFSETs) has no height or width to measure: its canonical joints "
+                     "lie on one line or one point, so its up axis, unit and facing are undefined");
+}
+
 double skeletalHeight(const Skeleton& skeleton, const JointMapping& mapping) {
   const std::vector<Eigen::Vector3d> rest = restPositions(skeleton);
   auto distance = [&](CanonicalJoint a, CanonicalJoint b) {
@@ -97,7 +120,7 @@ SpaceConvention detectSpaceConvention(const Skeleton& skeleton, const Eigen::Mat
 
   if (unit) {
     const std::optional<double> cm = centimetresPerUnit(*unit);
-    if (!cm) throw std::invalid_argument("unknown length unit '" + *unit + "' (known: cm, m, mm, inch, ft, dm, cmu)");
+    if (!cm) throw std::invalid_argument("unknown length unit '" + *unit + "' (known: " + knownUnitNames() + ")");
     convention.unit = *unit;
     convention.cm_per_unit = *cm;
     convention.unit_guessed = false;

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "mapping/joint_mapping.h"
+#include "motion/motion.h"
 #include "motion/skeleton.h"
 
 namespace motionstyle {
@@ -34,6 +35,15 @@ struct SpaceConvention {
 
 // Known length units: name -> centimetres per unit. Returns nullopt for an unknown name.
 std::optional<double> centimetresPerUnit(const std::string& unit);
+// The known units' names for messages: "cm, m, mm, inch, ft, dm, cmu".
+std::string knownUnitNames();
+
+// Throws InputError(motion.source, 0, ...) when the rest pose (OFFSETs only) of the mapped canonical
+// joints cannot be measured: they lie on one line or one point (the second singular value of their
+// centred positions is below 1e-6 of the first), or the skeletal height is zero. Such a skeleton (all
+// offsets zero, or all along one axis) has no up axis, unit or facing to detect, and every feature
+// would be NaN. Shared by extractFeatures (info, stylize, training) and the clean-up command.
+void requireMeasurableRestPose(const Motion& motion, const JointMapping& mapping);
 
 // The character's SKELETAL HEIGHT in the skeleton's own units: the mean over both legs of the
 // hip-knee and knee-ankle distances plus the hips-spine, spine-chest, chest-neck and neck-head

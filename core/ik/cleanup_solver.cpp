@@ -9,10 +9,12 @@
 #include "ik/cleanup_solver.h"
 
 #include <ceres/ceres.h>
+#include <glog/logging.h>
 
 #include <algorithm>
 #include <chrono>
 #include <memory>
+#include <mutex>
 
 #include "ik/cost_functors.h"
 
@@ -25,6 +27,19 @@ using Clock = std::chrono::steady_clock;
 constexpr int kChainStride = 8;
 
 enum Term : size_t { kPositionTerm, kContactTerm, kFloorTerm, kSmoothnessTerm, kPriorTerm, kTermCount };
+
+// Ceres 2.1 reports evaluation trouble (a residual or Jacobian that is not finite, a failed line search)
+// through glog's LOG(WARNING) and LOG(ERROR) whatever Solver::Options::logging_type says: one hostile
+// clip then writes megabytes to stderr. The clean-up reports what the user needs itself (CleanupReport,
+// cleanup_warnings.h), so glog keeps only FATAL messages. Process-wide and once, not around each solve:
+// MotionStyle logs nothing through glog, and solves may run on several threads at a time.
+void keepCeresLogOffStderr() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    FLAGS_minloglevel = google::GLOG_FATAL;
+    FLAGS_stderrthreshold = google::GLOG_FATAL;
+  });
+}
 
 ceres::Problem::Options problemOptions() {
   ceres::Problem::Options options;
@@ -65,6 +80,7 @@ class WindowProblem {
       solver_options_.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
     solver_options_.logging_type = ceres::SILENT;
     solver_options_.minimizer_progress_to_stdout = false;
+    keepCeresLogOffStderr();
   }
 
   int slotCount() const { return window_ + 2; }

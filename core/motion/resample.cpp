@@ -2,16 +2,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 #include <string>
 
+#include "common/errors.h"
 #include "motion/kinematics.h"
 
 namespace motionstyle {
 namespace {
 
-constexpr double kMaxUpsampling = 100.0;      // target fps / source fps
 constexpr double kRateTolerance = 1e-5;       // relative; BVH frame times are rounded (see resample.h)
 constexpr double kFrameCountSlack = 1e-6;     // frames, absorbs rounding in the output frame count
 
@@ -48,6 +49,14 @@ std::vector<ResampleSample> rowSchedule(Eigen::Index frames, double source_frame
 }
 
 }  // namespace
+
+void requireResampleableTo(const Motion& motion, double target_fps) {
+  if (target_fps * motion.frame_time <= kMaxUpsampling) return;
+  char detail[200];
+  std::snprintf(detail, sizeof detail, "cannot resample to %g fps: that is more than %g times the clip's %g fps (at most %g)",
+                target_fps, kMaxUpsampling, motion.fps(), kMaxUpsampling * motion.fps());
+  throw InputError(motion.source, 0, detail);
+}
 
 std::vector<ResampleSample> resampleSchedule(int source_frames, double source_frame_time, double target_fps) {
   checkTiming(source_frames, source_frame_time, target_fps);

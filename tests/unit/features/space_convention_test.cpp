@@ -1,6 +1,10 @@
 #include <gtest/gtest.h>
 
+#include <functional>
+
 #include "bvh/bvh_reader.h"
+#include "common/errors.h"
+#include "features/representation.h"
 #include "features/space_convention.h"
 #include "mapping/joint_mapping.h"
 #include "motion/kinematics.h"
@@ -32,6 +36,41 @@ TEST(SpaceConvention, RejectsUnknownUnit) {
   const LoadedClip clip = load("cmu_131_01.bvh");
   EXPECT_THROW(detectSpaceConvention(clip.motion.skeleton, clip.world, clip.mapping, std::string("furlong")),
                std::invalid_argument);
+}
+
+// The clip with every OFFSET replaced by `offset(joint index)`: a rest pose of no height.
+Motion withOffsets(const Motion& motion, const std::function<Eigen::Vector3d(int)>& offset) {
+  Motion flat = motion;
+  for (int j = 0; j < flat.skeleton.jointCount(); ++j) flat.skeleton.joints[static_cast<size_t>(j)].offset = offset(j);
+  return flat;
+}
+
+void expectUnmeasurable(const Motion& motion, const JointMapping& mapping) {
+  try {
+    requireMeasurableRestPose(motion, mapping);
+    ADD_FAILURE() << "accepted a rest pose on one line";
+  } catch (const InputError& error) {
+    EXPECT_EQ(error.file(), motion.source);
+    EXPECT_NE(error.detail().find("one line"), std::string::npos) << error.detail();
+  }
+  // extractFeatures (info, stylize, training) says the same, with or without a given unit.
+  EXPECT_THROW(extractFeatures(motion, mapping, {}), InputError);
+  FeatureOptions in_cm;
+  in_cm.unit = "cm";
+  EXPECT_THROW(extractFeatures(motion, mapping, in_cm), InputError);
+}
+
+TEST(SpaceConvention, ARestPoseOnOneLineOrPointIsAnInputErrorNamingTheClip) {
+  LoadedClip clip = load("zombie.bvh");
+  clip.motion.source = "zombie.bvh";
+  expectUnmeasurable(withOffsets(clip.motion, [](int) { return Eigen::Vector3d::Zero(); }), clip.mapping);
+  expectUnmeasurable(withOffsets(clip.motion, [](int j) { return Eigen::Vector3d(1.0 + j % 7, 0, 0); }), clip.mapping);
+  expectUnmeasurable(withOffsets(clip.motion, [](int j) { return Eigen::Vector3d(0, 0, 1.0 + j % 3); }), clip.mapping);
+  EXPECT_NO_THROW(requireMeasurableRestPose(clip.motion, clip.mapping));
+}
+
+TEST(SpaceConvention, KnownUnitNamesListsEveryUnit) {
+  EXPECT_EQ(knownUnitNames(), "cm, m, mm, inch, ft, dm, cmu");
 }
 
 TEST(SpaceConvention, CmuIsYUpInCmuUnits) {

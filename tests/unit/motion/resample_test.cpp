@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/errors.h"
 #include "motion/kinematics.h"
 #include "motion/resample.h"
 #include "motion/rotation.h"
@@ -38,6 +39,20 @@ TEST(ResampleInvalid, RejectsBadTargetRates) {
     EXPECT_THROW(resampleMotion(m, bad), std::invalid_argument) << bad;
   EXPECT_THROW(resampleMotion(m, 30.0 * 101.0), std::invalid_argument);  // beyond 100x upsampling
   EXPECT_NO_THROW(resampleMotion(m, 30.0 * 100.0));
+}
+
+TEST(ResampleInvalid, AUsersRateBeyondAHundredTimesIsAnInputErrorNamingTheClip) {
+  Motion slow = mixedAt(2.0, 5, 1);
+  slow.source = "slow.bvh";
+  try {
+    requireResampleableTo(slow, 1000.0);
+    ADD_FAILURE() << "accepted 500x upsampling";
+  } catch (const InputError& error) {
+    EXPECT_EQ(error.file(), "slow.bvh");
+    EXPECT_NE(error.detail().find("more than 100 times the clip's 2 fps (at most 200)"), std::string::npos) << error.detail();
+  }
+  EXPECT_NO_THROW(requireResampleableTo(slow, 200.0));
+  EXPECT_NO_THROW(resampleMotion(slow, 200.0));
 }
 
 TEST(ResampleInvalid, RejectsEmptyAndInvalidMotions) {
