@@ -217,6 +217,7 @@ TEST(StyleInvalidDeathTest, DiskFullDuringACheckpointKeepsTheEarlierCheckpoint) 
     dir = own->path();
   }
   style::AutoencoderTrainingConfig config = test::tinyAutoencoderConfig(dir / "ae.net", 1);
+  config.settings.keep_checkpoint = true;
   const std::filesystem::path checkpoint = config.settings.checkpointPath();
   std::string network_before, state_before, output_before;
   if (!inherited) {
@@ -244,6 +245,7 @@ TEST(StyleInvalid, ResumeWithoutACheckpointOrWithOtherDataIsAnInputError) {
 
   config.settings.resume = false;
   config.settings.epochs = 1;
+  config.settings.keep_checkpoint = true;
   ASSERT_EQ(style::trainAutoencoder(config).status, style::TrainingStatus::Completed);
   config.settings.resume = true;
   config.settings.epochs = 2;

@@ -154,6 +154,28 @@ TEST(TrainAutoencoder, ResumeAfterAnEpochOrACancelledStepEqualsUninterruptedTrai
   EXPECT_EQ(test::weightsOf(straight.model.network), test::weightsOf(finished.model.network));
 }
 
+// A completed run's checkpoint (network + state, megabytes) goes once the output is written, unless
+// it is asked for; a cancelled run's stays, to resume from.
+TEST(TrainAutoencoder, ACompletedRunRemovesItsCheckpointUnlessKept) {
+  TempDir dir;
+  auto config = test::tinyAutoencoderConfig(dir / "ae.net", 2);
+  const std::filesystem::path checkpoint = config.settings.checkpointPath();
+  ASSERT_EQ(style::trainAutoencoder(config, test::cancelAtEndOfEpoch(1)).status, style::TrainingStatus::Cancelled);
+  EXPECT_TRUE(std::filesystem::exists(checkpoint));
+  EXPECT_TRUE(std::filesystem::exists(style::statePath(checkpoint)));
+  config.settings.resume = true;
+  ASSERT_EQ(style::trainAutoencoder(config).status, style::TrainingStatus::Completed);
+  EXPECT_TRUE(std::filesystem::exists(dir / "ae.net"));
+  EXPECT_FALSE(std::filesystem::exists(checkpoint));
+  EXPECT_FALSE(std::filesystem::exists(style::statePath(checkpoint)));
+
+  config.settings.resume = false;
+  config.settings.keep_checkpoint = true;
+  ASSERT_EQ(style::trainAutoencoder(config).status, style::TrainingStatus::Completed);
+  EXPECT_TRUE(std::filesystem::exists(checkpoint));
+  EXPECT_TRUE(std::filesystem::exists(style::statePath(checkpoint)));
+}
+
 TEST(TrainAutoencoder, CancellationTakesEffectWithinOneSecond) {
   TempDir dir;
   // Full-size networks and windows (256 hidden units, width 25, 240 frames): the slowest steps there are.
