@@ -1,4 +1,5 @@
 #include "adapt_tab.h"
+#include "shipped_networks.h"
 
 #include <QCoreApplication>
 #include <QDir>
@@ -171,16 +172,18 @@ void AdaptTab::refresh() {
   for (auto it = folders.rbegin(); it != folders.rend(); ++it) clip_list_->addItem(*it);
 
   style_list_->clear();
-  const auto addStyle = [&](const QString& name, const QString& key) {
+  const auto addStyle = [&](const QString& name, const QString& key, const QString& problem = {}) {
     auto* item = new QListWidgetItem(name, style_list_);
     item->setData(kPathRole, key);
     item->setFlags(item->flags() | Qt::ItemIsUserCheckable);
-    const bool checked = first_listing ? style_list_->count() == 1 : checked_styles.count(key) > 0;  // first: the first
-    item->setCheckState(checked ? Qt::Checked : Qt::Unchecked);
+    const bool checked = problem.isEmpty() && (first_listing ? style_list_->count() == 1 : checked_styles.count(key) > 0);
+    item->setCheckState(checked ? Qt::Checked : Qt::Unchecked);  // first listing: the first style
+    if (problem.isEmpty()) return;
+    item->setText(tr("%1 (cannot be read)").arg(name));
+    item->setToolTip(problem);
+    item->setFlags(item->flags() & ~Qt::ItemIsEnabled);
   };
-  if (const auto resources = resourceDirectory())
-    for (const std::filesystem::path& file : shippedNetworkFiles(*resources))
-      if (file.stem() != kShippedAutoencoderName) addStyle(QString::fromStdString(file.stem().string()), QString::fromStdString(file.string()));
+  for (const ShippedStyleNetwork& network : shippedStyleNetworks()) addStyle(network.name, network.file, network.problem);
   for (const NamedNetwork& network : networks_())
     if (network.model && !network.model->style_targets.empty()) addStyle(network.name, QStringLiteral("panel:") + network.name);
 }

@@ -34,6 +34,7 @@ void prepare(LoadedClip& clip) {
   clip.detected_contacts.resize(0, 0);
   clip.contact_overrides.resize(0, 0);
   if (clip.mapping) {
+    requireMeasurableRestPose(clip.motion, *clip.mapping);  // InputError: a flat skeleton is not loaded
     clip.display_space = mappedDisplaySpace(clip.motion, *clip.mapping, world);
     const Eigen::Vector3d up = clip.display_space.convention.fileUp();
     clip.detected_contacts = detectContacts(world, contactJoints(*clip.mapping), up, clip.display_space.floor_height,
@@ -68,7 +69,7 @@ ContactLabels LoadedClip::effectiveContacts() const {
 
 LoadedClip loadClip(const std::filesystem::path& file) {
   LoadedClip clip;
-  clip.motion = readBvh(file);
+  clip.motion = readBvh(file, /*minimum_frames=*/1);  // a skeleton without motion is not a clip to style
   const QFileInfo info(QString::fromStdString(file.string()));
   clip.path = info.absoluteFilePath();
   clip.name = info.fileName();

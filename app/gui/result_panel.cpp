@@ -25,6 +25,7 @@
 #include "display_space.h"
 #include "familiarity_label.h"
 #include "result_figures.h"
+#include "shipped_networks.h"
 #include "style/training.h"
 
 namespace motionstyle {
@@ -188,16 +189,7 @@ void ResultPanel::useNetwork(std::shared_ptr<const nn::StyleModel> model, const 
   refreshFamiliarity();
 }
 
-void ResultPanel::listShippedNetworks() {
-  const std::optional<std::filesystem::path> resources = resourceDirectory();
-  if (!resources) return;
-  for (const std::filesystem::path& file : shippedNetworkFiles(*resources)) {
-    const QString name = QString::fromStdString(file.stem().string());
-    if (name == QLatin1String(kShippedAutoencoderName)) continue;  // the loss network is not a style
-    network_choice_->addItem(name.left(1).toUpper() + name.mid(1),
-                             QFileInfo(QString::fromStdString(file.string())).absoluteFilePath());
-  }
-}
+void ResultPanel::listShippedNetworks() { addShippedStyleNetworks(network_choice_); }
 
 void ResultPanel::showNetworkInChoice(const QString& label, const QString& file) {
   int index = file.isEmpty() ? -1 : network_choice_->findData(file);

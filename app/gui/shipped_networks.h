@@ -1,0 +1,26 @@
+#pragma once
+// The shipped style networks as the app lists them (the Result panel's Style choice, the Adapt tab):
+// each file is read once and fully checked (nn::networkFileInfo: header, CRC, every stored value), so
+// a damaged or foreign file is shown disabled with the reason instead of failing when chosen.
+
+#include <QString>
+#include <vector>
+
+class QComboBox;
+
+namespace motionstyle {
+
+struct ShippedStyleNetwork {
+  QString name;     // the file's stem ("elderly")
+  QString file;     // absolute path
+  QString problem;  // why it cannot be used (the reader's message); empty: usable
+};
+
+// The resources folder's style networks (not the loss network), sorted by name; empty without one.
+std::vector<ShippedStyleNetwork> shippedStyleNetworks();
+
+// Appends them to `choice` with the file as item data: "Elderly", or "Broken (cannot be read)"
+// disabled with the problem as tooltip.
+void addShippedStyleNetworks(QComboBox* choice);
+
+}  // namespace motionstyle
