@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # The whole test suite, from a fresh Debian 12 machine: installs the dependencies, builds everything
 # with warnings as errors, fuzzes the BVH parser and the network file reader for a bounded time, runs
-# the unit tests under AddressSanitizer + UBSan, then runs every ctest test: unit, gui (a real window
-# under xvfb-run) and data (tests over ../shared/data, which skip with a message when the licensed
-# dataset is absent).
+# the unit tests under AddressSanitizer + UBSan, then runs every ctest test: unit, cli (motionstyle-cli
+# end to end: exit codes, outputs, kill and mutation tests), gui (a real window under xvfb-run) and
+# data (tests over ../shared/data, which skip with a message when the licensed dataset is absent).
 #
 # Environment: MOTIONSTYLE_BUILD_ROOT (default <repo>/build), MOTIONSTYLE_FUZZ_SECONDS (seconds PER fuzz
 # target, default 30: two targets, 60 s in all), MOTIONSTYLE_SKIP_SANITIZERS=1 to skip the sanitizer
