@@ -4,27 +4,7 @@
 # never a hang. Valid but odd files (Frames: 0) are described by info and refused clearly by the
 # commands that need motion. Usage: cli_bad_input_test.sh <motionstyle-cli> <tests/data>
 set -u
-cli="$1"
-data="$2"
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0
-
-expect() {  # expect <code> <grep pattern or ""> <command...>
-  local code="$1" pattern="$2"
-  shift 2
-  "$@" >"$work/out" 2>"$work/err"
-  local got=$?
-  if [ "$got" -ne "$code" ]; then
-    echo "FAIL: exit $got, expected $code: $*"; head -c 2000 "$work/err"; failures=$((failures + 1)); return
-  fi
-  if [ -n "$pattern" ] && ! grep -q -- "$pattern" "$work/out" "$work/err"; then
-    echo "FAIL: no '$pattern' in the output of: $*"; head -c 2000 "$work/out" "$work/err"; failures=$((failures + 1)); return
-  fi
-  echo "ok: $*"
-}
-
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+source "$(dirname "${BASH_SOURCE[0]}")/cli_test_lib.sh"  # cli, data, work, failures, expect, fail
 
 # The shipped networks (stylize --net elderly, --ae autoencoder) from the source tree's resources.
 MOTIONSTYLE_RESOURCES="$(cd "$data/../.." && pwd)/resources"

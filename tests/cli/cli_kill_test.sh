@@ -4,13 +4,8 @@
 # next run removes the temporaries the killed ones left; the output keeps its mode throughout.
 # Usage: cli_kill_test.sh <motionstyle-cli> <tests/data> [trials=20]
 set -u
-cli="$1"
-data="$2"
+source "$(dirname "${BASH_SOURCE[0]}")/cli_test_lib.sh"  # cli, data, work, failures, expect, fail
 trials="${3:-20}"
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 
 # A clip long enough that writing it takes a measurable share of the run (120 fps -> 1000 fps).
 "$cli" convert "$data/cmu_131_01.bvh" "$work/long.bvh" --fps 1000 >/dev/null || { echo "FAIL: setup"; exit 1; }

@@ -5,25 +5,7 @@
 # character on the terminal, and JSON output must stay valid.
 # Usage: cli_network_input_test.sh <motionstyle-cli> <tests/data>
 set -u
-cli="$1"
-data="$2"
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0
-
-expect() {  # expect <code> <grep pattern or ""> <command...>
-  local code="$1" pattern="$2"
-  shift 2
-  "$@" >"$work/out" 2>"$work/err"
-  local got=$?
-  if [ "$got" -ne "$code" ]; then
-    echo "FAIL: exit $got, expected $code: $*"; cat "$work/err"; failures=$((failures + 1)); return
-  fi
-  if [ -n "$pattern" ] && ! grep -q -- "$pattern" "$work/out" "$work/err"; then
-    echo "FAIL: no '$pattern' in the output of: $*"; cat "$work/out" "$work/err"; failures=$((failures + 1)); return
-  fi
-  echo "ok: $*"
-}
+source "$(dirname "${BASH_SOURCE[0]}")/cli_test_lib.sh"  # cli, data, work, failures, expect, fail
 
 no_control_characters() {  # after expect: neither output holds ESC, BEL or another C0 control but tab/newline
   if LC_ALL=C grep -q $'[\x01-\x08\x0b-\x1f\x7f]' "$work/out" "$work/err"; then

@@ -5,26 +5,8 @@
 # symlink stays a symlink; stale temporaries of killed runs are removed; a completed training removes
 # its checkpoints unless --keep-checkpoints. Usage: cli_outputs_test.sh <motionstyle-cli> <tests/data>
 set -u
-cli="$1"
-data="$2"
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0
+source "$(dirname "${BASH_SOURCE[0]}")/cli_test_lib.sh"  # cli, data, work, failures, expect, fail
 
-expect() {  # expect <code> <grep pattern or ""> <command...>
-  local code="$1" pattern="$2"
-  shift 2
-  "$@" >"$work/out" 2>"$work/err"
-  local got=$?
-  if [ "$got" -ne "$code" ]; then
-    echo "FAIL: exit $got, expected $code: $*"; cat "$work/out" "$work/err"; failures=$((failures + 1)); return
-  fi
-  if [ -n "$pattern" ] && ! grep -q -- "$pattern" "$work/out" "$work/err"; then
-    echo "FAIL: no '$pattern' in the output of: $*"; cat "$work/out" "$work/err"; failures=$((failures + 1)); return
-  fi
-  echo "ok: $*"
-}
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 unchanged() {  # unchanged <file> <copy>: the file still holds what the copy holds
   cmp -s "$1" "$2" || fail "$1 was changed"
 }

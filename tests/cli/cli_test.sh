@@ -2,25 +2,7 @@
 # End-to-end checks of motionstyle-cli: exit codes (0 ok, 2 bad input naming the file and line),
 # --help on every command, and a convert round trip. Usage: cli_test.sh <motionstyle-cli> <tests/data>
 set -u
-cli="$1"
-data="$2"
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0
-
-expect() {  # expect <code> <grep pattern or ""> <command...>
-  local code="$1" pattern="$2"
-  shift 2
-  "$@" >"$work/out" 2>"$work/err"
-  local got=$?
-  if [ "$got" -ne "$code" ]; then
-    echo "FAIL: exit $got, expected $code: $*"; cat "$work/err"; failures=$((failures + 1)); return
-  fi
-  if [ -n "$pattern" ] && ! grep -q -- "$pattern" "$work/out" "$work/err"; then
-    echo "FAIL: no '$pattern' in the output of: $*"; cat "$work/out" "$work/err"; failures=$((failures + 1)); return
-  fi
-  echo "ok: $*"
-}
+source "$(dirname "${BASH_SOURCE[0]}")/cli_test_lib.sh"  # cli, data, work, failures, expect, fail
 
 # Bad input first: each gives exit code 2 and names the file and line.
 printf 'garbage\n' >"$work/garbage.bvh"
