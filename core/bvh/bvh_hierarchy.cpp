@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "bvh/bvh_reader.h"
+#include "bvh/bvh_text.h"
 #include "common/errors.h"
 
 namespace motionstyle::bvh_detail {
@@ -27,7 +28,14 @@ class HierarchyParser {
   HierarchyParser(LineCursor& cursor, const std::string& source) : cursor_(cursor), source_(source) {}
 
   Skeleton parse() {
-    readLine("HIERARCHY");
+    if (!nextLine()) {
+      // A byte order mark is not whitespace: a text holding one is not empty, only truncated.
+      if (!cursor_.skippedByteOrderMark()) {
+        line_number_ = 1;
+        fail("expected HIERARCHY, got an empty file");
+      }
+      fail("expected HIERARCHY, got the end of the file (truncated hierarchy)");
+    }
     if (!(words_.size() == 1 && equalsIgnoreCase(words_[0], "HIERARCHY")))
       fail("expected HIERARCHY as the first line, got " + excerpt(line_));
     readLine("ROOT <name>");

@@ -6,6 +6,7 @@
 #include <cstddef>
 
 #include "bvh/bvh_reader.h"
+#include "bvh/bvh_text.h"
 #include "common/errors.h"
 
 namespace motionstyle::bvh_detail {
@@ -83,23 +84,30 @@ class MotionSectionParser {
     line_ = trim(line_);
   }
 
-  // The hot loop: parses frame lines in place over the raw text.
+  // The hot loop: parses frame lines in place, one window of complete lines (bvh_line_cursor.h) at a
+  // time. Between lines, `p` is at a line start and `line` counts the lines before it.
   void readFrames(std::size_t claimed) {
-    const std::string_view text = cursor_.text();
-    const char* p = text.data() + cursor_.position();
-    const char* const end = text.data() + text.size();
+    const std::string_view window = cursor_.window();
+    const char* p = window.data();
+    const char* end = p + window.size();
     const auto channels = static_cast<std::size_t>(motion_.skeleton.channelCount());
+    const std::size_t min_frame_bytes = 2 * std::max<std::size_t>(channels, 1);  // "0 " per value
 
-    // A value takes at least 2 bytes ("0 "), so the remaining text bounds the frames it can hold; a
-    // claim beyond that cannot be met and only gets a small buffer that grows as lines arrive.
-    const std::size_t room = (static_cast<std::size_t>(end - p) + 1) / (2 * std::max<std::size_t>(channels, 1));
-    std::size_t capacity = claimed <= room ? claimed : std::min<std::size_t>(claimed, 1024);
+    // The frames the bytes after `p` can hold: to the end of the text if its size is known, else those
+    // read so far (a pipe). A claim beyond that cannot be met and only gets a small buffer that grows.
+    auto room = [&] { return static_cast<std::size_t>((cursor_.bytesAfter(p) + 1) / min_frame_bytes); };
+    std::size_t capacity = std::min(claimed, room());
+    if (cursor_.sizeKnown() && capacity < claimed) capacity = std::min<std::size_t>(claimed, 1024);
     MatrixRowMajor& values = motion_.values;
     values.resize(static_cast<Eigen::Index>(capacity), static_cast<Eigen::Index>(channels));
 
     std::size_t frames = 0;
     int line = cursor_.linesRead();
     while (frames < claimed) {
+      if (p == end && !nextWindow(p, end, line)) {
+        ++line;  // the line after the last one, as at the end of an in-memory text
+        break;
+      }
       ++line;  // `p` is at the start of `line`
       while (p < end && isBlank(*p)) ++p;
       if (p == end) break;
@@ -107,8 +115,9 @@ class MotionSectionParser {
         ++p;
         continue;
       }
-      if (frames == capacity) {
-        capacity = std::min(claimed, capacity * 2);
+      if (frames == capacity) {  // doubles; on a pipe never beyond the frames the bytes read can hold
+        capacity = std::min(claimed, std::max(frames + 1, 2 * capacity));
+        if (!cursor_.sizeKnown()) capacity = std::min(capacity, std::max(frames + 1, frames + room()));
         values.conservativeResize(static_cast<Eigen::Index>(capacity), Eigen::NoChange);
       }
       double* row = values.data() + frames * channels;
@@ -134,21 +143,34 @@ class MotionSectionParser {
     }
 
     if (frames < claimed) {
-      const int last_line = (text.empty() || text.back() == '\n') ? line - 1 : line;
+      const int last_line = cursor_.endsWithNewline() ? line - 1 : line;
       fail(last_line, "expected " + frameCount(claimed) + " as 'Frames:' on line " + std::to_string(frames_line_) +
                           " states, got " + std::to_string(frames) + " (the data ends here)");
     }
     // After the last claimed frame only blank lines may follow: anything else is a frame too many.
     int extra_line = line + 1;  // `p` is at the start of this line
-    for (; p < end; ++p) {
-      if (*p == '\n') {
-        ++extra_line;
-      } else if (!isBlank(*p)) {
-        fail(extra_line, "expected " + frameCount(claimed) + " as 'Frames:' on line " +
-                             std::to_string(frames_line_) + " states, got more: data continues on this line");
+    do {
+      for (; p < end; ++p) {
+        if (*p == '\n') {
+          ++extra_line;
+        } else if (!isBlank(*p)) {
+          fail(extra_line, "expected " + frameCount(claimed) + " as 'Frames:' on line " +
+                               std::to_string(frames_line_) + " states, got more: data continues on this line");
+        }
       }
-    }
+    } while (nextWindow(p, end, extra_line - 1));
     if (capacity != frames) values.conservativeResize(static_cast<Eigen::Index>(frames), Eigen::NoChange);
+  }
+
+  // Hands the exhausted window back (`lines_read` lines read up to `p`) and takes the next one; false
+  // at the end of the text.
+  bool nextWindow(const char*& p, const char*& end, int lines_read) {
+    cursor_.consume(p, lines_read);
+    if (!cursor_.fill()) return false;
+    const std::string_view window = cursor_.window();
+    p = window.data();
+    end = p + window.size();
+    return true;
   }
 
   [[noreturn]] void failValue(int line, std::size_t channel, NumberStatus status, std::string_view word) const {

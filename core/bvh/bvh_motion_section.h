@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "bvh/bvh_text.h"
+#include "bvh/bvh_line_cursor.h"
 #include "motion/motion.h"
 
 namespace motionstyle::bvh_detail {

@@ -31,9 +31,17 @@
 //   the viewport) walks chains, so absurd headers are refused early with the offending line.
 // - The frame matrix is sized from min(claimed frames, what the remaining bytes could hold at 2 bytes
 //   per value), so "Frames: 1000000000" on a small file allocates nothing big and fails on the data.
-// - readBvh reads the first 64 KiB, checks that its first non-blank line is HIERARCHY, then reads on,
-//   refusing any NUL byte (with its line): /dev/zero, /dev/urandom or a binary file stop after one
-//   small read. A FIFO without a writer still blocks in open(), as every reader of a named pipe does.
+//   readBvh takes the remaining bytes from the file's size; for a pipe or a device (size unknown) the
+//   matrix doubles as frames arrive, never beyond what the bytes read so far could hold.
+// - readBvh reads the first 64 KiB, checks that its first non-blank line is HIERARCHY, then parses on,
+//   refusing a NUL byte (with its line; an error on an earlier line is reported first): /dev/zero,
+//   /dev/urandom or a binary file stop after one small read. A FIFO without a writer still blocks in
+//   open(), as every reader of a named pipe does.
+//
+// Memory: readBvh never holds the whole text. It reads 1 MiB chunks and keeps only the current one
+// plus the incomplete line carried to the next (a ~2 MiB buffer), so a clip costs its values (8 bytes
+// per channel per frame) and a constant, not its text too (~0.7-1 KB more per frame for CMU's 96
+// channels).
 //
 // Speed: the MOTION section is parsed in place with std::from_chars, no per-line allocation; see
 // tests/bench/bvh for the measured throughput.
@@ -54,8 +62,9 @@ inline constexpr double kBvhMinFrameTime = 1e-4;  // seconds
 inline constexpr double kBvhMaxFrameTime = 1.0;   // seconds
 inline constexpr double kBvhMaxMagnitude = 1e6;   // file units (OFFSET, positions) or degrees
 
-// Reads the whole file and parses it. Throws InputError (line 0) if the file cannot be read, and
-// InputError (file, line, detail) if its content is not a valid BVH or holds fewer than
+// Reads the file in chunks and parses it: the same Motion and errors as parseBvh of its text, plus
+// the 64 KiB HIERARCHY check and the NUL refusal above. Throws InputError (line 0) if the file cannot
+// be read, and InputError (file, line, detail) if its content is not a valid BVH or holds fewer than
 // `minimum_frames` frames (named on the "Frames:" line).
 Motion readBvh(const std::filesystem::path& file, int minimum_frames = 0);
 

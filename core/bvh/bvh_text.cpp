@@ -4,8 +4,9 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <cstring>
 #include <system_error>
+
+#include "bvh/bvh_reader.h"
 
 namespace motionstyle::bvh_detail {
 
@@ -26,30 +27,6 @@ bool equalsIgnoreCase(std::string_view a, std::string_view b) {
   }
   return true;
 }
-
-LineCursor::LineCursor(std::string_view text) : text_(text) {
-  // A UTF-8 byte order mark is not part of the first keyword.
-  if (text_.substr(0, 3) == "\xEF\xBB\xBF") position_ = 3;
-}
-
-bool LineCursor::next(std::string_view& line, int& number) {
-  if (position_ >= text_.size()) return false;
-  const char* begin = text_.data() + position_;
-  const auto* newline = static_cast<const char*>(std::memchr(begin, '\n', text_.size() - position_));
-  const std::size_t length = newline ? static_cast<std::size_t>(newline - begin) : text_.size() - position_;
-  line = std::string_view(begin, length);
-  position_ += length + (newline ? 1 : 0);
-  number = ++line_;
-  return true;
-}
-
-bool LineCursor::nextNonBlank(std::string_view& line, int& number) {
-  while (next(line, number))
-    if (!trim(line).empty()) return true;
-  return false;
-}
-
-int LineCursor::lastLine() const { return line_ > 0 ? line_ : 1; }
 
 void splitWords(std::string_view line, std::vector<std::string_view>& words) {
   words.clear();
@@ -180,6 +157,10 @@ std::string formatBound(double bound) {
     if (bound >= 1.0) text = buffer;
   }
   return text;
+}
+
+std::string tooLargeDetail(std::string_view got) {
+  return "expected at most " + std::to_string(kBvhMaxBytes) + " bytes of BVH, got " + std::string(got);
 }
 
 std::string excerpt(std::string_view text) {

@@ -1,5 +1,6 @@
 #pragma once
 // Low-level text helpers shared by the BVH reader's hierarchy and motion parsers (internal to core/bvh).
+// Lines are walked by LineCursor (bvh_line_cursor.h).
 //
 // Line model: a line ends at '\n'. '\r' counts as whitespace, so CRLF, LF and files that mix both
 // (CMU's converted files do) read the same, and line numbers match what an editor shows.
@@ -16,28 +17,6 @@ constexpr bool isBlank(char c) { return c == ' ' || c == '\t' || c == '\r' || c 
 
 std::string_view trim(std::string_view text);
 bool equalsIgnoreCase(std::string_view a, std::string_view b);
-
-// Walks a text line by line without copying. Line numbers are 1-based.
-class LineCursor {
- public:
-  explicit LineCursor(std::string_view text);
-
-  // The next line (terminator excluded) and its number; false at the end of the text.
-  bool next(std::string_view& line, int& number);
-  // The next line that is not blank; false at the end of the text.
-  bool nextNonBlank(std::string_view& line, int& number);
-
-  std::string_view text() const { return text_; }
-  std::size_t position() const { return position_; }  // offset of the next unread line
-  int linesRead() const { return line_; }
-  // The line to name when the text ends too early: the last line (1 for an empty text).
-  int lastLine() const;
-
- private:
-  std::string_view text_;
-  std::size_t position_ = 0;
-  int line_ = 0;
-};
 
 // Splits a line into whitespace-separated words.
 void splitWords(std::string_view line, std::vector<std::string_view>& words);
@@ -59,6 +38,9 @@ std::string_view wordAt(const char* p, const char* end);
 
 // A bound for an error message: shortest form ("0.0001", "1", "1000000"), never "1e+06".
 std::string formatBound(double bound);
+
+// "expected at most <kBvhMaxBytes> bytes of BVH, got <got>": the detail for a text over the cap.
+std::string tooLargeDetail(std::string_view got);
 
 // `text` quoted for an error message: at most 40 characters, control and non-ASCII bytes escaped so
 // binary garbage cannot mangle a terminal or a dialog.

@@ -1,7 +1,10 @@
 #include "bvh/bvh_writer.h"
 
 #include <charconv>
+#include <cmath>
+#include <sstream>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "common/atomic_file.h"
@@ -103,19 +106,9 @@ std::vector<int> appendHierarchy(std::string& out, const Skeleton& skeleton) {
   return order;
 }
 
-}  // namespace
-
-std::string formatBvh(const Motion& motion) {
-  motion.validate();
-  const Skeleton& skeleton = motion.skeleton;
-  checkWritable(skeleton);
-
-  std::string out;
-  // ~9 characters per value is typical of mocap; a good guess saves the reallocations.
-  out.reserve(4096 + static_cast<std::size_t>(motion.values.size()) * 9);
-  const std::vector<int> order = appendHierarchy(out, skeleton);
-
-  // Source column of each written column (identity for a skeleton already in depth-first order).
+// Source column of each written column, in the order appendHierarchy wrote the joints (identity for
+// a skeleton already in depth-first order).
+std::vector<Eigen::Index> writtenColumns(const Skeleton& skeleton, const std::vector<int>& order) {
   const std::vector<int> offsets = skeleton.channelOffsets();
   std::vector<Eigen::Index> columns;
   columns.reserve(static_cast<std::size_t>(skeleton.channelCount()));
@@ -124,23 +117,81 @@ std::string formatBvh(const Motion& motion) {
     for (std::size_t c = 0; c < skeleton.joints[j].channels.size(); ++c)
       columns.push_back(static_cast<Eigen::Index>(offsets[j]) + static_cast<Eigen::Index>(c));
   }
+  return columns;
+}
 
-  out += "MOTION\nFrames: " + std::to_string(motion.frameCount()) + "\nFrame Time: ";
-  appendNumber(out, motion.frame_time);
-  out += '\n';
-  for (Eigen::Index frame = 0; frame < motion.values.rows(); ++frame) {
-    for (std::size_t c = 0; c < columns.size(); ++c) {
-      if (c > 0) out += ' ';
-      appendNumber(out, motion.values(frame, columns[c]));
+// Text is handed to the stream in pieces of about this size: few stream calls, little memory.
+constexpr std::size_t kFlushBytes = std::size_t{1} << 16;
+
+}  // namespace
+
+BvhStreamWriter::BvhStreamWriter(std::ostream& out, const Skeleton& skeleton, int frames, double frame_time)
+    : out_(out), frames_(frames) {
+  skeleton.validate();
+  if (!(std::isfinite(frame_time) && frame_time > 0.0))
+    throw std::invalid_argument("frame time must be positive and finite, got " + std::to_string(frame_time));
+  if (frames < 0) throw std::invalid_argument("cannot write BVH: " + std::to_string(frames) + " frames announced");
+  checkWritable(skeleton);
+
+  text_.reserve(kFlushBytes + 4096);
+  columns_ = writtenColumns(skeleton, appendHierarchy(text_, skeleton));
+  text_ += "MOTION\nFrames: " + std::to_string(frames) + "\nFrame Time: ";
+  appendNumber(text_, frame_time);
+  text_ += '\n';
+  flush();
+}
+
+void BvhStreamWriter::writeFrames(const Eigen::Ref<const MatrixRowMajor>& values_block) {
+  if (values_block.cols() != static_cast<Eigen::Index>(columns_.size()))
+    throw std::invalid_argument("cannot write BVH: a block of " + std::to_string(values_block.cols()) +
+                                " channels per frame, the skeleton has " + std::to_string(columns_.size()));
+  if (!values_block.allFinite()) throw std::invalid_argument("cannot write BVH: a block holds a non-finite channel value");
+  if (values_block.rows() > static_cast<Eigen::Index>(frames_ - written_))
+    throw std::invalid_argument("cannot write BVH: " + std::to_string(values_block.rows()) + " more frames after " +
+                                std::to_string(written_) + ", the header announced " + std::to_string(frames_));
+  for (Eigen::Index frame = 0; frame < values_block.rows(); ++frame) {
+    for (std::size_t c = 0; c < columns_.size(); ++c) {
+      if (c > 0) text_ += ' ';
+      appendNumber(text_, values_block(frame, columns_[c]));
     }
-    out += '\n';
+    text_ += '\n';
+    if (text_.size() >= kFlushBytes) flush();
   }
-  return out;
+  written_ += static_cast<int>(values_block.rows());
+  flush();
+}
+
+void BvhStreamWriter::finish() const {
+  if (written_ != frames_)
+    throw std::invalid_argument("cannot finish BVH: " + std::to_string(written_) + " frames written, the header announced " +
+                                std::to_string(frames_));
+}
+
+void BvhStreamWriter::flush() {
+  out_.write(text_.data(), static_cast<std::streamsize>(text_.size()));
+  text_.clear();
+}
+
+std::string formatBvh(const Motion& motion) {
+  motion.validate();
+  std::string text;
+  // ~9 characters per value is typical of mocap; a good guess saves the reallocations.
+  text.reserve(4096 + static_cast<std::size_t>(motion.values.size()) * 9);
+  std::ostringstream stream(std::move(text));  // writes into the reserved capacity
+  BvhStreamWriter writer(stream, motion.skeleton, motion.frameCount(), motion.frame_time);
+  writer.writeFrames(motion.values);
+  writer.finish();
+  return std::move(stream).str();
 }
 
 void writeBvh(const Motion& motion, const std::filesystem::path& file) {
-  const std::string text = formatBvh(motion);  // before touching the disk: a bad motion writes nothing
-  writeFileAtomically(file, text);
+  motion.validate();  // before touching the disk: a bad motion writes nothing
+  checkWritable(motion.skeleton);
+  writeFileAtomically(file, [&](std::ostream& out) {
+    BvhStreamWriter writer(out, motion.skeleton, motion.frameCount(), motion.frame_time);
+    writer.writeFrames(motion.values);
+    writer.finish();
+  });
 }
 
 }  // namespace motionstyle

@@ -17,20 +17,59 @@
 // written as "End Site" and the reader regenerates "<parent>_End".
 
 #include <filesystem>
+#include <ostream>
 #include <string>
+#include <vector>
 
 #include "motion/motion.h"
 
 namespace motionstyle {
 
-// The BVH text of `motion`. Throws std::invalid_argument (a programming error, not bad user data) if
-// motion.validate() fails or the motion cannot be expressed as BVH the reader accepts: a joint other
-// than an End Site without 3 or 6 channels (three rotations and/or three positions), or a joint name
-// that is blank at either end or contains braces or control characters.
+// Writes BVH text to a stream block by block, so a long clip never sits in memory as text: the
+// constructor writes the hierarchy and "MOTION", "Frames: <frames>", "Frame Time: <frame_time>"; each
+// writeFrames call writes one line per row of its block; finish() checks that <frames> rows came.
+// The bytes are formatBvh's, byte for byte (same numbers, depth-first joint order, each row permuted
+// to match). They reach `out` before each call returns, in pieces of about 64 KiB; the writer
+// neither flushes nor checks `out`, its owner does (writeFileAtomically checks it at the end).
+class BvhStreamWriter {
+ public:
+  // Throws std::invalid_argument (a programming error, not bad user data), writing nothing, if the
+  // skeleton fails Skeleton::validate() or cannot be expressed as BVH (see formatBvh), frame_time is
+  // not positive and finite, or frames < 0.
+  BvhStreamWriter(std::ostream& out, const Skeleton& skeleton, int frames, double frame_time);
+
+  // Writes the rows of `values_block` (frames x skeleton.channelCount(), columns in the skeleton's
+  // channel order as in Motion::values; a Motion::values or a middleRows() of it, no copy). Throws
+  // std::invalid_argument, writing nothing, if the column count differs, a value is not finite, or the
+  // block would take the frames written beyond the count announced in the header.
+  void writeFrames(const Eigen::Ref<const MatrixRowMajor>& values_block);
+
+  // Throws std::invalid_argument if the frames written differ from the count announced in the header
+  // (the text would not read back).
+  void finish() const;
+
+  int framesWritten() const { return written_; }
+
+ private:
+  void flush();
+
+  std::ostream& out_;
+  std::vector<Eigen::Index> columns_;  // source column of each written column
+  int frames_;
+  int written_ = 0;
+  std::string text_;  // the text not yet handed to `out_`
+};
+
+// The BVH text of `motion`, written by a BvhStreamWriter into a string. Throws std::invalid_argument
+// (a programming error, not bad user data) if motion.validate() fails or the motion cannot be
+// expressed as BVH the reader accepts: a joint other than an End Site without 3 or 6 channels (three
+// rotations and/or three positions), or a joint name that is blank at either end or contains braces
+// or control characters.
 std::string formatBvh(const Motion& motion);
 
-// formatBvh written atomically (writeFileAtomically): on any failure `file` is left as it was.
-// Throws std::invalid_argument as formatBvh (before touching the disk) and WriteError on I/O failure.
+// formatBvh's text written atomically (writeFileAtomically): on any failure `file` is left as it was.
+// Streamed through a BvhStreamWriter, so the text is never whole in memory. Throws
+// std::invalid_argument as formatBvh (before touching the disk) and WriteError on I/O failure.
 void writeBvh(const Motion& motion, const std::filesystem::path& file);
 
 }  // namespace motionstyle
