@@ -38,8 +38,7 @@ int runAdapt(const Args& args) {
   if (data.empty()) throw UsageError("adapt needs --data with your clips (folders or .bvh files)");
   const std::filesystem::path ae_file = resolveNetworkArgument(parsed.required("ae"));
   {  // before any work: the outputs can be written and none of them is an input
-    const std::filesystem::path checkpoint =
-        settings.checkpoint.empty() ? std::filesystem::path(settings.output.string() + ".checkpoint") : settings.checkpoint;
+    const std::filesystem::path checkpoint = settings.checkpointPath();
     std::vector<NamedPath> inputs = {{ae_file, "--ae"}};
     for (const auto& value : data) inputs.push_back({value, "--data"});
     for (const std::string& value : parsed.values("replay")) inputs.push_back({value, "--replay"});
@@ -73,8 +72,7 @@ int runAdapt(const Args& args) {
   bar.finish();
   if (result.status == style::TrainingStatus::Cancelled) {
     std::cout << (guard.interrupted() ? "interrupted" : "cancelled") << ": nothing written; the last checkpoint is "
-              << (settings.checkpoint.empty() ? settings.output.string() + ".checkpoint" : settings.checkpoint.string())
-              << "\n";
+              << settings.checkpointPath().string() << "\n";
     return kInterruptedExitCode;
   }
   std::printf("familiarity of your clips (mean reconstruction error, cm): before -> after\n");

@@ -5,6 +5,7 @@
 // The solve and the metrics run at IN's own rate; --fps N resamples the cleaned clip for export only.
 // Bad input is exit 2 before any solve: no frames (Frames: 0), a skeleton without height
 // (requireMeasurableRestPose), --fps beyond 100x IN's rate, an unknown --unit.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -30,17 +31,30 @@
 namespace motionstyle::cli {
 namespace {
 
-ClipMetrics measure(const Motion& motion, const JointMapping& mapping, const Eigen::MatrixXi& contacts,
-                    const Eigen::MatrixXd* targets, const SpaceConvention& convention, double floor) {
-  const Eigen::MatrixXd world = worldPositions(motion);
-  MetricsInput input(world, mapping.joints, skeletonBones(motion.skeleton));
-  input.contacts = contacts;
-  if (targets) input.targets = *targets;
+// The settings shared by every block's metrics (positions of every joint of `skeleton`).
+MetricsInput metricsBlock(const Eigen::MatrixXd& world, const JointMapping& mapping, const std::vector<BoneReference>& bones,
+                          const SpaceConvention& convention, double floor, double fps) {
+  MetricsInput input(world, mapping.joints, bones);
   input.up = convention.fileUp();
   input.floor_height = floor;
   input.cm_per_unit = convention.cm_per_unit;
-  input.fps = motion.fps();
-  return computeMetrics(input);
+  input.fps = fps;
+  return input;
+}
+
+// The input clip's metrics, a block of frames at a time (its world positions are never all held).
+ClipMetrics measureInput(const Motion& motion, const JointMapping& mapping, const Eigen::MatrixXi& contacts,
+                         const SpaceConvention& convention, double floor) {
+  const std::vector<BoneReference> bones = skeletonBones(motion.skeleton);
+  MetricsAccumulator metrics(/*keep_tracks=*/false);
+  for (int first = 0; first < motion.frameCount(); first += kMotionBlockFrames) {
+    const int count = std::min(kMotionBlockFrames, motion.frameCount() - first);
+    const Eigen::MatrixXd world = worldPositions(motion.skeleton, localPoses(motion, first, count));
+    MetricsInput block = metricsBlock(world, mapping, bones, convention, floor, motion.fps());
+    block.contacts = contacts.middleRows(first, count);
+    metrics.add(block);
+  }
+  return metrics.finish();
 }
 
 }  // namespace
@@ -65,12 +79,13 @@ int runCleanup(const Args& args) {
   const JointMapping mapping = mapJoints(motion.skeleton, input_file.string(),
                                          parsed.value("mapping") ? std::optional<std::filesystem::path>(*parsed.value("mapping"))
                                                                  : std::nullopt);
-  const Eigen::MatrixXd world = worldPositions(motion);
   requireMeasurableRestPose(motion, mapping);
-  const SpaceConvention convention = detectSpaceConvention(motion.skeleton, world, mapping, unit);
+  // The clip's own canonical joints are the targets, and all the planning needs (up axis, floor,
+  // contacts): the world positions of every joint are only ever computed a block at a time.
+  Eigen::MatrixXd targets = canonicalJointPositions(motion, mapping);
+  const SpaceConvention convention = detectSpaceConvention(motion.skeleton, targets, mapping, unit);
   const Eigen::Vector3d up = convention.fileUp();
-  const std::array<int, kContactCount> feet = contactJoints(mapping);
-  const double floor = estimateFloorHeight(world, feet, up);
+  const double floor = estimateFloorHeight(targets, canonicalContactJoints(), up);
 
   Eigen::MatrixXi contacts;
   std::optional<std::filesystem::path> tracks_file;
@@ -85,26 +100,52 @@ int runCleanup(const Args& args) {
     contacts = tracks.labels;
     std::cout << "contacts from " << tracks_file->string() << "\n";
   } else {
-    contacts = detectContacts(world, feet, up, floor, motion.fps(), restPoseBodyHeight(motion.skeleton, up));
+    contacts = detectContacts(targets, canonicalContactJoints(), up, floor, motion.fps(),
+                              restPoseBodyHeight(motion.skeleton, up));
   }
+  const ClipMetrics before = measureInput(motion, mapping, contacts, convention, floor);
 
-  const Eigen::MatrixXd targets = canonicalJointPositions(motion, mapping);
   CleanupReport report;
-  const CleanupInput input(motion, mapping, targets, contacts, up, floor, convention.cm_per_unit);
+  const CleanupInput input(motion, mapping, std::move(targets), contacts, up, floor, convention.cm_per_unit);
   CleanupOptions options;
   options.max_total_seconds = timeLimitOption(parsed);
-  const Motion cleaned = cleanupMotion(input, options, &report);
-  const bool resample = output_fps > 0.0 && std::abs(output_fps - cleaned.fps()) > 1e-6 * output_fps;
-  const Motion exported = resample ? resampleMotion(cleaned, output_fps) : cleaned;
+  const bool resample = output_fps > 0.0 && std::abs(output_fps - motion.fps()) > 1e-6 * output_fps;
+  const std::vector<BoneReference> bones = skeletonBones(motion.skeleton);
+  MetricsAccumulator after(/*keep_tracks=*/false);
+  auto measureBlock = [&](const CleanedBlock& block) {
+    MetricsInput metrics = metricsBlock(block.world, mapping, bones, convention, floor, motion.fps());
+    metrics.contacts = contacts.middleRows(block.first_frame, block.values.rows());
+    metrics.targets = input.targets.middleRows(block.first_frame, block.values.rows());
+    after.add(metrics);
+  };
   AtomicFileBatch files;  // the clip and its metrics: both or neither
-  files.stage(output, formatBvh(exported));
-
-  const ClipMetrics before = measure(motion, mapping, contacts, nullptr, convention, floor);
-  const ClipMetrics after = measure(cleaned, mapping, contacts, &targets, convention, floor);
+  int exported_frames = motion.frameCount();
+  double exported_fps = motion.fps();
+  if (resample) {  // resampling needs the whole cleaned clip
+    Motion cleaned = motion;
+    cleanupMotionInBlocks(input, options, [&](const CleanedBlock& block) {
+      cleaned.values.middleRows(block.first_frame, block.values.rows()) = block.values;
+      measureBlock(block);
+    }, &report);
+    const Motion exported = resampleMotion(cleaned, output_fps);
+    exported_frames = exported.frameCount();
+    exported_fps = exported.fps();
+    files.stage(output, formatBvh(exported));
+  } else {  // solved, measured and written a block at a time
+    files.stage(output, [&](std::ostream& out) {
+      BvhStreamWriter writer(out, motion.skeleton, motion.frameCount(), motion.frame_time);
+      cleanupMotionInBlocks(input, options, [&](const CleanedBlock& block) {
+        writer.writeFrames(block.values);
+        measureBlock(block);
+      }, &report);
+      writer.finish();
+    });
+  }
+  const ClipMetrics cleaned_metrics = after.finish();
   if (auto metrics_file = parsed.value("metrics")) {
     nlohmann::ordered_json json;
     json["input"] = nlohmann::json::parse(metricsToJson(before));
-    json["cleaned"] = nlohmann::json::parse(metricsToJson(after));
+    json["cleaned"] = nlohmann::json::parse(metricsToJson(cleaned_metrics));
     json["cleanup"] = {{"seconds", report.seconds}, {"iterations", report.total_iterations}, {"warnings", report.warnings}};
     files.stage(*metrics_file, json.dump(2) + "\n");
   }
@@ -112,9 +153,9 @@ int runCleanup(const Args& args) {
   for (const std::string& warning : report.warnings) std::cout << "warning: " << warning << "\n";
   std::printf("wrote %s: %d frames at %.4g fps in %.2f s\n  foot skate %.2f -> %.2f cm/s, floor penetration %.2f -> %.2f cm, "
               "residual %.2f cm, bone error %.1e cm\n",
-              output.c_str(), exported.frameCount(), exported.fps(), report.seconds, before.foot_skate_cm_s,
-              after.foot_skate_cm_s, before.penetration_max_cm, after.penetration_max_cm, after.residual_mean_cm,
-              after.bone_error_max_cm);
+              output.c_str(), exported_frames, exported_fps, report.seconds, before.foot_skate_cm_s,
+              cleaned_metrics.foot_skate_cm_s, before.penetration_max_cm, cleaned_metrics.penetration_max_cm,
+              cleaned_metrics.residual_mean_cm, cleaned_metrics.bone_error_max_cm);
   return 0;
 }
 

@@ -32,7 +32,10 @@ Eigen::MatrixXd DisplaySpace::toDisplay(const Eigen::MatrixXd& file_positions) c
 
 DisplaySpace mappedDisplaySpace(const Motion& motion, const JointMapping& mapping, const Eigen::MatrixXd& file_positions) {
   DisplaySpace space;
-  space.convention = detectSpaceConvention(motion.skeleton, file_positions, mapping);
+  Eigen::MatrixXd canonical(file_positions.rows(), 3 * kCanonicalJointCount);
+  for (int c = 0; c < kCanonicalJointCount; ++c)
+    canonical.middleCols<3>(3 * c) = file_positions.middleCols<3>(3 * mapping.joints[static_cast<size_t>(c)]);
+  space.convention = detectSpaceConvention(motion.skeleton, canonical, mapping);
   space.floor_height = estimateFloorHeight(file_positions, contactJoints(mapping), space.convention.fileUp());
   return space;
 }

@@ -1,7 +1,8 @@
 #pragma once
 // The shipped style networks as the app lists them (the Result panel's Style choice, the Adapt tab):
-// each file is read once and fully checked (nn::networkFileInfo: header, CRC, every stored value), so
-// a damaged or foreign file is shown disabled with the reason instead of failing when chosen.
+// each file is fully checked (nn::networkFileInfo: header, CRC, every stored value) once, and again only
+// when it changes on disk, so a damaged or foreign file is shown disabled with the reason instead of
+// failing when chosen.
 
 #include <QString>
 #include <vector>

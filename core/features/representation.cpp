@@ -43,18 +43,6 @@ void toReferenceSpace(Eigen::MatrixXd& positions, const FeatureAnchor& anchor) {
   }
 }
 
-// The up axis and unit of the clip. detectSpaceConvention reads the mean feet-to-head vector over the
-// frames it is given, so one row holding the canonical joints' mean positions (file space) stands for
-// all frames, without the forward kinematics of the joints no feature uses.
-SpaceConvention detectConvention(const Skeleton& skeleton, const Eigen::MatrixXd& file_positions,
-                                 const JointMapping& mapping, const std::optional<std::string>& unit) {
-  const Eigen::RowVectorXd mean = file_positions.colwise().mean();
-  Eigen::MatrixXd mean_positions = Eigen::MatrixXd::Zero(1, 3 * skeleton.jointCount());
-  for (int c = 0; c < kJoints; ++c)
-    mean_positions.middleCols<3>(3 * mapping.joints[static_cast<size_t>(c)]) = mean.segment<3>(3 * c);
-  return detectSpaceConvention(skeleton, mean_positions, mapping, unit);
-}
-
 // The floor rule of extractFeatures on features (66 x frames): the 5th percentile over frames of the
 // lowest foot joint's height.
 double softFloor(const Eigen::MatrixXd& features) {
@@ -70,7 +58,7 @@ void shiftHeights(Eigen::MatrixXd& features, double shift) {
 }  // namespace
 
 Eigen::MatrixXd canonicalJointPositions(const Motion& motion, const JointMapping& mapping) {
-  return worldPositions(motion.skeleton, localPoses(motion), mapping.joints);
+  return worldPositions(motion, mapping.joints);
 }
 
 MotionFeatures extractFeatures(const Motion& motion, const JointMapping& mapping, const FeatureOptions& options) {
@@ -90,7 +78,7 @@ MotionFeatures extractFeatures(const Motion& motion, const JointMapping& mapping
   FeatureAnchor& anchor = result.anchor;
   anchor.fps = options.fps;
   Eigen::MatrixXd world = worldPositions(motion.skeleton, poses, mapping.joints);  // file space for now
-  anchor.convention = detectConvention(motion.skeleton, world, mapping, options.unit);
+  anchor.convention = detectSpaceConvention(motion.skeleton, world, mapping, options.unit);
   anchor.scale = kReferenceSkeletalHeightCm / (skeletalHeight(motion.skeleton, mapping) * anchor.convention.cm_per_unit);
   toReferenceSpace(world, anchor);
   const Eigen::Index frames = world.rows();

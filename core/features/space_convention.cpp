@@ -94,23 +94,23 @@ double skeletalHeight(const Skeleton& skeleton, const JointMapping& mapping) {
   return legs + trunk;
 }
 
-SpaceConvention detectSpaceConvention(const Skeleton& skeleton, const Eigen::MatrixXd& world_positions,
+SpaceConvention detectSpaceConvention(const Skeleton& skeleton, const Eigen::MatrixXd& canonical_positions,
                                       const JointMapping& mapping, const std::optional<std::string>& unit) {
-  if (world_positions.cols() != 3 * skeleton.jointCount())
-    throw std::invalid_argument("detectSpaceConvention: world positions have " + std::to_string(world_positions.cols()) +
-                                " columns, expected " + std::to_string(3 * skeleton.jointCount()));
-  if (world_positions.rows() == 0) throw std::invalid_argument("detectSpaceConvention: the clip has no frames");
+  if (canonical_positions.cols() != 3 * kCanonicalJointCount)
+    throw std::invalid_argument("detectSpaceConvention: canonical positions have " +
+                                std::to_string(canonical_positions.cols()) + " columns, expected 63");
+  if (canonical_positions.rows() == 0) throw std::invalid_argument("detectSpaceConvention: the clip has no frames");
 
   SpaceConvention convention;
   // Up axis: the dominant component of the mean vector from the feet to the head.
   Eigen::Vector3d up_vector = Eigen::Vector3d::Zero();
-  auto column = [&](CanonicalJoint c) { return 3 * mapping.joints[static_cast<size_t>(index(c))]; };
+  auto column = [](CanonicalJoint c) { return 3 * index(c); };
   const std::array<CanonicalJoint, 4> feet = {CanonicalJoint::LeftAnkle, CanonicalJoint::LeftToe,
                                               CanonicalJoint::RightAnkle, CanonicalJoint::RightToe};
-  for (Eigen::Index f = 0; f < world_positions.rows(); ++f) {
+  for (Eigen::Index f = 0; f < canonical_positions.rows(); ++f) {
     Eigen::Vector3d feet_mean = Eigen::Vector3d::Zero();
-    for (CanonicalJoint foot : feet) feet_mean += world_positions.row(f).segment<3>(column(foot)).transpose();
-    up_vector += world_positions.row(f).segment<3>(column(CanonicalJoint::Head)).transpose() - feet_mean / 4.0;
+    for (CanonicalJoint foot : feet) feet_mean += canonical_positions.row(f).segment<3>(column(foot)).transpose();
+    up_vector += canonical_positions.row(f).segment<3>(column(CanonicalJoint::Head)).transpose() - feet_mean / 4.0;
   }
   Eigen::Index axis = 0;
   up_vector.cwiseAbs().maxCoeff(&axis);

@@ -52,10 +52,11 @@ void requireMeasurableRestPose(const Motion& motion, const JointMapping& mapping
 double skeletalHeight(const Skeleton& skeleton, const JointMapping& mapping);
 
 // Detects the up axis from the animation (the dominant axis of the mean feet-to-head vector over the
-// given world positions, file space, frames x 3*joints) and the unit: `unit` if given (must be a known
-// name, else std::invalid_argument), otherwise guessed: cm if the skeletal height reads 50-260 cm,
-// else m, else mm, else whichever of inch, cmu, ft puts it nearest 130 cm.
-SpaceConvention detectSpaceConvention(const Skeleton& skeleton, const Eigen::MatrixXd& world_positions,
+// given frames of canonical_positions: frames x 63, the 21 canonical joints in file space, as
+// canonicalJointPositions gives them) and the unit: `unit` if given (must be a known name, else
+// std::invalid_argument), otherwise guessed from the skeleton's rest pose: cm if the skeletal height
+// reads 50-260 cm, else m, else mm, else whichever of inch, cmu, ft puts it nearest 130 cm.
+SpaceConvention detectSpaceConvention(const Skeleton& skeleton, const Eigen::MatrixXd& canonical_positions,
                                       const JointMapping& mapping,
                                       const std::optional<std::string>& unit = std::nullopt);
 

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <span>
 #include <utility>
 
 #include "features/foot_contacts.h"
@@ -33,21 +34,24 @@ double median(std::vector<double> values) {
   return values[middle];
 }
 
+// The content's contact joints (ContactLabel order) as the columns of feet_world (frames x 12).
+constexpr std::array<int, kContactCount> kFeetColumns = {0, 1, 2, 3};
+
 // Height above the floor of each contact joint while the CONTENT clip has that foot planted (its own
 // detected contacts), file units. A joint never planted in the content keeps the low-percentile
-// estimate, which is what detection itself assumes.
-std::array<double, kContactCount> contactRestHeights(const CleanupInput& input, const Eigen::MatrixXd& content_world) {
-  const std::array<int, kContactCount> feet = contactJoints(input.mapping);
+// estimate, which is what detection itself assumes. feet_world: the content's contact joints.
+std::array<double, kContactCount> contactRestHeights(const CleanupInput& input, const Eigen::MatrixXd& feet_world) {
   const double body_height = restPoseBodyHeight(input.content.skeleton, input.up);
   std::array<double, kContactCount> rest =
-      estimateRestHeights(content_world, feet, input.up, input.floor_height, body_height);
+      estimateRestHeights(feet_world, kFeetColumns, input.up, input.floor_height, body_height);
   const ContactLabels planted =
-      detectContacts(content_world, feet, input.up, input.floor_height, input.content.fps(), body_height);
+      detectContacts(feet_world, kFeetColumns, input.up, input.floor_height, input.content.fps(), body_height);
   for (size_t label = 0; label < kContactCount; ++label) {
     std::vector<double> heights;
     for (Eigen::Index f = 0; f < planted.rows(); ++f)
       if (planted(f, static_cast<Eigen::Index>(label)) != 0)
-        heights.push_back(input.up.dot(content_world.block<1, 3>(f, 3 * feet[label]).transpose()) - input.floor_height);
+        heights.push_back(input.up.dot(feet_world.block<1, 3>(f, 3 * static_cast<Eigen::Index>(label)).transpose()) -
+                          input.floor_height);
     if (!heights.empty()) rest[label] = std::max(0.0, median(heights));
   }
   return rest;
@@ -109,7 +113,7 @@ void makeFootLocksConsistent(std::vector<LockSegment>& segments, int heel, int t
 // lock's share of the pull ramps down (CleanupOptions::contact_blend_seconds); where two ramps meet,
 // the nearer segment wins.
 ContactLocks contactLocks(const CleanupInput& input, const CleanupOptions& options,
-                          const std::array<double, kContactCount>& rest, const Eigen::MatrixXd& content_world) {
+                          const std::array<double, kContactCount>& rest, const Eigen::MatrixXd& feet_world) {
   const int frames = static_cast<int>(input.targets.rows());
   const Eigen::Vector3d& up = input.up;
   std::vector<LockSegment> segments;
@@ -132,11 +136,9 @@ ContactLocks contactLocks(const CleanupInput& input, const CleanupOptions& optio
 
   // The foot's length on the content skeleton (ankle to toe), as it lies when both are planted.
   for (const auto& [heel, toe] : {std::pair{0, 1}, std::pair{2, 3}}) {
-    const int ankle = input.mapping[kContactJoint[static_cast<size_t>(heel)]];
-    const int ball = input.mapping[kContactJoint[static_cast<size_t>(toe)]];
     std::vector<double> lengths;
-    for (Eigen::Index f = 0; f < content_world.rows(); ++f)
-      lengths.push_back((content_world.block<1, 3>(f, 3 * ankle) - content_world.block<1, 3>(f, 3 * ball)).norm());
+    for (Eigen::Index f = 0; f < feet_world.rows(); ++f)
+      lengths.push_back((feet_world.block<1, 3>(f, 3 * heel) - feet_world.block<1, 3>(f, 3 * toe)).norm());
     const double length = median(lengths);
     const double drop = rest[static_cast<size_t>(heel)] - rest[static_cast<size_t>(toe)];
     makeFootLocksConsistent(segments, heel, toe, std::sqrt(std::max(0.0, length * length - drop * drop)), up);
@@ -224,55 +226,92 @@ void CleanupInput::validate() const {
     throw std::invalid_argument("cleanup: cm_per_unit must be positive and finite");
 }
 
-Motion cleanupMotion(const CleanupInput& input, const CleanupOptions& options, CleanupReport* report) {
+void cleanupMotionInBlocks(const CleanupInput& input, const CleanupOptions& options, const CleanedBlockSink& sink,
+                           CleanupReport* report) {
   const auto start_time = std::chrono::steady_clock::now();
   options.validate();
   input.validate();
   const Motion& content = input.content;
-  const LocalPoses content_poses = localPoses(content);
-  const Eigen::MatrixXd content_world = worldPositions(content.skeleton, content_poses);
   const CleanupModel model = ik_detail::buildCleanupModel(content.skeleton, input.mapping.joints);
 
-  const std::array<double, kContactCount> rest = contactRestHeights(input, content_world);
-  const ContactLocks locks = contactLocks(input, options, rest, content_world);
+  std::array<double, kContactCount> rest{};
+  ContactLocks locks;
+  {
+    const std::array<int, kContactCount> feet = contactJoints(input.mapping);
+    const Eigen::MatrixXd feet_world = worldPositions(content, feet);  // frames x 12, freed after planning
+    rest = contactRestHeights(input, feet_world);
+    locks = contactLocks(input, options, rest, feet_world);
+  }
+  const int hips = input.mapping[CanonicalJoint::Hips];
+  const Eigen::Vector3d hips_at_frame0 =
+      worldPositions(content.skeleton, localPoses(content, 0, 1), std::span<const int>(&hips, 1)).row(0).transpose();
 
-  const ik_detail::SolverInput solver_input{model,         content_poses, content_world, input.targets,
-                                            locks.positions, locks.weights,
-                                            {input.cm_per_unit, input.up, input.floor_height},
-                                            options.max_total_seconds};
-  const ik_detail::SolverOutput solved = ik_detail::solveCleanup(solver_input, options);
-
-  // The solved rotations and root positions replace the content's; everything else stays.
-  LocalPoses poses = content_poses;
+  // Final frames gather into blocks of kMotionBlockFrames: the content's local poses of the block with
+  // the solved rotations and root put in, then channel values (continuing the previous block's Euler
+  // branches), world positions, warnings, and the sink.
+  ik_detail::CleanupWarnings warnings(input, options);
   const int unknowns = model.unknownCount();
-  for (int f = 0; f < poses.frames; ++f) {
-    if (model.root_translation_free) poses.translation(f, 0) = solved.root_positions[static_cast<size_t>(f)];
-    for (int u = 0; u < unknowns; ++u)
-      poses.rotation(f, model.unknown_joints[static_cast<size_t>(u)]) =
-          solved.rotations[static_cast<size_t>(f) * static_cast<size_t>(unknowns) + static_cast<size_t>(u)];
-  }
-  Motion result = content;
-  setLocalPoses(poses, result);
-
-  if (report) {
-    *report = CleanupReport{};
-    report->final_costs = solved.costs;
-    report->frames = poses.frames;
-    report->solves = solved.solves;
-    report->total_iterations = solved.total_iterations;
-    report->solves_at_iteration_cap = solved.solves_at_iteration_cap;
-    report->frames_unsolved = solved.frames_unsolved;
-    report->unknown_rotations = unknowns;
-    report->contact_segments = locks.segments;
-    report->contact_rest_heights = rest;
+  const int frames = content.frameCount();
+  int block_first = 0;
+  std::vector<Eigen::Vector3d> block_roots;
+  std::vector<Eigen::Quaterniond> block_rotations;
+  Eigen::RowVectorXd seed = content.values.row(0);  // frame 0 continues from the content's own angles
+  auto flushBlock = [&]() {
+    const int count = static_cast<int>(block_roots.size());
+    const LocalPoses content_block = localPoses(content, block_first, count);
+    LocalPoses poses = content_block;
+    for (int f = 0; f < count; ++f) {
+      if (model.root_translation_free) poses.translation(f, 0) = block_roots[static_cast<size_t>(f)];
+      for (int u = 0; u < unknowns; ++u)
+        poses.rotation(f, model.unknown_joints[static_cast<size_t>(u)]) =
+            block_rotations[static_cast<size_t>(f) * static_cast<size_t>(unknowns) + static_cast<size_t>(u)];
+    }
+    const MatrixRowMajor values = channelValues(content.skeleton, poses, seed.data());
     const Eigen::MatrixXd world = worldPositions(content.skeleton, poses);
-    ik_detail::addCleanupWarnings(input, options, content_poses, world, *report);
-    if (solved.frames_unsolved > 0)
-      report->warnings.push_back("time budget of " + ik_detail::formatFixed(options.max_total_seconds, 2) +
-                                 " s exhausted: the last " + std::to_string(solved.frames_unsolved) +
-                                 " frames were not optimised (warm start only)");
-    report->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
-  }
+    warnings.add(block_first, content_block, world);
+    sink(CleanedBlock{block_first, values, world});
+    seed = values.row(count - 1);
+    block_first += count;
+    block_roots.clear();
+    block_rotations.clear();
+  };
+  auto onFinalFrame = [&](int frame, const Eigen::Vector3d& root, const Eigen::Quaterniond* rotations) {
+    block_roots.push_back(root);
+    block_rotations.insert(block_rotations.end(), rotations, rotations + unknowns);
+    if (static_cast<int>(block_roots.size()) == kMotionBlockFrames || frame == frames - 1) flushBlock();
+  };
+
+  const ik_detail::SolverInput solver_input{model, content, hips_at_frame0, input.targets, locks.positions,
+                                            locks.weights, {input.cm_per_unit, input.up, input.floor_height},
+                                            options.max_total_seconds};
+  const ik_detail::SolverOutput solved = ik_detail::solveCleanup(solver_input, options, onFinalFrame);
+
+  CleanupReport summary;
+  summary.final_costs = solved.costs;
+  summary.frames = frames;
+  summary.solves = solved.solves;
+  summary.total_iterations = solved.total_iterations;
+  summary.solves_at_iteration_cap = solved.solves_at_iteration_cap;
+  summary.frames_unsolved = solved.frames_unsolved;
+  summary.unknown_rotations = unknowns;
+  summary.contact_segments = locks.segments;
+  summary.contact_rest_heights = rest;
+  warnings.finish(summary);
+  if (solved.frames_unsolved > 0)
+    summary.warnings.push_back("time budget of " + ik_detail::formatFixed(options.max_total_seconds, 2) +
+                               " s exhausted: the last " + std::to_string(solved.frames_unsolved) +
+                               " frames were not optimised (warm start only)");
+  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+  if (report) *report = std::move(summary);
+}
+
+Motion cleanupMotion(const CleanupInput& input, const CleanupOptions& options, CleanupReport* report) {
+  Motion result = input.content;
+  cleanupMotionInBlocks(input, options,
+                        [&](const CleanedBlock& block) {
+                          result.values.middleRows(block.first_frame, block.values.rows()) = block.values;
+                        },
+                        report);
   return result;
 }
 

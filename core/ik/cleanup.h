@@ -14,6 +14,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <functional>
 #include <limits>
 #include <string>
 #include <utility>
@@ -129,6 +130,22 @@ struct CleanupReport {
   // Human-readable, e.g. "targets unreachable: left arm stretched by 12.0 cm at frames 40-60".
   std::vector<std::string> warnings;
 };
+
+// One block of the cleaned clip (frames first_frame .. first_frame + values.rows() - 1).
+struct CleanedBlock {
+  int first_frame = 0;
+  const MatrixRowMajor& values;  // the cleaned channel values, as Motion::values
+  const Eigen::MatrixXd& world;  // the same frames' world positions of every joint, file units
+};
+using CleanedBlockSink = std::function<void(const CleanedBlock&)>;
+
+// cleanupMotion handing the result out in blocks of frames (kMotionBlockFrames, in frame order)
+// instead of returning it, so that a long clip can be written and measured as it is solved: beyond
+// what `input` holds, memory grows with the clip only by the contact locks (128 bytes per frame)
+// and, while the locks are planned, the feet's positions (96 bytes per frame). The values are exactly
+// those cleanupMotion returns. `report` is filled after the last block.
+void cleanupMotionInBlocks(const CleanupInput& input, const CleanupOptions& options, const CleanedBlockSink& sink,
+                           CleanupReport* report);
 
 // Solves the clip. Returns a Motion on content's skeleton (same hierarchy, names, offsets, channel
 // layout, frame time and source) whose values are the solved rotations (degrees, each joint's own Euler

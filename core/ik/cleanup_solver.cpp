@@ -47,6 +47,29 @@ ceres::Problem::Options problemOptions() {
   return options;
 }
 
+// The content's local poses of one block of frames, recomputed when a window needs frames outside it:
+// a long clip's poses (56 bytes per joint and frame) are never all held.
+class ContentPoseBlock {
+ public:
+  explicit ContentPoseBlock(const Motion& content) : content_(content) {}
+
+  // Makes frames first .. first + count - 1 available.
+  void cover(int first, int count) {
+    if (first >= first_ && first + count <= first_ + poses_.frames) return;
+    first_ = first;
+    poses_ = localPoses(content_, first, std::min(std::max(kMotionBlockFrames, count), content_.frameCount() - first));
+  }
+  const LocalPoses& poses() const { return poses_; }
+  int row(int frame) const { return frame - first_; }  // the frame's row in poses()
+  const Eigen::Quaterniond& rotation(int frame, int joint) const { return poses_.rotation(row(frame), joint); }
+  const Eigen::Vector3d& translation(int frame, int joint) const { return poses_.translation(row(frame), joint); }
+
+ private:
+  const Motion& content_;
+  int first_ = 0;
+  LocalPoses poses_;
+};
+
 class WindowProblem {
  public:
   WindowProblem(const SolverInput& input, const CleanupOptions& options, int window)
@@ -87,11 +110,11 @@ class WindowProblem {
   double* root(int slot) { return &roots_[static_cast<size_t>(3 * slot)]; }
   double* rotation(int slot, int unknown) { return &rotations_[static_cast<size_t>(4 * (slot * unknowns_ + unknown))]; }
 
-  // Loads the content data and targets of `frame` into the slot's FrameData.
-  void loadFrameData(int slot, int frame) {
+  // Loads the content data and targets of `frame` into the slot's FrameData (`content` covers the frame).
+  void loadFrameData(int slot, int frame, const ContentPoseBlock& content) {
     FrameData& data = frames_[static_cast<size_t>(slot)];
     for (size_t c = 0; c < kCanonicalJointCount; ++c) {
-      chainSegmentsAt(input_.model, input_.model.chains[c], input_.content_poses, frame, data.segments[c]);
+      chainSegmentsAt(input_.model, input_.model.chains[c], content.poses(), content.row(frame), data.segments[c]);
       data.targets[c] = input_.targets.block<1, 3>(frame, static_cast<Eigen::Index>(3 * c)).transpose();
     }
     for (size_t i = 0; i < kContactCount; ++i) {
@@ -100,7 +123,7 @@ class WindowProblem {
     }
     for (int u = 0; u < unknowns_; ++u)
       data.prior_rotations[static_cast<size_t>(u)] =
-          input_.content_poses.rotation(frame, input_.model.unknown_joints[static_cast<size_t>(u)]);
+          content.rotation(frame, input_.model.unknown_joints[static_cast<size_t>(u)]);
     data.smoothness_scale = frame >= 2 ? 1.0 : 0.0;
   }
 
@@ -202,9 +225,36 @@ Eigen::Vector3d targetOf(const Eigen::MatrixXd& targets, int frame, CanonicalJoi
   return targets.block<1, 3>(frame, 3 * index(joint)).transpose();
 }
 
+// The solutions of the frames a window may still read or change: frames first() .. end() - 1.
+class SolutionBuffer {
+ public:
+  explicit SolutionBuffer(int unknowns) : unknowns_(static_cast<size_t>(unknowns)) {}
+  int first() const { return first_; }
+  int end() const { return first_ + static_cast<int>(roots_.size()); }
+  Eigen::Vector3d& root(int frame) { return roots_[offset(frame)]; }
+  Eigen::Quaterniond* rotations(int frame) { return &rotations_[offset(frame) * unknowns_]; }
+  void append() {  // frame end() becomes available (its values are set by the caller)
+    roots_.emplace_back(Eigen::Vector3d::Zero());
+    rotations_.resize(rotations_.size() + unknowns_, Eigen::Quaterniond::Identity());
+  }
+  void dropBefore(int frame) {  // frames before `frame` are no longer needed
+    const auto count = static_cast<size_t>(std::clamp(frame - first_, 0, end() - first_));
+    roots_.erase(roots_.begin(), roots_.begin() + static_cast<std::ptrdiff_t>(count));
+    rotations_.erase(rotations_.begin(), rotations_.begin() + static_cast<std::ptrdiff_t>(count * unknowns_));
+    first_ += static_cast<int>(count);
+  }
+
+ private:
+  size_t offset(int frame) const { return static_cast<size_t>(frame - first_); }
+  size_t unknowns_;
+  int first_ = 0;
+  std::vector<Eigen::Vector3d> roots_;
+  std::vector<Eigen::Quaterniond> rotations_;
+};
+
 }  // namespace
 
-SolverOutput solveCleanup(const SolverInput& input, const CleanupOptions& options) {
+SolverOutput solveCleanup(const SolverInput& input, const CleanupOptions& options, const FinalFrameSink& sink) {
   const auto start_time = Clock::now();
   const int frames = static_cast<int>(input.targets.rows());
   const int unknowns = input.model.unknownCount();
@@ -212,74 +262,72 @@ SolverOutput solveCleanup(const SolverInput& input, const CleanupOptions& option
   const int step = std::max(1, window - std::min(options.window_overlap, window - 1));
 
   SolverOutput out;
-  out.root_positions.resize(static_cast<size_t>(frames));
-  out.rotations.resize(static_cast<size_t>(frames) * static_cast<size_t>(unknowns));
-  auto rotationsOf = [&](int frame) { return &out.rotations[static_cast<size_t>(frame) * static_cast<size_t>(unknowns)]; };
-  std::vector<bool> initialised(static_cast<size_t>(frames), false);
+  SolutionBuffer solved(unknowns);
+  ContentPoseBlock content(input.content);
 
   // Frame 0 starts from the content pose moved so that its hips meet the target hips; later frames
-  // from the previous frame's solution, moved by the targets' hips step.
-  const int root_joint_hips = input.model.chains[static_cast<size_t>(index(CanonicalJoint::Hips))].tip_joint;
-  auto warmStart = [&](int frame) {
+  // from the previous frame's solution, moved by the targets' hips step. Frames are warm-started in
+  // order, each once: frame solved.end() is the next.
+  auto warmStartNext = [&]() {
+    const int frame = solved.end();
+    solved.append();
     if (frame == 0) {
-      const Eigen::Vector3d content_hips = input.content_world.block<1, 3>(0, 3 * root_joint_hips).transpose();
-      out.root_positions[0] = input.content_poses.translation(0, 0) +
-                              (targetOf(input.targets, 0, CanonicalJoint::Hips) - content_hips);
+      solved.root(0) = content.translation(0, 0) + (targetOf(input.targets, 0, CanonicalJoint::Hips) - input.content_hips_at_frame0);
       for (int u = 0; u < unknowns; ++u)
-        rotationsOf(0)[u] = input.content_poses.rotation(0, input.model.unknown_joints[static_cast<size_t>(u)]);
+        solved.rotations(0)[u] = content.rotation(0, input.model.unknown_joints[static_cast<size_t>(u)]);
     } else {
-      out.root_positions[static_cast<size_t>(frame)] =
-          out.root_positions[static_cast<size_t>(frame - 1)] + targetOf(input.targets, frame, CanonicalJoint::Hips) -
-          targetOf(input.targets, frame - 1, CanonicalJoint::Hips);
-      std::copy(rotationsOf(frame - 1), rotationsOf(frame - 1) + unknowns, rotationsOf(frame));
+      solved.root(frame) = solved.root(frame - 1) + targetOf(input.targets, frame, CanonicalJoint::Hips) -
+                           targetOf(input.targets, frame - 1, CanonicalJoint::Hips);
+      std::copy(solved.rotations(frame - 1), solved.rotations(frame - 1) + unknowns, solved.rotations(frame));
     }
-    if (!input.model.root_translation_free)
-      out.root_positions[static_cast<size_t>(frame)] = input.content_poses.translation(frame, 0);
-    initialised[static_cast<size_t>(frame)] = true;
+    if (!input.model.root_translation_free) solved.root(frame) = content.translation(frame, 0);
   };
 
   WindowProblem problem(input, options, window);
   // Puts frames first .. first + window - 1 into slots 2.., their two predecessors into slots 0, 1.
   auto loadWindow = [&](int first) {
+    content.cover(first, window);
     for (int i = 0; i < window; ++i) {
       const int frame = first + i;
-      if (!initialised[static_cast<size_t>(frame)]) warmStart(frame);
-      problem.setSlot(2 + i, out.root_positions[static_cast<size_t>(frame)], rotationsOf(frame));
-      problem.loadFrameData(2 + i, frame);
+      while (solved.end() <= frame) warmStartNext();
+      problem.setSlot(2 + i, solved.root(frame), solved.rotations(frame));
+      problem.loadFrameData(2 + i, frame, content);
     }
     for (int slot = 0; slot < 2; ++slot) {
       // Before the clip's start: a copy of the first frame, unused (its smoothness weight is 0).
       const int frame = first - 2 + slot >= 0 ? first - 2 + slot : first;
-      problem.setSlot(slot, out.root_positions[static_cast<size_t>(frame)], rotationsOf(frame));
+      problem.setSlot(slot, solved.root(frame), solved.rotations(frame));
     }
   };
 
+  // A frame is final once the next window starts after it: its cost is taken from the problem as it
+  // stands (its predecessors are final too) and it goes to the sink.
   int start = 0;
+  int next_final = 0;  // the first frame not yet handed to the sink
+  bool out_of_time = false;
   while (start < frames) {
     const int first = std::min(start, frames - window);
-    const double elapsed = std::chrono::duration<double>(Clock::now() - start_time).count();
-    const double remaining = input.time_budget_seconds - elapsed;
-    if (remaining <= 0.0) {
-      for (int frame = start; frame < frames; ++frame)
-        if (!initialised[static_cast<size_t>(frame)]) warmStart(frame);
+    const double remaining = input.time_budget_seconds - std::chrono::duration<double>(Clock::now() - start_time).count();
+    if (!out_of_time && remaining <= 0.0) {
+      out_of_time = true;  // the rest keeps its warm start
       out.frames_unsolved = frames - start;
-      break;
     }
     loadWindow(first);
-    const ceres::Solver::Summary summary = problem.solve(remaining);
-    ++out.solves;
-    out.total_iterations += summary.num_successful_steps + summary.num_unsuccessful_steps;
-    if (summary.termination_type == ceres::NO_CONVERGENCE) ++out.solves_at_iteration_cap;
-    for (int i = 0; i < window; ++i) problem.getSlot(2 + i, out.root_positions[static_cast<size_t>(first + i)],
-                                                     rotationsOf(first + i));
-    start = first + window >= frames ? frames : first + step;
-  }
-
-  // Final per-term costs of the committed solution, evaluated window by window.
-  for (int batch = 0; batch < frames; batch += window) {
-    const int first = std::min(batch, frames - window);
-    loadWindow(first);
-    for (int frame = batch; frame < std::min(batch + window, frames); ++frame) problem.addCosts(2 + frame - first, out.costs);
+    if (!out_of_time) {
+      const ceres::Solver::Summary summary = problem.solve(remaining);
+      ++out.solves;
+      out.total_iterations += summary.num_successful_steps + summary.num_unsuccessful_steps;
+      if (summary.termination_type == ceres::NO_CONVERGENCE) ++out.solves_at_iteration_cap;
+      for (int i = 0; i < window; ++i) problem.getSlot(2 + i, solved.root(first + i), solved.rotations(first + i));
+    }
+    const int next_start = first + window >= frames ? frames : first + step;
+    const int next_first = next_start >= frames ? frames : std::min(next_start, frames - window);
+    for (; next_final < next_first; ++next_final) {
+      problem.addCosts(2 + next_final - first, out.costs);
+      sink(next_final, solved.root(next_final), solved.rotations(next_final));
+    }
+    solved.dropBefore(next_first - 2);
+    start = next_start;
   }
   return out;
 }

@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <array>
+#include <functional>
 #include <vector>
 
 #include "ik/cleanup.h"
@@ -15,8 +16,8 @@ namespace motionstyle::ik_detail {
 
 struct SolverInput {
   const CleanupModel& model;
-  const LocalPoses& content_poses;       // the content's local transforms (priors, fixed joints, segments)
-  const Eigen::MatrixXd& content_world;  // frames x 3J, content world positions (warm start of frame 0)
+  const Motion& content;                 // the content clip: priors, fixed joints, segments (read a block at a time)
+  Eigen::Vector3d content_hips_at_frame0;  // content world position of the hips at frame 0 (warm start)
   const Eigen::MatrixXd& targets;        // frames x 63, file units
   // Per frame and contact track: the lock position (file units) and lock weight (contact_weight x blend).
   const std::vector<std::array<Eigen::Vector3d, kContactCount>>& lock_positions;
@@ -26,8 +27,6 @@ struct SolverInput {
 };
 
 struct SolverOutput {
-  std::vector<Eigen::Vector3d> root_positions;  // per frame, file units
-  std::vector<Eigen::Quaterniond> rotations;    // [frame * unknownCount + unknown], local, unit
   CleanupTermCosts costs;
   int solves = 0;
   int total_iterations = 0;
@@ -35,6 +34,14 @@ struct SolverOutput {
   int frames_unsolved = 0;
 };
 
-SolverOutput solveCleanup(const SolverInput& input, const CleanupOptions& options);
+// Receives each frame's final solution, once, in frame order: the root position (file units) and the
+// local rotation of every unknown joint (CleanupModel::unknown_joints order, unit quaternions).
+using FinalFrameSink = std::function<void(int frame, const Eigen::Vector3d& root_position,
+                                          const Eigen::Quaterniond* rotations)>;
+
+// Solves frame by frame (or window by window) and hands every frame to `sink` as soon as no later
+// window can change it. Holds the solutions of one window plus two frames and the content's local
+// poses of one block of frames (kMotionBlockFrames), whatever the clip's length.
+SolverOutput solveCleanup(const SolverInput& input, const CleanupOptions& options, const FinalFrameSink& sink);
 
 }  // namespace motionstyle::ik_detail

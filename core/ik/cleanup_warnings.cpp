@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <utility>
 #include <vector>
 
 #include "mapping/canonical_joints.h"
@@ -37,32 +38,6 @@ double reach(const Skeleton& skeleton, const LocalPoses& poses, int frame, int b
   return length;
 }
 
-// Runs of consecutive frames where value(frame) > threshold, reported as "... by X cm at frames a-b"
-// with the run's largest value.
-void reportRuns(const std::vector<double>& value, double threshold, const std::string& prefix,
-                const std::string& verb, std::vector<std::string>& warnings) {
-  size_t runs = 0;
-  const auto frames = static_cast<int>(value.size());
-  for (int f = 0; f < frames;) {
-    if (!(value[static_cast<size_t>(f)] > threshold)) {
-      ++f;
-      continue;
-    }
-    int last = f;
-    double peak = value[static_cast<size_t>(f)];
-    while (last + 1 < frames && value[static_cast<size_t>(last + 1)] > threshold) peak = std::max(peak, value[static_cast<size_t>(++last)]);
-    if (runs < kMaxRunsPerWarning) {
-      const std::string span = last > f ? "frames " + std::to_string(f) + "-" + std::to_string(last)
-                                        : "frame " + std::to_string(f);
-      warnings.push_back(prefix + " " + verb + " " + formatFixed(peak, 1) + " cm at " + span);
-    }
-    ++runs;
-    f = last + 1;
-  }
-  if (runs > kMaxRunsPerWarning)
-    warnings.push_back(prefix + ": " + std::to_string(runs - kMaxRunsPerWarning) + " more such frame ranges");
-}
-
 }  // namespace
 
 std::string formatFixed(double value, int decimals) {
@@ -71,45 +46,81 @@ std::string formatFixed(double value, int decimals) {
   return buffer;
 }
 
-void addCleanupWarnings(const CleanupInput& input, const CleanupOptions& options, const LocalPoses& content_poses,
-                        const Eigen::MatrixXd& result_world, CleanupReport& report) {
-  const int frames = static_cast<int>(input.targets.rows());
-  const double cm = input.cm_per_unit;
-
-  // Residual of every mapped joint, cm.
-  std::vector<std::vector<double>> residual(kCanonicalJointCount, std::vector<double>(static_cast<size_t>(frames)));
-  double sum = 0.0, peak = 0.0;
-  for (int c = 0; c < kCanonicalJointCount; ++c) {
-    for (int f = 0; f < frames; ++f) {
-      const Eigen::Vector3d target = input.targets.block<1, 3>(f, 3 * c).transpose();
-      const double error = (at(result_world, f, input.mapping.joints[static_cast<size_t>(c)]) - target).norm() * cm;
-      residual[static_cast<size_t>(c)][static_cast<size_t>(f)] = error;
-      sum += error;
-      peak = std::max(peak, error);
-    }
+void RunReporter::add(int frame, double value) {
+  if (!(value > threshold_)) {
+    closeRun();
+    return;
   }
-  report.mean_position_residual_cm = sum / (static_cast<double>(frames) * kCanonicalJointCount);
-  report.max_position_residual_cm = peak;
-
-  // Limbs whose targets lie further apart than the limb can reach.
-  for (const Limb& limb : kLimbs) {
-    const int base = input.mapping[limb.base];
-    const int end = input.mapping[limb.end];
-    std::vector<double> stretch(static_cast<size_t>(frames));
-    for (int f = 0; f < frames; ++f) {
-      const double distance = (input.targets.block<1, 3>(f, 3 * index(limb.end)) -
-                               input.targets.block<1, 3>(f, 3 * index(limb.base))).norm();
-      stretch[static_cast<size_t>(f)] = (distance - reach(input.content.skeleton, content_poses, f, base, end)) * cm;
-    }
-    reportRuns(stretch, options.unreachable_warning_cm, std::string("targets unreachable: ") + limb.name,
-               "stretched by", report.warnings);
+  if (run_first_ < 0) {
+    run_first_ = frame;
+    run_peak_ = value;
   }
+  run_last_ = frame;
+  run_peak_ = std::max(run_peak_, value);
+}
 
-  // Joints left far from their targets (whatever the reason: stretch, a contact lock, the floor).
+void RunReporter::closeRun() {
+  if (run_first_ < 0) return;
+  if (static_cast<size_t>(runs_) < kMaxRunsPerWarning) {
+    const std::string span = run_last_ > run_first_
+                                 ? "frames " + std::to_string(run_first_) + "-" + std::to_string(run_last_)
+                                 : "frame " + std::to_string(run_first_);
+    messages_.push_back(prefix_ + " " + verb_ + " " + formatFixed(run_peak_, 1) + " cm at " + span);
+  }
+  ++runs_;
+  run_first_ = run_last_ = -1;
+}
+
+void RunReporter::finish(std::vector<std::string>& warnings) {
+  closeRun();
+  warnings.insert(warnings.end(), messages_.begin(), messages_.end());
+  if (static_cast<size_t>(runs_) > kMaxRunsPerWarning)
+    warnings.push_back(prefix_ + ": " + std::to_string(runs_ - static_cast<int>(kMaxRunsPerWarning)) +
+                       " more such frame ranges");
+}
+
+CleanupWarnings::CleanupWarnings(const CleanupInput& input, const CleanupOptions& options) : input_(input) {
+  for (const Limb& limb : kLimbs)
+    limb_stretch_.emplace_back(options.unreachable_warning_cm, std::string("targets unreachable: ") + limb.name,
+                               "stretched by");
   for (int c = 0; c < kCanonicalJointCount; ++c)
-    reportRuns(residual[static_cast<size_t>(c)], options.residual_warning_cm,
-               "large residual: " + std::string(canonicalJointName(static_cast<CanonicalJoint>(c))), "off target by",
-               report.warnings);
+    joint_residual_.emplace_back(options.residual_warning_cm,
+                                 "large residual: " + std::string(canonicalJointName(static_cast<CanonicalJoint>(c))),
+                                 "off target by");
+}
+
+void CleanupWarnings::add(int first, const LocalPoses& content_block, const Eigen::MatrixXd& result_world) {
+  const double cm = input_.cm_per_unit;
+  for (int row = 0; row < static_cast<int>(result_world.rows()); ++row) {
+    const int frame = first + row;
+    // Residual of every mapped joint, cm.
+    for (int c = 0; c < kCanonicalJointCount; ++c) {
+      const Eigen::Vector3d target = input_.targets.block<1, 3>(frame, 3 * c).transpose();
+      const double error = (at(result_world, row, input_.mapping.joints[static_cast<size_t>(c)]) - target).norm() * cm;
+      residual_sum_ += error;
+      residual_peak_ = std::max(residual_peak_, error);
+      joint_residual_[static_cast<size_t>(c)].add(frame, error);
+    }
+    ++residual_samples_;
+    // Limbs whose targets lie further apart than the limb can reach.
+    for (size_t l = 0; l < kLimbs.size(); ++l) {
+      const Limb& limb = kLimbs[l];
+      const double distance = (input_.targets.block<1, 3>(frame, 3 * index(limb.end)) -
+                               input_.targets.block<1, 3>(frame, 3 * index(limb.base))).norm();
+      const double limb_reach = reach(input_.content.skeleton, content_block, row, input_.mapping[limb.base],
+                                      input_.mapping[limb.end]);
+      limb_stretch_[l].add(frame, (distance - limb_reach) * cm);
+    }
+  }
+}
+
+void CleanupWarnings::finish(CleanupReport& report) {
+  report.mean_position_residual_cm =
+      residual_samples_ > 0 ? residual_sum_ / (static_cast<double>(residual_samples_) * kCanonicalJointCount) : 0.0;
+  report.max_position_residual_cm = residual_peak_;
+  // Limbs first, then joints: the order of the report's warnings.
+  for (RunReporter& limb : limb_stretch_) limb.finish(report.warnings);
+  for (RunReporter& joint : joint_residual_) joint.finish(report.warnings);
 }
 
 }  // namespace motionstyle::ik_detail

@@ -1,20 +1,58 @@
 #pragma once
 // Private to core/ik: the clean-up report's residual figures and warnings (unreachable targets,
-// joints left far from their targets), computed from the result's world positions.
+// joints left far from their targets), computed from the result's world positions a block of frames
+// at a time, so that a long clip is never held whole.
 
 #include <Eigen/Core>
+#include <array>
 #include <string>
+#include <utility>
+#include <vector>
 
+#include "features/feature_layout.h"
 #include "ik/cleanup.h"
 #include "motion/kinematics.h"
 
 namespace motionstyle::ik_detail {
 
-// Fills report.mean/max_position_residual_cm and appends warnings such as
-// "targets unreachable: left arm stretched by 12.0 cm at frames 40-60".
-// result_world: frames x 3J world positions of the cleaned clip, file units.
-void addCleanupWarnings(const CleanupInput& input, const CleanupOptions& options, const LocalPoses& content_poses,
-                        const Eigen::MatrixXd& result_world, CleanupReport& report);
+// Runs of consecutive frames where a value exceeds a threshold, reported as
+// "<prefix> <verb> X cm at frames a-b" with each run's largest value; after kMaxRunsPerWarning runs the
+// rest are counted ("<prefix>: N more such frame ranges"). Fed one frame at a time, in order.
+class RunReporter {
+ public:
+  RunReporter(double threshold, std::string prefix, std::string verb)
+      : threshold_(threshold), prefix_(std::move(prefix)), verb_(std::move(verb)) {}
+  void add(int frame, double value);
+  void finish(std::vector<std::string>& warnings);  // closes an open run, appends the messages
+
+ private:
+  void closeRun();
+  double threshold_;
+  std::string prefix_, verb_;
+  int run_first_ = -1, run_last_ = -1;
+  double run_peak_ = 0.0;
+  int runs_ = 0;
+  std::vector<std::string> messages_;
+};
+
+// The report's residual figures and warnings, fed the cleaned clip block by block in frame order.
+class CleanupWarnings {
+ public:
+  CleanupWarnings(const CleanupInput& input, const CleanupOptions& options);
+  // Frames first .. first + result_world.rows() - 1: their content local poses (bone lengths) and the
+  // cleaned world positions of every joint (file units).
+  void add(int first, const LocalPoses& content_block, const Eigen::MatrixXd& result_world);
+  // Fills report.mean/max_position_residual_cm and appends warnings such as
+  // "targets unreachable: left arm stretched by 12.0 cm at frames 40-60".
+  void finish(CleanupReport& report);
+
+ private:
+  const CleanupInput& input_;
+  std::vector<RunReporter> limb_stretch_;                  // one per limb
+  std::vector<RunReporter> joint_residual_;                // one per canonical joint
+  double residual_sum_ = 0.0, residual_peak_ = 0.0;
+  long long residual_samples_ = 0;
+};
 
 // "12.3" (fixed, `decimals` digits).
 std::string formatFixed(double value, int decimals);

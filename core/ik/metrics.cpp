@@ -93,92 +93,123 @@ void MetricsInput::validate() const {
 }
 
 ClipMetrics computeMetrics(const MetricsInput& input) {
-  input.validate();
-  const Eigen::MatrixXd& p = input.positions;
-  const Eigen::Index frames = p.rows();
-  const double cm = input.cm_per_unit;
-  ClipMetrics m;
-  m.frames = static_cast<int>(frames);
-  m.skate_track_cm_s.assign(static_cast<size_t>(frames), 0.0);
-  m.bone_error_track_cm.assign(static_cast<size_t>(frames), 0.0);
+  MetricsAccumulator accumulator;
+  accumulator.add(input);
+  return accumulator.finish();
+}
+
+void MetricsAccumulator::add(const MetricsInput& block) {
+  block.validate();
+  if (!started_) {
+    started_ = true;
+    canonical_joints_ = block.canonical_joints;
+    bones_ = block.bones;
+    up_ = block.up;
+    floor_height_ = block.floor_height;
+    cm_per_unit_ = block.cm_per_unit;
+    fps_ = block.fps;
+    columns_ = block.positions.cols();
+    has_contacts_ = block.contacts.size() > 0;
+    has_targets_ = block.targets.size() > 0;
+  } else if (block.canonical_joints != canonical_joints_ || block.bones.size() != bones_.size() || block.up != up_ ||
+             block.floor_height != floor_height_ || block.cm_per_unit != cm_per_unit_ || block.fps != fps_ ||
+             block.positions.cols() != columns_ || (block.contacts.size() > 0) != has_contacts_ ||
+             (block.targets.size() > 0) != has_targets_) {
+    throw std::invalid_argument("metrics: a block's joints, bones, space, rate, contacts or targets differ from the first block's");
+  }
+  const Eigen::Index kept = history_.rows();
+  const Eigen::Index added = block.positions.rows();
+  if (added == 0) return;
+  // The kept frames, then this block's: row r of p is frame (partial_.frames - kept + r).
+  Eigen::MatrixXd p(kept + added, columns_);
+  p.topRows(kept) = history_;
+  p.bottomRows(added) = block.positions;
+  const int base = partial_.frames - static_cast<int>(kept);
+  const double cm = cm_per_unit_;
+  ClipMetrics& m = partial_;
+  m.frames += static_cast<int>(added);
+  if (keep_tracks_) {
+    m.skate_track_cm_s.resize(static_cast<size_t>(m.frames), 0.0);
+    m.bone_error_track_cm.resize(static_cast<size_t>(m.frames), 0.0);
+  }
   std::array<int, kContactCount> feet{};
   for (size_t label = 0; label < kContactCount; ++label)
-    feet[label] = input.canonical_joints[static_cast<size_t>(index(kContactJoint[label]))];
+    feet[label] = canonical_joints_[static_cast<size_t>(index(kContactJoint[label]))];
 
-  // Foot skate.
-  if (input.contacts.size() > 0) {
-    double sum = 0.0;
-    for (Eigen::Index t = 0; t + 1 < frames; ++t) {
+  // Foot skate: the steps t -> t+1 that end in this block.
+  if (has_contacts_) {
+    auto inContact = [&](Eigen::Index row, Eigen::Index label) {
+      return row < kept ? last_contacts_(label) != 0 : block.contacts(row - kept, label) != 0;
+    };
+    for (Eigen::Index t = std::max<Eigen::Index>(kept - 1, 0); t + 1 < kept + added; ++t) {
       double frame_sum = 0.0;
       int frame_count = 0;
       for (Eigen::Index label = 0; label < kContactCount; ++label) {
-        if (input.contacts(t, label) == 0 || input.contacts(t + 1, label) == 0) continue;
+        if (!inContact(t, label) || !inContact(t + 1, label)) continue;
         Eigen::Vector3d step = at(p, t + 1, feet[static_cast<size_t>(label)]) - at(p, t, feet[static_cast<size_t>(label)]);
-        step -= input.up.dot(step) * input.up;
-        const double speed = step.norm() * cm * input.fps;
-        frame_sum += speed;
+        step -= up_.dot(step) * up_;
+        frame_sum += step.norm() * cm * fps_;
         ++frame_count;
       }
-      sum += frame_sum;
+      skate_sum_ += frame_sum;
       m.contact_steps += frame_count;
-      if (frame_count > 0) m.skate_track_cm_s[static_cast<size_t>(t)] = frame_sum / frame_count;
+      if (keep_tracks_ && frame_count > 0) m.skate_track_cm_s[static_cast<size_t>(base + t)] = frame_sum / frame_count;
     }
-    if (m.contact_steps > 0) m.foot_skate_cm_s = sum / m.contact_steps;
+    last_contacts_ = block.contacts.row(added - 1);
   }
 
-  // Floor penetration.
-  double depth_sum = 0.0;
-  for (Eigen::Index t = 0; t < frames; ++t) {
+  for (Eigen::Index t = kept; t < kept + added; ++t) {
+    // Floor penetration.
     for (int joint : feet) {
-      const double depth = (input.floor_height - input.up.dot(at(p, t, joint))) * cm;
+      const double depth = (floor_height_ - up_.dot(at(p, t, joint))) * cm;
       if (depth <= 0.0) continue;
       m.penetration_max_cm = std::max(m.penetration_max_cm, depth);
-      depth_sum += depth;
+      depth_sum_ += depth;
       ++m.penetrating_samples;
     }
-  }
-  if (m.penetrating_samples > 0) m.penetration_mean_cm = depth_sum / m.penetrating_samples;
-
-  // Bone lengths.
-  if (!input.bones.empty() && frames > 0) {
-    double sum = 0.0;
-    for (Eigen::Index t = 0; t < frames; ++t) {
-      double worst = 0.0;
-      for (const BoneReference& bone : input.bones) {
-        const double error = std::abs((at(p, t, bone.joint) - at(p, t, bone.parent)).norm() - bone.length) * cm;
-        sum += error;
-        worst = std::max(worst, error);
-      }
-      m.bone_error_track_cm[static_cast<size_t>(t)] = worst;
-      m.bone_error_max_cm = std::max(m.bone_error_max_cm, worst);
+    // Bone lengths.
+    double worst = 0.0;
+    for (const BoneReference& bone : bones_) {
+      const double error = std::abs((at(p, t, bone.joint) - at(p, t, bone.parent)).norm() - bone.length) * cm;
+      bone_sum_ += error;
+      worst = std::max(worst, error);
     }
-    m.bone_error_mean_cm = sum / (static_cast<double>(frames) * static_cast<double>(input.bones.size()));
-  }
-
-  // Position residual.
-  if (input.targets.size() > 0 && frames > 0) {
-    m.has_residual = true;
-    double sum = 0.0;
-    for (Eigen::Index t = 0; t < frames; ++t) {
+    if (keep_tracks_) m.bone_error_track_cm[static_cast<size_t>(base + t)] = worst;
+    m.bone_error_max_cm = std::max(m.bone_error_max_cm, worst);
+    // Position residual.
+    if (has_targets_) {
       for (int c = 0; c < kCanonicalJointCount; ++c) {
-        const Eigen::Vector3d target = input.targets.block<1, 3>(t, 3 * c).transpose();
-        const double error = (at(p, t, input.canonical_joints[static_cast<size_t>(c)]) - target).norm() * cm;
-        sum += error;
+        const Eigen::Vector3d target = block.targets.block<1, 3>(t - kept, 3 * c).transpose();
+        const double error = (at(p, t, canonical_joints_[static_cast<size_t>(c)]) - target).norm() * cm;
+        residual_sum_ += error;
         m.residual_max_cm = std::max(m.residual_max_cm, error);
       }
     }
-    m.residual_mean_cm = sum / (static_cast<double>(frames) * kCanonicalJointCount);
+    // Jerk: the window of four frames that ends here.
+    if (t >= 3)
+      for (int joint : canonical_joints_)
+        jerk_sum_ += (at(p, t, joint) - 3.0 * at(p, t - 1, joint) + 3.0 * at(p, t - 2, joint) - at(p, t - 3, joint)).norm();
   }
+  const Eigen::Index keep = std::min<Eigen::Index>(3, p.rows());
+  history_ = p.bottomRows(keep);
+}
 
-  // Jerk.
-  if (frames >= 4) {
-    double sum = 0.0;
-    const double scale = cm * input.fps * input.fps * input.fps;
-    for (Eigen::Index t = 0; t + 3 < frames; ++t)
-      for (int joint : input.canonical_joints)
-        sum += (at(p, t + 3, joint) - 3.0 * at(p, t + 2, joint) + 3.0 * at(p, t + 1, joint) - at(p, t, joint)).norm();
-    m.jerk_mean_cm_s3 = sum * scale / (static_cast<double>(frames - 3) * kCanonicalJointCount);
+ClipMetrics MetricsAccumulator::finish() const {
+  ClipMetrics m = partial_;
+  const double frames = m.frames;
+  if (!keep_tracks_ || !started_) {
+    m.skate_track_cm_s.assign(keep_tracks_ ? static_cast<size_t>(m.frames) : 0, 0.0);
+    m.bone_error_track_cm.assign(keep_tracks_ ? static_cast<size_t>(m.frames) : 0, 0.0);
   }
+  if (m.contact_steps > 0) m.foot_skate_cm_s = skate_sum_ / m.contact_steps;
+  if (m.penetrating_samples > 0) m.penetration_mean_cm = depth_sum_ / m.penetrating_samples;
+  if (!bones_.empty() && m.frames > 0) m.bone_error_mean_cm = bone_sum_ / (frames * static_cast<double>(bones_.size()));
+  if (has_targets_ && m.frames > 0) {
+    m.has_residual = true;
+    m.residual_mean_cm = residual_sum_ / (frames * kCanonicalJointCount);
+  }
+  const double jerk_scale = cm_per_unit_ * fps_ * fps_ * fps_;
+  if (m.frames >= 4) m.jerk_mean_cm_s3 = jerk_sum_ * jerk_scale / ((frames - 3) * kCanonicalJointCount);
   return m;
 }
 

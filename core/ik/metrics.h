@@ -91,6 +91,34 @@ struct ClipMetrics {
 
 ClipMetrics computeMetrics(const MetricsInput& input);
 
+// computeMetrics a block of frames at a time, for clips too long to hold whole: add() consecutive
+// blocks in frame order (each a MetricsInput holding only its frames, with the same joints, bones,
+// up, floor, unit, rate, and contacts/targets present in every block or in none), then finish().
+// The figures are exactly computeMetrics' over the concatenated blocks (same sums in the same order):
+// steps and jerk windows that straddle two blocks use the last frames kept from the previous block.
+// Memory: the last 3 frames plus, when keep_tracks, 16 bytes per frame for the two tracks.
+class MetricsAccumulator {
+ public:
+  explicit MetricsAccumulator(bool keep_tracks = true) : keep_tracks_(keep_tracks) {}
+  // std::invalid_argument as MetricsInput::validate, or when a block's settings differ from the first's.
+  void add(const MetricsInput& block);
+  ClipMetrics finish() const;
+
+ private:
+  bool keep_tracks_;
+  bool started_ = false;
+  std::array<int, kCanonicalJointCount> canonical_joints_{};
+  std::vector<BoneReference> bones_;
+  Eigen::Vector3d up_ = Eigen::Vector3d::UnitY();
+  double floor_height_ = 0.0, cm_per_unit_ = 1.0, fps_ = 60.0;
+  Eigen::Index columns_ = 0;
+  bool has_contacts_ = false, has_targets_ = false;
+  Eigen::MatrixXd history_;           // the last (up to 3) frames' positions
+  Eigen::RowVectorXi last_contacts_;  // the last frame's contact labels
+  ClipMetrics partial_;               // counts, maxima and tracks so far
+  double skate_sum_ = 0.0, depth_sum_ = 0.0, bone_sum_ = 0.0, residual_sum_ = 0.0, jerk_sum_ = 0.0;
+};
+
 // {"frames": ..., "foot_skate_cm_s": ..., ...}; `include_tracks` adds the per-frame tracks.
 std::string metricsToJson(const ClipMetrics& metrics, bool include_tracks = false);
 // Written atomically (WriteError on failure).

@@ -182,14 +182,11 @@ void forwardKinematicsStep(const LocalPoses& poses, const FkStep& step, int firs
   out.m[6] = txz - twy, out.m[7] = tyz + twx, out.m[8] = 1 - (txx + tyy);
 }
 
-}  // namespace
-
-LocalPoses localPoses(const Motion& motion) {
-  motion.validate();
+LocalPoses localPosesOfValidMotion(const Motion& motion, int first, int count) {
   const Skeleton& skeleton = motion.skeleton;
   const std::vector<JointChannels> channels = resolveChannels(skeleton);
   LocalPoses poses;
-  poses.frames = motion.frameCount();
+  poses.frames = count;
   poses.joints = skeleton.jointCount();
   const size_t total = static_cast<size_t>(poses.frames) * static_cast<size_t>(poses.joints);
   poses.rotations.resize(total);
@@ -204,14 +201,14 @@ LocalPoses localPoses(const Motion& motion) {
   Eigen::ArrayXd angles(static_cast<Eigen::Index>(rotation_channels * frames));  // uninitialised: all written
   Eigen::ArrayXd sines(angles.size()), cosines(angles.size());
   for (size_t f = 0; f < frames; ++f) {
-    const double* row = motion.values.row(static_cast<Eigen::Index>(f)).data();  // row-major: contiguous
+    const double* row = motion.values.row(static_cast<Eigen::Index>(first) + static_cast<Eigen::Index>(f)).data();  // row-major
     size_t channel = 0;
     for (const JointChannels& resolved : channels)
       for (int n = 0; n < resolved.rotation_axes.count; ++n, ++channel)
         angles[static_cast<Eigen::Index>(channel * frames + f)] = row[resolved.rotation_column[static_cast<size_t>(n)]];
   }
-  const auto count = static_cast<size_t>(angles.size());
-  halfAngleSinCos({angles.data(), count}, {sines.data(), count}, {cosines.data(), count});
+  const auto angle_count = static_cast<size_t>(angles.size());
+  halfAngleSinCos({angles.data(), angle_count}, {sines.data(), angle_count}, {cosines.data(), angle_count});
 
   size_t channel = 0;
   for (int j = 0; j < poses.joints; ++j) {
@@ -226,7 +223,7 @@ LocalPoses localPoses(const Motion& motion) {
     jointRotations(poses, j, resolved.rotation_axes, joint_cosines, joint_sines);
     const std::array<int, 3>& column = resolved.position_column;
     for (int f = 0; f < poses.frames; ++f) {
-      const double* row = motion.values.row(f).data();
+      const double* row = motion.values.row(first + f).data();
       double* translation = poses.translation(f, j).data();  // written in place: no temporary to reload
       for (size_t axis = 0; axis < 3; ++axis)
         translation[axis] = column[axis] >= 0 ? row[column[axis]] : joint.offset[static_cast<Eigen::Index>(axis)];
@@ -235,20 +232,45 @@ LocalPoses localPoses(const Motion& motion) {
   return poses;
 }
 
+}  // namespace
+
+LocalPoses localPoses(const Motion& motion) {
+  motion.validate();
+  return localPosesOfValidMotion(motion, 0, motion.frameCount());
+}
+
+LocalPoses localPoses(const Motion& motion, int first, int count) {
+  if (first < 0 || count < 0 || first > motion.frameCount() - count)
+    throw std::invalid_argument("localPoses: frames " + std::to_string(first) + " + " + std::to_string(count) +
+                                " outside the clip's " + std::to_string(motion.frameCount()));
+  Motion header;  // validates all but the values, which are checked for the range only
+  header.skeleton = motion.skeleton;
+  header.frame_time = motion.frame_time;
+  header.values.resize(0, motion.values.cols());
+  header.validate();
+  if (!motion.values.middleRows(first, count).allFinite())
+    throw std::invalid_argument("motion contains a non-finite channel value");
+  return localPosesOfValidMotion(motion, first, count);
+}
+
 void setLocalPoses(const LocalPoses& poses, Motion& motion) {
-  const Skeleton& skeleton = motion.skeleton;
+  // Frame 0 continues from the motion's current frame 0 when there is one, so that a round trip keeps
+  // the file's own angle ranges (e.g. 270 instead of -90).
+  const bool has_seed = motion.values.rows() > 0 && motion.values.cols() == motion.skeleton.channelCount() &&
+                        motion.values.row(0).allFinite();
+  MatrixRowMajor values = channelValues(motion.skeleton, poses, has_seed ? motion.values.row(0).data() : nullptr);
+  motion.values = std::move(values);
+}
+
+MatrixRowMajor channelValues(const Skeleton& skeleton, const LocalPoses& poses, const double* seed_row) {
   skeleton.validate();
   checkPoses(skeleton, poses);
   const std::vector<JointChannels> channels = resolveChannels(skeleton);
   const int channel_count = skeleton.channelCount();
-  // Frame 0 continues from the motion's current frame 0 when there is one, so that a round trip keeps
-  // the file's own angle ranges (e.g. 270 instead of -90).
-  const bool has_seed = motion.values.rows() > 0 && motion.values.cols() == channel_count &&
-                        motion.values.row(0).allFinite();
   MatrixRowMajor values(poses.frames, channel_count);
   for (int f = 0; f < poses.frames; ++f) {
     double* row = values.row(f).data();
-    const double* previous_row = f > 0 ? values.row(f - 1).data() : (has_seed ? motion.values.row(0).data() : nullptr);
+    const double* previous_row = f > 0 ? values.row(f - 1).data() : seed_row;
     for (int j = 0; j < poses.joints; ++j) {
       const Joint& joint = skeleton.joints[static_cast<size_t>(j)];
       const JointChannels& resolved = channels[static_cast<size_t>(j)];
@@ -275,13 +297,25 @@ void setLocalPoses(const LocalPoses& poses, Motion& motion) {
       }
     }
   }
-  motion.values = std::move(values);
+  return values;
 }
 
 Eigen::MatrixXd worldPositions(const Skeleton& skeleton, const LocalPoses& poses) {
   std::vector<int> every_joint(static_cast<size_t>(std::max(skeleton.jointCount(), 0)));
   for (size_t j = 0; j < every_joint.size(); ++j) every_joint[j] = static_cast<int>(j);
   return worldPositions(skeleton, poses, every_joint);
+}
+
+Eigen::MatrixXd worldPositions(const Motion& motion, std::span<const int> wanted) {
+  motion.validate();
+  const int frames = motion.frameCount();
+  Eigen::MatrixXd positions(frames, 3 * static_cast<Eigen::Index>(wanted.size()));
+  for (int first = 0; first < frames; first += kMotionBlockFrames) {
+    const int count = std::min(kMotionBlockFrames, frames - first);
+    positions.middleRows(first, count) = worldPositions(motion.skeleton, localPosesOfValidMotion(motion, first, count), wanted);
+  }
+  if (frames == 0) positions = worldPositions(motion.skeleton, localPosesOfValidMotion(motion, 0, 0), wanted);
+  return positions;
 }
 
 Eigen::MatrixXd worldPositions(const Skeleton& skeleton, const LocalPoses& poses, std::span<const int> wanted) {

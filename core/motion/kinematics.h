@@ -38,6 +38,11 @@ struct LocalPoses {
 // (std::invalid_argument from Motion::validate).
 LocalPoses localPoses(const Motion& motion);
 
+// The local transforms of frames first .. first + count - 1 only (frame 0 of the result is `first`).
+// Validates the skeleton and those frames' values, not the others': a long clip is walked block by
+// block in time and memory proportional to the block. std::invalid_argument for a range outside the clip.
+LocalPoses localPoses(const Motion& motion, int first, int count);
+
 // Local transforms -> channel values, written into motion.values (resized to poses.frames rows),
 // decomposing each rotation into the joint's own Euler order and writing translations into its
 // position channels. Joints without rotation channels must have identity rotations (to 1e-6 rad);
@@ -48,6 +53,11 @@ LocalPoses localPoses(const Motion& motion);
 // frame 0 takes the one nearest the motion's current frame 0 when it has one (so a round trip keeps
 // the file's angle ranges), else the principal solution.
 void setLocalPoses(const LocalPoses& poses, Motion& motion);
+
+// The channel values (poses.frames x skeleton.channelCount()) setLocalPoses writes, with the same
+// checks; frame 0 continues from `seed_row` (a channel row, e.g. the previous block's last frame) when
+// it is not null. Why: a clip converted block by block gets the same Euler branches as in one piece.
+MatrixRowMajor channelValues(const Skeleton& skeleton, const LocalPoses& poses, const double* seed_row);
 
 // World positions of every joint (file units, file axes), frames x (3 * jointCount):
 // row f = x0 y0 z0 x1 y1 z1 ... Rotations must be unit quaternions. std::invalid_argument when the
@@ -62,6 +72,11 @@ inline Eigen::MatrixXd worldPositions(const Motion& motion) { return worldPositi
 // (vectorised), so asking for a few joints costs a fraction of the full call. Rotations must be unit
 // quaternions. std::invalid_argument as above, and for a wanted index outside the skeleton.
 Eigen::MatrixXd worldPositions(const Skeleton& skeleton, const LocalPoses& poses, std::span<const int> wanted);
+
+// The same for a whole motion, walked a block of frames at a time (kMotionBlockFrames), so the local
+// transforms of a long clip (56 bytes per joint and frame) are never all held at once.
+Eigen::MatrixXd worldPositions(const Motion& motion, std::span<const int> wanted);
+inline constexpr int kMotionBlockFrames = 1024;
 
 // World rotation of every joint (joint frame -> world), same indexing as LocalPoses.
 std::vector<Eigen::Quaterniond> worldRotations(const Skeleton& skeleton, const LocalPoses& poses);

@@ -26,8 +26,7 @@ const char* kindName(NetworkKind kind) {
   return kind == NetworkKind::Autoencoder ? "autoencoder (loss network)" : "style (transformation network)";
 }
 
-// ---------------------------------------------------------------- writing
-
+// Writing.
 // A tensor the reader would refuse (network_limits.h) is never written.
 void writeChecked(ByteWriter& w, const std::string& name, const Mat<float>& values, WeightPrecision precision,
                   float max_magnitude) {
@@ -130,8 +129,7 @@ std::string serialise(NetworkKind kind, const Normalisation& normalisation, cons
   return std::move(file.bytes());
 }
 
-// ---------------------------------------------------------------- reading
-
+// Reading.
 struct Parsed {
   std::uint32_t version = 0;
   NetworkKind kind{};

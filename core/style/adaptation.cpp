@@ -67,6 +67,13 @@ void AdaptationSettings::validate() const {
     throw std::invalid_argument("adaptation needs an output file (or at least a checkpoint path)");
 }
 
+std::filesystem::path AdaptationSettings::checkpointPath() const {
+  if (!checkpoint.empty()) return checkpoint;
+  std::filesystem::path path = output;
+  path += ".checkpoint";
+  return path;
+}
+
 void AdaptationJob::validate() const {
   settings.validate();
   loss_network.normalisation.validate();
@@ -90,8 +97,7 @@ AdaptationResult AdaptationJob::run(const TrainingCallbacks& callbacks) const {
   training.epochs = settings.epochs;
   training.learning_rate = settings.learning_rate;
   training.seed = settings.seed;
-  training.checkpoint =
-      settings.checkpoint.empty() ? std::filesystem::path(settings.output.string() + ".checkpoint") : settings.checkpoint;
+  training.checkpoint = settings.checkpointPath();
   config.clips = clips;
   const std::vector<MotionClip> mixed = replayToMix();
   config.clips.insert(config.clips.end(), mixed.begin(), mixed.end());

@@ -37,6 +37,7 @@ struct AdaptationSettings {
   bool keep_checkpoint = false;     // as TrainingSettings::keep_checkpoint
 
   void validate() const;  // std::invalid_argument naming the field
+  std::filesystem::path checkpointPath() const;  // `checkpoint`, or output + ".checkpoint"
 };
 
 struct ClipFamiliarity {

@@ -14,6 +14,7 @@
 
 #include "bvh/bvh_reader.h"
 #include "features/foot_contacts.h"
+#include "features/representation.h"
 #include "features/space_convention.h"
 #include "ik/cleanup.h"
 #include "ik/metrics.h"
@@ -63,7 +64,7 @@ struct Scenario {
 
 Scenario makeScenario(const Motion& clip) {
   Scenario s{clip, mapJoints(clip.skeleton, clip.source), {}, 1.0, 0.0, worldPositions(clip), {}};
-  const SpaceConvention space = detectSpaceConvention(clip.skeleton, s.world, s.mapping);
+  const SpaceConvention space = detectSpaceConvention(clip.skeleton, canonicalJointPositions(clip, s.mapping), s.mapping);
   s.up = space.fileUp();
   s.cm_per_unit = space.cm_per_unit;
   const std::array<int, kContactCount> feet = contactJoints(s.mapping);

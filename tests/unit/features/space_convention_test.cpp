@@ -16,25 +16,28 @@ namespace {
 struct LoadedClip {
   Motion motion;
   JointMapping mapping;
-  Eigen::MatrixXd world;
+  Eigen::MatrixXd world;      // every joint
+  Eigen::MatrixXd canonical;  // the 21 canonical joints (what detectSpaceConvention reads)
 };
 
 LoadedClip load(const std::string& name) {
-  LoadedClip clip{readBvh(test::fixture(name)), {}, {}};
+  LoadedClip clip{readBvh(test::fixture(name)), {}, {}, {}};
   clip.mapping = mapJoints(clip.motion.skeleton, name);
   clip.world = worldPositions(clip.motion);
+  clip.canonical = canonicalJointPositions(clip.motion, clip.mapping);
   return clip;
 }
 
-TEST(SpaceConvention, RejectsPositionsOfAnotherSkeleton) {
+TEST(SpaceConvention, RejectsPositionsThatAreNotTheCanonicalJoints) {
   const LoadedClip clip = load("cmu_131_01.bvh");
-  EXPECT_THROW(detectSpaceConvention(clip.motion.skeleton, clip.world.leftCols(6), clip.mapping), std::invalid_argument);
-  EXPECT_THROW(detectSpaceConvention(clip.motion.skeleton, clip.world.topRows(0), clip.mapping), std::invalid_argument);
+  EXPECT_THROW(detectSpaceConvention(clip.motion.skeleton, clip.canonical.leftCols(6), clip.mapping), std::invalid_argument);
+  EXPECT_THROW(detectSpaceConvention(clip.motion.skeleton, clip.world, clip.mapping), std::invalid_argument);
+  EXPECT_THROW(detectSpaceConvention(clip.motion.skeleton, clip.canonical.topRows(0), clip.mapping), std::invalid_argument);
 }
 
 TEST(SpaceConvention, RejectsUnknownUnit) {
   const LoadedClip clip = load("cmu_131_01.bvh");
-  EXPECT_THROW(detectSpaceConvention(clip.motion.skeleton, clip.world, clip.mapping, std::string("furlong")),
+  EXPECT_THROW(detectSpaceConvention(clip.motion.skeleton, clip.canonical, clip.mapping, std::string("furlong")),
                std::invalid_argument);
 }
 
@@ -75,7 +78,7 @@ TEST(SpaceConvention, KnownUnitNamesListsEveryUnit) {
 
 TEST(SpaceConvention, CmuIsYUpInCmuUnits) {
   const LoadedClip clip = load("cmu_131_01.bvh");
-  const SpaceConvention convention = detectSpaceConvention(clip.motion.skeleton, clip.world, clip.mapping);
+  const SpaceConvention convention = detectSpaceConvention(clip.motion.skeleton, clip.canonical, clip.mapping);
   EXPECT_EQ(convention.up_axis, "+Y");
   EXPECT_EQ(convention.unit, "cmu");
   EXPECT_TRUE(convention.unit_guessed);
@@ -84,7 +87,7 @@ TEST(SpaceConvention, CmuIsYUpInCmuUnits) {
 
 TEST(SpaceConvention, ZombieIsZUpAndTurnsToYUp) {
   const LoadedClip clip = load("zombie.bvh");
-  const SpaceConvention convention = detectSpaceConvention(clip.motion.skeleton, clip.world, clip.mapping);
+  const SpaceConvention convention = detectSpaceConvention(clip.motion.skeleton, clip.canonical, clip.mapping);
   EXPECT_EQ(convention.up_axis, "+Z");
   EXPECT_NEAR(convention.axes.determinant(), 1.0, 1e-12);
   // The head ends up above the feet in canonical space.
@@ -97,7 +100,7 @@ TEST(SpaceConvention, ZombieIsZUpAndTurnsToYUp) {
 
 TEST(SpaceConvention, GivenUnitIsUsedAndNotGuessed) {
   const LoadedClip clip = load("cmu_131_01.bvh");
-  const SpaceConvention convention = detectSpaceConvention(clip.motion.skeleton, clip.world, clip.mapping, std::string("m"));
+  const SpaceConvention convention = detectSpaceConvention(clip.motion.skeleton, clip.canonical, clip.mapping, std::string("m"));
   EXPECT_EQ(convention.unit, "m");
   EXPECT_DOUBLE_EQ(convention.cm_per_unit, 100.0);
   EXPECT_FALSE(convention.unit_guessed);
@@ -111,7 +114,7 @@ TEST(SpaceConvention, UnitGuessFollowsScale) {
     Skeleton scaled = clip.motion.skeleton;
     for (Joint& joint : scaled.joints) joint.offset *= cmu_cm / cm_per_unit;
     const SpaceConvention convention =
-        detectSpaceConvention(scaled, clip.world * (cmu_cm / cm_per_unit), clip.mapping);
+        detectSpaceConvention(scaled, clip.canonical * (cmu_cm / cm_per_unit), clip.mapping);
     EXPECT_EQ(convention.unit, unit);
     EXPECT_NEAR(skeletalHeight(scaled, clip.mapping) * convention.cm_per_unit,
                 skeletalHeight(clip.motion.skeleton, clip.mapping) * cmu_cm, 1e-9);

@@ -312,5 +312,42 @@ TEST(LocalPoseRoundTrip, WithoutExistingValuesFrameZeroTakesThePrincipalSolution
   EXPECT_TRUE(worldPositions(fresh).isApprox(worldPositions(original), 1e-10));
 }
 
+
+// --- A clip walked in blocks of frames (long clips are never held whole).
+
+TEST(BlockKinematics, RefusesRangesOutsideTheClipAndBadValuesInsideTheRange) {
+  Motion motion = test::randomMotion(test::mixedSkeleton(), 20, 5);
+  EXPECT_THROW(localPoses(motion, -1, 2), std::invalid_argument);
+  EXPECT_THROW(localPoses(motion, 19, 2), std::invalid_argument);
+  EXPECT_THROW(localPoses(motion, 0, -1), std::invalid_argument);
+  motion.values(15, 0) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_NO_THROW(localPoses(motion, 0, 15));  // the bad frame lies outside the range
+  EXPECT_THROW(localPoses(motion, 10, 6), std::invalid_argument);
+}
+
+TEST(BlockKinematics, ABlocksPosesAndPositionsAreThoseOfTheWholeClip) {
+  const Motion motion = test::randomMotion(test::mixedSkeleton(), 3 * kMotionBlockFrames / 2, 6);
+  const LocalPoses whole = localPoses(motion);
+  const LocalPoses block = localPoses(motion, 700, 600);
+  ASSERT_EQ(block.frames, 600);
+  for (int f = 0; f < block.frames; ++f)
+    for (int j = 0; j < block.joints; ++j) {
+      ASSERT_EQ(block.rotation(f, j).coeffs(), whole.rotation(700 + f, j).coeffs());
+      ASSERT_EQ(block.translation(f, j), whole.translation(700 + f, j));
+    }
+  const std::vector<int> wanted = {3, 0, 3};
+  EXPECT_EQ(worldPositions(motion, wanted), worldPositions(motion.skeleton, whole, wanted));  // walked in blocks
+}
+
+TEST(BlockKinematics, ChannelValuesInBlocksSeededByThePreviousBlockEqualSetLocalPoses) {
+  const Motion original = test::randomMotion(test::mixedSkeleton(), 40, 8);
+  Motion whole = original;
+  setLocalPoses(localPoses(original), whole);
+  const MatrixRowMajor head = channelValues(original.skeleton, localPoses(original, 0, 25), original.values.row(0).data());
+  const MatrixRowMajor tail = channelValues(original.skeleton, localPoses(original, 25, 15), head.row(24).data());
+  EXPECT_EQ(head, whole.values.topRows(25));
+  EXPECT_EQ(tail, whole.values.bottomRows(15));
+}
+
 }  // namespace
 }  // namespace motionstyle
