@@ -14,7 +14,7 @@
 namespace motionstyle {
 namespace {
 
-constexpr int kFrames = 2 * kMotionBlockFrames + 100;  // two whole blocks and a partial one
+constexpr int kFrames = kMotionBlockFrames + 100;  // a whole block and a partial one
 
 class CleanupBlocks : public ::testing::Test {
  protected:
@@ -50,7 +50,7 @@ TEST_F(CleanupBlocks, BlocksArriveInOrderAndMakeUpTheWholeResult) {
     values.middleRows(block.first_frame, block.values.rows()) = block.values;
     block_world.middleRows(block.first_frame, block.world.rows()) = block.world;
   }, &report);
-  EXPECT_EQ(firsts, (std::vector<int>{0, kMotionBlockFrames, 2 * kMotionBlockFrames}));
+  EXPECT_EQ(firsts, (std::vector<int>{0, kMotionBlockFrames}));
   EXPECT_EQ(report.frames, kFrames);
   EXPECT_EQ(report.solves, kFrames);
 
@@ -62,7 +62,7 @@ TEST_F(CleanupBlocks, BlocksArriveInOrderAndMakeUpTheWholeResult) {
 TEST_F(CleanupBlocks, TheResultHasNoSeamAtBlockBoundaries) {
   const Motion result = cleanupMotion(input(), {}, nullptr);
   const Eigen::MatrixXd cleaned = worldPositions(result);
-  std::vector<int> boundaries = {kMotionBlockFrames - 1, 2 * kMotionBlockFrames - 1};
+  std::vector<int> boundaries = {kMotionBlockFrames - 1};
   std::vector<int> elsewhere;
   for (int f = 1; f + 1 < kFrames; ++f)
     if (std::find(boundaries.begin(), boundaries.end(), f) == boundaries.end()) elsewhere.push_back(f);
