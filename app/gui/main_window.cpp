@@ -32,6 +32,7 @@
 #include "skeleton_viewport.h"
 #include "timeline_widget.h"
 #include "track_view.h"
+#include "wheel_guard.h"
 
 namespace motionstyle {
 namespace {
@@ -50,6 +51,7 @@ MainWindow::MainWindow(bool persist_settings, QWidget* parent)
   setWindowTitle(QStringLiteral("MotionStyle"));
   setObjectName(QStringLiteral("MainWindow"));
   setAcceptDrops(true);
+  if (auto* application = qobject_cast<QApplication*>(QCoreApplication::instance())) installWheelGuard(*application);
   reporter_ = [this](const QString& title, const QString& message) { QMessageBox::warning(this, title, message); };
 
   viewport_ = new SkeletonViewport(this);

@@ -7,12 +7,10 @@
 #include <QFileInfo>
 #include <QFormLayout>
 #include <QHBoxLayout>
-#include <QHeaderView>
 #include <QLabel>
 #include <QProgressBar>
 #include <QPushButton>
 #include <QSlider>
-#include <QTableWidget>
 #include <QVBoxLayout>
 
 #include <cmath>
@@ -25,6 +23,7 @@
 #include "display_space.h"
 #include "familiarity_label.h"
 #include "result_figures.h"
+#include "result_metrics_view.h"
 #include "shipped_networks.h"
 #include "style/training.h"
 
@@ -32,8 +31,6 @@ namespace motionstyle {
 namespace {
 
 constexpr int kStrengthSteps = 100;
-
-QString cm(double value, int decimals = 2) { return QString::number(value, 'f', decimals); }
 
 }  // namespace
 
@@ -60,6 +57,7 @@ ResultPanel::ResultPanel(QWidget* parent) : QWidget(parent), cancel_(std::make_s
   network_row->addWidget(open_network);
   content_label_ = new QLabel(this);
   content_label_->setWordWrap(true);
+  content_label_->setTextFormat(Qt::RichText);  // the name is escaped; the mapping hint is coloured
 
   strength_slider_ = new QSlider(Qt::Horizontal, this);
   strength_slider_->setObjectName(QStringLiteral("StrengthSlider"));
@@ -71,13 +69,13 @@ ResultPanel::ResultPanel(QWidget* parent) : QWidget(parent), cancel_(std::make_s
   connect(strength_slider_, &QSlider::valueChanged, this,
           [this](int value) { strength_label_->setText(QString::number(value / double(kStrengthSteps), 'f', 2)); });
   // A result follows the slider once the user lets go (one job per release, not per step).
-  connect(strength_slider_, &QSlider::sliderReleased, this, &ResultPanel::restylizeIfShown);
+  connect(strength_slider_, &QSlider::sliderReleased, this, [this] { inputsChanged(tr("the strength changed")); });
   keep_path_ = new QCheckBox(tr("Keep the content's path"), this);
   keep_path_->setObjectName(QStringLiteral("KeepPathCheck"));
   keep_path_->setChecked(true);
   keep_path_->setToolTip(tr("On: the output covers the same ground and turns the same way as the content, in the "
                             "same time.\nOff: the style may change the pace (an elderly walk covers less ground)."));
-  connect(keep_path_, &QCheckBox::toggled, this, &ResultPanel::restylizeIfShown);
+  connect(keep_path_, &QCheckBox::toggled, this, [this] { inputsChanged(tr("the path choice changed")); });
   familiarity_label_ = new FamiliarityLabel(this);
   connect(familiarity_label_, &FamiliarityLabel::adaptRequested, this, &ResultPanel::adaptRequested);
   strength_label_->setText(QStringLiteral("1.00"));
@@ -100,25 +98,7 @@ ResultPanel::ResultPanel(QWidget* parent) : QWidget(parent), cancel_(std::make_s
   status_label_ = new QLabel(this);
   status_label_->setWordWrap(true);
 
-  metrics_ = new QTableWidget(kMetricRowCount, 2, this);
-  metrics_->setObjectName(QStringLiteral("MetricsTable"));
-  metrics_->setHorizontalHeaderLabels({tr("Raw output"), tr("Cleaned")});
-  metrics_->setVerticalHeaderLabels(
-      {tr("Foot skate (cm/s)"), tr("Floor penetration (cm)"), tr("Bone error (cm)"), tr("Residual (cm)")});
-  metrics_->verticalHeaderItem(kSkateRow)->setToolTip(tr("Mean horizontal speed of a foot during contact"));
-  metrics_->verticalHeaderItem(kPenetrationRow)->setToolTip(tr("Deepest foot below the floor"));
-  metrics_->verticalHeaderItem(kBoneErrorRow)->setToolTip(tr("Mean difference from the skeleton's bone lengths"));
-  metrics_->verticalHeaderItem(kResidualRow)->setToolTip(tr("Mean distance of the mapped joints from the network's output"));
-  metrics_->setEditTriggers(QAbstractItemView::NoEditTriggers);
-  metrics_->setSelectionMode(QAbstractItemView::NoSelection);
-  metrics_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
-  metrics_->verticalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
-  metrics_->setVerticalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
-  metrics_->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
-  metrics_->setSizeAdjustPolicy(QAbstractScrollArea::AdjustToContents);
-  warnings_label_ = new QLabel(this);
-  warnings_label_->setWordWrap(true);
-  warnings_label_->setStyleSheet(QStringLiteral("color: #d08a2a"));
+  metrics_ = new ResultMetricsView(this);
 
   export_button_ = new QPushButton(tr("Export BVH..."), this);
   export_button_->setObjectName(QStringLiteral("ExportButton"));
@@ -137,7 +117,6 @@ ResultPanel::ResultPanel(QWidget* parent) : QWidget(parent), cancel_(std::make_s
   layout->addWidget(progress_);
   layout->addWidget(status_label_);
   layout->addWidget(metrics_);
-  layout->addWidget(warnings_label_);
   layout->addWidget(export_button_);
   layout->addStretch(1);
 
@@ -146,7 +125,8 @@ ResultPanel::ResultPanel(QWidget* parent) : QWidget(parent), cancel_(std::make_s
   connect(&thread_, &QThread::finished, worker, &QObject::deleteLater);
   connect(this, &ResultPanel::jobRequested, worker, &CleanupWorker::run);
   connect(worker, &CleanupWorker::progress, this, [this](const QString& step, quint64 id) {
-    if (id == job_id_ && busy_) status_label_->setText(step);
+    if (id != job_id_ || !busy_) return;
+    status_label_->setText(resultIsStale() ? tr("Out of date: %1. Updating: %2").arg(stale_reason_, step) : step);
   });
   connect(worker, &CleanupWorker::finished, this, &ResultPanel::onFinished);
   connect(worker, &CleanupWorker::failed, this, &ResultPanel::onFailed);
@@ -173,6 +153,7 @@ void ResultPanel::setStyleNetwork(std::shared_ptr<const nn::StyleModel> model, c
 }
 
 void ResultPanel::useNetwork(std::shared_ptr<const nn::StyleModel> model, const QString& name, const QString& file) {
+  const auto previous = stylizer_;
   stylizer_.reset();
   network_name_.clear();
   given_stylized_.reset();
@@ -187,6 +168,7 @@ void ResultPanel::useNetwork(std::shared_ptr<const nn::StyleModel> model, const 
   if (hasNetwork()) showNetworkInChoice(network_name_, file);  // a listed file keeps its entry's label
   refreshControls();
   refreshFamiliarity();
+  if (stylizer_ != previous) inputsChanged(tr("the style changed"));
 }
 
 void ResultPanel::listShippedNetworks() { addShippedStyleNetworks(network_choice_); }
@@ -237,7 +219,7 @@ void ResultPanel::setContentClip(const LoadedClip* clip) {
 
 void ResultPanel::setContactOverrides(const Eigen::MatrixXi& overrides) {
   overrides_ = overrides;
-  if (result_) status_label_->setText(tr("Contacts edited: run the clean-up again to apply them."));
+  inputsChanged(tr("the contacts were edited"));
 }
 
 void ResultPanel::setStylizedClip(style::StylizedClip clip, const QString& label) {
@@ -260,8 +242,19 @@ void ResultPanel::setPathMode(style::PathMode mode) { keep_path_->setChecked(mod
 
 const std::optional<style::Familiarity>& ResultPanel::familiarity() const { return familiarity_label_->familiarity(); }
 
-void ResultPanel::restylizeIfShown() {
-  if (result_ && !given_stylized_ && hasNetwork() && !busy_) stylize();
+bool ResultPanel::canStylize() const { return content_ && content_->mapping && (hasNetwork() || given_stylized_); }
+
+void ResultPanel::inputsChanged(const QString& what) {
+  if (!result_ && !busy_) return;  // nothing shown or on its way: the next Stylize uses the new inputs
+  if (result_) stale_reason_ = what;
+  const bool rerun = canStylize();
+  if (busy_) cancel();  // its answer would be for the old inputs
+  if (rerun) stylize();
+  if (resultIsStale()) {
+    status_label_->setText(tr("Out of date: %1. %2").arg(what, rerun ? tr("Updating...") : tr("Stylize again to update it.")));
+    refreshControls();
+    emit resultChanged();  // the figures are renamed "out of date"
+  }
 }
 
 void ResultPanel::refreshFamiliarity() {
@@ -290,6 +283,7 @@ void ResultPanel::stylize() {
     return;
   }
   auto job = std::make_shared<CleanupJob>();
+  job_network_name_ = network_name_;
   job->content = content_->motion;
   job->mapping = *content_->mapping;
   job->stylizer = stylizer_;
@@ -319,6 +313,8 @@ void ResultPanel::cancel() {
 void ResultPanel::onFinished(std::shared_ptr<const CleanupResult> result, quint64 job_id) {
   if (job_id != job_id_ || !busy_) return;
   result_ = std::move(result);
+  result_network_name_ = job_network_name_;
+  stale_reason_.clear();
   QString status = tr("Stylized and cleaned up %1 frames in %2 s.")
                        .arg(result_->cleaned.frameCount())
                        .arg(result_->seconds, 0, 'f', 2);
@@ -355,6 +351,7 @@ void ResultPanel::setBusy(bool busy, const QString& status) {
 void ResultPanel::clearResult() {
   const bool had = result_ != nullptr;
   result_.reset();
+  stale_reason_.clear();
   status_label_->clear();
   refreshMetrics();
   if (had) emit resultChanged();
@@ -365,54 +362,35 @@ void ResultPanel::refreshControls() {
     showNetworkInChoice(tr("%1 (stylized clip)").arg(network_name_), QString());
   else if (!hasNetwork())
     network_choice_->setCurrentIndex(-1);
-  content_label_->setText(content_ ? content_->name : tr("<i>none</i>"));
-  const bool ready = content_ && content_->mapping && (hasNetwork() || given_stylized_);
-  stylize_button_->setEnabled(ready && !busy_);
+  // A disabled Stylize says why, and how to fix it, beside the content and on the button.
+  QString missing;
+  if (!content_) missing = tr("Choose a content clip first: right-click a clip in the Clips table.");
+  else if (!content_->mapping)
+    missing = tr("%1 cannot be stylized: %2. Load a mapping file from the clip's context menu (right-click it in the "
+                 "Clips table).").arg(content_->name, content_->mapping_problem);
+  else if (!canStylize()) missing = tr("Choose a style first.");
+  if (content_ && !content_->mapping)
+    content_label_->setText(tr("%1<br><span style=\"color:#d08a2a\">Not mapped: load a mapping file from the clip's "
+                               "context menu.</span>").arg(content_->name.toHtmlEscaped()));
+  else
+    content_label_->setText(content_ ? content_->name.toHtmlEscaped() : tr("<i>none</i>"));
+  content_label_->setToolTip(content_ && !content_->mapping ? missing : QString());
+  stylize_button_->setEnabled(canStylize() && !busy_);
+  stylize_button_->setToolTip(missing.isEmpty() ? tr("Stylize the content and clean up the result") : missing);
   strength_slider_->setEnabled(!given_stylized_);
   keep_path_->setEnabled(!given_stylized_);
   cancel_button_->setEnabled(busy_);
   export_button_->setEnabled(result_ != nullptr && !busy_);
+  metrics_->setEnabled(!resultIsStale());  // greyed: the figures of an out-of-date result
 }
 
-void ResultPanel::refreshMetrics() {
-  const auto put = [this](int row, int column, const QString& text) {
-    auto* item = new QTableWidgetItem(text);
-    item->setTextAlignment(Qt::AlignRight | Qt::AlignVCenter);
-    metrics_->setItem(row, column, item);
-  };
-  const QString none = QStringLiteral("-");
-  if (!result_) {
-    for (int row = 0; row < kMetricRowCount; ++row)
-      for (int column : {kRawColumn, kCleanedColumn}) put(row, column, none);
-    warnings_label_->clear();
-    warnings_label_->setToolTip(QString());
-    return;
-  }
-  const ClipMetrics& raw = result_->raw_metrics;
-  const ClipMetrics& cleaned = result_->cleaned_metrics;
-  put(kSkateRow, kRawColumn, cm(raw.foot_skate_cm_s));
-  put(kSkateRow, kCleanedColumn, cm(cleaned.foot_skate_cm_s));
-  put(kPenetrationRow, kRawColumn, cm(raw.penetration_max_cm));
-  put(kPenetrationRow, kCleanedColumn, cm(cleaned.penetration_max_cm));
-  put(kBoneErrorRow, kRawColumn, cm(raw.bone_error_mean_cm));
-  put(kBoneErrorRow, kCleanedColumn, cm(cleaned.bone_error_mean_cm, 4));
-  // The raw output IS the target of the clean-up: its residual is zero by definition.
-  put(kResidualRow, kRawColumn, raw.has_residual ? cm(raw.residual_mean_cm) : QStringLiteral("0 (target)"));
-  put(kResidualRow, kCleanedColumn, cleaned.has_residual ? cm(cleaned.residual_mean_cm) : none);
-  // A few lines in the panel, all of them in the tooltip: a long list would push the table away.
-  constexpr qsizetype kShownWarnings = 3;
-  QStringList warnings;
-  for (const std::string& warning : result_->report.warnings) warnings << QString::fromStdString(warning);
-  QStringList shown = warnings.mid(0, kShownWarnings);
-  if (warnings.size() > kShownWarnings) shown << tr("... and %1 more (hover to see them)").arg(warnings.size() - kShownWarnings);
-  warnings_label_->setText(shown.join(QStringLiteral("\n")));
-  warnings_label_->setToolTip(warnings.join(QStringLiteral("\n")));
-}
+void ResultPanel::refreshMetrics() { metrics_->showResult(result_.get()); }
 
 std::vector<FigureData> ResultPanel::resultFigures(bool include_raw) const {
   std::vector<FigureData> figures;
   if (!result_ || !content_) return figures;
-  const QString name = tr("%1 (%2)").arg(content_->name, network_name_);
+  const QString name = resultIsStale() ? tr("%1 (%2, out of date)").arg(content_->name, result_network_name_)
+                                       : tr("%1 (%2)").arg(content_->name, result_network_name_);
   figures.push_back(cleanedOutputFigure(*result_, *content_, name, content_->fps()));
   if (include_raw) figures.push_back(rawOutputFigure(*result_, *content_, tr("%1 raw").arg(name), content_->fps()));
   return figures;
@@ -450,6 +428,12 @@ bool ResultPanel::exportResult(const QString& file, bool overwrite) {
     report(title, tr("There is no result to export yet: Stylize first."));
     return false;
   }
+  if (resultIsStale()) {
+    report(title, tr("The result shown is out of date (%1 since it was made with %2): wait for the update or "
+                     "Stylize again, then export.")
+                      .arg(stale_reason_, result_network_name_));
+    return false;
+  }
   if (QFileInfo::exists(file) && !overwrite) {
     report(title, tr("%1 already exists; it was not overwritten.").arg(file));
     return false;
@@ -468,9 +452,14 @@ bool ResultPanel::exportResult(const QString& file, bool overwrite) {
 
 void ResultPanel::browseExport() {
   if (!result_ || !content_) return;
+  if (resultIsStale()) {  // says why, without a file dialog first
+    exportResult(QString(), false);
+    return;
+  }
   const QString folder = last_export_folder_.isEmpty() ? QFileInfo(content_->path).absolutePath() : last_export_folder_;
   const QString suggestion = QFileInfo(content_->path).completeBaseName() + QLatin1Char('_') +
-                             (network_name_.isEmpty() ? QStringLiteral("styled") : network_name_) + QStringLiteral(".bvh");
+                             (result_network_name_.isEmpty() ? QStringLiteral("styled") : result_network_name_) +
+                             QStringLiteral(".bvh");
   // QFileDialog asks before replacing an existing file, so the choice to overwrite is the user's.
   const QString file = QFileDialog::getSaveFileName(this, tr("Export the cleaned clip"), QDir(folder).filePath(suggestion),
                                                     tr("BVH motion (*.bvh)"));

@@ -31,6 +31,7 @@
 #include "clip_loader.h"
 #include "contact_tracks.h"
 #include "figure_data.h"
+#include "result_metrics_view.h"
 #include "nn/network_file.h"
 #include "style/familiarity.h"
 
@@ -51,8 +52,13 @@ class ResultPanel : public QWidget {
 
  public:
   using ErrorReporter = std::function<void(const QString& title, const QString& message)>;
-  enum MetricRow { kSkateRow, kPenetrationRow, kBoneErrorRow, kResidualRow, kMetricRowCount };
-  enum MetricColumn { kRawColumn, kCleanedColumn };
+  // The metrics table's rows and columns (ResultMetricsView).
+  static constexpr int kSkateRow = ResultMetricsView::kSkateRow;
+  static constexpr int kPenetrationRow = ResultMetricsView::kPenetrationRow;
+  static constexpr int kBoneErrorRow = ResultMetricsView::kBoneErrorRow;
+  static constexpr int kResidualRow = ResultMetricsView::kResidualRow;
+  static constexpr int kRawColumn = ResultMetricsView::kRawColumn;
+  static constexpr int kCleanedColumn = ResultMetricsView::kCleanedColumn;
 
   explicit ResultPanel(QWidget* parent = nullptr);
   ~ResultPanel() override;  // cancels the job, stops the worker thread and waits for it
@@ -88,7 +94,11 @@ class ResultPanel : public QWidget {
   const std::optional<style::Familiarity>& familiarity() const;
   bool isBusy() const { return busy_; }
   const CleanupResult* result() const { return result_.get(); }
-  QTableWidget* metricsTable() const { return metrics_; }
+  // The shown result was made from other inputs than the panel's (the style, strength, path or
+  // contacts changed since): it is named out of date in the status, the figures' names and Export,
+  // and is being replaced when the new inputs can be stylized.
+  bool resultIsStale() const { return result_ != nullptr && !stale_reason_.isEmpty(); }
+  QTableWidget* metricsTable() const { return metrics_->table(); }
 
   // The result's figures at the content's rate, in the content's display space: the cleaned output
   // (blue) with its contacts, then, when `include_raw`, the raw network output (grey). Empty without a
@@ -127,8 +137,10 @@ class ResultPanel : public QWidget {
   void refreshMetrics();
   void refreshControls();
   void refreshFamiliarity();
-  // Runs again after a change of strength or path when there is a network result to update.
-  void restylizeIfShown();
+  // An input of the result changed (`what`, e.g. "the style changed"): a shown result becomes stale
+  // and, like a running job made for the old inputs, is replaced by a new run when one is possible.
+  void inputsChanged(const QString& what);
+  bool canStylize() const;  // a mapped content and a network or stylized clip
   void report(const QString& title, const QString& message);
   void listShippedNetworks();
   // setStyleNetwork / loadNetworkFile: `file` is the network's file ("" when it has none).
@@ -144,6 +156,9 @@ class ResultPanel : public QWidget {
   Eigen::MatrixXi overrides_;
   std::optional<style::StylizedClip> given_stylized_;
   std::shared_ptr<const CleanupResult> result_;
+  QString result_network_name_;  // the network the shown result was made with
+  QString job_network_name_;     // the network of the running job
+  QString stale_reason_;         // why the shown result is out of date; empty: it is current
   QString last_export_folder_;
 
   QThread thread_;
@@ -161,8 +176,7 @@ class ResultPanel : public QWidget {
   QPushButton* cancel_button_ = nullptr;
   QProgressBar* progress_ = nullptr;
   QLabel* status_label_ = nullptr;
-  QTableWidget* metrics_ = nullptr;
-  QLabel* warnings_label_ = nullptr;
+  ResultMetricsView* metrics_ = nullptr;
   QPushButton* export_button_ = nullptr;
 };
 

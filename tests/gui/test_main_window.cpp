@@ -1,18 +1,24 @@
 // The main window end to end: opening clips through the menu's code path, the clips list, roles,
 // recent files, drag-and-drop, and bad input reported (injected reporter and the real message box)
 // without breaking the window.
+#include <QDockWidget>
+#include <QDoubleSpinBox>
 #include <QDropEvent>
 #include <QMessageBox>
 #include <QMimeData>
+#include <QPushButton>
 #include <QSettings>
+#include <QTabWidget>
 #include <QTemporaryDir>
 #include <QTimer>
 #include <QTreeWidget>
 #include <QUrl>
+#include <QWheelEvent>
 
 #include "bvh/bvh_reader.h"
 #include "gui_test_support.h"
 #include "main_window.h"
+#include "network_panel.h"
 #include "timeline_widget.h"
 
 using namespace motionstyle;
@@ -180,6 +186,59 @@ class MainWindowTest : public QObject {
     QVERIFY(reports.empty());
     QCOMPARE(window.openFolder(folder.filePath(QStringLiteral("nope"))), 0);
     QCOMPARE(reports.size(), size_t{1});
+  }
+
+  // Issue 14: scrolling the training form must not change the value under the pointer.
+  void theWheelChangesOnlyAFocusedSpinBox() {
+    MainWindow window(/*persist_settings=*/false);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    auto* spin = window.findChild<QDoubleSpinBox*>(QStringLiteral("StyleWeight"));
+    QVERIFY(spin != nullptr);
+    QCOMPARE(spin->focusPolicy(), Qt::StrongFocus);  // the wheel does not give it focus either
+    const double before = spin->value();
+    auto wheelDown = [&] {
+      QWheelEvent wheel(QPointF(4, 4), spin->mapToGlobal(QPointF(4, 4)), QPoint(), QPoint(0, -120), Qt::NoButton,
+                        Qt::NoModifier, Qt::NoScrollPhase, false);
+      QApplication::sendEvent(spin, &wheel);
+      return wheel.isAccepted();
+    };
+    QVERIFY(!wheelDown());  // not taken: left to the scroll area around the form
+    QCOMPARE(spin->value(), before);
+    // Shown (the Train tab of the Networks panel) and focused, as a click would leave it.
+    auto* tabs = window.networkPanel()->findChild<QTabWidget*>();
+    QVERIFY(tabs != nullptr);
+    for (QWidget* ancestor = spin; ancestor != nullptr; ancestor = ancestor->parentWidget())
+      if (tabs->indexOf(ancestor) >= 0) tabs->setCurrentWidget(ancestor);
+    if (auto* dock = qobject_cast<QDockWidget*>(window.networkPanel()->parentWidget())) dock->show();
+    QVERIFY(spin->isVisible());
+    window.activateWindow();
+    if (!QTest::qWaitForWindowActive(&window)) QSKIP("no window manager activates windows here");
+    spin->setFocus(Qt::OtherFocusReason);
+    if (!QTest::qWaitFor([&] { return spin->hasFocus(); }, 2000)) QSKIP("no window manager gives focus here");
+    wheelDown();
+    QVERIFY2(spin->value() < before, "a focused spin box takes the wheel");
+  }
+
+  // Issue 14: a greyed-out Stylize says why and how to fix it.
+  void anUnmappedContentClipSaysWhyItCannotBeStylized() {
+    const QString file = writeFile(scratch_, QStringLiteral("three_bones.bvh"),
+                                   "HIERARCHY\nROOT A\n{\n OFFSET 0 0 0\n CHANNELS 6 Xposition Yposition Zposition "
+                                   "Zrotation Xrotation Yrotation\n JOINT B\n {\n  OFFSET 0 10 0\n  CHANNELS 3 Zrotation "
+                                   "Xrotation Yrotation\n  End Site\n  {\n   OFFSET 4 10 2\n  }\n }\n}\nMOTION\nFrames: 2\n"
+                                   "Frame Time: 0.0333333\n0 0 0 0 0 0 0 0 0\n0 1 0 0 0 0 5 0 0\n");
+    MainWindow window(/*persist_settings=*/false);
+    std::vector<Report> reports;
+    window.setErrorReporter([&](const QString& title, const QString& message) { reports.push_back({title, message}); });
+    QCOMPARE(window.openFiles({file}), 1);
+    window.setContentClip(0);
+    auto* stylize = window.findChild<QPushButton*>(QStringLiteral("StylizeButton"));
+    QVERIFY(stylize != nullptr);
+    QVERIFY(!stylize->isEnabled());
+    QVERIFY2(stylize->toolTip().contains(QStringLiteral("three_bones.bvh")) &&
+                 stylize->toolTip().contains(QStringLiteral("mapping file")),
+             qPrintable(stylize->toolTip()));
+    QVERIFY(reports.empty());
   }
 };
 

@@ -45,16 +45,17 @@ struct Report {
 constexpr int kJobTimeoutMs = 120000;
 
 // An untrained but valid tiny style network (16 hidden units, width 5) with the fixtures' statistics.
-std::filesystem::path writeTinyNetwork(const QTemporaryDir& dir) {
+std::filesystem::path writeTinyNetwork(const QTemporaryDir& dir, const QString& name = QStringLiteral("tiny_style"),
+                                       unsigned seed = 5) {
   std::vector<Eigen::MatrixXd> values;
-  for (const char* name : {"cmu_131_01.bvh", "zombie.bvh"})
-    values.push_back(style::loadMotionClip(test::fixture(QString::fromLatin1(name)).toStdString()).features.values);
+  for (const char* clip : {"cmu_131_01.bvh", "zombie.bvh"})
+    values.push_back(style::loadMotionClip(test::fixture(QString::fromLatin1(clip)).toStdString()).features.values);
   nn::StyleModel model{nn::Transformer<float>({kFeatureCount, 8, 5, true}), nn::Autoencoder<float>({kFeatureCount, 16, 5}),
                        style::toNormalisation(computeFeatureStatistics(values)), {}, {}};
-  model.transformer.initialise(5);
+  model.transformer.initialise(seed);
   model.loss_network.initialise(3);
   model.metadata.representation = style::currentRepresentation();
-  const std::filesystem::path file = dir.filePath(QStringLiteral("tiny_style.net")).toStdString();
+  const std::filesystem::path file = dir.filePath(name + QStringLiteral(".net")).toStdString();
   nn::saveStyleModel(model, file);
   return file;
 }
@@ -418,6 +419,59 @@ class ResultTest : public QObject {
     QVERIFY(panel->result() != nullptr);
     QCOMPARE(panel->networkName(), QStringLiteral("optimised"));
     QVERIFY(panel->result()->stylized.world_positions == targets);
+  }
+
+  // Issue 14: a result always matches its inputs, or says that it does not.
+  void switchingTheStyleRedoesTheResultAndTheOldOneSaysItIsOutOfDate() {
+    const std::filesystem::path other = writeTinyNetwork(scratch_, QStringLiteral("other_style"), 9);
+    MainWindow window(false);
+    std::vector<Report> reports;
+    window.setErrorReporter([&](const QString& title, const QString& message) { reports.push_back({title, message}); });
+    QCOMPARE(window.openFiles({test::fixture(QStringLiteral("cmu_131_01.bvh"))}), 1);
+    ResultPanel* panel = window.resultPanel();
+    QVERIFY(panel->loadNetworkFile(QString::fromStdString(network_.string())));
+    QSignalSpy ended(panel, &ResultPanel::jobEnded);
+    panel->stylize();
+    QVERIFY(waitForJobs(ended));
+    const CleanupResult* first = panel->result();
+    QVERIFY(first != nullptr && !panel->resultIsStale());
+    QVERIFY(panel->resultFigures(false).front().name.contains(QStringLiteral("tiny_style")));
+
+    // Another style: the shown result is out of date at once (figures, Export) and is being redone.
+    QVERIFY(panel->loadNetworkFile(QString::fromStdString(other.string())));
+    QVERIFY(panel->isBusy());
+    QVERIFY(panel->resultIsStale());
+    const QString stale_name = window.viewport()->figure(window.viewport()->figureCount() - 1).name;
+    QVERIFY2(stale_name.contains(QStringLiteral("tiny_style")) && stale_name.contains(QStringLiteral("out of date")),
+             qPrintable(stale_name));
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    QVERIFY(window.saveScreenshot(screenshotPath(QStringLiteral("result_out_of_date"))));
+    const QString exported = scratch_.filePath(QStringLiteral("switched.bvh"));
+    QVERIFY(!panel->exportResult(exported, false));
+    QVERIFY(!reports.empty() && reports.back().message.contains(QStringLiteral("out of date")));
+    QVERIFY(!QFile::exists(exported));
+
+    // The new style's result replaces it.
+    QVERIFY(waitForJobs(ended, 2));
+    QVERIFY(ended.at(1).at(0).toBool());
+    QVERIFY(panel->result() != nullptr && panel->result() != first);
+    QVERIFY(!panel->resultIsStale());
+    const QString name = window.viewport()->figure(window.viewport()->figureCount() - 1).name;
+    QVERIFY2(name.contains(QStringLiteral("other_style")) && !name.contains(QStringLiteral("out of date")), qPrintable(name));
+    QVERIFY(panel->exportResult(exported, false));
+
+    // A change while the update runs drops that job (made for the old inputs) and starts another.
+    QVERIFY(panel->loadNetworkFile(QString::fromStdString(network_.string())));
+    QVERIFY(panel->isBusy());
+    QVERIFY(panel->loadNetworkFile(QString::fromStdString(other.string())));
+    QVERIFY(panel->isBusy());
+    QCOMPARE(ended.count(), 3);
+    QVERIFY(!ended.at(2).at(0).toBool());  // the dropped job
+    QVERIFY(waitForJobs(ended, 4));
+    QVERIFY(ended.at(3).at(0).toBool());
+    QVERIFY(!panel->resultIsStale());
+    QVERIFY(window.viewport()->figure(window.viewport()->figureCount() - 1).name.contains(QStringLiteral("other_style")));
   }
 
   void cancelDropsTheJobAndClosingStaysClean() {

@@ -1,0 +1,80 @@
+#include "result_metrics_view.h"
+
+#include <QHeaderView>
+#include <QLabel>
+#include <QStringList>
+#include <QTableWidget>
+#include <QVBoxLayout>
+
+#include "cleanup_worker.h"
+
+namespace motionstyle {
+namespace {
+
+QString cm(double value, int decimals = 2) { return QString::number(value, 'f', decimals); }
+
+}  // namespace
+
+ResultMetricsView::ResultMetricsView(QWidget* parent) : QWidget(parent) {
+  table_ = new QTableWidget(kMetricRowCount, 2, this);
+  table_->setObjectName(QStringLiteral("MetricsTable"));
+  table_->setHorizontalHeaderLabels({tr("Raw output"), tr("Cleaned")});
+  table_->setVerticalHeaderLabels(
+      {tr("Foot skate (cm/s)"), tr("Floor penetration (cm)"), tr("Bone error (cm)"), tr("Residual (cm)")});
+  table_->verticalHeaderItem(kSkateRow)->setToolTip(tr("Mean horizontal speed of a foot during contact"));
+  table_->verticalHeaderItem(kPenetrationRow)->setToolTip(tr("Deepest foot below the floor"));
+  table_->verticalHeaderItem(kBoneErrorRow)->setToolTip(tr("Mean difference from the skeleton's bone lengths"));
+  table_->verticalHeaderItem(kResidualRow)->setToolTip(tr("Mean distance of the mapped joints from the network's output"));
+  table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
+  table_->setSelectionMode(QAbstractItemView::NoSelection);
+  table_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
+  table_->verticalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+  table_->setVerticalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+  table_->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+  table_->setSizeAdjustPolicy(QAbstractScrollArea::AdjustToContents);
+  warnings_label_ = new QLabel(this);
+  warnings_label_->setWordWrap(true);
+  warnings_label_->setStyleSheet(QStringLiteral("color: #d08a2a"));
+  auto* layout = new QVBoxLayout(this);
+  layout->setContentsMargins(0, 0, 0, 0);
+  layout->addWidget(table_);
+  layout->addWidget(warnings_label_);
+  showResult(nullptr);
+}
+
+void ResultMetricsView::showResult(const CleanupResult* result) {
+  const auto put = [this](int row, int column, const QString& text) {
+    auto* item = new QTableWidgetItem(text);
+    item->setTextAlignment(Qt::AlignRight | Qt::AlignVCenter);
+    table_->setItem(row, column, item);
+  };
+  const QString none = QStringLiteral("-");
+  if (!result) {
+    for (int row = 0; row < kMetricRowCount; ++row)
+      for (int column : {kRawColumn, kCleanedColumn}) put(row, column, none);
+    warnings_label_->clear();
+    warnings_label_->setToolTip(QString());
+    return;
+  }
+  const ClipMetrics& raw = result->raw_metrics;
+  const ClipMetrics& cleaned = result->cleaned_metrics;
+  put(kSkateRow, kRawColumn, cm(raw.foot_skate_cm_s));
+  put(kSkateRow, kCleanedColumn, cm(cleaned.foot_skate_cm_s));
+  put(kPenetrationRow, kRawColumn, cm(raw.penetration_max_cm));
+  put(kPenetrationRow, kCleanedColumn, cm(cleaned.penetration_max_cm));
+  put(kBoneErrorRow, kRawColumn, cm(raw.bone_error_mean_cm));
+  put(kBoneErrorRow, kCleanedColumn, cm(cleaned.bone_error_mean_cm, 4));
+  // The raw output IS the target of the clean-up: its residual is zero by definition.
+  put(kResidualRow, kRawColumn, raw.has_residual ? cm(raw.residual_mean_cm) : QStringLiteral("0 (target)"));
+  put(kResidualRow, kCleanedColumn, cleaned.has_residual ? cm(cleaned.residual_mean_cm) : none);
+  // A few lines in the panel, all of them in the tooltip: a long list would push the table away.
+  constexpr qsizetype kShownWarnings = 3;
+  QStringList warnings;
+  for (const std::string& warning : result->report.warnings) warnings << QString::fromStdString(warning);
+  QStringList shown = warnings.mid(0, kShownWarnings);
+  if (warnings.size() > kShownWarnings) shown << tr("... and %1 more (hover to see them)").arg(warnings.size() - kShownWarnings);
+  warnings_label_->setText(shown.join(QStringLiteral("\n")));
+  warnings_label_->setToolTip(warnings.join(QStringLiteral("\n")));
+}
+
+}  // namespace motionstyle
