@@ -1,5 +1,6 @@
 #include "demo_scene.h"
 
+#include <QFileInfo>
 #include <QObject>
 
 #include <filesystem>
@@ -21,11 +22,19 @@ DemoOutcome openDemo(MainWindow& window, ResultPanel& results) {
   const std::filesystem::path samples = *resources / "samples";
   const QStringList clips = {QString::fromStdString((samples / kDemoContentSample).string()),
                              QString::fromStdString((samples / kDemoStyleSample).string())};
-  const int first = window.clipCount();
-  outcome.clips_loaded = window.openFiles(clips) == 2;
+  // A sample already open is reused: the demo never lists a clip twice.
+  auto openOnce = [&](const QString& file) {
+    const QString absolute = QFileInfo(file).absoluteFilePath();
+    for (int i = 0; i < window.clipCount(); ++i)
+      if (QFileInfo(window.clip(i).path).absoluteFilePath() == absolute) return i;
+    return window.openFiles({file}) == 1 ? window.clipCount() - 1 : -1;
+  };
+  const int content = openOnce(clips[0]);
+  const int style = openOnce(clips[1]);
+  outcome.clips_loaded = content >= 0 && style >= 0;
   if (outcome.clips_loaded) {
-    window.setContentClip(first);
-    window.setStyleClip(first + 1);
+    window.setContentClip(content);
+    window.setStyleClip(style);
   }
   if (const auto network = shippedNetworkFile(*resources, kDemoNetwork))
     outcome.network_loaded = results.loadNetworkFile(QString::fromStdString(network->string()));

@@ -53,6 +53,9 @@ MainWindow::MainWindow(bool persist_settings, QWidget* parent)
   setAcceptDrops(true);
   if (auto* application = qobject_cast<QApplication*>(QCoreApplication::instance())) installWheelGuard(*application);
   reporter_ = [this](const QString& title, const QString& message) { QMessageBox::warning(this, title, message); };
+  confirmer_ = [this](const QString& title, const QString& question) {
+    return QMessageBox::question(this, title, question, QMessageBox::Yes | QMessageBox::Cancel) == QMessageBox::Yes;
+  };
 
   viewport_ = new SkeletonViewport(this);
   viewport_->setEmptyMessage(
@@ -430,9 +433,15 @@ void MainWindow::dropEvent(QDropEvent* event) {
   for (const QString& folder : folders) openFolder(folder);
 }
 
-void MainWindow::openDemoScene() {
+bool MainWindow::openDemoScene() {
+  if ((!clips_.empty() || result_panel_->result() != nullptr) &&
+      !confirmer_(tr("Open the demo?"),
+                  tr("The demo makes its two sample clips the content and the style and chooses the elderly style. "
+                     "Your clips stay open but lose their roles, and the current result is replaced.")))
+    return false;
   const DemoOutcome outcome = openDemo(*this, *result_panel_);
   status_label_->setText(outcome.message);
+  return true;
 }
 
 }  // namespace motionstyle

@@ -37,6 +37,8 @@ class MainWindow : public QMainWindow {
 
  public:
   using ErrorReporter = std::function<void(const QString& title, const QString& message)>;
+  // Asks before an action replaces what the user set up; true = go ahead (default: a Yes/No box).
+  using Confirmer = std::function<bool(const QString& title, const QString& question)>;
   static constexpr int kMaxRecentFiles = 8;
 
   // persist_settings = false leaves QSettings untouched (screenshots, tests): no geometry restore, no
@@ -45,6 +47,12 @@ class MainWindow : public QMainWindow {
   ~MainWindow() override;
 
   void setErrorReporter(ErrorReporter reporter);
+  void setConfirmer(Confirmer confirmer) { confirmer_ = std::move(confirmer); }
+
+  // Help > Open Demo (demo_scene.h): sample clips as content and style, the bundled style selected.
+  // With clips or a result already there it asks first (the roles and the result change); false when
+  // declined. Samples already open are reused, never added twice.
+  bool openDemoScene();
 
   SkeletonViewport* viewport() const { return viewport_; }
   TimelineWidget* timeline() const { return timeline_; }
@@ -100,8 +108,6 @@ class MainWindow : public QMainWindow {
   void showClipMenu(const QPoint& position);
   void browseFiles();
   void browseFolder();
-  // The bundled demo (demo_scene.h): sample clips as content and style, the bundled style selected.
-  void openDemoScene();
   void browseScreenshot();
   void browseMappingFile(int index);
   void createResultDock();
@@ -115,6 +121,7 @@ class MainWindow : public QMainWindow {
 
   bool persist_settings_;
   ErrorReporter reporter_;
+  Confirmer confirmer_;
   std::vector<LoadedClip> clips_;
   int content_ = -1;
   int style_ = -1;

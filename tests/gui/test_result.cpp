@@ -496,6 +496,39 @@ class ResultTest : public QObject {
     QVERIFY(panel->isBusy());
   }
 
+  // Issue 14: Open Demo asks before it changes the user's roles and result, and never lists a clip twice.
+  void openDemoAsksFirstAndReusesOpenSamples() {
+    if (!resourceDirectory()) QSKIP("no resources directory next to this build");
+    MainWindow window(false);
+    window.setErrorReporter([](const QString& title, const QString& message) { QFAIL(qPrintable(title + message)); });
+    int asked = 0;
+    bool answer = false;
+    QString question;
+    window.setConfirmer([&](const QString&, const QString& text) {
+      ++asked;
+      question = text;
+      return answer;
+    });
+    QVERIFY(window.openDemoScene());  // nothing of the user's yet: no question
+    QCOMPARE(asked, 0);
+    QCOMPARE(window.clipCount(), 2);
+
+    QCOMPARE(window.openFiles({test::fixture(QStringLiteral("zombie.bvh"))}), 1);
+    window.setContentClip(2);
+    QVERIFY(!window.openDemoScene());  // declined: nothing changes
+    QCOMPARE(asked, 1);
+    QVERIFY(question.contains(QStringLiteral("lose their roles")));
+    QCOMPARE(window.contentClip(), 2);
+    QCOMPARE(window.clipCount(), 3);
+
+    answer = true;
+    QVERIFY(window.openDemoScene());
+    QCOMPARE(asked, 2);
+    QCOMPARE(window.clipCount(), 3);  // the samples already open were reused
+    QCOMPARE(window.clip(window.contentClip()).name, QStringLiteral("cmu_131_01_walk.bvh"));
+    QCOMPARE(window.clip(window.styleClip()).name, QStringLiteral("zombie_walk.bvh"));
+  }
+
   void demoLoadsTheSamplesAndTheBundledNetworkWhenPresent() {
     const auto resources = resourceDirectory();
     if (!resources) QSKIP("no resources directory next to this build");
