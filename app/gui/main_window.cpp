@@ -128,6 +128,7 @@ void MainWindow::createResultDock() {
   dock->setWidget(result_panel_);
   addDockWidget(Qt::RightDockWidgetArea, dock);
   connect(result_panel_, &ResultPanel::resultChanged, this, &MainWindow::rebuildFigures);
+  connect(result_panel_, &ResultPanel::sourceChanged, this, &MainWindow::rebuildFigures);
   connect(result_panel_, &ResultPanel::statusMessage, this, [this](const QString& text) { status_label_->setText(text); });
   const auto content = [this]() -> LoadedClip* { return content_ >= 0 ? &clips_[static_cast<size_t>(content_)] : nullptr; };
   contact_tracks_ = new ContactTrackController(timeline_->trackView(), content,
@@ -295,7 +296,9 @@ void MainWindow::rebuildFigures() {
     if (index >= 0 && clip(index).frameCount() > 0) figures.push_back(figureFromClip(clip(index), role, fps));
   };
   add(content_, FigureRole::Content);
-  add(style_, FigureRole::Style);
+  // The Style clip is drawn while it is what a result would come from (training, the optimisation
+  // method); with a style network chosen in the Result panel it plays no part, so it is not shown.
+  if (!result_panel_->resultComesFromNetwork()) add(style_, FigureRole::Style);
   // The live training preview stands in for the result while it is fresh (the viewport holds at most
   // four figures); a new result drops the preview (main_window_networks.cpp).
   if (training_preview_) {
@@ -310,9 +313,11 @@ void MainWindow::rebuildFigures() {
     report(tr("Could not show the clips"), QString::fromStdString(error.what()));
     viewport_->clearFigures();
   }
-  // The content clip sets the time base; the others hold their last frame when shorter.
+  // The content clip sets the time base and the loop (the result is as long as the content); the
+  // other figures hold their last frame when shorter and are cut when longer.
   timeline_->setFrameRate(fps);
-  timeline_->setFrameCount(viewport_->frameCount());
+  timeline_->setFrameCount(content_ >= 0 && clip(content_).frameCount() > 0 ? clip(content_).frameCount()
+                                                                           : viewport_->frameCount());
   viewport_->setFrame(timeline_->frame());
   contact_tracks_->refresh();
   contact_tracks_->setQualityTracks(result_panel_->qualityTracks());

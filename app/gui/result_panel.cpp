@@ -168,6 +168,7 @@ void ResultPanel::useNetwork(std::shared_ptr<const nn::StyleModel> model, const 
   if (hasNetwork()) showNetworkInChoice(network_name_, file);  // a listed file keeps its entry's label
   refreshControls();
   refreshFamiliarity();
+  emit sourceChanged();
   if (stylizer_ != previous) inputsChanged(tr("the style changed"));
 }
 
@@ -229,6 +230,7 @@ void ResultPanel::setStylizedClip(style::StylizedClip clip, const QString& label
   }
   given_stylized_ = std::move(clip);
   network_name_ = label;
+  emit sourceChanged();
   stylize();
 }
 

@@ -70,6 +70,8 @@ class ResultPanel : public QWidget {
   // Loads a style network file (checked against this build's representation). false + report on error.
   bool loadNetworkFile(const QString& file);
   bool hasNetwork() const { return stylizer_ != nullptr; }
+  // Stylize runs the chosen network (not a clip stylized elsewhere): the Style clip plays no part.
+  bool resultComesFromNetwork() const { return hasNetwork() && !given_stylized_; }
   QString networkName() const { return network_name_; }
   // The style chooser: the shipped style networks (resources/models, by name), then networks opened
   // from files. Choosing one loads it.
@@ -118,6 +120,7 @@ class ResultPanel : public QWidget {
 
  signals:
   void resultChanged();           // a new result, or none any more
+  void sourceChanged();           // resultComesFromNetwork() may have changed (a network or stylized clip given)
   void familiarityChanged();      // the content or the network changed: familiarity() is new
   // The user asked to adapt the networks to clips like the content (the familiarity row's link).
   void adaptRequested();

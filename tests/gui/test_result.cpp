@@ -225,8 +225,14 @@ class ResultTest : public QObject {
     const QString content_file = test::fixture(QStringLiteral("cmu_131_01.bvh"));
     QCOMPARE(window.openFiles({content_file, test::fixture(QStringLiteral("zombie.bvh"))}), 2);
     ResultPanel* panel = window.resultPanel();
+    QCOMPARE(window.viewport()->figureCount(), 2);  // content and the Style clip
+    QVERIFY(window.viewport()->figure(1).role == FigureRole::Style);
     QVERIFY(panel->loadNetworkFile(QString::fromStdString(network_.string())));
     QCOMPARE(panel->networkName(), QStringLiteral("tiny_style"));
+    // Issue 14: with a style network chosen the Style clip plays no part: it is not drawn, and the loop
+    // is the content's, not the longer style clip's.
+    QCOMPARE(window.viewport()->figureCount(), 1);
+    QCOMPARE(window.timeline()->trackView()->frameCount(), window.clip(0).frameCount());
 
     auto* button = panel->findChild<QPushButton*>(QStringLiteral("StylizeButton"));
     QVERIFY(button != nullptr && button->isEnabled());
@@ -258,34 +264,32 @@ class ResultTest : public QObject {
           result->raw_metrics.bone_error_mean_cm, result->cleaned_metrics.bone_error_mean_cm,
           result->cleaned_metrics.residual_mean_cm, result->seconds);
 
-    // Figures: content, style, the cleaned output (blue); the raw output (grey) at a toggle.
-    QCOMPARE(window.viewport()->figureCount(), 3);
-    QVERIFY(window.viewport()->figure(2).role == FigureRole::Output);
-    QCOMPARE(window.viewport()->figure(2).frame_count, window.clip(0).frameCount());
-    QVERIFY(!window.viewport()->figure(2).contacts.empty());
+    // Figures: content and the cleaned output (blue); the raw output (grey) at a toggle.
+    QCOMPARE(window.viewport()->figureCount(), 2);
+    QVERIFY(window.viewport()->figure(1).role == FigureRole::Output);
+    QCOMPARE(window.viewport()->figure(1).frame_count, window.clip(0).frameCount());
+    QVERIFY(!window.viewport()->figure(1).contacts.empty());
     window.setRawOutputVisible(true);
-    QCOMPARE(window.viewport()->figureCount(), 4);
-    QVERIFY(window.viewport()->figure(3).role == FigureRole::RawOutput);
-    QCOMPARE(window.viewport()->figure(3).jointCount(), kCanonicalJointCount);
+    QCOMPARE(window.viewport()->figureCount(), 3);
+    QVERIFY(window.viewport()->figure(2).role == FigureRole::RawOutput);
+    QCOMPARE(window.viewport()->figure(2).jointCount(), kCanonicalJointCount);
     // The timeline's quality rows: the cleaned output's skate and the raw output's bone error, one
-    // value per timeline frame (the longest clip's), zero past the content; the stylizer sets the raw
-    // output's bones to the skeleton's lengths, so its bone error stays under a millimetre.
+    // value per frame of the content (the loop); the stylizer sets the raw output's bones to the
+    // skeleton's lengths, so its bone error stays under a millimetre.
     const TrackView* tracks = window.timeline()->trackView();
     QCOMPARE(tracks->floatTrackCount(), 3);  // skate, raw bone error, familiarity
     const std::vector<float>& skate = tracks->floatValues(ContactTrackController::kSkateTrack);
     const std::vector<float>& bone = tracks->floatValues(ContactTrackController::kRawBoneErrorTrack);
     QCOMPARE(static_cast<int>(skate.size()), tracks->frameCount());
     QCOMPARE(static_cast<int>(bone.size()), tracks->frameCount());
-    const int content_frames = window.clip(0).frameCount();
-    QVERIFY(tracks->frameCount() > content_frames);  // the zombie style clip is longer
-    QVERIFY(std::all_of(bone.begin(), bone.begin() + content_frames, [](float v) { return v >= 0.0f && v < 0.1f; }));
-    QVERIFY(std::all_of(bone.begin() + content_frames, bone.end(), [](float v) { return v == 0.0f; }));
+    QCOMPARE(tracks->frameCount(), window.clip(0).frameCount());
+    QVERIFY(std::all_of(bone.begin(), bone.end(), [](float v) { return v >= 0.0f && v < 0.1f; }));
     QVERIFY(std::all_of(skate.begin(), skate.end(), [](float v) { return std::isfinite(v) && v >= 0.0f; }));
     window.timeline()->setFrame(300);
     QTest::qWait(50);
     QVERIFY(window.saveScreenshot(screenshotPath(QStringLiteral("with_result"))));
     window.setRawOutputVisible(false);
-    QCOMPARE(window.viewport()->figureCount(), 3);
+    QCOMPARE(window.viewport()->figureCount(), 2);
 
     // Export, then read it back: the content's skeleton and timing, finite values.
     const QString exported = scratch_.filePath(QStringLiteral("styled.bvh"));
