@@ -334,6 +334,13 @@ QWidget* NetworkPanel::createOptimiseTab() {
   iterations_spin_->setObjectName(QStringLiteral("Iterations"));
   iterations_spin_->setRange(1, 100000);
   iterations_spin_->setValue(style::OptimizationOptions{}.iterations);
+  transfer_style_weight_ = new QDoubleSpinBox(tab);
+  transfer_style_weight_->setObjectName(QStringLiteral("OptimiseStyleWeight"));
+  transfer_style_weight_->setRange(0.0, 1e4);
+  transfer_style_weight_->setDecimals(2);
+  transfer_style_weight_->setValue(style::OptimizationOptions{}.style_weight);
+  transfer_style_weight_->setToolTip(tr("How hard the style clip's Gram matrix pulls against the content "
+                                        "(content weight 1; both are renormalised to sum 1)"));
   optimise_button_ = new QPushButton(tr("&Optimise"), tab);
   optimise_button_->setObjectName(QStringLiteral("OptimiseButton"));
   optimise_cancel_button_ = new QPushButton(tr("Cancel"), tab);
@@ -341,6 +348,7 @@ QWidget* NetworkPanel::createOptimiseTab() {
   connect(optimise_cancel_button_, &QPushButton::clicked, this, &NetworkPanel::cancelJob);
   auto* form = new QFormLayout;
   form->addRow(tr("Iterations"), iterations_spin_);
+  form->addRow(tr("Style weight"), transfer_style_weight_);
   auto* buttons = new QHBoxLayout;
   buttons->addWidget(optimise_button_);
   buttons->addWidget(optimise_cancel_button_);

@@ -236,6 +236,7 @@ class NetworkPanel : public QWidget {
   QPushButton* retrain_button_ = nullptr;
   QPushButton* cancel_button_ = nullptr;
   QSpinBox* iterations_spin_ = nullptr;
+  QDoubleSpinBox* transfer_style_weight_ = nullptr;  // the optimisation method's style weight (s)
   QPushButton* optimise_button_ = nullptr;
   QPushButton* optimise_cancel_button_ = nullptr;
   QProgressBar* progress_bar_ = nullptr;

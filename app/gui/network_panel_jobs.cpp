@@ -4,6 +4,7 @@
 
 #include <QCoreApplication>
 #include <QDateTime>
+#include <QDoubleSpinBox>
 #include <QDir>
 #include <QFileInfo>
 #include <QLabel>
@@ -224,6 +225,7 @@ bool NetworkPanel::startTransfer(int iterations) {
   job.style = window_->clip(style).path.toStdString();
   job.options.iterations = iterations;
   job.options.constraint_iterations = std::max(1, iterations * 100 / 250);
+  job.options.style_weight = transfer_style_weight_->value();
   const QString label = tr("optimised towards %1").arg(window_->clip(style).name);
   const int total = job.options.iterations + job.options.constraint_iterations;
 
@@ -235,6 +237,12 @@ bool NetworkPanel::startTransfer(int iterations) {
     const double eta = done > 0 ? p.elapsed_seconds / done * (total - done) : -1.0;
     progress_bar_->setFormat(tr("%1 %2/%3, ETA %4").arg(QString::fromStdString(p.stage)).arg(p.iteration).arg(p.iterations)
                                  .arg(formatDuration(eta)));
+    // The plot follows this run's terms (unweighted), not the last training's.
+    loss_curve_->addPoint(QStringLiteral("content"), done, p.content);
+    loss_curve_->addPoint(QStringLiteral("style"), done, p.style);
+    if (p.stage != "style")
+      for (const auto& [term, value] : {std::pair{"foot", p.foot}, std::pair{"bone", p.bone}, std::pair{"trajectory", p.trajectory}})
+        loss_curve_->addPoint(QString::fromLatin1(term), done, value);
   }, Qt::QueuedConnection);
   connect(worker, &TransferWorker::finished, this,
           [this, label](const std::shared_ptr<const style::StylizedClip>& clip, bool cancelled, double seconds) {
@@ -244,6 +252,7 @@ bool NetworkPanel::startTransfer(int iterations) {
   connect(worker, &TransferWorker::failed, this, &NetworkPanel::report, Qt::QueuedConnection);
   connect(worker, &TransferWorker::done, this, &NetworkPanel::onJobDone, Qt::QueuedConnection);
   transfer_worker_ = worker;
+  loss_curve_->clear();
   status_label_->setText(tr("Optimising %1 towards %2...").arg(window_->clip(content).name, window_->clip(style).name));
   startThread(worker);
   return true;

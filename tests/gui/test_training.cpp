@@ -7,6 +7,7 @@
 // style networks have 8 hidden units, so each epoch takes milliseconds.
 #include <QCloseEvent>
 #include <QDir>
+#include <QDoubleSpinBox>
 #include <QElapsedTimer>
 #include <QFile>
 #include <QProgressBar>
@@ -471,8 +472,11 @@ class TrainingTest : public QObject {
     panel->setLossNetworkFile(autoencoder_);
     QSignalSpy ready(panel, &NetworkPanel::stylizedClipReady);
     QSignalSpy finished(panel, &NetworkPanel::jobFinished);
+    panel->lossCurve()->addPoint(QStringLiteral("total"), 0.0, 1.0);  // as a previous training leaves it
     QVERIFY(panel->startTransfer(5));
+    QCOMPARE(panel->lossCurve()->pointCount(QStringLiteral("total")), 0);  // the plot is this run's
     QVERIFY(finished.wait(kJobTimeoutMs));
+    QVERIFY(panel->lossCurve()->pointCount(QStringLiteral("style")) > 0);
     QVERIFY2(reports_.empty(), reports_.empty() ? "" : qPrintable(reports_.front().message));
     QCOMPARE(ready.count(), 1);
     const auto clip = ready.front().at(0).value<style::StylizedClip>();
@@ -481,12 +485,35 @@ class TrainingTest : public QObject {
     // The result panel takes the optimised clip for its clean-up and shows it.
     QTRY_VERIFY_WITH_TIMEOUT(window->resultPanel()->result() != nullptr, kJobTimeoutMs);
     QTRY_VERIFY_WITH_TIMEOUT(!window->resultPanel()->isBusy(), kJobTimeoutMs);
+    const Eigen::MatrixXd few = window->resultPanel()->result()->stylized.world_positions;
+
+    // More iterations move the clip further: the result shown is the new run's (issue 14 found the
+    // Iterations field made no difference in the app).
+    QVERIFY(panel->startTransfer(60));
+    QVERIFY(finished.wait(kJobTimeoutMs));
+    QCOMPARE(ready.count(), 2);
+    QTRY_VERIFY_WITH_TIMEOUT(!window->resultPanel()->isBusy(), kJobTimeoutMs);
+    const Eigen::MatrixXd more = window->resultPanel()->result()->stylized.world_positions;
+    QCOMPARE(more.rows(), few.rows());
+    const double moved = (more - few).cwiseAbs().maxCoeff();
+    qInfo("5 vs 60 iterations: the raw output differs by up to %.3f file units", moved);
+    QVERIFY(moved > 1e-3);
+
+    // The style weight is the form's: the same run without style pull gives another clip.
+    auto* style_weight = panel->findChild<QDoubleSpinBox*>(QStringLiteral("OptimiseStyleWeight"));
+    QVERIFY(style_weight != nullptr);
+    style_weight->setValue(0.0);
+    QVERIFY(panel->startTransfer(60));
+    QVERIFY(finished.wait(kJobTimeoutMs));
+    QCOMPARE(ready.count(), 3);
+    QTRY_VERIFY_WITH_TIMEOUT(!window->resultPanel()->isBusy(), kJobTimeoutMs);
+    QVERIFY((window->resultPanel()->result()->stylized.world_positions - more).cwiseAbs().maxCoeff() > 1e-3);
 
     // Cancelled at once: no result, no error, idle again.
     QVERIFY(panel->startTransfer(100000));
     panel->cancelJob();
     QVERIFY(finished.wait(kJobTimeoutMs));
-    QCOMPARE(ready.count(), 1);
+    QCOMPARE(ready.count(), 3);
     QVERIFY(!panel->isBusy());
     QVERIFY(reports_.empty());
   }
