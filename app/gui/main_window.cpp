@@ -103,16 +103,19 @@ void MainWindow::createDocks() {
   clip_list_->setAlternatingRowColors(true);
   clip_list_->setSelectionMode(QAbstractItemView::SingleSelection);
   clip_list_->setContextMenuPolicy(Qt::CustomContextMenu);
+  // Every column as wide as its longest entry, names and mappings never cut: a narrow dock scrolls
+  // sideways instead.
   clip_list_->header()->setStretchLastSection(false);
-  clip_list_->header()->setSectionResizeMode(kNameColumn, QHeaderView::Stretch);
-  for (int column = kRoleColumn; column < kColumnCount; ++column)
+  for (int column = kNameColumn; column < kColumnCount; ++column)
     clip_list_->header()->setSectionResizeMode(column, QHeaderView::ResizeToContents);
+  clip_list_->setHorizontalScrollBarPolicy(Qt::ScrollBarAsNeeded);
   connect(clip_list_, &QTreeWidget::customContextMenuRequested, this, &MainWindow::showClipMenu);
   auto* clips_dock = new QDockWidget(tr("Clips"), this);
   clips_dock->setObjectName(QStringLiteral("ClipsDock"));
   clips_dock->setWidget(clip_list_);
   clips_dock->setMinimumWidth(300);
   addDockWidget(Qt::LeftDockWidgetArea, clips_dock);
+  resizeDocks({clips_dock}, {380}, Qt::Horizontal);
   // The timeline spans the full width under both the clips list and the viewport.
   setCorner(Qt::BottomLeftCorner, Qt::BottomDockWidgetArea);
   setCorner(Qt::BottomRightCorner, Qt::BottomDockWidgetArea);
@@ -378,10 +381,10 @@ void MainWindow::showClipMenu(const QPoint& position) {
   QMenu menu(this);
   menu.addAction(tr("Use as &Content"), this, [this, index] { setContentClip(index); });
   menu.addAction(tr("Use as &Style"), this, [this, index] { setStyleClip(index); });
-  QAction* training = menu.addAction(tr("&Training Database"), this, [this, index](bool on) { setTrainingClip(index, on); });
+  QAction* training = menu.addAction(tr("In the &Training Set"), this, [this, index](bool on) { setTrainingClip(index, on); });
   training->setCheckable(true);
   training->setChecked(isTrainingClip(index));
-  menu.addAction(tr("Add &Folder as Training Database..."), network_panel_, &NetworkPanel::browseTrainingFolder);
+  menu.addAction(tr("Add &Folder to the Training Set..."), network_panel_, &NetworkPanel::browseTrainingFolder);
   menu.addAction(tr("Load &Mapping File..."), this, [this, index] { browseMappingFile(index); });
   menu.addSeparator();
   menu.addAction(tr("&Remove"), this, [this, index] { removeClip(index); });

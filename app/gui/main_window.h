@@ -66,7 +66,7 @@ class MainWindow : public QMainWindow {
   int styleClip() const { return style_; }
   QStringList recentFiles() const;
 
- // The "training database" role (main_window_networks.cpp): any number of clips may have it; they are
+ // The "training set" role (main_window_networks.cpp): any number of clips may have it; they are
   // the content clips the Style networks panel trains on, with its folders.
   bool isTrainingClip(int index) const;
   QStringList trainingClipPaths() const;

@@ -1,5 +1,5 @@
 // MainWindow's side of the "Style networks" dock (network_panel.h): the dock and its wiring to the
-// viewport, the result panel and the error reporter, and the "training database" clip role.
+// viewport, the result panel and the error reporter, and the "training set" clip role.
 #include <QDockWidget>
 
 #include <algorithm>

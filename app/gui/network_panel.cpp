@@ -196,7 +196,7 @@ QWidget* NetworkPanel::createTrainTab() {
   auto* tab = new QWidget(this);
   const nn::LossWeights defaults;
 
-  auto* data_box = new QGroupBox(tr("Content (training database)"), tab);
+  auto* data_box = new QGroupBox(tr("Content (training set)"), tab);
   database_label_ = new QLabel(data_box);
   database_label_->setWordWrap(true);
   folder_list_ = new QListWidget(data_box);
@@ -218,10 +218,10 @@ QWidget* NetworkPanel::createTrainTab() {
   data_layout->addWidget(folder_list_);
   data_layout->addLayout(data_buttons);
 
-  auto* style_box = new QGroupBox(tr("Style clips (per content label)"), tab);
+  auto* style_box = new QGroupBox(tr("Style clips (one per kind of content)"), tab);
   style_list_ = new QTreeWidget(style_box);
   style_list_->setObjectName(QStringLiteral("StyleClips"));
-  style_list_->setHeaderLabels({tr("Content label"), tr("Style clip")});
+  style_list_->setHeaderLabels({tr("For content labelled"), tr("Style clip")});
   style_list_->setRootIsDecorated(false);
   style_list_->setMaximumHeight(80);
   style_list_->setToolTip(tr("Double-click a label to edit it. An empty label pairs by file name and is the "
@@ -304,7 +304,7 @@ QWidget* NetworkPanel::createTrainTab() {
 
   train_button_ = new QPushButton(tr("&Train"), tab);
   train_button_->setObjectName(QStringLiteral("TrainButton"));
-  train_button_->setToolTip(tr("Train a new network on the training database"));
+  train_button_->setToolTip(tr("Train a new network on the training set"));
   retrain_button_ = new QPushButton(tr("&Retrain"), tab);
   retrain_button_->setObjectName(QStringLiteral("RetrainButton"));
   retrain_button_->setToolTip(tr("Warm start from the selected network with these weights"));
@@ -609,7 +609,7 @@ void NetworkPanel::addTrainingFolder(const QString& folder) {
 }
 
 void NetworkPanel::browseTrainingFolder() {
-  const QString folder = QFileDialog::getExistingDirectory(this, tr("Add a folder to the training database"), lastFolder());
+  const QString folder = QFileDialog::getExistingDirectory(this, tr("Add a folder to the training set"), lastFolder());
   if (folder.isEmpty()) return;
   rememberFolder(folder);
   addTrainingFolder(folder);
@@ -646,7 +646,7 @@ void NetworkPanel::refreshTrainingSummary() {
   const int clips = static_cast<int>(window_->trainingClipPaths().size());
   const int folders = folder_list_->count();
   if (clips == 0 && folders == 0)
-    database_label_->setText(tr("No training database yet: right-click clips and choose \"Training Database\", or add a "
+    database_label_->setText(tr("No training set yet: right-click clips and choose \"In the Training Set\", or add a "
                                 "folder of BVH files."));
   else
     database_label_->setText(tr("%n clip(s) with the training-database role", nullptr, clips) +

@@ -4,7 +4,7 @@
 //   Networks tab: load/save network files (saved atomically by the core; an existing file is never
 //     replaced without a confirmation), the list of networks with their metadata (style clips, loss
 //     weights, epochs, date) and the selected one's loss history in the curve below.
-//   Train tab: the training database (clips with MainWindow's "training database" role plus folders),
+//   Train tab: the training set (clips with MainWindow's "training set" role plus folders),
 //     style clips per content label (style_pairing.h), the loss network, the loss weights (defaults
 //     from nn::LossWeights), epochs, learning rate and hidden units; Train, Retrain (warm start from
 //     the selected network with the new weights) and Cancel.

@@ -101,7 +101,7 @@ bool NetworkPanel::startTraining(bool retrain) {
   for (const QString& file : window_->trainingClipPaths()) config.content.emplace_back(file.toStdString());
   for (const QString& folder : trainingFolders()) config.content.emplace_back(folder.toStdString());
   if (config.content.empty()) {
-    report(tr("No training database"), tr("Right-click clips in the Clips list and choose \"Training Database\", or add a "
+    report(tr("No training set"), tr("Right-click clips in the Clips list and choose \"In the Training Set\", or add a "
                                           "folder of BVH files on the Train tab."));
     return false;
   }

@@ -220,6 +220,27 @@ class MainWindowTest : public QObject {
     QVERIFY2(spin->value() < before, "a focused spin box takes the wheel");
   }
 
+  // Issue 14: the Clips table shows whole names and mappings (it scrolls sideways when narrow).
+  void clipNamesAndMappingsAreNotCut() {
+    const QString name = QStringLiteral("a_rather_long_clip_name_from_the_studio_take_042.bvh");
+    QVERIFY(QFile::copy(test::fixture(QStringLiteral("cmu_131_01.bvh")), scratch_.filePath(name)));
+    MainWindow window(/*persist_settings=*/false);
+    window.resize(1200, 800);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    QCOMPARE(window.openFiles({scratch_.filePath(name)}), 1);
+    auto* list = window.findChild<QTreeWidget*>(QStringLiteral("ClipList"));
+    QVERIFY(list != nullptr);
+    QTest::qWait(50);
+    const QTreeWidgetItem* item = list->topLevelItem(0);
+    for (int column : {0, 5}) {  // the name and the mapping
+      const int needed = list->fontMetrics().horizontalAdvance(item->text(column));
+      QVERIFY2(list->columnWidth(column) >= needed,
+               qPrintable(QStringLiteral("column %1: %2 px for %3 px of \"%4\"")
+                              .arg(column).arg(list->columnWidth(column)).arg(needed).arg(item->text(column))));
+    }
+  }
+
   // Issue 14: a greyed-out Stylize says why and how to fix it.
   void anUnmappedContentClipSaysWhyItCannotBeStylized() {
     const QString file = writeFile(scratch_, QStringLiteral("three_bones.bvh"),

@@ -233,10 +233,10 @@ class TrainingTest : public QObject {
     const auto shipped = resources ? shippedNetworkFile(*resources, kShippedAutoencoderName) : std::nullopt;
     QCOMPARE(panel->lossNetworkFile(), shipped ? QString::fromStdString(shipped->string()) : QString());
 
-    // No training database yet.
+    // No training set yet.
     QVERIFY(!panel->startTraining(false));
     QCOMPARE(reports_.size(), std::size_t{1});
-    QVERIFY(reports_.back().title.contains(QStringLiteral("training database"), Qt::CaseInsensitive));
+    QVERIFY(reports_.back().title.contains(QStringLiteral("training set"), Qt::CaseInsensitive));
     // No loss network.
     window->setTrainingClip(0, true);
     panel->setLossNetworkFile({});
