@@ -110,6 +110,10 @@ NetworkPanel::NetworkPanel(MainWindow* window, bool persist_settings)
   status_label_ = new QLabel(tr("Load a network, or train one on the Train tab."), this);
   status_label_->setWordWrap(true);
   status_label_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  // Room for three lines whatever the text: a status that wraps to a second line must not grow the
+  // area and push the splitter, which moved the Cancel button away from the pointer.
+  status_label_->setAlignment(Qt::AlignLeft | Qt::AlignTop);
+  status_label_->setMinimumHeight(3 * status_label_->fontMetrics().lineSpacing());
   loss_curve_ = new LossCurveWidget(this);
 
   auto* bottom = new QWidget(this);

@@ -13,6 +13,7 @@
 #include <QProgressBar>
 #include <QPushButton>
 #include <QSignalSpy>
+#include <QTabWidget>
 #include <QTemporaryDir>
 #include <QThread>
 #include <QTreeWidget>
@@ -533,8 +534,19 @@ class TrainingTest : public QObject {
       return stop_answer;
     });
     QSignalSpy snapshots(panel, &NetworkPanel::previewReady);
+    // Issue 14: the run buttons stay where they were when training starts (a moving Cancel was missed).
+    auto* cancel = panel->findChild<QPushButton*>(QStringLiteral("CancelButton"));
+    QVERIFY(cancel != nullptr);
+    // Where a user clicking Train is: the panel's dock raised, its Train tab shown.
+    for (QWidget* ancestor = panel->parentWidget(); ancestor != nullptr; ancestor = ancestor->parentWidget())
+      if (ancestor->inherits("QDockWidget")) ancestor->raise();
+    panel->findChild<QTabWidget*>()->setCurrentIndex(1);
+    QTest::qWait(50);
+    const QPoint cancel_before = cancel->mapTo(window.get(), QPoint(0, 0));
     QVERIFY(panel->startTraining(false));
     QTRY_VERIFY_WITH_TIMEOUT(snapshots.count() >= 1, kJobTimeoutMs);
+    QCOMPARE(cancel->mapTo(window.get(), QPoint(0, 0)), cancel_before);
+    QVERIFY(cancel->isVisible() && cancel->isEnabled());
     const auto outputShown = [&] {
       for (int i = 0; i < window->viewport()->figureCount(); ++i)
         if (window->viewport()->figure(i).role == FigureRole::Output) return true;
