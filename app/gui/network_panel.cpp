@@ -26,6 +26,8 @@
 #include <QTreeWidget>
 #include <QVBoxLayout>
 
+#include <algorithm>
+
 #include <exception>
 
 #include "common/errors.h"
@@ -394,6 +396,13 @@ bool NetworkPanel::isNetworkSaved(int index) const {
 }
 
 void NetworkPanel::addNetwork(NetworkEntry entry) {
+  // Names tell networks apart everywhere (this list, the Result panel's Style choice, the close
+  // prompt): a taken name gets " (2)", " (3)", ...
+  const auto taken = [this](const QString& name) {
+    return std::any_of(networks_.begin(), networks_.end(), [&](const NetworkEntry& other) { return other.name == name; });
+  };
+  const QString base = entry.name;
+  for (int counter = 2; taken(entry.name); ++counter) entry.name = QStringLiteral("%1 (%2)").arg(base).arg(counter);
   networks_.push_back(std::move(entry));
   refreshNetworkList();
   setCurrentIndex(networkCount() - 1);

@@ -172,7 +172,9 @@ bool NetworkPanel::startTraining(bool retrain) {
   connect(worker, &TrainingWorker::done, this, &NetworkPanel::onJobDone, Qt::QueuedConnection);
   training_worker_ = worker;
   training_retrain_ = retrain;
-  training_name_ = base_name;
+  // Named after the style and the start time, so that runs from one style clip tell apart at a glance;
+  // no character a file name would refuse (it is the suggested file name when saving).
+  training_name_ = tr("%1 %2").arg(base_name, QDateTime::currentDateTime().toString(QStringLiteral("yyyy-MM-dd HHmm")));
   loss_curve_->clear();
   emit previewCleared();
   progress_bar_->setRange(0, 0);

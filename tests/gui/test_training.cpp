@@ -6,6 +6,7 @@
 // The loss network is a tiny autoencoder trained here on the two fixtures (a fraction of a second); the
 // style networks have 8 hidden units, so each epoch takes milliseconds.
 #include <QCloseEvent>
+#include <QComboBox>
 #include <QDir>
 #include <QDoubleSpinBox>
 #include <QElapsedTimer>
@@ -464,6 +465,20 @@ class TrainingTest : public QObject {
     QCOMPARE(panel->network(0)->metadata.loss_history.epochs.size(), std::size_t{3});
     QVERIFY2(panel->statusText().startsWith(QStringLiteral("Trained")), qPrintable(panel->statusText()));
     QCOMPARE(panel->progressBar()->value(), panel->progressBar()->maximum());
+
+    // Issue 14: a second run from the same clips gets a name of its own, and the Result panel offers both.
+    setTinyForm(panel, 1);
+    QVERIFY(panel->startTraining(false));
+    QVERIFY(finished.wait(kJobTimeoutMs));
+    QCOMPARE(panel->networkCount(), 2);
+    panel->setCurrentIndex(0);
+    const QString first = panel->currentNetworkName();
+    panel->setCurrentIndex(1);
+    const QString second = panel->currentNetworkName();
+    QVERIFY2(first != second, qPrintable(first));
+    const QComboBox* choice = window->resultPanel()->networkChoice();
+    QVERIFY(choice->findText(first) >= 0);
+    QVERIFY(choice->findText(second) >= 0);
   }
 
   void optimisationMethodRunsInTheWorker() {
