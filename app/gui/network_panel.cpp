@@ -46,6 +46,7 @@ using namespace network_panel_detail;
 
 const char* const kLossNetworkKey = "networks/lossNetwork";
 const char* const kNetworkFolderKey = "networks/lastFolder";
+const char* const kClipFolderKey = "networks/lastClipFolder";
 
 // <resources>/models/autoencoder.net when installed (resource_paths.h), else empty.
 QString shippedLossNetworkFile() {
@@ -353,9 +354,9 @@ void NetworkPanel::addTrainingFolder(const QString& folder) {
 }
 
 void NetworkPanel::browseTrainingFolder() {
-  const QString folder = QFileDialog::getExistingDirectory(this, tr("Add a folder to the training set"), lastFolder());
+  const QString folder = QFileDialog::getExistingDirectory(this, tr("Add a folder to the training set"), lastClipFolder());
   if (folder.isEmpty()) return;
-  rememberFolder(folder);
+  rememberClipFolder(folder);
   addTrainingFolder(folder);
   tabs_->setCurrentIndex(1);
 }
@@ -448,6 +449,15 @@ QString NetworkPanel::lastFolder() const {
 
 void NetworkPanel::rememberFolder(const QString& path) {
   if (persist_settings_) QSettings().setValue(kNetworkFolderKey, path);
+}
+
+QString NetworkPanel::lastClipFolder() const {
+  const QString folder = persist_settings_ ? QSettings().value(kClipFolderKey).toString() : QString();
+  return !folder.isEmpty() && QDir(folder).exists() ? folder : QDir::homePath();
+}
+
+void NetworkPanel::rememberClipFolder(const QString& path) {
+  if (persist_settings_) QSettings().setValue(kClipFolderKey, path);
 }
 
 }  // namespace motionstyle

@@ -21,7 +21,8 @@
 //
 // Safety: prepareToClose() asks before stopping a running job (then cancels, quits and waits; the
 // core keeps the last good checkpoint and never writes a network file half-way), and asks before any
-// trained network that was never saved is dropped (closing, or removing it from the list).
+// trained network that was never saved is dropped: removing one asks for it; closing asks once for
+// all of them (Save All into one folder, never over a file; Discard; Cancel).
 // Dialogs go through the Confirmer (tests replace it) and errors through errorOccurred() (MainWindow's
 // ErrorReporter).
 
@@ -81,6 +82,9 @@ class NetworkPanel : public QWidget {
   ~NetworkPanel() override;  // cancels and joins a running job without asking
 
   void setConfirmer(Confirmer confirmer);
+  // Picks the folder "Save all" writes into, starting at `start` (default: a folder dialog).
+  using FolderChooser = std::function<QString(const QString& start)>;
+  void setFolderChooser(FolderChooser chooser) { folder_chooser_ = std::move(chooser); }
 
   // ---- Networks -----------------------------------------------------------------------------------
   int networkCount() const { return static_cast<int>(networks_.size()); }
@@ -173,8 +177,12 @@ class NetworkPanel : public QWidget {
   void report(const QString& title, const QString& message);
   QMessageBox::StandardButton ask(const QString& title, const QString& text, QMessageBox::StandardButtons buttons);
   bool confirmDropUnsaved(int index, bool allow_cancel);
+  // Where network files were last loaded or saved (the user's networks folder), and, apart from it,
+  // where clips and training folders were last chosen: saving a network never starts among the clips.
   QString lastFolder() const;
   void rememberFolder(const QString& path);
+  QString lastClipFolder() const;
+  void rememberClipFolder(const QString& path);
 
   // Jobs (network_panel_jobs.cpp).
   void startThread(QObject* worker);
@@ -190,6 +198,7 @@ class NetworkPanel : public QWidget {
   bool persist_settings_;
   AdaptTab* adapt_tab_ = nullptr;
   Confirmer confirmer_;
+  FolderChooser folder_chooser_;
   std::vector<NetworkEntry> networks_;
 
   // The running job (null when idle).

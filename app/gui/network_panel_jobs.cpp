@@ -6,6 +6,7 @@
 #include <QDateTime>
 #include <QDoubleSpinBox>
 #include <QDir>
+#include <QFileDialog>
 #include <QFileInfo>
 #include <QLabel>
 #include <QProgressBar>
@@ -361,8 +362,32 @@ bool NetworkPanel::prepareToClose() {
     // network can be offered for saving below.
     QCoreApplication::sendPostedEvents(this, QEvent::MetaCall);
   }
+  // One question for all unsaved networks: save them all into one folder, or discard them all.
+  std::vector<int> unsaved;
+  QStringList names;
   for (int i = 0; i < networkCount(); ++i)
-    if (!confirmDropUnsaved(i, true)) return false;
+    if (!isNetworkSaved(i)) {
+      unsaved.push_back(i);
+      names << networks_[static_cast<std::size_t>(i)].name;
+    }
+  if (unsaved.empty()) return true;
+  const QMessageBox::StandardButton answer =
+      ask(tr("Unsaved networks"),
+          tr("%n trained network(s) not saved: %1.\n\nSave all of them into one folder, or discard all?", nullptr,
+             static_cast<int>(unsaved.size())).arg(names.join(QStringLiteral(", "))),
+          QMessageBox::SaveAll | QMessageBox::Discard | QMessageBox::Cancel);
+  if (answer == QMessageBox::Discard) return true;
+  if (answer != QMessageBox::SaveAll) return false;
+  const QString folder = folder_chooser_ ? folder_chooser_(lastFolder())
+                                         : QFileDialog::getExistingDirectory(this, tr("Save the networks in"), lastFolder());
+  if (folder.isEmpty()) return false;
+  for (int i : unsaved) {  // never over an existing file: "name (2).net" when "name.net" is taken
+    const QString name = networks_[static_cast<std::size_t>(i)].name;
+    QString file = QDir(folder).filePath(name + QStringLiteral(".net"));
+    for (int counter = 2; QFileInfo::exists(file); ++counter)
+      file = QDir(folder).filePath(QStringLiteral("%1 (%2).net").arg(name).arg(counter));
+    if (!saveNetwork(i, file, /*overwrite_confirmed=*/false)) return false;
+  }
   return true;
 }
 

@@ -162,7 +162,7 @@ QWidget* NetworkPanel::createTrainTab() {
     else addStyleClip(window_->clip(index).path);
   });
   connect(add_file, &QPushButton::clicked, this, [this] {
-    const QString file = QFileDialog::getOpenFileName(this, tr("Style clip"), lastFolder(), tr("BVH motion (*.bvh *.BVH)"));
+    const QString file = QFileDialog::getOpenFileName(this, tr("Style clip"), lastClipFolder(), tr("BVH motion (*.bvh *.BVH)"));
     if (!file.isEmpty()) addStyleClip(file);
   });
   connect(remove_style, &QPushButton::clicked, this, [this] {

@@ -479,6 +479,22 @@ class TrainingTest : public QObject {
     const QComboBox* choice = window->resultPanel()->networkChoice();
     QVERIFY(choice->findText(first) >= 0);
     QVERIFY(choice->findText(second) >= 0);
+
+    // Issue 14: closing asks once for all unsaved networks; "Save All" writes each into one folder.
+    QStringList asked;
+    panel->setConfirmer([&](const QString& title, const QString&, QMessageBox::StandardButtons buttons) {
+      asked << title;
+      return buttons.testFlag(QMessageBox::SaveAll) ? QMessageBox::SaveAll : QMessageBox::Cancel;
+    });
+    const QString saved_folder = scratchFile(QStringLiteral("saved_networks"));
+    QVERIFY(QDir().mkpath(saved_folder));
+    panel->setFolderChooser([&](const QString&) { return saved_folder; });
+    QVERIFY(panel->prepareToClose());
+    QCOMPARE(asked.size(), 1);
+    QVERIFY(panel->isNetworkSaved(0) && panel->isNetworkSaved(1));
+    QCOMPARE(QDir(saved_folder).entryList({QStringLiteral("*.net")}, QDir::Files).size(), 2);
+    QVERIFY(panel->prepareToClose());  // nothing unsaved any more: no question
+    QCOMPARE(asked.size(), 1);
   }
 
   void optimisationMethodRunsInTheWorker() {
