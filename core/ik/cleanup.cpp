@@ -188,6 +188,7 @@ void CleanupOptions::validate() const {
   if (!(max_total_seconds > 0.0))  // +infinity: no budget
     throw std::invalid_argument("cleanup options: max_total_seconds must be positive");
   if (threads < 1) throw std::invalid_argument("cleanup options: threads must be >= 1");
+  if (block_frames < 1) throw std::invalid_argument("cleanup options: block_frames must be >= 1");
 }
 
 void CleanupInput::validate() const {
@@ -246,7 +247,7 @@ void cleanupMotionInBlocks(const CleanupInput& input, const CleanupOptions& opti
   const Eigen::Vector3d hips_at_frame0 =
       worldPositions(content.skeleton, localPoses(content, 0, 1), std::span<const int>(&hips, 1)).row(0).transpose();
 
-  // Final frames gather into blocks of kMotionBlockFrames: the content's local poses of the block with
+  // Final frames gather into blocks of options.block_frames: the content's local poses of the block with
   // the solved rotations and root put in, then channel values (continuing the previous block's Euler
   // branches), world positions, warnings, and the sink.
   ik_detail::CleanupWarnings warnings(input, options);
@@ -278,7 +279,7 @@ void cleanupMotionInBlocks(const CleanupInput& input, const CleanupOptions& opti
   auto onFinalFrame = [&](int frame, const Eigen::Vector3d& root, const Eigen::Quaterniond* rotations) {
     block_roots.push_back(root);
     block_rotations.insert(block_rotations.end(), rotations, rotations + unknowns);
-    if (static_cast<int>(block_roots.size()) == kMotionBlockFrames || frame == frames - 1) flushBlock();
+    if (static_cast<int>(block_roots.size()) == options.block_frames || frame == frames - 1) flushBlock();
   };
 
   const ik_detail::SolverInput solver_input{model, content, hips_at_frame0, input.targets, locks.positions,

@@ -22,6 +22,7 @@
 
 #include "features/feature_layout.h"
 #include "mapping/joint_mapping.h"
+#include "motion/kinematics.h"
 #include "motion/motion.h"
 
 namespace motionstyle {
@@ -68,13 +69,17 @@ struct CleanupOptions {
   // that was not produced must never pass for one.
   double max_total_seconds = std::numeric_limits<double>::infinity();
   int threads = 1;               // Ceres threads per solve (per-frame problems are small: 1 is fastest)
+  // Frames per block: the content's local poses are computed, and the result handed out
+  // (cleanupMotionInBlocks), this many frames at a time. Memory, not the result, depends on it.
+  int block_frames = kMotionBlockFrames;
 
   // --- Warnings.
   double unreachable_warning_cm = 1.0;  // a limb whose targets are further apart than it can reach
   double residual_warning_cm = 10.0;    // a mapped joint left further than this from its target
 
   // Throws std::invalid_argument for a negative or non-finite weight, an empty window, an overlap not
-  // smaller than the window, max_iterations < 1, a non-positive budget or threads < 1.
+  // smaller than the window, max_iterations < 1, a non-positive budget, threads < 1 or
+  // block_frames < 1.
   void validate() const;
 };
 
@@ -139,7 +144,7 @@ struct CleanedBlock {
 };
 using CleanedBlockSink = std::function<void(const CleanedBlock&)>;
 
-// cleanupMotion handing the result out in blocks of frames (kMotionBlockFrames, in frame order)
+// cleanupMotion handing the result out in blocks of frames (options.block_frames, in frame order)
 // instead of returning it, so that a long clip can be written and measured as it is solved: beyond
 // what `input` holds, memory grows with the clip only by the contact locks (128 bytes per frame)
 // and, while the locks are planned, the feet's positions (96 bytes per frame). The values are exactly

@@ -51,13 +51,13 @@ ceres::Problem::Options problemOptions() {
 // a long clip's poses (56 bytes per joint and frame) are never all held.
 class ContentPoseBlock {
  public:
-  explicit ContentPoseBlock(const Motion& content) : content_(content) {}
+  ContentPoseBlock(const Motion& content, int block_frames) : content_(content), block_frames_(block_frames) {}
 
   // Makes frames first .. first + count - 1 available.
   void cover(int first, int count) {
     if (first >= first_ && first + count <= first_ + poses_.frames) return;
     first_ = first;
-    poses_ = localPoses(content_, first, std::min(std::max(kMotionBlockFrames, count), content_.frameCount() - first));
+    poses_ = localPoses(content_, first, std::min(std::max(block_frames_, count), content_.frameCount() - first));
   }
   const LocalPoses& poses() const { return poses_; }
   int row(int frame) const { return frame - first_; }  // the frame's row in poses()
@@ -66,6 +66,7 @@ class ContentPoseBlock {
 
  private:
   const Motion& content_;
+  int block_frames_;
   int first_ = 0;
   LocalPoses poses_;
 };
@@ -263,7 +264,7 @@ SolverOutput solveCleanup(const SolverInput& input, const CleanupOptions& option
 
   SolverOutput out;
   SolutionBuffer solved(unknowns);
-  ContentPoseBlock content(input.content);
+  ContentPoseBlock content(input.content, options.block_frames);
 
   // Frame 0 starts from the content pose moved so that its hips meet the target hips; later frames
   // from the previous frame's solution, moved by the targets' hips step. Frames are warm-started in

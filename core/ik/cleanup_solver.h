@@ -41,7 +41,7 @@ using FinalFrameSink = std::function<void(int frame, const Eigen::Vector3d& root
 
 // Solves frame by frame (or window by window) and hands every frame to `sink` as soon as no later
 // window can change it. Holds the solutions of one window plus two frames and the content's local
-// poses of one block of frames (kMotionBlockFrames), whatever the clip's length.
+// poses of one block of frames (options.block_frames), whatever the clip's length.
 SolverOutput solveCleanup(const SolverInput& input, const CleanupOptions& options, const FinalFrameSink& sink);
 
 }  // namespace motionstyle::ik_detail

@@ -122,7 +122,7 @@ void MetricsAccumulator::add(const MetricsInput& block) {
   if (added == 0) return;
   // The kept frames, then this block's: row r of p is frame (partial_.frames - kept + r).
   Eigen::MatrixXd p(kept + added, columns_);
-  p.topRows(kept) = history_;
+  if (kept > 0) p.topRows(kept) = history_;  // (history_ starts 0 x 0: no block assignment then)
   p.bottomRows(added) = block.positions;
   const int base = partial_.frames - static_cast<int>(kept);
   const double cm = cm_per_unit_;

@@ -14,7 +14,8 @@
 namespace motionstyle {
 namespace {
 
-constexpr int kFrames = kMotionBlockFrames + 100;  // a whole block and a partial one
+constexpr int kBlock = 128;                // small blocks: short clips cross several boundaries
+constexpr int kFrames = 2 * kBlock + 40;  // two whole blocks and a partial one
 
 class CleanupBlocks : public ::testing::Test {
  protected:
@@ -26,6 +27,11 @@ class CleanupBlocks : public ::testing::Test {
   Eigen::MatrixXd damaged = test::damageTargets(targets, no_contacts, 60.0, 1.0, Eigen::Vector3d::UnitY(), {});
 
   CleanupInput input() const { return CleanupInput{clip, mapping, damaged, no_contacts, Eigen::Vector3d::UnitY(), -50.0, 1.0}; }
+  static CleanupOptions inBlocks() {
+    CleanupOptions options;
+    options.block_frames = kBlock;
+    return options;
+  }
 
   // Largest frame-to-frame move of any joint over the frames f -> f + 1 for f in `frames`, cm.
   static double largestStep(const Eigen::MatrixXd& positions, const std::vector<int>& frames) {
@@ -42,27 +48,29 @@ TEST_F(CleanupBlocks, BlocksArriveInOrderAndMakeUpTheWholeResult) {
   MatrixRowMajor values(kFrames, clip.skeleton.channelCount());
   Eigen::MatrixXd block_world(kFrames, world.cols());
   CleanupReport report;
-  cleanupMotionInBlocks(input(), {}, [&](const CleanedBlock& block) {
-    ASSERT_EQ(block.first_frame, firsts.empty() ? 0 : firsts.back() + kMotionBlockFrames);
-    ASSERT_LE(block.values.rows(), kMotionBlockFrames);
+  cleanupMotionInBlocks(input(), inBlocks(), [&](const CleanedBlock& block) {
+    ASSERT_EQ(block.first_frame, firsts.empty() ? 0 : firsts.back() + kBlock);
+    ASSERT_LE(block.values.rows(), kBlock);
     ASSERT_EQ(block.world.rows(), block.values.rows());
     firsts.push_back(block.first_frame);
     values.middleRows(block.first_frame, block.values.rows()) = block.values;
     block_world.middleRows(block.first_frame, block.world.rows()) = block.world;
   }, &report);
-  EXPECT_EQ(firsts, (std::vector<int>{0, kMotionBlockFrames}));
+  EXPECT_EQ(firsts, (std::vector<int>{0, kBlock, 2 * kBlock}));
   EXPECT_EQ(report.frames, kFrames);
   EXPECT_EQ(report.solves, kFrames);
 
-  const Motion whole = cleanupMotion(input(), {}, nullptr);
-  EXPECT_EQ(whole.values, values);
+  CleanupOptions one_block;
+  one_block.block_frames = kFrames;
+  const Motion whole = cleanupMotion(input(), one_block, nullptr);  // the block size changes nothing
+  EXPECT_LT((whole.values - values).cwiseAbs().maxCoeff(), 1e-9);
   EXPECT_LT((worldPositions(whole) - block_world).cwiseAbs().maxCoeff(), 1e-9);  // the world handed out is the result's
 }
 
 TEST_F(CleanupBlocks, TheResultHasNoSeamAtBlockBoundaries) {
-  const Motion result = cleanupMotion(input(), {}, nullptr);
+  const Motion result = cleanupMotion(input(), inBlocks(), nullptr);
   const Eigen::MatrixXd cleaned = worldPositions(result);
-  std::vector<int> boundaries = {kMotionBlockFrames - 1};
+  std::vector<int> boundaries = {kBlock - 1, 2 * kBlock - 1};
   std::vector<int> elsewhere;
   for (int f = 1; f + 1 < kFrames; ++f)
     if (std::find(boundaries.begin(), boundaries.end(), f) == boundaries.end()) elsewhere.push_back(f);
@@ -73,7 +81,7 @@ TEST_F(CleanupBlocks, TheResultHasNoSeamAtBlockBoundaries) {
 }
 
 TEST(CleanupBlocksWindowed, WindowsThatStraddleABoundarySolveAsWellAsElsewhere) {
-  const int frames = kMotionBlockFrames + 40;
+  const int frames = kBlock + 40;
   const Motion clip = test::makeHumanoidClip(frames, 60.0);
   const JointMapping mapping = test::humanoidMapping(clip.skeleton);
   const Eigen::MatrixXi no_contacts = Eigen::MatrixXi::Zero(frames, kContactCount);
@@ -81,10 +89,13 @@ TEST(CleanupBlocksWindowed, WindowsThatStraddleABoundarySolveAsWellAsElsewhere) 
                                                       60.0, 1.0, Eigen::Vector3d::UnitY(), {});
   const CleanupInput input{clip, mapping, damaged, no_contacts, Eigen::Vector3d::UnitY(), -50.0, 1.0};
   CleanupOptions windowed;
+  windowed.block_frames = kBlock;
   windowed.window_frames = 3;
-  windowed.window_overlap = 1;  // windows start at even frames: the one at 1022 spans the boundary
+  windowed.window_overlap = 1;  // windows start at even frames: the one at 126 spans the boundary
   CleanupReport report;
-  const Eigen::MatrixXd per_frame = worldPositions(cleanupMotion(input, {}, nullptr));
+  CleanupOptions per_frame_options;
+  per_frame_options.block_frames = kBlock;
+  const Eigen::MatrixXd per_frame = worldPositions(cleanupMotion(input, per_frame_options, nullptr));
   const Eigen::MatrixXd by_window = worldPositions(cleanupMotion(input, windowed, &report));
   EXPECT_EQ(report.frames_unsolved, 0);
   EXPECT_EQ(report.solves, frames / 2);  // starts 0, 2, ..., frames - 4, then the last window ends at the clip's end
@@ -95,8 +106,8 @@ TEST(CleanupBlocksWindowed, WindowsThatStraddleABoundarySolveAsWellAsElsewhere) 
         worst = std::max(worst, (per_frame.block<1, 3>(f, 3 * j) - by_window.block<1, 3>(f, 3 * j)).norm());
     return worst;
   };
-  EXPECT_LT(worstDistance(kMotionBlockFrames - 8, kMotionBlockFrames + 8), 1.0);
-  EXPECT_LE(worstDistance(kMotionBlockFrames - 8, kMotionBlockFrames + 8), 2.0 * worstDistance(0, frames - 1));
+  EXPECT_LT(worstDistance(kBlock - 8, kBlock + 8), 1.0);
+  EXPECT_LE(worstDistance(kBlock - 8, kBlock + 8), 2.0 * worstDistance(0, frames - 1));
 }
 
 // --- The metrics accumulator.

@@ -99,6 +99,10 @@ TEST_F(CleanupInvalidInput, RejectsBadOptions) {
   options.max_total_seconds = std::numeric_limits<double>::quiet_NaN();
   EXPECT_NE(failure(mapping, targets, contacts, Eigen::Vector3d::UnitY(), 1.0, options).find("max_total_seconds"),
             std::string::npos);
+  options = {};
+  options.block_frames = 0;
+  EXPECT_NE(failure(mapping, targets, contacts, Eigen::Vector3d::UnitY(), 1.0, options).find("block_frames"),
+            std::string::npos);
 }
 
 TEST_F(CleanupInvalidInput, RejectsAnEmptyClip) {
