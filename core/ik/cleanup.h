@@ -70,7 +70,8 @@ struct CleanupOptions {
   double max_total_seconds = std::numeric_limits<double>::infinity();
   int threads = 1;               // Ceres threads per solve (per-frame problems are small: 1 is fastest)
   // Frames per block: the content's local poses are computed, and the result handed out
-  // (cleanupMotionInBlocks), this many frames at a time. Memory, not the result, depends on it.
+  // (cleanupMotionInBlocks), this many frames at a time. Memory depends on it; the result only in
+  // the last bits (the vectorised sines and cosines round by a value's place in its block).
   int block_frames = kMotionBlockFrames;
 
   // --- Warnings.
