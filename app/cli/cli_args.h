@@ -9,12 +9,14 @@
 #include <string_view>
 #include <vector>
 
+#include "common/errors.h"
+
 namespace motionstyle::cli {
 
 // A usage mistake: the CLI prints it with the command's help hint and exits with code 2.
-class UsageError : public std::runtime_error {
+class UsageError : public Error {
  public:
-  using std::runtime_error::runtime_error;
+  using Error::Error;
 };
 
 // The values a numeric option accepts: [min, max], open at either end where asked ("(0, 1]").

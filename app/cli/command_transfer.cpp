@@ -1,14 +1,13 @@
 // motionstyle-cli transfer: the optimisation method (Holden et al. 2016) for one content clip and one
-// style clip, no trained style network needed. Output as stylize (positions-only until the IK clean-up).
+// style clip, no trained style network needed (style::OptimizationTransferJob). Output as stylize: the
+// IK clean-up onto the content's skeleton unless --no-cleanup.
 #include <iostream>
 
 #include "cli_args.h"
 #include "commands.h"
 #include "stylized_output.h"
 #include "progress_bar.h"
-#include "style/motion_dataset.h"
-#include "style/evaluation.h"
-#include "style/optimization_transfer.h"
+#include "style/optimization_transfer_job.h"
 #include "style/training.h"
 
 namespace motionstyle::cli {
@@ -45,10 +44,12 @@ int runTransfer(const Args& args) {
   checkOutputPaths({{parsed.positional[0], "the input clip"}, {ae_file, "--ae"}, {style_file, "--style"}},
                    outputPaths(output_options, output));
 
-  const nn::AutoencoderModel autoencoder = style::loadCompatibleAutoencoder(ae_file, dataset.features);
-  const style::MotionClip content = style::loadMotionClip(parsed.positional[0], dataset);
-  const style::MotionClip style_clip =
-      style::loadMotionClip(style_file, style::styleClipOptions(dataset, autoencoder.network.shape().width));
+  style::OptimizationTransferJob job;
+  job.loss_network = style::loadCompatibleAutoencoder(ae_file, dataset.features);
+  job.content = parsed.positional[0];
+  job.style = style_file;
+  job.options = options;
+  job.dataset = dataset;
 
   InterruptGuard guard;
   ProgressBar bar(std::cout, ProgressBar::stdoutIsTerminal());
@@ -65,17 +66,14 @@ int runTransfer(const Args& args) {
                                           {"bone", p.bone}, {"trajectory", p.trajectory}}),
                done == total);
   };
-  const style::OptimizationResult result =
-      style::optimizeStyleTransfer(autoencoder, content.features, style_clip.features, style_file.string(), options, callbacks);
+  const style::OptimizationTransferJob::Result result = job.run(callbacks);
   bar.finish();
   if (result.cancelled) {
     std::cout << "interrupted: nothing written\n";
     return kInterruptedExitCode;
   }
   // How much style the optimisation added (eval's definitions), printed and in --metrics.
-  const style::StyleDistances distances = style::measureStyleDistances(
-      autoencoder.network, autoencoder.normalisation, content.features.values, result.clip.features,
-      style::styleGramOf(autoencoder.network, autoencoder.normalisation, style_clip.features.values));
+  const style::StyleDistances& distances = result.distances;
   std::cout << "optimised in " << formatDuration(result.seconds) << ": style distance " << distances.style_before
             << " -> " << distances.style_after << " (ratio " << distances.styleRatio() << "), content distance "
             << distances.content_after << "\n";
@@ -84,7 +82,7 @@ int runTransfer(const Args& args) {
                                                       {"after", distances.style_after},
                                                       {"ratio", distances.styleRatio()}}},
                                   {"content_distance", distances.content_after}};
-  writeStylizedOutput(parsed.positional[0], result.clip, with_distances, output, std::cout);
+  writeStylizedOutput(parsed.positional[0], *result.clip, with_distances, output, std::cout);
   return 0;
 }
 

@@ -23,6 +23,37 @@ void printUsage(std::ostream& out) {
          "130 interrupted (Ctrl-C; a training run keeps its last checkpoint).\n";
 }
 
+// The one translation of a failure into a message on stderr and an exit code (README "Exit codes").
+// Messages name the user's files: safeLines keeps a file name from driving the terminal.
+int reportFailure(const std::exception_ptr& failure, const std::string& command) {
+  using namespace motionstyle;
+  try {
+    std::rethrow_exception(failure);
+  } catch (const cli::UsageError& error) {
+    std::cerr << "motionstyle-cli " << command << ": " << safeLines(error.what()) << "\n(see 'motionstyle-cli "
+              << command << " --help')\n";
+    return 2;
+  } catch (const OperationCancelled&) {
+    std::cerr << "interrupted\n";
+    return 130;
+  } catch (const TrainingDiverged& error) {  // the settings, not the data: no exit 2
+    std::cerr << "error: " << safeLines(error.what()) << "\n";
+    return 1;
+  } catch (const Error& error) {  // InputError, WriteError: the user's file, path or disk
+    std::cerr << "error: " << safeLines(error.what()) << "\n";
+    return 2;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "internal error: out of memory\n";
+    return 1;
+  } catch (const std::exception& error) {
+    std::cerr << "internal error: " << safeLines(error.what()) << "\n";
+    return 1;
+  } catch (...) {
+    std::cerr << "internal error\n";
+    return 1;
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -53,21 +84,7 @@ int main(int argc, char** argv) {
     }
   try {
     return command->run(args);
-  } catch (const cli::UsageError& error) {
-    std::cerr << "motionstyle-cli " << command->name << ": " << safeLines(error.what()) << "\n(see 'motionstyle-cli "
-              << command->name << " --help')\n";
-    return 2;
-  } catch (const InputError& error) {  // messages name files: never let a file name drive the terminal
-    std::cerr << "error: " << safeLines(error.what()) << "\n";
-    return 2;
-  } catch (const WriteError& error) {  // the user's path or disk is the problem, not the program
-    std::cerr << "error: " << safeLines(error.what()) << "\n";
-    return 2;
-  } catch (const std::bad_alloc&) {
-    std::cerr << "internal error: out of memory\n";
-    return 1;
-  } catch (const std::exception& error) {
-    std::cerr << "internal error: " << safeLines(error.what()) << "\n";
-    return 1;
+  } catch (...) {
+    return reportFailure(std::current_exception(), command->name);
   }
 }

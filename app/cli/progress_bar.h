@@ -23,6 +23,9 @@ namespace motionstyle::cli {
 class ProgressBar {
  public:
   ProgressBar(std::ostream& out, bool interactive);
+  ~ProgressBar() { finish(); }  // an error printed after it starts on a line of its own
+  ProgressBar(const ProgressBar&) = delete;
+  ProgressBar& operator=(const ProgressBar&) = delete;
 
   // Whether stdout is a terminal (isatty).
   static bool stdoutIsTerminal();

@@ -29,15 +29,9 @@ int trainAndReport(const Config& config, Train train) {
   callbacks.progress = [&](const style::TrainingProgress& p) { reporter(p); };
   callbacks.log = [&](const std::string& text) { bar.line(text); };
   callbacks.cancel = guard.flag();
-  try {
-    const auto result = train(config, callbacks);
-    return reportTraining(result, config.settings, guard, bar);
-  } catch (const style::TrainingDiverged& error) {
-    bar.finish();
-    std::cerr << "error: " << error.what() << "\nthe last good checkpoint (if any) is kept: "
-              << config.settings.checkpointPath().string() << "\n";
-    return 1;
-  }
+  // A divergence (TrainingDiverged, naming the kept checkpoint) goes to main's one translation.
+  const auto result = train(config, callbacks);
+  return reportTraining(result, config.settings, guard, bar);
 }
 
 }  // namespace

@@ -21,6 +21,7 @@
 
 #include "common/errors.h"
 #include "common/resource_paths.h"
+#include "error_text.h"
 #include "job_runner.h"
 #include "style/training.h"
 
@@ -122,8 +123,6 @@ AdaptTab::AdaptTab(ClipsProvider clips, NetworksProvider networks, QWidget* pare
   layout->addWidget(status_);
   layout->addWidget(table_, 1);
 
-  connect(runner_, &JobRunner::progress, this, &AdaptTab::onProgress);
-  connect(runner_, &JobRunner::logMessage, status_, &QLabel::setText);
   connect(runner_, &JobRunner::failed, this, &AdaptTab::errorOccurred);
   connect(runner_, &JobRunner::busyChanged, this, [this](bool busy) {
     adapt_button_->setEnabled(!busy);
@@ -283,8 +282,10 @@ bool AdaptTab::start() {
   table_->setRowCount(0);
   progress_->setRange(0, 0);
   status_->setText(tr("Reading your clips..."));
-  return runner_->start(title, [this, job = std::move(job), sources, folders](const style::TrainingCallbacks& callbacks) mutable
+  return runner_->start(title, [this, job = std::move(job), sources, folders](const JobRunner::Context& context) mutable
                                    -> JobRunner::Completion {
+    const style::TrainingCallbacks callbacks = context.trainingCallbacks(
+        [this](const style::TrainingProgress& p) { onProgress(p); }, [this](const QString& line) { status_->setText(line); });
     for (const Source& source : *sources)
       job.loss.clips.push_back(style::makeMotionClip(source.motion, source.mapping, source.name.toStdString()));
     if (!folders->empty()) {

@@ -17,7 +17,6 @@
 #include <QPainter>
 #include <QSaveFile>
 
-#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <exception>
@@ -25,12 +24,13 @@
 #include <stdexcept>
 #include <vector>
 
-#include "cleanup_worker.h"
 #include "clip_loader.h"
 #include "common/allocator_tuning.h"
+#include "error_text.h"
 #include "nn/network_file.h"
 #include "result_figures.h"
 #include "skeleton_viewport.h"
+#include "style/stylize_cleanup_job.h"
 
 namespace motionstyle {
 namespace {
@@ -55,12 +55,11 @@ Scene resultScene(const FilmstripRequest& request) {
   const LoadedClip style = loadClip(request.style.toStdString());
   if (!content.mapping)
     throw std::runtime_error(request.content.toStdString() + ": " + content.mappingStatus().toStdString());
-  CleanupJob job;
+  style::StylizeCleanupJob job;
   job.content = content.motion;
   job.mapping = *content.mapping;
   job.stylizer = std::make_shared<const style::Stylizer>(nn::loadStyleModel(request.network.toStdString()));
-  const std::atomic<bool> never_cancelled{false};
-  const CleanupResult result = runCleanupJob(job, never_cancelled);
+  const style::StylizeCleanupResult result = job.run();
   Scene scene;
   scene.fps = content.fps();
   const QString network = QFileInfo(request.network).completeBaseName();
@@ -157,8 +156,8 @@ int main(int argc, char** argv) {
   }
   try {
     savePng(renderFilmstrip(request), request.out);
-  } catch (const std::exception& error) {
-    std::fprintf(stderr, "motionstyle-filmstrip: %s\n", error.what());
+  } catch (...) {
+    std::fprintf(stderr, "motionstyle-filmstrip: %s\n", qPrintable(errorText(std::current_exception())));
     return 1;
   }
   std::printf("motionstyle-filmstrip: wrote %s\n", qPrintable(request.out));

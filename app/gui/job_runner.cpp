@@ -1,33 +1,50 @@
 #include "job_runner.h"
 
 #include <QCoreApplication>
+#include <QEventLoop>
 
-#include <new>
+#include <exception>
 
 #include "common/errors.h"
-#include "style/cancellation.h"
+#include "error_text.h"
 
 namespace motionstyle {
 
-QString errorText(const std::exception_ptr& error) {
-  try {
-    std::rethrow_exception(error);
-  } catch (const InputError& e) {
-    return QString::fromStdString(e.what());
-  } catch (const WriteError& e) {
-    return QCoreApplication::translate("JobRunner", "Could not write %1: %2")
-        .arg(QString::fromStdString(e.file()), QString::fromStdString(e.what()));
-  } catch (const style::TrainingDiverged& e) {
-    return QString::fromStdString(e.what());
-  } catch (const std::bad_alloc&) {
-    return QCoreApplication::translate("JobRunner", "Not enough memory.");
-  } catch (const std::invalid_argument& e) {
-    return QString::fromStdString(e.what());
-  } catch (const std::exception& e) {
-    return QCoreApplication::translate("JobRunner", "Internal error: %1").arg(QString::fromStdString(e.what()));
-  } catch (...) {
-    return QCoreApplication::translate("JobRunner", "Internal error.");
-  }
+void JobRunner::Context::post(std::function<void()> on_gui) const {
+  JobRunner* runner = runner_;
+  const quint64 id = id_;
+  QMetaObject::invokeMethod(runner, [runner, id, on_gui = std::move(on_gui)] {
+    if (id == runner->job_id_ && runner->busy_) on_gui();
+  }, Qt::QueuedConnection);
+}
+
+void JobRunner::Context::postThrottled(std::function<void()> on_gui, bool always) const {
+  const auto now = std::chrono::steady_clock::now();
+  if (!always && std::chrono::duration<double>(now - *last_post_).count() < interval_) return;
+  *last_post_ = now;
+  post(std::move(on_gui));
+}
+
+style::TrainingCallbacks JobRunner::Context::trainingCallbacks(
+    std::function<void(const style::TrainingProgress&)> on_progress, std::function<void(const QString&)> on_log) const {
+  style::TrainingCallbacks callbacks;
+  callbacks.cancel = cancelFlag();
+  auto step_sent = std::make_shared<bool>(false);
+  if (on_progress)
+    callbacks.progress = [this, on_progress, step_sent](const style::TrainingProgress& p) {
+      using Phase = style::TrainingProgress::Phase;
+      const bool first_step = p.phase == Phase::Training && !*step_sent;
+      const bool always = p.phase == Phase::Loading || first_step || (p.phase == Phase::EpochEnd && p.epoch == p.epochs);
+      if (p.phase == Phase::Training) *step_sent = true;
+      if (p.phase == Phase::Loading) post([on_progress, p] { on_progress(p); });
+      else postThrottled([on_progress, p] { on_progress(p); }, always);
+    };
+  if (on_log)
+    callbacks.log = [this, on_log](const std::string& text) {
+      const QString line = QString::fromStdString(text);
+      post([on_log, line] { on_log(line); });
+    };
+  return callbacks;
 }
 
 JobRunner::JobRunner(QObject* parent) : QObject(parent) {
@@ -50,52 +67,63 @@ bool JobRunner::start(const QString& title, Body body) {
   const quint64 id = ++job_id_;
   busy_ = true;
   emit busyChanged(true);
-  auto cancel = cancel_;
-  const double interval = progress_interval_;
-  QMetaObject::invokeMethod(context_, [this, id, cancel, title, interval, body = std::move(body)] {
-    style::TrainingCallbacks callbacks;
-    callbacks.cancel = cancel.get();
-    auto last = std::make_shared<std::chrono::steady_clock::time_point>();
-    callbacks.progress = [this, id, last, interval](const style::TrainingProgress& p) {
-      const auto now = std::chrono::steady_clock::now();
-      if (p.phase == style::TrainingProgress::Phase::Training &&
-          std::chrono::duration<double>(now - *last).count() < interval)
-        return;
-      *last = now;
-      QMetaObject::invokeMethod(this, [this, id, p] { if (id == job_id_) emit progress(p); }, Qt::QueuedConnection);
-    };
-    callbacks.log = [this, id](const std::string& text) {
-      const QString line = QString::fromStdString(text);
-      QMetaObject::invokeMethod(this, [this, id, line] { if (id == job_id_) emit logMessage(line); }, Qt::QueuedConnection);
-    };
+  // The context is copied into the worker's closure: the callbacks it makes refer to that copy, which
+  // lives as long as the body runs.
+  auto context = std::make_shared<Context>();
+  context->runner_ = this;
+  context->id_ = id;
+  context->cancel_ = cancel_;
+  context->last_post_ = std::make_shared<std::chrono::steady_clock::time_point>();
+  context->interval_ = progress_interval_;
+  QMetaObject::invokeMethod(context_, [this, id, title, context, body = std::move(body)] {
     Completion completion;
     std::exception_ptr error;
-    try {
-      completion = body(callbacks);
-    } catch (const style::OperationCancelled&) {
-      completion = nullptr;
-    } catch (...) {
-      error = std::current_exception();
-    }
-    const bool cancelled = cancel->load();
-    QMetaObject::invokeMethod(this, [this, id, title, error, cancelled, completion = std::move(completion)] {
-      if (id != job_id_) return;  // replaced or shut down: nothing stale arrives
-      if (error) {
-        emit failed(title, errorText(error));
-        end(id, false);
-      } else if (cancelled || !completion) {
-        end(id, false);
-      } else {
-        completion();
-        end(id, true);
+    if (!context->cancelled()) {
+      try {
+        completion = body(*context);
+      } catch (const OperationCancelled&) {
+        completion = nullptr;
+      } catch (...) {
+        error = std::current_exception();
       }
+    }
+    const bool cancelled = context->cancelled();
+    QMetaObject::invokeMethod(this, [this, id, title, error, cancelled, completion = std::move(completion)] {
+      if (id != job_id_ || !busy_) return;  // abandoned, replaced or shut down: nothing stale arrives
+      if (error) {
+        const FailureText text = failureText(error, title);
+        emit failed(text.title, text.message);
+        end(id, false);
+        return;
+      }
+      if (completion) completion();
+      end(id, completion && !cancelled);
     }, Qt::QueuedConnection);
   }, Qt::QueuedConnection);
   return true;
 }
 
+void JobRunner::restart(const QString& title, Body body) {
+  abandon();
+  start(title, std::move(body));
+}
+
 void JobRunner::cancel() {
   if (busy_ && cancel_) cancel_->store(true);
+}
+
+void JobRunner::cancelAndWait() {
+  cancel();
+  while (busy_) QCoreApplication::processEvents(QEventLoop::ExcludeUserInputEvents | QEventLoop::WaitForMoreEvents, 50);
+}
+
+void JobRunner::abandon() {
+  if (!busy_) return;
+  if (cancel_) cancel_->store(true);
+  ++job_id_;  // everything the old job still posts is stale
+  busy_ = false;
+  emit finished(false);
+  emit busyChanged(false);
 }
 
 void JobRunner::end(quint64 id, bool completed) {

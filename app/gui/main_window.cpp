@@ -27,6 +27,7 @@
 
 #include "common/errors.h"
 #include "contact_tracks.h"
+#include "error_text.h"
 #include "network_panel.h"
 #include "result_panel.h"
 #include "skeleton_viewport.h"
@@ -211,12 +212,8 @@ int MainWindow::openFiles(const QStringList& paths) {
       loaded << clips_.back().path;
       if (content_ < 0) content_ = clipCount() - 1;
       else if (style_ < 0) style_ = clipCount() - 1;
-    } catch (const InputError& error) {
-      failures << QString::fromStdString(error.what());
-    } catch (const std::bad_alloc&) {
-      failures << tr("%1: not enough memory to load this clip").arg(path);
-    } catch (const std::exception& error) {
-      failures << tr("%1: internal error: %2").arg(path, QString::fromStdString(error.what()));
+    } catch (...) {
+      failures << errorText(std::current_exception(), path);
     }
   }
   if (!loaded.isEmpty()) {
@@ -312,8 +309,8 @@ void MainWindow::rebuildFigures() {
   }
   try {
     viewport_->setFigures(std::move(figures));
-  } catch (const std::exception& error) {
-    report(tr("Could not show the clips"), QString::fromStdString(error.what()));
+  } catch (...) {
+    report(tr("Could not show the clips"), errorText(std::current_exception()));
     viewport_->clearFigures();
   }
   // The content clip sets the time base and the loop (the result is as long as the content); the
@@ -335,8 +332,8 @@ bool MainWindow::loadMappingFile(int index, const QString& file) {
   if (index < 0 || index >= clipCount()) return false;
   try {
     remapClip(clips_[static_cast<size_t>(index)], file.toStdString());
-  } catch (const std::exception& error) {
-    report(tr("Could not use the mapping file"), QString::fromStdString(error.what()));
+  } catch (...) {
+    report(tr("Could not use the mapping file"), errorText(std::current_exception(), file));
     return false;
   }
   refreshClipList();

@@ -37,7 +37,8 @@
 #include "loss_curve_widget.h"
 #include "main_window.h"
 #include "network_panel_internal.h"
-#include "training_worker.h"
+#include "error_text.h"
+#include "job_runner.h"
 
 namespace motionstyle {
 namespace {
@@ -60,7 +61,9 @@ QString shippedLossNetworkFile() {
 NetworkPanel::NetworkPanel(MainWindow* window, bool persist_settings)
     : QWidget(window), window_(window), persist_settings_(persist_settings) {
   setObjectName(QStringLiteral("NetworkPanel"));
-  registerWorkerMetaTypes();
+  runner_ = new JobRunner(this);
+  connect(runner_, &JobRunner::failed, this, &NetworkPanel::report);
+  connect(runner_, &JobRunner::finished, this, &NetworkPanel::onJobDone);
   confirmer_ = [this](const QString& title, const QString& text, QMessageBox::StandardButtons buttons) {
     return QMessageBox::question(this, title, text, buttons);
   };
@@ -99,6 +102,7 @@ NetworkPanel::NetworkPanel(MainWindow* window, bool persist_settings)
   run_buttons->addWidget(train_button_);
   run_buttons->addWidget(retrain_button_);
   run_buttons->addWidget(cancel_button_);
+  run_buttons->addWidget(resume_button_);
   bottom_layout->addLayout(run_buttons);
   bottom_layout->addWidget(progress_bar_);
   bottom_layout->addWidget(status_label_);
@@ -127,7 +131,8 @@ NetworkPanel::~NetworkPanel() {
   // otherwise announce a "current network change").
   blockSignals(true);
   network_list_->blockSignals(true);
-  shutdownJob();
+  delete runner_;  // cancels the job and waits for its thread before the panel's members go
+  runner_ = nullptr;
 }
 
 void NetworkPanel::setConfirmer(Confirmer confirmer) { confirmer_ = std::move(confirmer); }
@@ -192,23 +197,20 @@ bool NetworkPanel::loadNetworkFile(const QString& file) {
     addNetwork(std::move(entry));
     status_label_->setText(tr("Loaded %1").arg(absolute));
     return true;
-  } catch (const InputError& error) {
+  } catch (...) {
     // An autoencoder file is not a style network, but it is what the Train tab needs as the loss network.
+    const std::exception_ptr failure = std::current_exception();
     bool is_autoencoder = false;
     try {
       is_autoencoder = nn::networkFileKind(path) == nn::NetworkKind::Autoencoder;
-    } catch (const std::exception&) {
+    } catch (const std::exception&) {  // not a network file at all: the first failure says so
     }
     if (is_autoencoder) {
       setLossNetworkFile(absolute);
       status_label_->setText(tr("%1 is a loss network (autoencoder): set as the loss network for training.").arg(absolute));
       return true;
     }
-    report(tr("Could not load the network"), QString::fromStdString(error.what()));
-  } catch (const std::bad_alloc&) {
-    report(tr("Could not load the network"), tr("%1: not enough memory").arg(absolute));
-  } catch (const std::exception& error) {
-    report(tr("Could not load the network"), tr("%1: internal error: %2").arg(absolute, QString::fromStdString(error.what())));
+    report(tr("Could not load the network"), errorText(failure, absolute));
   }
   return false;
 }
@@ -223,8 +225,8 @@ bool NetworkPanel::saveNetwork(int index, const QString& file, bool overwrite_co
     return false;
   try {
     nn::saveStyleModel(*entry.model, std::filesystem::path(absolute.toStdString()));  // atomic
-  } catch (const std::exception& error) {
-    report(tr("Could not save the network"), QString::fromStdString(error.what()));
+  } catch (...) {
+    report(tr("Could not save the network"), errorText(std::current_exception(), absolute));
     return false;
   }
   entry.file = absolute;
@@ -417,16 +419,17 @@ void NetworkPanel::onClipsChanged() {
   }
 }
 
-bool NetworkPanel::isBusy() const { return thread_ != nullptr || (adapt_tab_ && adapt_tab_->isBusy()); }
+bool NetworkPanel::isBusy() const { return running_ != Running::None || (adapt_tab_ && adapt_tab_->isBusy()); }
 
 void NetworkPanel::updateButtons() {
   const bool busy = isBusy();
   const bool has_current = currentIndex() >= 0;
   train_button_->setEnabled(!busy);
   retrain_button_->setEnabled(!busy && has_current);
-  cancel_button_->setEnabled(busy && training_worker_ != nullptr);
+  cancel_button_->setEnabled(running_ == Running::Training);
+  resume_button_->setEnabled(!busy && canResumeTraining());
   optimise_button_->setEnabled(!busy);
-  optimise_cancel_button_->setEnabled(busy && transfer_worker_ != nullptr);
+  optimise_cancel_button_->setEnabled(running_ == Running::Transfer);
   save_button_->setEnabled(has_current);
   remove_button_->setEnabled(has_current);
 }

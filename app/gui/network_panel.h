@@ -14,7 +14,8 @@
 //     result goes out as stylizedClipReady() (the result panel cleans it up and shows it).
 //   Below the tabs: a progress bar with ETA, a status line and the live loss curve.
 //
-// Jobs run in a TrainingWorker / TransferWorker in a QThread (training_worker.h); one job at a time.
+// Jobs (style::StyleTrainingJob, style::OptimizationTransferJob) run on a JobRunner; one at a time. A
+// cancelled training keeps its last epoch's network and can be resumed from its checkpoint (Resume).
 // While training, each epoch's network stylizes MainWindow's content clip (at most every few seconds)
 // and previewReady() carries it as the blue "output" figure. The selected network is currentNetwork();
 // currentNetworkChanged() announces it to the other panels (the result panel).
@@ -33,11 +34,13 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "display_space.h"
 #include "figure_data.h"
 #include "nn/network_file.h"
+#include "style/style_training_job.h"
 #include "style/stylizer.h"
 #include "style/training.h"
 
@@ -50,7 +53,6 @@ class QPushButton;
 class QSpinBox;
 class QTabWidget;
 class QTemporaryDir;
-class QThread;
 class QTreeWidget;
 
 namespace motionstyle {
@@ -58,9 +60,7 @@ namespace motionstyle {
 class AdaptTab;
 class LossCurveWidget;
 class MainWindow;
-class TrainingWorker;
-class TransferWorker;
-struct TrainingOutcome;
+class JobRunner;
 
 class NetworkPanel : public QWidget {
   Q_OBJECT
@@ -120,6 +120,10 @@ class NetworkPanel : public QWidget {
   // Starts a run (retrain: warm start from the selected network, its shape and loss network). Returns
   // false and reports why when it cannot start (busy, no data, no style clip, no loss network).
   bool startTraining(bool retrain);
+  // Continues the last cancelled run from its checkpoint (as the CLI's --resume): the same data,
+  // settings and name, up to its epoch count. false (and why) when there is none.
+  bool resumeTraining();
+  bool canResumeTraining() const;
   // The optimisation method on MainWindow's content and style clips (stage-1 iterations; the
   // constraint stage gets 100 / 250 of them).
   bool startTransfer(int iterations);
@@ -185,10 +189,9 @@ class NetworkPanel : public QWidget {
   void rememberClipFolder(const QString& path);
 
   // Jobs (network_panel_jobs.cpp).
-  void startThread(QObject* worker);
-  void shutdownJob();
+  bool runTraining(style::StyleTrainingJob job, const QString& status);
   void onTrainingProgress(const style::TrainingProgress& progress);
-  void onTrainingFinished(const TrainingOutcome& outcome);
+  void onTrainingFinished(const style::StyleTrainingJob::Result& outcome);
   void onPreview(const std::shared_ptr<const style::StylizedClip>& clip);
   void onJobDone();
   void capturePreviewTarget();
@@ -201,12 +204,13 @@ class NetworkPanel : public QWidget {
   FolderChooser folder_chooser_;
   std::vector<NetworkEntry> networks_;
 
-  // The running job (null when idle).
-  QThread* thread_ = nullptr;
-  TrainingWorker* training_worker_ = nullptr;
-  TransferWorker* transfer_worker_ = nullptr;
-  bool training_retrain_ = false;
+  enum class Running { None, Training, Transfer };
+  JobRunner* runner_ = nullptr;
+  Running running_ = Running::None;
   QString training_name_;
+  // The last cancelled run (its config and name), resumable from its checkpoint.
+  std::optional<style::StyleTrainingJob> resumable_;
+  QString resumable_name_;
   std::unique_ptr<QTemporaryDir> scratch_;
   QString last_checkpoint_;
 
@@ -244,6 +248,7 @@ class NetworkPanel : public QWidget {
   QPushButton* train_button_ = nullptr;
   QPushButton* retrain_button_ = nullptr;
   QPushButton* cancel_button_ = nullptr;
+  QPushButton* resume_button_ = nullptr;
   QSpinBox* iterations_spin_ = nullptr;
   QDoubleSpinBox* transfer_style_weight_ = nullptr;  // the optimisation method's style weight (s)
   QPushButton* optimise_button_ = nullptr;

@@ -1,5 +1,5 @@
-// NetworkPanel's jobs: training (new / retrain) and the optimisation method in a worker thread, their
-// progress, results and live preview, and the shutdown rules (cancel, quit, wait).
+// NetworkPanel's jobs: training (new / retrain / resume) and the optimisation method on the panel's
+// JobRunner, their progress, results and live preview, and the closing rules.
 #include "network_panel.h"
 
 #include <QCoreApplication>
@@ -11,7 +11,6 @@
 #include <QLabel>
 #include <QProgressBar>
 #include <QTemporaryDir>
-#include <QThread>
 
 #include <cmath>
 #include <exception>
@@ -20,8 +19,10 @@
 #include "features/feature_layout.h"
 #include "loss_curve_widget.h"
 #include "main_window.h"
+#include "error_text.h"
+#include "job_runner.h"
+#include "style/optimization_transfer_job.h"
 #include "timeline_widget.h"
-#include "training_worker.h"
 
 namespace motionstyle {
 namespace {
@@ -97,7 +98,7 @@ bool NetworkPanel::startTraining(bool retrain) {
     return false;
   }
   const TrainingForm form = trainingForm();
-  TrainingJob job;
+  style::StyleTrainingJob job;
   style::StyleTrainingConfig& config = job.config;
   for (const QString& file : window_->trainingClipPaths()) config.content.emplace_back(file.toStdString());
   for (const QString& folder : trainingFolders()) config.content.emplace_back(folder.toStdString());
@@ -162,26 +163,61 @@ bool NetworkPanel::startTraining(bool retrain) {
   if (window_->contentClip() >= 0) job.preview_content = window_->clip(window_->contentClip()).path.toStdString();
   capturePreviewTarget();
 
-  auto* worker = new TrainingWorker(std::move(job));
-  connect(worker, &TrainingWorker::progress, this, &NetworkPanel::onTrainingProgress, Qt::QueuedConnection);
-  connect(worker, &TrainingWorker::logMessage, this, [this](const QString& text) { status_label_->setText(text); },
-          Qt::QueuedConnection);
-  connect(worker, &TrainingWorker::previewReady, this,
-          [this](const std::shared_ptr<const style::StylizedClip>& clip, int) { onPreview(clip); }, Qt::QueuedConnection);
-  connect(worker, &TrainingWorker::finished, this, &NetworkPanel::onTrainingFinished, Qt::QueuedConnection);
-  connect(worker, &TrainingWorker::failed, this, &NetworkPanel::report, Qt::QueuedConnection);
-  connect(worker, &TrainingWorker::done, this, &NetworkPanel::onJobDone, Qt::QueuedConnection);
-  training_worker_ = worker;
-  training_retrain_ = retrain;
   // Named after the style and the start time, so that runs from one style clip tell apart at a glance;
   // no character a file name would refuse (it is the suggested file name when saving).
   training_name_ = tr("%1 %2").arg(base_name, QDateTime::currentDateTime().toString(QStringLiteral("yyyy-MM-dd HHmm")));
+  return runTraining(std::move(job), retrain ? tr("Retraining from %1...").arg(base_name) : tr("Loading the training clips..."));
+}
+
+bool NetworkPanel::canResumeTraining() const {
+  std::error_code ignored;
+  return resumable_ && std::filesystem::exists(resumable_->config.settings.checkpointPath(), ignored);
+}
+
+bool NetworkPanel::resumeTraining() {
+  if (isBusy()) {
+    report(tr("A job is running"), tr("Cancel the running job before starting another."));
+    return false;
+  }
+  if (!canResumeTraining()) {
+    report(tr("Nothing to resume"), tr("Only a cancelled training that completed an epoch can be resumed."));
+    return false;
+  }
+  style::StyleTrainingJob job = *resumable_;
+  job.config.settings.resume = true;  // from the checkpoint: the warm start is already in it
+  job.config.settings.init.clear();
+  job.config.init_model.reset();
+  training_name_ = resumable_name_;
+  if (window_->contentClip() >= 0) job.preview_content = window_->clip(window_->contentClip()).path.toStdString();
+  capturePreviewTarget();
+  return runTraining(std::move(job), tr("Resuming %1 from its checkpoint...").arg(training_name_));
+}
+
+bool NetworkPanel::runTraining(style::StyleTrainingJob job, const QString& status) {
+  resumable_.reset();
+  const style::StyleTrainingJob kept = job;  // resumable if cancelled
+  const bool started = runner_->start(tr("Could not train the network"), [this, job = std::move(job)](
+                                                                          const JobRunner::Context& context) {
+    const style::TrainingCallbacks callbacks = context.trainingCallbacks(
+        [this](const style::TrainingProgress& p) { onTrainingProgress(p); },
+        [this](const QString& line) { status_label_->setText(line); });
+    const auto preview = [this, &context](std::shared_ptr<const style::StylizedClip> clip, int) {
+      context.post([this, clip] { onPreview(clip); });
+    };
+    auto result = std::make_shared<const style::StyleTrainingJob::Result>(job.run(callbacks, preview));
+    return JobRunner::Completion([this, result] { onTrainingFinished(*result); });
+  });
+  if (!started) return false;
+  running_ = Running::Training;
+  resumable_ = kept;
+  resumable_->preview_content.clear();
+  resumable_name_ = training_name_;
   loss_curve_->clear();
   emit previewCleared();
   progress_bar_->setRange(0, 0);
   progress_bar_->setFormat(tr("Loading clips..."));
-  status_label_->setText(retrain ? tr("Retraining from %1...").arg(base_name) : tr("Loading the training clips..."));
-  startThread(worker);
+  status_label_->setText(status);
+  updateButtons();
   // Show the panel (it may be a tab behind the result panel): the progress and curves are here.
   for (QWidget* ancestor = parentWidget(); ancestor != nullptr; ancestor = ancestor->parentWidget()) {
     if (ancestor->inherits("QDockWidget")) {
@@ -206,22 +242,22 @@ bool NetworkPanel::startTransfer(int iterations) {
                                               "the Style role."));
     return false;
   }
-  TransferJob job;
+  style::OptimizationTransferJob job;
   // The loss network: the file on the Train tab, else the one embedded in the selected style network.
   const QString loss_file = lossNetworkFile();
   try {
     if (!loss_file.isEmpty()) {
-      job.autoencoder = style::loadCompatibleAutoencoder(loss_file.toStdString());
+      job.loss_network = style::loadCompatibleAutoencoder(loss_file.toStdString());
     } else if (const auto model = currentNetwork()) {
-      job.autoencoder.network = model->loss_network;
-      job.autoencoder.normalisation = model->normalisation;
-      job.autoencoder.metadata.representation = model->metadata.representation;
+      job.loss_network.network = model->loss_network;
+      job.loss_network.normalisation = model->normalisation;
+      job.loss_network.metadata.representation = model->metadata.representation;
     } else {
       report(tr("No loss network"), tr("Choose the loss network (an autoencoder .net file) on the Train tab."));
       return false;
     }
-  } catch (const std::exception& error) {
-    report(tr("Could not load the loss network"), QString::fromStdString(error.what()));
+  } catch (...) {
+    report(tr("Could not load the loss network"), errorText(std::current_exception(), loss_file));
     return false;
   }
   job.content = window_->clip(content).path.toStdString();
@@ -232,8 +268,8 @@ bool NetworkPanel::startTransfer(int iterations) {
   const QString label = tr("optimised towards %1").arg(window_->clip(style).name);
   const int total = job.options.iterations + job.options.constraint_iterations;
 
-  auto* worker = new TransferWorker(std::move(job));
-  connect(worker, &TransferWorker::progress, this, [this, iterations, total](const style::OptimizationProgress& p) {
+  // The progress (throttled) and the result reach the GUI thread through the runner's context.
+  const auto show_progress = [this, iterations, total](const style::OptimizationProgress& p) {
     const int done = (p.stage == "style" ? 0 : iterations) + p.iteration;
     progress_bar_->setRange(0, total);
     progress_bar_->setValue(done);
@@ -246,55 +282,39 @@ bool NetworkPanel::startTransfer(int iterations) {
     if (p.stage != "style")
       for (const auto& [term, value] : {std::pair{"foot", p.foot}, std::pair{"bone", p.bone}, std::pair{"trajectory", p.trajectory}})
         loss_curve_->addPoint(QString::fromLatin1(term), done, value);
-  }, Qt::QueuedConnection);
-  connect(worker, &TransferWorker::finished, this,
-          [this, label](const std::shared_ptr<const style::StylizedClip>& clip, bool cancelled, double seconds) {
-            status_label_->setText(cancelled ? tr("Optimisation cancelled") : tr("Optimised in %1").arg(formatDuration(seconds)));
-            if (!cancelled && clip) emit stylizedClipReady(*clip, label);
-          }, Qt::QueuedConnection);
-  connect(worker, &TransferWorker::failed, this, &NetworkPanel::report, Qt::QueuedConnection);
-  connect(worker, &TransferWorker::done, this, &NetworkPanel::onJobDone, Qt::QueuedConnection);
-  transfer_worker_ = worker;
+  };
+  const bool started = runner_->start(tr("Could not run the optimisation method"),
+                                      [this, job = std::move(job), show_progress, label](const JobRunner::Context& context) {
+    style::OptimizationCallbacks callbacks;
+    callbacks.cancel = context.cancelFlag();
+    callbacks.progress = [&context, show_progress](const style::OptimizationProgress& p) {
+      context.postThrottled([show_progress, p] { show_progress(p); }, p.iteration == 1 || p.iteration == p.iterations);
+    };
+    auto result = std::make_shared<const style::OptimizationTransferJob::Result>(job.run(callbacks));
+    return JobRunner::Completion([this, result, label] {
+      status_label_->setText(result->cancelled ? tr("Optimisation cancelled")
+                                               : tr("Optimised in %1").arg(formatDuration(result->seconds)));
+      if (result->clip) emit stylizedClipReady(*result->clip, label);
+    });
+  });
+  if (!started) return false;
+  running_ = Running::Transfer;
   loss_curve_->clear();
   status_label_->setText(tr("Optimising %1 towards %2...").arg(window_->clip(content).name, window_->clip(style).name));
-  startThread(worker);
+  updateButtons();
   return true;
 }
 
-void NetworkPanel::startThread(QObject* worker) {
-  thread_ = new QThread(this);
-  thread_->setObjectName(QStringLiteral("MotionStyleNetworkJob"));
-  worker->moveToThread(thread_);
-  // The worker lives in the job thread: it is deleted there, as the thread finishes.
-  connect(thread_, &QThread::finished, worker, &QObject::deleteLater);
-  thread_->start();
-  QMetaObject::invokeMethod(worker, "run", Qt::QueuedConnection);
-  updateButtons();
-}
-
 void NetworkPanel::cancelJob() {
-  if (training_worker_) training_worker_->requestCancel();
-  if (transfer_worker_) transfer_worker_->requestCancel();
-  if (isBusy()) {
-    progress_bar_->setFormat(tr("Cancelling..."));
-    status_label_->setText(tr("Cancelling: the last completed epoch is kept."));
-  }
-}
-
-void NetworkPanel::shutdownJob() {
-  if (!thread_) return;
-  if (training_worker_) training_worker_->requestCancel();  // no-ops when the run already ended
-  if (transfer_worker_) transfer_worker_->requestCancel();
-  thread_->quit();  // leaves the thread's event loop as soon as run() returns
-  thread_->wait();
-  delete thread_;   // finished: its deferred deletes (the worker) have run
-  thread_ = nullptr;
-  training_worker_ = nullptr;
-  transfer_worker_ = nullptr;
+  if (running_ == Running::None) return;
+  runner_->cancel();
+  progress_bar_->setFormat(tr("Cancelling..."));
+  status_label_->setText(running_ == Running::Training ? tr("Cancelling: the last completed epoch is kept.")
+                                                       : tr("Cancelling..."));
 }
 
 void NetworkPanel::onJobDone() {
-  shutdownJob();
+  running_ = Running::None;
   if (progress_bar_->maximum() == 0) progress_bar_->setRange(0, 1000);
   progress_bar_->setFormat(tr("Idle"));
   updateButtons();
@@ -302,14 +322,13 @@ void NetworkPanel::onJobDone() {
 }
 
 void NetworkPanel::onTrainingProgress(const style::TrainingProgress& p) {
-  if (!training_worker_) return;  // a late signal after a shutdown
   emit trainingProgress(p);
   if (p.phase == style::TrainingProgress::Phase::Loading) {
     progress_bar_->setRange(0, 0);
     progress_bar_->setFormat(QString::fromStdString(p.message));
     return;
   }
-  if (training_worker_->cancelRequested()) return;
+  if (runner_->isCancelling()) return;
   const double steps = std::max(1, p.steps_per_epoch);
   const double position = (p.epoch - 1) + std::min(1.0, p.step / steps);
   progress_bar_->setRange(0, 1000);
@@ -323,21 +342,23 @@ void NetworkPanel::onTrainingProgress(const style::TrainingProgress& p) {
   }
 }
 
-void NetworkPanel::onTrainingFinished(const TrainingOutcome& outcome) {
+void NetworkPanel::onTrainingFinished(const style::StyleTrainingJob::Result& outcome) {
+  const bool cancelled = outcome.status == style::TrainingStatus::Cancelled;
+  if (!cancelled) resumable_.reset();
   if (outcome.model) {
     auto model = std::make_shared<nn::StyleModel>(*outcome.model);
     model->metadata.properties.emplace_back("created", QDateTime::currentDateTime().toString(Qt::ISODate).toStdString());
     NetworkEntry entry;
     entry.model = std::move(model);
-    entry.name = outcome.cancelled ? tr("%1 (epoch %2)").arg(training_name_).arg(outcome.epochs_completed) : training_name_;
+    entry.name = cancelled ? tr("%1 (epoch %2)").arg(training_name_).arg(outcome.epochs_completed) : training_name_;
     addNetwork(std::move(entry));
   }
-  if (!outcome.cancelled) {
+  if (!cancelled) {
     progress_bar_->setValue(progress_bar_->maximum());
     status_label_->setText(tr("Trained %n epoch(s) in %1. Not saved yet: Save As... on the Networks tab.", nullptr,
                               outcome.epochs_completed).arg(formatDuration(outcome.seconds)));
   } else if (outcome.model) {
-    status_label_->setText(tr("Cancelled. Kept the network of epoch %1 (checkpoint %2); not saved yet.")
+    status_label_->setText(tr("Cancelled. Kept the network of epoch %1 (checkpoint %2); not saved yet. Resume continues it.")
                                .arg(outcome.epochs_completed).arg(QString::fromStdString(outcome.checkpoint.string())));
   } else {
     status_label_->setText(tr("Cancelled before the first epoch ended: no network to keep."));
@@ -352,15 +373,14 @@ bool NetworkPanel::prepareToClose() {
       return false;
     adapt_tab_->cancel();
   }
-  if (thread_ != nullptr) {
-    const QString what = training_worker_ ? tr("A training run is in progress. Stop it and close?\n\nThe network of the last "
+  if (running_ != Running::None) {
+    const QString what = running_ == Running::Training ? tr("A training run is in progress. Stop it and close?\n\nThe network of the last "
                                                "completed epoch is kept; no network file is left half-written.")
                                           : tr("The optimisation method is running. Stop it and close?");
     if (ask(tr("Stop and close?"), what, QMessageBox::Yes | QMessageBox::No) != QMessageBox::Yes) return false;
-    shutdownJob();
-    // Deliver what the worker sent before it stopped (the cancelled run's network, then done()), so the
+    // Wait for the job to stop and hand over what it kept (the cancelled run's network), so that the
     // network can be offered for saving below.
-    QCoreApplication::sendPostedEvents(this, QEvent::MetaCall);
+    runner_->cancelAndWait();
   }
   // One question for all unsaved networks: save them all into one folder, or discard them all.
   std::vector<int> unsaved;

@@ -22,12 +22,10 @@
 #include <QSplitter>
 #include <QTabWidget>
 #include <QTemporaryDir>
-#include <QThread>
 #include <QTreeWidget>
 #include <QVBoxLayout>
 
 #include <algorithm>
-
 #include <exception>
 
 #include "common/errors.h"
@@ -36,7 +34,7 @@
 #include "loss_curve_widget.h"
 #include "main_window.h"
 #include "network_panel_internal.h"
-#include "training_worker.h"
+#include "style/optimization_transfer.h"
 
 namespace motionstyle {
 namespace network_panel_detail {
@@ -239,6 +237,10 @@ QWidget* NetworkPanel::createTrainTab() {
   connect(train_button_, &QPushButton::clicked, this, [this] { startTraining(false); });
   connect(retrain_button_, &QPushButton::clicked, this, [this] { startTraining(true); });
   connect(cancel_button_, &QPushButton::clicked, this, &NetworkPanel::cancelJob);
+  resume_button_ = new QPushButton(tr("Res&ume"), tab);
+  resume_button_->setObjectName(QStringLiteral("ResumeButton"));
+  resume_button_->setToolTip(tr("Continue the cancelled training from its last completed epoch"));
+  connect(resume_button_, &QPushButton::clicked, this, [this] { resumeTraining(); });
   auto* layout = new QVBoxLayout(tab);
   layout->addWidget(data_box);
   layout->addWidget(style_box);

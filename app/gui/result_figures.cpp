@@ -16,7 +16,7 @@ const JointMapping& mappingOf(const LoadedClip& content) {
 
 }  // namespace
 
-FigureData cleanedOutputFigure(const CleanupResult& result, const LoadedClip& content, const QString& name,
+FigureData cleanedOutputFigure(const style::StylizeCleanupResult& result, const LoadedClip& content, const QString& name,
                                double display_fps) {
   const JointMapping& mapping = mappingOf(content);
   const Motion& cleaned = result.cleaned;  // at the content's rate
@@ -31,7 +31,7 @@ FigureData cleanedOutputFigure(const CleanupResult& result, const LoadedClip& co
   return keepBodySubtree(figure, mapping[CanonicalJoint::Hips]);
 }
 
-FigureData rawOutputFigure(const CleanupResult& result, const LoadedClip& content, const QString& name,
+FigureData rawOutputFigure(const style::StylizeCleanupResult& result, const LoadedClip& content, const QString& name,
                            double display_fps) {
   mappingOf(content);
   const style::StylizedClip& raw = result.stylized;  // canonical joints, the content's file space

@@ -8,16 +8,16 @@
 
 #include <QString>
 
-#include "cleanup_worker.h"
 #include "clip_loader.h"
 #include "figure_data.h"
+#include "style/stylize_cleanup_job.h"
 
 namespace motionstyle {
 
 // content must be mapped (it was stylized). Throws std::invalid_argument otherwise.
-FigureData cleanedOutputFigure(const CleanupResult& result, const LoadedClip& content, const QString& name,
+FigureData cleanedOutputFigure(const style::StylizeCleanupResult& result, const LoadedClip& content, const QString& name,
                                double display_fps);
-FigureData rawOutputFigure(const CleanupResult& result, const LoadedClip& content, const QString& name,
+FigureData rawOutputFigure(const style::StylizeCleanupResult& result, const LoadedClip& content, const QString& name,
                            double display_fps);
 
 }  // namespace motionstyle

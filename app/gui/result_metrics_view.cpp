@@ -6,7 +6,7 @@
 #include <QTableWidget>
 #include <QVBoxLayout>
 
-#include "cleanup_worker.h"
+#include "style/stylize_cleanup_job.h"
 
 namespace motionstyle {
 namespace {
@@ -42,7 +42,7 @@ ResultMetricsView::ResultMetricsView(QWidget* parent) : QWidget(parent) {
   showResult(nullptr);
 }
 
-void ResultMetricsView::showResult(const CleanupResult* result) {
+void ResultMetricsView::showResult(const style::StylizeCleanupResult* result) {
   const auto put = [this](int row, int column, const QString& text) {
     auto* item = new QTableWidgetItem(text);
     item->setTextAlignment(Qt::AlignRight | Qt::AlignVCenter);

@@ -9,8 +9,9 @@ class QLabel;
 class QTableWidget;
 
 namespace motionstyle {
-
-struct CleanupResult;
+namespace style {
+struct StylizeCleanupResult;
+}
 
 class ResultMetricsView : public QWidget {
   Q_OBJECT
@@ -21,7 +22,7 @@ class ResultMetricsView : public QWidget {
 
   explicit ResultMetricsView(QWidget* parent = nullptr);
 
-  void showResult(const CleanupResult* result);  // nullptr: no result
+  void showResult(const style::StylizeCleanupResult* result);  // nullptr: no result
   QTableWidget* table() const { return table_; }
 
  private:

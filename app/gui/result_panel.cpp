@@ -9,6 +9,7 @@
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QProgressBar>
+#include <QScopedValueRollback>
 #include <QPushButton>
 #include <QSlider>
 #include <QVBoxLayout>
@@ -21,6 +22,7 @@
 #include "common/output_paths.h"
 #include "common/resource_paths.h"
 #include "display_space.h"
+#include "error_text.h"
 #include "familiarity_label.h"
 #include "result_figures.h"
 #include "result_metrics_view.h"
@@ -34,10 +36,8 @@ constexpr int kStrengthSteps = 100;
 
 }  // namespace
 
-ResultPanel::ResultPanel(QWidget* parent) : QWidget(parent), cancel_(std::make_shared<std::atomic<bool>>(false)) {
+ResultPanel::ResultPanel(QWidget* parent) : QWidget(parent) {
   setObjectName(QStringLiteral("ResultPanel"));
-  qRegisterMetaType<std::shared_ptr<const CleanupJob>>();
-  qRegisterMetaType<std::shared_ptr<const CleanupResult>>();
 
   network_choice_ = new QComboBox(this);
   network_choice_->setObjectName(QStringLiteral("NetworkChoice"));
@@ -120,29 +120,24 @@ ResultPanel::ResultPanel(QWidget* parent) : QWidget(parent), cancel_(std::make_s
   layout->addWidget(export_button_);
   layout->addStretch(1);
 
-  auto* worker = new CleanupWorker(cancel_);
-  worker->moveToThread(&thread_);
-  connect(&thread_, &QThread::finished, worker, &QObject::deleteLater);
-  connect(this, &ResultPanel::jobRequested, worker, &CleanupWorker::run);
-  connect(worker, &CleanupWorker::progress, this, [this](const QString& step, quint64 id) {
-    if (id != job_id_ || !busy_) return;
-    status_label_->setText(resultIsStale() ? tr("Out of date: %1. Updating: %2").arg(stale_reason_, step) : step);
+  runner_ = new JobRunner(this);
+  connect(runner_, &JobRunner::failed, this, [this](const QString& title, const QString& message) {
+    setBusy(false, tr("Failed."));
+    report(title, message);
+    emit jobEnded(false);
   });
-  connect(worker, &CleanupWorker::finished, this, &ResultPanel::onFinished);
-  connect(worker, &CleanupWorker::failed, this, &ResultPanel::onFailed);
-  connect(worker, &CleanupWorker::cancelled, this, &ResultPanel::onCancelled);
-  thread_.setObjectName(QStringLiteral("CleanupThread"));
-  thread_.start();
+  connect(runner_, &JobRunner::finished, this, [this](bool completed) {
+    if (!completed && busy_ && !abandoning_) {  // a job that ended without a result (not one we dropped)
+      setBusy(false, tr("Cancelled."));
+      emit jobEnded(false);
+    }
+  });
 
   refreshMetrics();
   refreshControls();
 }
 
-ResultPanel::~ResultPanel() {
-  cancel_->store(true);
-  thread_.quit();
-  thread_.wait();
-}
+ResultPanel::~ResultPanel() = default;
 
 void ResultPanel::report(const QString& title, const QString& message) {
   if (reporter_) reporter_(title, message);
@@ -161,8 +156,8 @@ void ResultPanel::useNetwork(std::shared_ptr<const nn::StyleModel> model, const 
     try {
       stylizer_ = std::make_shared<const style::Stylizer>(*model, (file.isEmpty() ? name : file).toStdString());
       network_name_ = name.isEmpty() ? tr("style network") : name;
-    } catch (const std::exception& error) {
-      report(tr("Could not use the style network"), QString::fromStdString(error.what()));
+    } catch (...) {
+      report(tr("Could not use the style network"), errorText(std::current_exception(), file));
     }
   }
   if (hasNetwork()) showNetworkInChoice(network_name_, file);  // a listed file keeps its entry's label
@@ -191,12 +186,8 @@ bool ResultPanel::loadNetworkFile(const QString& file) {
     auto model = std::make_shared<const nn::StyleModel>(style::loadCompatibleStyleModel(file.toStdString()));
     useNetwork(std::move(model), QFileInfo(file).completeBaseName(), QFileInfo(file).absoluteFilePath());
     return hasNetwork();
-  } catch (const InputError& error) {
-    report(tr("Could not open the style network"), QString::fromStdString(error.what()));
-  } catch (const std::bad_alloc&) {
-    report(tr("Could not open the style network"), tr("%1: not enough memory").arg(file));
-  } catch (const std::exception& error) {
-    report(tr("Could not open the style network"), tr("%1: internal error: %2").arg(file, QString::fromStdString(error.what())));
+  } catch (...) {
+    report(tr("Could not open the style network"), errorText(std::current_exception(), file));
   }
   return false;
 }
@@ -284,36 +275,44 @@ void ResultPanel::stylize() {
     report(tr("No style network"), tr("Open a style network file (.net) first, or train one."));
     return;
   }
-  auto job = std::make_shared<CleanupJob>();
+  style::StylizeCleanupJob job;
   job_network_name_ = network_name_;
-  job->content = content_->motion;
-  job->mapping = *content_->mapping;
-  job->stylizer = stylizer_;
-  job->strength = strength();
-  job->path = pathMode();
-  job->stylized = given_stylized_;
-  job->contact_overrides = overrides_;
+  job.content = content_->motion;
+  job.mapping = *content_->mapping;
+  job.stylizer = stylizer_;
+  job.strength = strength();
+  job.path = pathMode();
+  job.stylized = given_stylized_;
+  job.contact_overrides = overrides_;
   startJob(std::move(job));
 }
 
-void ResultPanel::startJob(std::shared_ptr<CleanupJob> job) {
-  cancel_->store(false);
-  ++job_id_;
-  setBusy(true, tr("Working..."));
-  emit jobRequested(std::move(job), job_id_);
+void ResultPanel::startJob(style::StylizeCleanupJob job) {
+  const QString step = job.stylized ? tr("Cleaning up...") : tr("Stylizing and cleaning up...");
+  // A job for older inputs may still be running: it is dropped (its answer never arrives) and this one
+  // runs as soon as the worker is free.
+  {
+    const QScopedValueRollback dropping(abandoning_, true);
+    runner_->restart(tr("Could not stylize the clip"), [this, job = std::move(job)](const JobRunner::Context& context) {
+      auto result = std::make_shared<const style::StylizeCleanupResult>(job.run(context.cancelFlag()));
+      return [this, result] { onFinished(result); };
+    });
+  }
+  setBusy(true, resultIsStale() ? tr("Out of date: %1. Updating: %2").arg(stale_reason_, step) : step);
 }
 
 void ResultPanel::cancel() {
   if (!busy_) return;
-  // The worker stops at its next check; its late answer carries a stale id and is ignored.
-  cancel_->store(true);
-  ++job_id_;
+  // The job stops at its next check; anything it still sends is dropped.
+  {
+    const QScopedValueRollback dropping(abandoning_, true);
+    runner_->abandon();
+  }
   setBusy(false, tr("Cancelled."));
   emit jobEnded(false);
 }
 
-void ResultPanel::onFinished(std::shared_ptr<const CleanupResult> result, quint64 job_id) {
-  if (job_id != job_id_ || !busy_) return;
+void ResultPanel::onFinished(std::shared_ptr<const style::StylizeCleanupResult> result) {
   result_ = std::move(result);
   result_network_name_ = job_network_name_;
   stale_reason_.clear();
@@ -326,19 +325,6 @@ void ResultPanel::onFinished(std::shared_ptr<const CleanupResult> result, quint6
   emit statusMessage(status);
   emit resultChanged();
   emit jobEnded(true);
-}
-
-void ResultPanel::onFailed(const QString& message, quint64 job_id) {
-  if (job_id != job_id_ || !busy_) return;
-  setBusy(false, tr("Failed."));
-  report(tr("Could not stylize the clip"), message);
-  emit jobEnded(false);
-}
-
-void ResultPanel::onCancelled(quint64 job_id) {
-  if (job_id != job_id_ || !busy_) return;
-  setBusy(false, tr("Cancelled."));
-  emit jobEnded(false);
 }
 
 void ResultPanel::setBusy(bool busy, const QString& status) {
@@ -443,8 +429,8 @@ bool ResultPanel::exportResult(const QString& file, bool overwrite) {
   try {  // the content clip itself is never overwritten, even when the user confirmed the file dialog
     if (content_) checkOutputPaths({{content_->path.toStdString(), "the content clip"}}, {{file.toStdString(), "the export"}});
     writeBvh(result_->cleaned, file.toStdString());
-  } catch (const std::exception& error) {
-    report(title, QString::fromStdString(error.what()));
+  } catch (...) {
+    report(title, errorText(std::current_exception(), file));
     return false;
   }
   last_export_folder_ = QFileInfo(file).absolutePath();

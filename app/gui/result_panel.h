@@ -2,8 +2,8 @@
 // ResultPanel: the "Result" dock. The user's loop is: pick a style (the shipped networks are listed
 // by name; File > Open Network or the Networks panel add others), set the strength, Stylize, look,
 // Export.
-//   - Stylize runs the network on the content clip and the Ceres IK clean-up onto the content's own
-//     skeleton in a worker QThread (cleanup_worker.h): the UI never waits; Cancel drops the job.
+//   - Stylize runs style::StylizeCleanupJob (the network on the content clip and the Ceres IK clean-up
+//     onto the content's own skeleton) on a JobRunner: the UI never waits; Cancel drops the job.
 //   - The metrics table shows foot skate, floor penetration, bone error and residual of the raw
 //     network output (before) and of the cleaned clip (after), in cm and cm/s.
 //   - Keep the content's path (on by default): the output covers the same ground and turns in the same
@@ -16,7 +16,6 @@
 // and the network, and rebuilds its figures and tracks on resultChanged().
 
 #include <QString>
-#include <QThread>
 #include <QWidget>
 
 #include <Eigen/Core>
@@ -27,12 +26,13 @@
 #include <optional>
 #include <vector>
 
-#include "cleanup_worker.h"
 #include "clip_loader.h"
 #include "contact_tracks.h"
 #include "figure_data.h"
+#include "job_runner.h"
 #include "result_metrics_view.h"
 #include "nn/network_file.h"
+#include "style/stylize_cleanup_job.h"
 #include "style/familiarity.h"
 
 class QCheckBox;
@@ -61,7 +61,7 @@ class ResultPanel : public QWidget {
   static constexpr int kCleanedColumn = ResultMetricsView::kCleanedColumn;
 
   explicit ResultPanel(QWidget* parent = nullptr);
-  ~ResultPanel() override;  // cancels the job, stops the worker thread and waits for it
+  ~ResultPanel() override;  // the runner cancels the job and waits for its thread
 
   void setErrorReporter(ErrorReporter reporter) { reporter_ = std::move(reporter); }
 
@@ -95,7 +95,7 @@ class ResultPanel : public QWidget {
   // content clip and a network.
   const std::optional<style::Familiarity>& familiarity() const;
   bool isBusy() const { return busy_; }
-  const CleanupResult* result() const { return result_.get(); }
+  const style::StylizeCleanupResult* result() const { return result_.get(); }
   // The shown result was made from other inputs than the panel's (the style, strength, path or
   // contacts changed since): it is named out of date in the status, the figures' names and Export,
   // and is being replaced when the new inputs can be stylized.
@@ -127,14 +127,10 @@ class ResultPanel : public QWidget {
   void busyChanged(bool busy);
   void jobEnded(bool succeeded);  // after finished, failed or cancelled
   void statusMessage(const QString& message);
-  // Internal: hands a job to the worker thread (queued connection).
-  void jobRequested(std::shared_ptr<const motionstyle::CleanupJob> job, quint64 job_id);
 
  private:
-  void startJob(std::shared_ptr<CleanupJob> job);
-  void onFinished(std::shared_ptr<const CleanupResult> result, quint64 job_id);
-  void onFailed(const QString& message, quint64 job_id);
-  void onCancelled(quint64 job_id);
+  void startJob(style::StylizeCleanupJob job);
+  void onFinished(std::shared_ptr<const style::StylizeCleanupResult> result);
   void setBusy(bool busy, const QString& status);
   void clearResult();
   void refreshMetrics();
@@ -158,16 +154,15 @@ class ResultPanel : public QWidget {
   std::shared_ptr<const LoadedClip> content_;
   Eigen::MatrixXi overrides_;
   std::optional<style::StylizedClip> given_stylized_;
-  std::shared_ptr<const CleanupResult> result_;
+  std::shared_ptr<const style::StylizeCleanupResult> result_;
   QString result_network_name_;  // the network the shown result was made with
   QString job_network_name_;     // the network of the running job
   QString stale_reason_;         // why the shown result is out of date; empty: it is current
   QString last_export_folder_;
 
-  QThread thread_;
-  std::shared_ptr<std::atomic<bool>> cancel_;
-  quint64 job_id_ = 0;
-  bool busy_ = false;
+  JobRunner* runner_ = nullptr;
+  bool busy_ = false;        // a job for the current inputs is on its way
+  bool abandoning_ = false;  // dropping a job on purpose: its finished(false) is not a cancellation
 
   QComboBox* network_choice_ = nullptr;
   QLabel* content_label_ = nullptr;

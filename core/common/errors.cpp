@@ -12,12 +12,12 @@ std::string formatInputError(const std::string& file, int line, const std::strin
 }  // namespace
 
 InputError::InputError(std::string file, int line, std::string detail)
-    : std::runtime_error(formatInputError(file, line, detail)),
+    : Error(formatInputError(file, line, detail)),
       file_(std::move(file)),
       line_(line),
       detail_(std::move(detail)) {}
 
 WriteError::WriteError(std::string file, std::string detail)
-    : std::runtime_error(std::string(file).append(": cannot write: ").append(detail)), file_(std::move(file)) {}
+    : Error(std::string(file).append(": cannot write: ").append(detail)), file_(std::move(file)) {}
 
 }  // namespace motionstyle

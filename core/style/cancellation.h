@@ -7,14 +7,13 @@
 #include <atomic>
 #include <exception>
 
+#include "common/errors.h"
+
 namespace motionstyle::style {
 
-// Thrown by the internal loops when the flag is seen; the public operations catch it and report a
-// cancelled result instead (dataset loading, which has no result to report, lets it through).
-class OperationCancelled : public std::exception {
- public:
-  const char* what() const noexcept override { return "operation cancelled"; }
-};
+// The internal loops throw OperationCancelled (common/errors.h) when the flag is seen; the public
+// operations catch it and report a cancelled result instead (dataset loading, which has no result to
+// report, lets it through).
 
 inline bool cancelRequested(const std::atomic<bool>* cancel) {
   return cancel != nullptr && cancel->load(std::memory_order_relaxed);

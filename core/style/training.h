@@ -36,6 +36,7 @@
 #include <string>
 #include <vector>
 
+#include "common/errors.h"
 #include "nn/adam.h"
 #include "nn/network_file.h"
 #include "style/augmentation.h"
@@ -45,10 +46,6 @@
 
 namespace motionstyle::style {
 
-class TrainingDiverged : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 struct NamedLoss {
   std::string name;  // "mse", "sparsity" (autoencoder); "content", "style", "foot", "bone", "trajectory"

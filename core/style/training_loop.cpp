@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <string>
+#include <system_error>
 
 #include "common/errors.h"
 #include "nn/compute_pool.h"
@@ -78,6 +80,15 @@ void accumulateTerms(std::vector<NamedLoss>& sum, const std::vector<NamedLoss>& 
   for (std::size_t i = 0; i < terms.size() && i < sum.size(); ++i) sum[i].value += fraction * terms[i].value;
 }
 
+// The end of a divergence message: where the last good network is (the checkpoint of the last
+// completed epoch; none before the first).
+std::string keptCheckpoint(const TrainingSettings& settings) {
+  std::error_code ignored;
+  const std::filesystem::path checkpoint = settings.checkpointPath();
+  if (checkpoint.empty() || !std::filesystem::exists(checkpoint, ignored)) return "; no epoch completed, no checkpoint";
+  return "; the last good checkpoint is kept: " + checkpoint.string();
+}
+
 }  // namespace
 
 TrainingStatus runTrainingLoop(const LoopSetup& setup, std::vector<EpochRecord>& history,
@@ -128,7 +139,7 @@ TrainingStatus runTrainingLoop(const LoopSetup& setup, std::vector<EpochRecord>&
       accumulator.finish();
       if (!std::isfinite(losses.total))
         throw TrainingDiverged("training diverged at epoch " + std::to_string(epoch) + ", step " +
-                               std::to_string(step + 1) + ": the loss is not finite (lower the learning rate?)");
+                               std::to_string(step + 1) + ": the loss is not finite (lower the learning rate?)" + keptCheckpoint(settings));
       const long global_step = static_cast<long>(epoch - 1) * steps_per_epoch + step;
       setup.optimiser->setLearningRate(scheduledLearningRate(settings.schedule, settings.learning_rate, global_step,
                                                              static_cast<long>(settings.epochs) * steps_per_epoch));
@@ -136,7 +147,7 @@ TrainingStatus runTrainingLoop(const LoopSetup& setup, std::vector<EpochRecord>&
       if (setup.optimiser->clippedInLastStep() > 0) ++clipped_steps;
       if (!parametersFinite(setup.parameters))
         throw TrainingDiverged("training diverged at epoch " + std::to_string(epoch) + ", step " +
-                               std::to_string(step + 1) + ": the weights are no longer finite (lower the learning rate?)");
+                               std::to_string(step + 1) + ": the weights are no longer finite (lower the learning rate?)" + keptCheckpoint(settings));
       ++steps_done;
       record.total += losses.total / steps_per_epoch;
       accumulateTerms(record.terms, losses.terms, 1.0 / steps_per_epoch);

@@ -243,7 +243,7 @@ class ResultTest : public QObject {
     QCOMPARE(ended.count(), 1);
     QVERIFY2(ended.at(0).at(0).toBool(), reports.empty() ? "" : qPrintable(reports.back().message));
     QVERIFY(reports.empty());
-    const CleanupResult* result = panel->result();
+    const style::StylizeCleanupResult* result = panel->result();
     QVERIFY(result != nullptr);
 
     // Metrics: both columns filled; the cleaned clip's bones are exact, its feet stay put.
@@ -437,7 +437,7 @@ class ResultTest : public QObject {
     QSignalSpy ended(panel, &ResultPanel::jobEnded);
     panel->stylize();
     QVERIFY(waitForJobs(ended));
-    const CleanupResult* first = panel->result();
+    const style::StylizeCleanupResult* first = panel->result();
     QVERIFY(first != nullptr && !panel->resultIsStale());
     QVERIFY(panel->resultFigures(false).front().name.contains(QStringLiteral("tiny_style")));
 

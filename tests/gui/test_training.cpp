@@ -30,7 +30,8 @@
 #include "main_window.h"
 #include "network_panel.h"
 #include "result_panel.h"
-#include "training_worker.h"
+#include "job_runner.h"
+#include "style/style_training_job.h"
 #include "nn/network_file.h"
 #include "style/training.h"
 
@@ -164,9 +165,9 @@ class TrainingTest : public QObject {
   }
 
   void divergenceComesBackAsAnErrorAndKeepsTheCheckpoint() {
-    // The worker on its own thread: a first run leaves a good checkpoint, a run with an absurd learning
+    // The job on the runner's thread: a first run leaves a good checkpoint, a run with an absurd learning
     // rate diverges (the weights overflow) and reports it instead of finishing; the checkpoint is intact.
-    TrainingJob job;
+    style::StyleTrainingJob job;
     job.config.autoencoder = autoencoder_.toStdString();
     job.config.content = {test::fixture(QStringLiteral("cmu_131_01.bvh")).toStdString()};
     job.config.styles = {{std::nullopt, test::fixture(QStringLiteral("zombie.bvh")).toStdString()}};
@@ -174,21 +175,19 @@ class TrainingTest : public QObject {
     job.config.settings.epochs = 1;
     job.config.settings.batch_size = 1;  // several steps per epoch: the overflow shows within the epoch
     job.config.settings.checkpoint = scratchFile(QStringLiteral("diverge.checkpoint")).toStdString();
-    const auto run = [](TrainingJob config, QStringList* failures) {
-      auto* worker = new TrainingWorker(std::move(config));
-      QThread thread;
-      worker->moveToThread(&thread);
-      QObject::connect(&thread, &QThread::finished, worker, &QObject::deleteLater);
-      QSignalSpy done(worker, &TrainingWorker::done);
-      QSignalSpy finished(worker, &TrainingWorker::finished);
-      QObject::connect(worker, &TrainingWorker::failed, worker,
+    job.config.settings.keep_checkpoint = true;
+    const auto run = [](style::StyleTrainingJob config, QStringList* failures) {
+      JobRunner runner;
+      QSignalSpy finished(&runner, &JobRunner::finished);
+      int completions = 0;
+      QObject::connect(&runner, &JobRunner::failed, &runner,
                        [failures](const QString& title, const QString& message) { *failures << title + ": " + message; });
-      thread.start();
-      QMetaObject::invokeMethod(worker, "run", Qt::QueuedConnection);
-      const bool ended = done.wait(kJobTimeoutMs);
-      thread.quit();
-      thread.wait();
-      return ended ? static_cast<int>(finished.count()) : -1;
+      runner.start(QStringLiteral("train"), [config, &completions](const JobRunner::Context& context) {
+        const auto result = config.run(context.trainingCallbacks({}, {}));
+        return JobRunner::Completion([&completions, result] { completions += result.model != nullptr; });
+      });
+      const bool ended = finished.wait(kJobTimeoutMs);
+      return ended ? completions : -1;
     };
     QStringList failures;
     QCOMPARE(run(job, &failures), 1);
@@ -432,6 +431,62 @@ class TrainingTest : public QObject {
     QVERIFY(epochs >= 1);
     QCOMPARE(panel->lossCurve()->pointCount(QStringLiteral("content")), epochs);
     QCOMPARE(panel->lossCurve()->pointCount(QStringLiteral("total")), epochs);
+  }
+
+  void cancelledTrainingResumesFromItsCheckpoint() {
+    // Issue 14: a cancelled training can be resumed in the app, as --resume does in the CLI.
+    auto window = makeWindow();
+    QVERIFY(window);
+    NetworkPanel* panel = window->networkPanel();
+    window->setTrainingClip(0, true);
+    panel->setLossNetworkFile(autoencoder_);
+    setTinyForm(panel, 100000);
+    auto* resume = panel->findChild<QPushButton*>(QStringLiteral("ResumeButton"));
+    auto* cancel = panel->findChild<QPushButton*>(QStringLiteral("CancelButton"));
+    QVERIFY(resume != nullptr && cancel != nullptr);
+    QVERIFY(!resume->isEnabled());  // nothing to resume yet
+    QSignalSpy progress(panel, &NetworkPanel::trainingProgress);
+    QSignalSpy finished(panel, &NetworkPanel::jobFinished);
+    QVERIFY(panel->startTraining(false));
+    QVERIFY(!resume->isEnabled());
+    const auto epochs_closed = [&] {
+      int last = 0;
+      for (const QList<QVariant>& call : progress) {
+        const auto p = call.at(0).value<style::TrainingProgress>();
+        if (p.phase == style::TrainingProgress::Phase::EpochEnd) last = std::max(last, p.epoch);
+      }
+      return last;
+    };
+    QTRY_VERIFY_WITH_TIMEOUT(epochs_closed() >= 2, kJobTimeoutMs);
+    QTest::mouseClick(cancel, Qt::LeftButton);
+    QVERIFY(finished.wait(kJobTimeoutMs));
+    QCOMPARE(panel->networkCount(), 1);
+    const int kept = panel->network(0)->metadata.training.epochs;
+    const QString run_name = panel->currentNetworkName().section(QStringLiteral(" (epoch"), 0, 0);
+    QVERIFY(kept >= 2);
+    QVERIFY(resume->isEnabled());
+
+    // Resume: the run goes on from the epoch after the checkpoint, with the same name.
+    progress.clear();
+    QTest::mouseClick(resume, Qt::LeftButton);
+    QVERIFY(panel->isBusy());
+    QVERIFY(!resume->isEnabled());
+    QTRY_VERIFY_WITH_TIMEOUT(epochs_closed() >= kept + 2, kJobTimeoutMs);
+    int first_epoch = 0;
+    for (const QList<QVariant>& call : progress) {
+      const auto p = call.at(0).value<style::TrainingProgress>();
+      if (p.phase != style::TrainingProgress::Phase::Loading) {
+        first_epoch = p.epoch;
+        break;
+      }
+    }
+    QVERIFY2(first_epoch > kept, qPrintable(QStringLiteral("resumed at epoch %1, kept %2").arg(first_epoch).arg(kept)));
+    QTest::mouseClick(cancel, Qt::LeftButton);
+    QVERIFY(finished.wait(kJobTimeoutMs));
+    QVERIFY2(reports_.empty(), reports_.empty() ? "" : qPrintable(reports_.front().message));
+    QCOMPARE(panel->networkCount(), 2);
+    QVERIFY(panel->network(1)->metadata.training.epochs >= kept + 2);
+    QCOMPARE(panel->currentNetworkName().section(QStringLiteral(" (epoch"), 0, 0), run_name);
   }
 
   void aFolderAsTrainingDatabaseTrainsToCompletion() {

@@ -217,7 +217,7 @@ TEST(TrainAutoencoder, DivergenceStopsWithAnErrorAndKeepsTheLastGoodCheckpoint) 
   const std::string checkpoint = test::readBytes(config.settings.checkpointPath());
   config.settings.learning_rate = 1e35;  // the first step sends weights to ~1e35: the next loss is infinite
   config.settings.output = dir / "diverged.net";
-  EXPECT_THROW(style::trainAutoencoder(config), style::TrainingDiverged);
+  EXPECT_THROW(style::trainAutoencoder(config), TrainingDiverged);
   EXPECT_EQ(test::readBytes(config.settings.checkpointPath()), checkpoint);
   EXPECT_FALSE(std::filesystem::exists(dir / "diverged.net"));
 }

@@ -1,0 +1,43 @@
+#include "style/stylize_cleanup_job.h"
+
+#include <chrono>
+#include <stdexcept>
+
+#include "features/feature_layout.h"
+#include "style/cancellation.h"
+#include "style/stylized_cleanup.h"
+
+namespace motionstyle::style {
+
+void StylizeCleanupJob::validate() const {
+  if (!stylized && !stylizer) throw std::invalid_argument("no style network and no stylized clip to clean up");
+  if (!(strength >= 0.0 && strength <= 1.0)) throw std::invalid_argument("the strength must be in [0, 1]");
+  if (contact_overrides.size() > 0 &&
+      (contact_overrides.rows() != content.frameCount() || contact_overrides.cols() != kContactCount))
+    throw std::invalid_argument("the contact overrides must be content frames x 4");
+}
+
+StylizeCleanupResult StylizeCleanupJob::run(const std::atomic<bool>* cancel) const {
+  validate();
+  const auto start = std::chrono::steady_clock::now();
+  StylizeCleanupResult result;
+  if (stylized) {
+    result.stylized = *stylized;
+  } else {
+    const MotionFeatures features = extractFeatures(content, mapping);
+    throwIfCancelled(cancel);
+    result.stylized = stylizer->stylize(features, strength, path);
+  }
+  throwIfCancelled(cancel);
+  StylizedCleanup cleanup = cleanUpStylizedClip(content, mapping, result.stylized, options, 0.0, contact_overrides);
+  throwIfCancelled(cancel);
+  result.cleaned = std::move(cleanup.motion);
+  result.report = std::move(cleanup.report);
+  result.raw_metrics = std::move(cleanup.raw);
+  result.cleaned_metrics = std::move(cleanup.cleaned);
+  result.contacts = std::move(cleanup.contacts);
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace motionstyle::style

@@ -1,0 +1,57 @@
+#pragma once
+// StylizeCleanupJob: a content clip through a style network (or an already stylized clip, the
+// optimisation method's output) and the IK clean-up onto the content's own skeleton, with the quality
+// metrics before and after: what the app's Result panel and motionstyle-filmstrip show. The chain is
+// cleanUpStylizedClip's (stylized_cleanup.h), the same as motionstyle-cli stylize.
+//
+// The job shape of every long operation (ozz-animation's jobs): plain inputs copied in, validate(),
+// run() with a cancel flag, a typed Result apart from the inputs.
+
+#include <Eigen/Core>
+
+#include <atomic>
+#include <memory>
+#include <optional>
+
+#include "ik/cleanup.h"
+#include "ik/metrics.h"
+#include "mapping/joint_mapping.h"
+#include "motion/motion.h"
+#include "style/path_mode.h"
+#include "style/stylizer.h"
+
+namespace motionstyle::style {
+
+struct StylizeCleanupResult {
+  StylizedClip stylized;         // raw network output: 21 canonical joints, file space, 60 fps
+  Motion cleaned;                // on the content's skeleton, at the content's rate and frame count
+  CleanupReport report;
+  ClipMetrics raw_metrics;       // the raw output, judged by the content's contacts (60 fps)
+  ClipMetrics cleaned_metrics;   // the cleaned clip, judged by the contacts the clean-up locked
+  Eigen::MatrixXi contacts;      // frames x 4 at the stylized rate: the labels the clean-up locked
+  double seconds = 0.0;          // wall clock of the whole job
+};
+
+struct StylizeCleanupJob {
+  Motion content;        // the user's clip at its own rate, file space
+  JointMapping mapping;  // its canonical joints
+  // Either a network (stylizer + strength in [0, 1]) or an already stylized clip for the same content.
+  std::shared_ptr<const Stylizer> stylizer;
+  double strength = 1.0;
+  PathMode path = PathMode::Content;  // whose root path the output follows
+  std::optional<StylizedClip> stylized;
+  // User contact overrides at the CONTENT's rate (frames x 4, -1 auto / 0 off / 1 on); empty: none.
+  Eigen::MatrixXi contact_overrides;
+  CleanupOptions options;
+
+  // std::invalid_argument: neither a network nor a stylized clip, a strength outside [0, 1], overrides
+  // whose shape is not content frames x 4.
+  void validate() const;
+
+  // Validates, stylizes (unless `stylized` is given) and cleans up. Throws InputError (an unmappable or
+  // too short clip), std::invalid_argument (a stylized clip that does not belong to the content) and
+  // OperationCancelled when `cancel` is seen between steps (the IK solve itself runs to its end).
+  StylizeCleanupResult run(const std::atomic<bool>* cancel = nullptr) const;
+};
+
+}  // namespace motionstyle::style

@@ -1,0 +1,130 @@
+// The core jobs the CLI and the app share (style/*_job.h): invalid inputs first (validate() refuses
+// them before any work), then their properties: the Result belongs to the inputs, a set cancel flag
+// stops the job, a cancelled training keeps the network of its last completed epoch.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <stdexcept>
+
+#include "common/errors.h"
+#include "mapping/joint_mapping.h"
+#include "style/optimization_transfer_job.h"
+#include "style/style_training_job.h"
+#include "style/stylize_cleanup_job.h"
+#include "style_test_support.h"
+
+namespace motionstyle {
+namespace {
+
+using test::TempDir;
+
+style::StylizeCleanupJob cleanupJobOnFixture(int frames) {
+  style::StylizeCleanupJob job;
+  job.content = readBvh(test::fixture("cmu_131_01.bvh"));
+  job.content.values.conservativeResize(frames, Eigen::NoChange);
+  job.mapping = mapJoints(job.content.skeleton, "cmu_131_01.bvh");
+  job.stylizer = std::make_shared<const style::Stylizer>(test::tinyStyleModel());
+  return job;
+}
+
+TEST(StylizeCleanupJob, RefusesMissingOrInconsistentInputs) {
+  style::StylizeCleanupJob job = cleanupJobOnFixture(90);
+  job.stylizer.reset();
+  EXPECT_THROW(job.validate(), std::invalid_argument);  // neither a network nor a stylized clip
+  job = cleanupJobOnFixture(90);
+  job.strength = 1.5;
+  EXPECT_THROW(job.run(), std::invalid_argument);
+  job.strength = 1.0;
+  job.contact_overrides = Eigen::MatrixXi::Constant(10, 4, -1);  // not the content's frame count
+  EXPECT_THROW(job.validate(), std::invalid_argument);
+  job.contact_overrides = Eigen::MatrixXi::Constant(90, 4, -1);
+  EXPECT_NO_THROW(job.validate());
+}
+
+TEST(StylizeCleanupJob, TheCleanedClipIsTheContentsRigAndLength) {
+  const style::StylizeCleanupJob job = cleanupJobOnFixture(90);
+  const style::StylizeCleanupResult result = job.run();
+  EXPECT_EQ(result.cleaned.frameCount(), job.content.frameCount());
+  EXPECT_EQ(result.cleaned.skeleton.channelCount(), job.content.skeleton.channelCount());
+  EXPECT_TRUE(result.cleaned.values.allFinite());
+  EXPECT_GT(result.stylized.frameCount(), 0);
+  EXPECT_EQ(result.contacts.cols(), 4);
+  EXPECT_GE(result.seconds, 0.0);
+}
+
+TEST(StylizeCleanupJob, ASetCancelFlagStopsIt) {
+  const style::StylizeCleanupJob job = cleanupJobOnFixture(90);
+  const std::atomic<bool> cancel{true};
+  EXPECT_THROW(job.run(&cancel), OperationCancelled);
+}
+
+TEST(OptimizationTransferJob, RefusesMissingFilesAndBadOptions) {
+  TempDir dir;
+  style::OptimizationTransferJob job;
+  job.loss_network = test::tinyAutoencoderModel();
+  EXPECT_THROW(job.validate(), std::invalid_argument);  // no clips named
+  job.content = test::fixture("cmu_131_01.bvh");
+  job.style = dir / "missing.bvh";
+  EXPECT_THROW(job.run(), InputError);  // names the missing file
+  job.style = test::fixture("zombie.bvh");
+  job.options.iterations = -1;
+  EXPECT_THROW(job.validate(), std::invalid_argument);
+}
+
+TEST(OptimizationTransferJob, CancelledBeforeItStartsGivesNoClip) {
+  style::OptimizationTransferJob job;
+  job.loss_network = test::tinyAutoencoderModel();
+  job.content = test::fixture("cmu_131_01.bvh");
+  job.style = test::fixture("zombie.bvh");
+  const std::atomic<bool> cancel{true};
+  style::OptimizationCallbacks callbacks;
+  callbacks.cancel = &cancel;
+  const auto result = job.run(callbacks);
+  EXPECT_TRUE(result.cancelled);
+  EXPECT_FALSE(result.clip.has_value());
+}
+
+style::StyleTrainingJob tinyTrainingJob(const TempDir& dir, int epochs) {
+  nn::saveAutoencoder(test::tinyAutoencoderModel(), dir / "ae.net");
+  style::StyleTrainingJob job;
+  job.config.settings = test::tinySettings({}, epochs);
+  job.config.settings.checkpoint = dir / "run.checkpoint";
+  job.config.autoencoder = dir / "ae.net";
+  job.config.content_clips = test::fixtureClips();
+  job.config.styles = {{std::nullopt, test::fixture("zombie.bvh")}};
+  job.config.shape = test::tinyTransformerShape();
+  job.config.weights.style = 1.0;
+  job.preview_content = test::fixture("cmu_131_01.bvh");
+  job.preview_interval_seconds = 0.0;
+  return job;
+}
+
+TEST(StyleTrainingJob, RefusesAnInvalidConfig) {
+  TempDir dir;
+  style::StyleTrainingJob job = tinyTrainingJob(dir, 2);
+  job.config.settings.epochs = 0;
+  EXPECT_THROW(job.run(), std::invalid_argument);
+}
+
+TEST(StyleTrainingJob, PreviewsEachEpochAndACancelledRunKeepsItsLastEpoch) {
+  TempDir dir;
+  const style::StyleTrainingJob job = tinyTrainingJob(dir, 5);
+  int previews = 0;
+  const auto preview = [&](std::shared_ptr<const style::StylizedClip> clip, int epoch) {
+    ++previews;
+    EXPECT_EQ(epoch, previews);
+    EXPECT_GT(clip->frameCount(), 0);
+  };
+  const auto result = job.run(test::cancelAtEndOfEpoch(2), preview);
+  EXPECT_EQ(result.status, style::TrainingStatus::Cancelled);
+  EXPECT_EQ(result.epochs_completed, 2);
+  ASSERT_NE(result.model, nullptr);
+  EXPECT_EQ(result.model->metadata.training.epochs, 2);
+  EXPECT_EQ(previews, 2);
+  EXPECT_TRUE(std::filesystem::exists(result.checkpoint));
+  // The kept network is the checkpoint's.
+  EXPECT_EQ(test::weightsOf(result.model->transformer), test::weightsOf(nn::loadStyleModel(result.checkpoint).transformer));
+}
+
+}  // namespace
+}  // namespace motionstyle
