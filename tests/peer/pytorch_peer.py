@@ -3,6 +3,8 @@
 CPU, timed the same way as tests/bench/nn (bench_nn), and printed side by side with bench_nn's figures.
 
 Not a CI step; for people comparing. Needs Debian's python3-torch (1.13) at /usr/bin/python3.
+Its loss terms only stand in for eq. 7-9's cost; the exact definitions, checked against the C++ by a
+unit test, are in dump_reference.py.
 
     /usr/bin/python3 tests/peer/pytorch_peer.py BUILD/tests/bench/nn/bench_nn [--threads 2]
         [--runs N] [--full-training-epochs N]
