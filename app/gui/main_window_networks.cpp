@@ -38,6 +38,7 @@ void MainWindow::createNetworkDock() {
             result_panel_->setStyleNetwork(std::move(model), network_panel_->currentNetworkName());
           });
   connect(network_panel_, &NetworkPanel::stylizedClipReady, result_panel_, &ResultPanel::setStylizedClip);
+  connect(network_panel_, &NetworkPanel::networkRenamed, result_panel_, &ResultPanel::renameNetwork);
   // The familiarity row's "Adapt..." link: the Adapt tab with the content clip and the chosen style
   // checked.
   connect(result_panel_, &ResultPanel::adaptRequested, this, [this] {

@@ -268,6 +268,26 @@ bool NetworkPanel::removeNetwork(int index) {
   return true;
 }
 
+bool NetworkPanel::renameNetwork(int index, const QString& name) {
+  if (index < 0 || index >= networkCount()) return false;
+  NetworkEntry& entry = networks_[static_cast<std::size_t>(index)];
+  const QString wanted = name.simplified();
+  if (wanted == entry.name) return true;
+  const auto taken = std::any_of(networks_.begin(), networks_.end(),
+                                 [&](const NetworkEntry& other) { return &other != &entry && other.name == wanted; });
+  if (wanted.isEmpty() || taken) {
+    refreshNetworkList();  // the cell shows the kept name again
+    report(tr("Name not changed"), wanted.isEmpty() ? tr("A network needs a name.")
+                                                    : tr("Another network is already called \"%1\".").arg(wanted));
+    return false;
+  }
+  const QString old_name = entry.name;
+  entry.name = wanted;
+  refreshNetworkList();
+  emit networkRenamed(old_name, wanted);
+  return true;
+}
+
 void NetworkPanel::refreshNetworkList() {
   const QSignalBlocker blocker(network_list_);
   const int current = currentIndex();
@@ -276,6 +296,7 @@ void NetworkPanel::refreshNetworkList() {
     const nn::NetworkMetadata& metadata = entry.model->metadata;
     auto* item = new QTreeWidgetItem(network_list_);
     item->setText(kNetName, entry.saved ? entry.name : entry.name + QStringLiteral(" *"));
+    item->setFlags(item->flags() | Qt::ItemIsEditable);
     item->setToolTip(kNetName, entry.saved ? entry.file : tr("Not saved"));
     item->setText(kNetStyles, styleClipNames(metadata));
     item->setText(kNetEpochs, QString::number(metadata.training.epochs));

@@ -103,6 +103,9 @@ class NetworkPanel : public QWidget {
   bool saveNetwork(int index, const QString& file, bool overwrite_confirmed = false);
   // Asks before dropping an unsaved network; false when the user keeps it.
   bool removeNetwork(int index);
+  // A new name for the network (the list's name cell is editable: F2 or a double click). Refused, with
+  // a report, when empty or taken by another network; networkRenamed() tells the other panels.
+  bool renameNetwork(int index, const QString& name);
 
   // ---- Training -----------------------------------------------------------------------------------
   TrainingForm trainingForm() const;
@@ -158,7 +161,8 @@ class NetworkPanel : public QWidget {
   void stylizedClipReady(const motionstyle::style::StylizedClip& clip, const QString& label);
   void errorOccurred(const QString& title, const QString& message);
   void trainingProgress(const motionstyle::style::TrainingProgress& progress);
-  void jobFinished();  // any job ended and its thread was joined
+  void jobFinished();  // any job ended (its completion has run)
+  void networkRenamed(const QString& old_name, const QString& new_name);
 
  private:
   struct NetworkEntry {

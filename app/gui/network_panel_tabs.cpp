@@ -22,6 +22,7 @@
 #include <QSplitter>
 #include <QTabWidget>
 #include <QTemporaryDir>
+#include <QStyledItemDelegate>
 #include <QTreeWidget>
 #include <QVBoxLayout>
 
@@ -54,6 +55,23 @@ QString styleClipNames(const nn::NetworkMetadata& metadata) {
 }  // namespace network_panel_detail
 
 namespace {
+
+// Edits one column only (the name), without the " *" that marks an unsaved network.
+class EditableColumnDelegate : public QStyledItemDelegate {
+ public:
+  EditableColumnDelegate(int column, QObject* parent) : QStyledItemDelegate(parent), column_(column) {}
+  QWidget* createEditor(QWidget* parent, const QStyleOptionViewItem& option, const QModelIndex& index) const override {
+    return index.column() == column_ ? QStyledItemDelegate::createEditor(parent, option, index) : nullptr;
+  }
+  void setEditorData(QWidget* editor, const QModelIndex& index) const override {
+    QStyledItemDelegate::setEditorData(editor, index);
+    auto* line = qobject_cast<QLineEdit*>(editor);
+    if (line && line->text().endsWith(QStringLiteral(" *"))) line->setText(line->text().chopped(2));
+  }
+
+ private:
+  int column_;
+};
 
 using namespace network_panel_detail;
 
@@ -103,6 +121,15 @@ QWidget* NetworkPanel::createNetworksTab() {
     updateButtons();
     emit currentNetworkChanged(currentNetwork());
   });
+  // Only the name column is edited (F2 or a double click); " *" marks an unsaved network, not its name.
+  network_list_->setEditTriggers(QAbstractItemView::DoubleClicked | QAbstractItemView::EditKeyPressed);
+  connect(network_list_, &QTreeWidget::itemChanged, this, [this](QTreeWidgetItem* item, int column) {
+    if (column != kNetName) return;
+    QString name = item->text(kNetName);
+    if (name.endsWith(QStringLiteral(" *"))) name.chop(2);
+    renameNetwork(network_list_->indexOfTopLevelItem(item), name);
+  });
+  network_list_->setItemDelegate(new EditableColumnDelegate(kNetName, network_list_));
   details_label_ = new QLabel(tab);
   details_label_->setWordWrap(true);
   details_label_->setTextInteractionFlags(Qt::TextSelectableByMouse);

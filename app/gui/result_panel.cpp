@@ -167,6 +167,15 @@ void ResultPanel::useNetwork(std::shared_ptr<const nn::StyleModel> model, const 
   if (stylizer_ != previous) inputsChanged(tr("the style changed"));
 }
 
+void ResultPanel::renameNetwork(const QString& old_name, const QString& new_name) {
+  for (int i = 0; i < network_choice_->count(); ++i)
+    if (network_choice_->itemText(i) == old_name && network_choice_->itemData(i).toString().isEmpty())
+      network_choice_->setItemText(i, new_name);
+  for (QString* name : {&network_name_, &job_network_name_, &result_network_name_})
+    if (*name == old_name) *name = new_name;
+  if (result_) emit resultChanged();  // the output figures are named after the network
+}
+
 void ResultPanel::listShippedNetworks() { addShippedStyleNetworks(network_choice_); }
 
 void ResultPanel::showNetworkInChoice(const QString& label, const QString& file) {

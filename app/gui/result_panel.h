@@ -67,6 +67,9 @@ class ResultPanel : public QWidget {
 
   // The network used by Stylize (nullptr: none). `name` is shown and names exports ("elderly").
   void setStyleNetwork(std::shared_ptr<const nn::StyleModel> model, const QString& name = {});
+  // The network called `old_name` (one without a file: from the Networks panel) is now `new_name`:
+  // the Style choice, the status and the result's figures say the new name.
+  void renameNetwork(const QString& old_name, const QString& new_name);
   // Loads a style network file (checked against this build's representation). false + report on error.
   bool loadNetworkFile(const QString& file);
   bool hasNetwork() const { return stylizer_ != nullptr; }

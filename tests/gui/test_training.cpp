@@ -10,7 +10,9 @@
 #include <QDir>
 #include <QDoubleSpinBox>
 #include <QElapsedTimer>
+#include <QDockWidget>
 #include <QFile>
+#include <QLineEdit>
 #include <QProgressBar>
 #include <QPushButton>
 #include <QSignalSpy>
@@ -487,6 +489,68 @@ class TrainingTest : public QObject {
     QCOMPARE(panel->networkCount(), 2);
     QVERIFY(panel->network(1)->metadata.training.epochs >= kept + 2);
     QCOMPARE(panel->currentNetworkName().section(QStringLiteral(" (epoch"), 0, 0), run_name);
+  }
+
+  void networksAreRenamedInTheListAndTheNewNameIsShownEverywhere() {
+    // Issue 14: names are editable (F2 on the list, as a user does) and shown everywhere: the list,
+    // the Result panel's Style choice and its figures, the close prompt.
+    auto window = makeWindow();
+    QVERIFY(window);
+    window->resize(1400, 900);
+    window->show();
+    QVERIFY(QTest::qWaitForWindowExposed(window.get()));
+    NetworkPanel* panel = window->networkPanel();
+    window->setTrainingClip(0, true);
+    panel->setLossNetworkFile(autoencoder_);
+    setTinyForm(panel, 1);
+    QSignalSpy finished(panel, &NetworkPanel::jobFinished);
+    for (int run = 0; run < 2; ++run) {
+      QVERIFY(panel->startTraining(false));
+      QVERIFY(finished.wait(kJobTimeoutMs));
+    }
+    QCOMPARE(panel->networkCount(), 2);
+    panel->setCurrentIndex(0);
+    const QString first_name = panel->currentNetworkName();
+    panel->setCurrentIndex(1);
+    auto* list = panel->findChild<QTreeWidget*>(QStringLiteral("NetworkList"));
+    QVERIFY(list != nullptr);
+    auto* dock = window->findChild<QDockWidget*>(QStringLiteral("NetworksDock"));
+    QVERIFY(dock != nullptr);
+    dock->raise();
+    panel->findChild<QTabWidget*>()->setCurrentIndex(0);
+    QTRY_VERIFY(list->isVisible());
+    list->setFocus();
+    list->setCurrentItem(list->topLevelItem(1), 0);
+    QTest::keyClick(list, Qt::Key_F2);
+    auto* editor = list->findChild<QLineEdit*>();
+    QVERIFY2(editor != nullptr, "F2 opens no editor on the name");
+    QVERIFY(!editor->text().endsWith(QStringLiteral(" *")));  // the name, not the unsaved mark
+    editor->selectAll();
+    QTest::keyClicks(editor, QStringLiteral("walk fast"));
+    QTest::keyClick(editor, Qt::Key_Return);
+    QTRY_COMPARE(panel->currentNetworkName(), QStringLiteral("walk fast"));
+    QCOMPARE(window->resultPanel()->networkName(), QStringLiteral("walk fast"));
+    QVERIFY(window->resultPanel()->networkChoice()->findText(QStringLiteral("walk fast")) >= 0);
+    QCOMPARE(window->resultPanel()->networkChoice()->currentText(), QStringLiteral("walk fast"));
+    QVERIFY(list->topLevelItem(1)->text(0).startsWith(QStringLiteral("walk fast")));
+
+    // A taken or empty name is refused with a reason, and the old name stays.
+    reports_.clear();
+    QVERIFY(!panel->renameNetwork(1, first_name));
+    QVERIFY(!panel->renameNetwork(1, QStringLiteral("   ")));
+    QCOMPARE(reports_.size(), std::size_t{2});
+    QCOMPARE(panel->currentNetworkName(), QStringLiteral("walk fast"));
+
+    // The close prompt lists the new name.
+    QStringList asked;
+    panel->setConfirmer([&](const QString&, const QString& text, QMessageBox::StandardButtons) {
+      asked << text;
+      return QMessageBox::Cancel;
+    });
+    QVERIFY(!panel->prepareToClose());
+    QCOMPARE(asked.size(), 1);
+    QVERIFY2(asked[0].contains(QStringLiteral("walk fast")), qPrintable(asked[0]));
+    panel->setConfirmer([](const QString&, const QString&, QMessageBox::StandardButtons) { return QMessageBox::Discard; });
   }
 
   void aFolderAsTrainingDatabaseTrainsToCompletion() {
