@@ -73,16 +73,38 @@ void translateCamera(vtkCamera* camera, const std::array<double, 3>& delta) {
   camera->SetPosition(position[0] + delta[0], position[1] + delta[1], position[2] + delta[2]);
 }
 
+namespace {
+
+// The distance at which a sphere of `radius` around the focal point fills the narrower field of view.
+double fillingDistance(vtkCamera* camera, double radius, double aspect, double margin) {
+  const double vertical = vtkMath::RadiansFromDegrees(camera->GetViewAngle()) / 2.0;
+  const double horizontal = std::atan(std::tan(vertical) * std::max(aspect, 0.1));
+  return margin * radius / std::sin(std::min(vertical, horizontal));
+}
+
+double boxRadius(const std::array<double, 6>& box) {
+  return std::max(1.0, 0.5 * std::sqrt((box[1] - box[0]) * (box[1] - box[0]) + (box[3] - box[2]) * (box[3] - box[2]) +
+                                       (box[5] - box[4]) * (box[5] - box[4])));
+}
+
+}  // namespace
+
+void keepBoxInView(vtkCamera* camera, const std::array<double, 6>& box, double aspect) {
+  double focal[3];
+  camera->GetFocalPoint(focal);
+  const double off_centre = std::sqrt(std::pow(0.5 * (box[0] + box[1]) - focal[0], 2) +
+                                      std::pow(0.5 * (box[2] + box[3]) - focal[1], 2) +
+                                      std::pow(0.5 * (box[4] + box[5]) - focal[2], 2));
+  const double needed = fillingDistance(camera, boxRadius(box) + off_centre, aspect, 1.1);
+  const double distance = camera->GetDistance();
+  if (distance < needed) camera->Dolly(distance / needed);
+}
+
 void frameBox(vtkCamera* camera, const std::array<double, 6>& box, double azimuth_degrees,
               double elevation_degrees, double aspect) {
   const double centre[3] = {0.5 * (box[0] + box[1]), 0.5 * (box[2] + box[3]), 0.5 * (box[4] + box[5])};
-  const double radius = std::max(
-      1.0, 0.5 * std::sqrt((box[1] - box[0]) * (box[1] - box[0]) + (box[3] - box[2]) * (box[3] - box[2]) +
-                           (box[5] - box[4]) * (box[5] - box[4])));
   // The narrower of the vertical and horizontal fields of view decides the distance.
-  const double vertical = vtkMath::RadiansFromDegrees(camera->GetViewAngle()) / 2.0;
-  const double horizontal = std::atan(std::tan(vertical) * std::max(aspect, 0.1));
-  const double distance = 1.3 * radius / std::sin(std::min(vertical, horizontal));
+  const double distance = fillingDistance(camera, boxRadius(box), aspect, 1.3);
 
   const double azimuth = vtkMath::RadiansFromDegrees(azimuth_degrees);
   const double elevation = vtkMath::RadiansFromDegrees(elevation_degrees);

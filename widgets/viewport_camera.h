@@ -31,4 +31,9 @@ void translateCamera(vtkCamera* camera, const std::array<double, 3>& delta);
 void frameBox(vtkCamera* camera, const std::array<double, 6>& box, double azimuth_degrees,
               double elevation_degrees, double aspect);
 
+// Backs the camera away from its focal point (never closer) until the box's bounding sphere, widened by
+// its centre's distance from the focal point, fits the view: what the follow camera does when the
+// figures spread further than the view shows.
+void keepBoxInView(vtkCamera* camera, const std::array<double, 6>& box, double aspect);
+
 }  // namespace motionstyle::detail

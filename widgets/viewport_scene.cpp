@@ -6,6 +6,7 @@
 #include <vtkDoubleArray.h>
 #include <vtkGlyph3DMapper.h>
 #include <vtkLight.h>
+#include <vtkMath.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
@@ -73,8 +74,12 @@ double niceLength(double approximate) {
 
 struct ViewportScene::FigureVisual {
   double height = 170.0;
-  double lateral_extent = 40.0;  // max sideways (X) reach of any joint from the root, cm
-  Vec3 offset{};                 // placement: added to every drawn coordinate (actor position)
+  double lateral_extent = 40.0;  // max horizontal reach of any joint from the root, cm
+  // Placement: drawn = R_y(yaw) (p - pivot) + lane, with pivot the first frame's root on the floor
+  // plane (actor origin), yaw about the vertical (actor orientation) and lane where it starts.
+  Vec3 pivot{};
+  double yaw_degrees = 0.0;
+  Vec3 lane{};
   std::vector<int> bone_joints;  // joints with a parent: one bone each, parent -> joint
 
   vtkNew<vtkSphereSource> joint_sphere;
@@ -110,9 +115,22 @@ struct ViewportScene::FigureVisual {
   std::array<vtkActor*, 4> actors() const {
     return {joint_actor.Get(), bone_actor.Get(), contact_actor.Get(), trajectory_actor.Get()};
   }
-  void setOffset(const Vec3& value) {
-    offset = value;
-    for (vtkActor* actor : actors()) actor->SetPosition(value[0], value[1], value[2]);
+  void place(const Vec3& first_root, double yaw, const Vec3& start) {
+    pivot = first_root;
+    yaw_degrees = yaw;
+    lane = start;
+    for (vtkActor* actor : actors()) {
+      actor->SetOrigin(pivot[0], pivot[1], pivot[2]);
+      actor->SetOrientation(0.0, yaw_degrees, 0.0);
+      actor->SetPosition(lane[0] - pivot[0], lane[1] - pivot[1], lane[2] - pivot[2]);
+    }
+  }
+  Vec3 drawn(double x, double y, double z) const {
+    const double a = vtkMath::RadiansFromDegrees(yaw_degrees);
+    const double dx = x - pivot[0];
+    const double dz = z - pivot[2];
+    // vtkProp3D's RotateY: x' = x cos a + z sin a, z' = -x sin a + z cos a.
+    return {lane[0] + dx * std::cos(a) + dz * std::sin(a), y, lane[2] - dx * std::sin(a) + dz * std::cos(a)};
   }
 };
 
@@ -209,7 +227,7 @@ void ViewportScene::setFigures(std::vector<FigureData> figures) {
       for (int j = 0; j < figure.jointCount(); ++j) {
         low = std::min(low, figure.y(f, j));
         high = std::max(high, figure.y(f, j));
-        lateral = std::max(lateral, std::abs(figure.x(f, j) - figure.x(f, 0)));
+        lateral = std::max(lateral, std::hypot(figure.x(f, j) - figure.x(f, 0), figure.z(f, j) - figure.z(f, 0)));
       }
       tallest = std::max(tallest, high - low);
     }
@@ -312,17 +330,48 @@ void ViewportScene::setTrajectoriesVisible(bool visible) {
   for (const auto& visual : visuals_) visual->trajectory_actor->SetVisibility(visible);
 }
 
+namespace {
+
+// The root's travel on the floor plane from the first to the last frame, and whether it is a walk
+// (more than half a character height) rather than motion on the spot.
+struct Travel {
+  double x = 0.0, z = 0.0;
+  bool walks = false;
+};
+
+Travel travelOf(const FigureData& figure, double height) {
+  const int last = figure.frame_count - 1;
+  Travel travel{figure.x(last, 0) - figure.x(0, 0), figure.z(last, 0) - figure.z(0, 0), false};
+  travel.walks = std::hypot(travel.x, travel.z) > 0.5 * height;
+  return travel;
+}
+
+double headingDegrees(const Travel& travel) { return vtkMath::DegreesFromRadians(std::atan2(travel.x, travel.z)); }
+
+}  // namespace
+
 void ViewportScene::placeFigures() {
-  // Side by side: spread along X by the widest reach plus a gap, centred on the origin.
+  // Side by side: every figure walks in its own lane along the content's (the first figure's) direction
+  // of travel, turned about its first root position, so that clips recorded facing other ways do not
+  // drift apart; lanes are spaced by the widest reach plus a gap, across that direction, centred on the
+  // origin. Overlay: every clip starts on the origin as recorded.
   double spacing = 0.0;
   for (const auto& visual : visuals_)
     spacing = std::max(spacing, 2.0 * visual->lateral_extent + 0.35 * visual->height);
   spacing = std::max(spacing, 0.6 * characterHeight());
   const double count = static_cast<double>(visuals_.size());
+  const Travel lead = figures_.empty() ? Travel{} : travelOf(figures_.front(), visuals_.front()->height);
+  // Across the lead's travel (+X when it walks along +Z, as the old layout), else along X.
+  const double length = std::hypot(lead.x, lead.z);
+  const double across_x = lead.walks ? lead.z / length : 1.0;
+  const double across_z = lead.walks ? -lead.x / length : 0.0;
   for (size_t i = 0; i < visuals_.size(); ++i) {
     const FigureData& figure = figures_[i];
-    const double sideways = layout_ == SceneLayout::SideBySide ? (static_cast<double>(i) - (count - 1.0) / 2.0) * spacing : 0.0;
-    visuals_[i]->setOffset({sideways - figure.x(0, 0), 0.0, -figure.z(0, 0)});
+    const bool side_by_side = layout_ == SceneLayout::SideBySide;
+    const double sideways = side_by_side ? (static_cast<double>(i) - (count - 1.0) / 2.0) * spacing : 0.0;
+    const Travel own = travelOf(figure, visuals_[i]->height);
+    const double yaw = side_by_side && lead.walks && own.walks ? headingDegrees(lead) - headingDegrees(own) : 0.0;
+    visuals_[i]->place({figure.x(0, 0), 0.0, figure.z(0, 0)}, yaw, {sideways * across_x, 0.0, sideways * across_z});
   }
   buildFloor();
 }
@@ -380,9 +429,8 @@ void ViewportScene::poseFigure(size_t index) {
 
 Vec3 ViewportScene::drawnJoint(int figure, int joint, int frame) const {
   const FigureData& data = figures_[static_cast<size_t>(figure)];
-  const Vec3& offset = visuals_[static_cast<size_t>(figure)]->offset;
   const int f = std::clamp(frame, 0, data.frame_count - 1);
-  return {data.x(f, joint) + offset[0], data.y(f, joint) + offset[1], data.z(f, joint) + offset[2]};
+  return visuals_[static_cast<size_t>(figure)]->drawn(data.x(f, joint), data.y(f, joint), data.z(f, joint));
 }
 
 Vec3 ViewportScene::anchor(int frame) const {

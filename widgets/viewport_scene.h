@@ -8,9 +8,10 @@
 // gradient background. setFrame() only rewrites point coordinates and glyph arrays of existing data
 // sets, so playback never rebuilds the pipeline.
 //
-// Space: figure data are world cm, Y-up. Each figure is drawn shifted by its placement offset (the
-// layout's sideways spacing minus its first-frame root position on the floor plane, so that every
-// clip starts at the origin); that offset is applied through the actors' positions.
+// Space: figure data are world cm, Y-up. Each figure is drawn placed: its first-frame root on the floor
+// plane moves to its lane's start (the origin when overlaid), and side by side it is turned about the
+// vertical so that it travels along the content's direction (placeFigures); the placement is applied
+// through the actors' origin, orientation and position.
 
 #include <vtkSmartPointer.h>
 
@@ -54,7 +55,7 @@ class ViewportScene {
   void setFrame(int frame);
   int frame() const { return frame_; }
 
-  // A joint's drawn position (cm, world, placement offset included) at `frame` (clamped per figure).
+  // A joint's drawn position (cm, world, placement included) at `frame` (clamped per figure).
   Vec3 drawnJoint(int figure, int joint, int frame) const;
   // The mean drawn root position over all figures at `frame`: what the follow camera tracks.
   Vec3 anchor(int frame) const;

@@ -223,6 +223,44 @@ class ViewportRenderTest : public QObject {
              qPrintable(QStringLiteral("overlaid hips %1 px apart sideways").arg(content_overlaid.x() - style_overlaid.x())));
   }
 
+  void sideBySideFiguresWalkInLanesAndTheFollowCameraKeepsThemAll() {
+    // Issue 14: side by side, clips that walk in different directions at different speeds drifted
+    // apart and the follow camera lost them. Each figure now walks in its own lane along the content's
+    // direction, and the follow camera backs off when the group outgrows the view.
+    SkeletonViewport viewport;
+    viewport.resize(900, 500);
+    // At one rate, as the app shows them (the timeline's).
+    viewport.setFigures({figureFromClip(cmu_, FigureRole::Content, cmu_.fps()),
+                         figureFromClip(zombie_, FigureRole::Style, cmu_.fps())});
+    viewport.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&viewport));
+    QCOMPARE(viewport.layout(), SkeletonViewport::Layout::SideBySide);
+    QCOMPARE(viewport.cameraMode(), SkeletonViewport::CameraMode::Follow);
+    const int frames = viewport.frameCount();
+    const double margin = 0.03 * viewport.width();
+    int outside = 0;
+    QString first_miss;
+    double widest_gap = 0.0;
+    for (int frame = 0; frame < frames; frame += 12) {
+      viewport.setFrame(frame);
+      for (int figure = 0; figure < 2; ++figure)
+        for (int joint = 0; joint < viewport.figure(figure).jointCount(); ++joint) {
+          const QPointF p = *viewport.projectToWidget(figure, joint, frame);
+          if (p.x() < margin || p.x() > viewport.width() - margin || p.y() < 0 || p.y() > viewport.height()) {
+            if (outside++ == 0)
+              first_miss = QStringLiteral("figure %1 joint %2 at frame %3: (%4, %5)")
+                               .arg(figure).arg(joint).arg(frame).arg(p.x()).arg(p.y());
+          }
+        }
+      widest_gap = std::max(widest_gap, QLineF(*viewport.projectToWidget(0, 0, frame), *viewport.projectToWidget(1, 0, frame)).length());
+    }
+    QVERIFY2(outside == 0, qPrintable(QStringLiteral("%1 joints outside the view, first %2").arg(outside).arg(first_miss)));
+    // In lanes, the two stay about a lane apart on screen (they drifted across the whole view).
+    QVERIFY2(widest_gap < 0.5 * viewport.width(), qPrintable(QStringLiteral("hips up to %1 px apart").arg(widest_gap)));
+    viewport.setFrame(frames - 1);
+    test::saveScreenshot(viewport.grabFrame(), QStringLiteral("viewport_side_by_side_end"));
+  }
+
   void cameraInteractionMovesTheView() {
     SkeletonViewport viewport;
     viewport.resize(800, 500);
