@@ -7,11 +7,23 @@
 #include "main_window.h"
 #include "network_panel.h"
 #include "result_panel.h"
+#include "timeline_widget.h"
 
 namespace motionstyle {
 
 void MainWindow::createNetworkDock() {
-  network_panel_ = new NetworkPanel(this, persist_settings_);
+  ClipRoles roles;
+  roles.clips = [this] {
+    std::vector<const LoadedClip*> all;
+    for (int i = 0; i < clipCount(); ++i) all.push_back(&clip(i));
+    return all;
+  };
+  roles.content = [this]() -> const LoadedClip* { return content_ >= 0 ? &clip(content_) : nullptr; };
+  roles.style = [this]() -> const LoadedClip* { return style_ >= 0 ? &clip(style_) : nullptr; };
+  roles.training_paths = [this] { return trainingClipPaths(); };
+  roles.display_fps = [this] { return timeline_->frameRate(); };
+  network_panel_ = new NetworkPanel(std::move(roles), this, persist_settings_);
+  connect(this, &MainWindow::clipsChanged, network_panel_, &NetworkPanel::onClipsChanged);
   auto* dock = new QDockWidget(tr("Style networks"), this);
   dock->setObjectName(QStringLiteral("NetworksDock"));
   dock->setWidget(network_panel_);

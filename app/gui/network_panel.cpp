@@ -35,7 +35,6 @@
 #include "common/resource_paths.h"
 #include "adapt_tab.h"
 #include "loss_curve_widget.h"
-#include "main_window.h"
 #include "network_panel_internal.h"
 #include "error_text.h"
 #include "job_runner.h"
@@ -58,8 +57,8 @@ QString shippedLossNetworkFile() {
 
 }  // namespace
 
-NetworkPanel::NetworkPanel(MainWindow* window, bool persist_settings)
-    : QWidget(window), window_(window), persist_settings_(persist_settings) {
+NetworkPanel::NetworkPanel(ClipRoles roles, QWidget* parent, bool persist_settings)
+    : QWidget(parent), roles_(std::move(roles)), persist_settings_(persist_settings) {
   setObjectName(QStringLiteral("NetworkPanel"));
   runner_ = new JobRunner(this);
   connect(runner_, &JobRunner::failed, this, &NetworkPanel::report);
@@ -121,7 +120,6 @@ NetworkPanel::NetworkPanel(MainWindow* window, bool persist_settings)
   QString loss_file = persist_settings_ ? QSettings().value(kLossNetworkKey).toString() : QString();
   if (loss_file.isEmpty() || !QFileInfo::exists(loss_file)) loss_file = shippedLossNetworkFile();
   loss_network_edit_->setText(loss_file);
-  connect(window_, &MainWindow::clipsChanged, this, &NetworkPanel::onClipsChanged);
   refreshTrainingSummary();
   updateButtons();
 }
@@ -405,13 +403,13 @@ std::vector<style::StyleSource> NetworkPanel::styleSources() const {
     source.file = item->text(kStyleFile).toStdString();
     sources.push_back(std::move(source));
   }
-  if (sources.empty() && window_->styleClip() >= 0)
-    sources.push_back({std::nullopt, window_->clip(window_->styleClip()).path.toStdString()});
+  if (const LoadedClip* style = roles_.style(); sources.empty() && style != nullptr)
+    sources.push_back({std::nullopt, style->path.toStdString()});
   return sources;
 }
 
 void NetworkPanel::refreshTrainingSummary() {
-  const int clips = static_cast<int>(window_->trainingClipPaths().size());
+  const int clips = static_cast<int>(roles_.training_paths().size());
   const int folders = folder_list_->count();
   if (clips == 0 && folders == 0)
     database_label_->setText(tr("No training set yet: right-click clips and choose \"In the Training Set\", or add a "
@@ -422,18 +420,18 @@ void NetworkPanel::refreshTrainingSummary() {
   if (style_list_->topLevelItemCount() > 0)
     style_hint_label_->setText(tr("Each content clip is paired with the style clip of its label (from the file name, "
                                   "or the label given here); an unlabelled clip is the default."));
-  else if (window_->styleClip() >= 0)
-    style_hint_label_->setText(tr("None listed: the Style clip %1 is used for every content clip.")
-                                   .arg(window_->clip(window_->styleClip()).name));
+  else if (const LoadedClip* style = roles_.style())
+    style_hint_label_->setText(tr("None listed: the Style clip %1 is used for every content clip.").arg(style->name));
   else
     style_hint_label_->setText(tr("None listed and no clip has the Style role yet."));
 }
 
 void NetworkPanel::onClipsChanged() {
+  if (adapt_tab_) adapt_tab_->refresh();
   refreshTrainingSummary();
   // A preview made from another content clip (or the same clip re-mapped) is stale.
-  const int content = window_->contentClip();
-  const std::uint64_t id = content >= 0 ? window_->clip(content).id : 0;
+  const LoadedClip* content = roles_.content();
+  const std::uint64_t id = content != nullptr ? content->id : 0;
   if (preview_shown_ && id != preview_content_id_) {
     preview_shown_ = false;
     emit previewCleared();

@@ -4,19 +4,19 @@
 //   Networks tab: load/save network files (saved atomically by the core; an existing file is never
 //     replaced without a confirmation), the list of networks with their metadata (style clips, loss
 //     weights, epochs, date) and the selected one's loss history in the curve below.
-//   Train tab: the training set (clips with MainWindow's "training set" role plus folders),
+//   Train tab: the training set (clips with the "training set" role plus folders),
 //     style clips per content label (style_pairing.h), the loss network, the loss weights (defaults
 //     from nn::LossWeights), epochs, learning rate and hidden units; Train, Retrain (warm start from
 //     the selected network with the new weights) and Cancel.
 //   Adapt tab (adapt_tab.h): adapts the loss network and chosen styles to the user's own clips; the
 //     results join the networks list unsaved, the adapted loss network becomes the Train tab's.
-//   Optimise tab: the optimisation method (Holden 2016) for MainWindow's content and style clips; the
+//   Optimise tab: the optimisation method (Holden 2016) for the content and style clips; the
 //     result goes out as stylizedClipReady() (the result panel cleans it up and shows it).
 //   Below the tabs: a progress bar with ETA, a status line and the live loss curve.
 //
 // Jobs (style::StyleTrainingJob, style::OptimizationTransferJob) run on a JobRunner; one at a time. A
 // cancelled training keeps its last epoch's network and can be resumed from its checkpoint (Resume).
-// While training, each epoch's network stylizes MainWindow's content clip (at most every few seconds)
+// While training, each epoch's network stylizes the content clip (at most every few seconds)
 // and previewReady() carries it as the blue "output" figure. The selected network is currentNetwork();
 // currentNetworkChanged() announces it to the other panels (the result panel).
 //
@@ -37,6 +37,7 @@
 #include <optional>
 #include <vector>
 
+#include "clip_roles.h"
 #include "display_space.h"
 #include "figure_data.h"
 #include "nn/network_file.h"
@@ -59,7 +60,6 @@ namespace motionstyle {
 
 class AdaptTab;
 class LossCurveWidget;
-class MainWindow;
 class JobRunner;
 
 class NetworkPanel : public QWidget {
@@ -78,7 +78,9 @@ class NetworkPanel : public QWidget {
     int hidden_units = 128;       // of the transformation network (new networks only)
   };
 
-  explicit NetworkPanel(MainWindow* window, bool persist_settings = true);
+  // `roles`: the window's clips and roles (clip_roles.h); the owner connects its clipsChanged() to
+  // onClipsChanged(). persist_settings: folders and the loss network are kept in QSettings.
+  explicit NetworkPanel(ClipRoles roles, QWidget* parent = nullptr, bool persist_settings = true);
   ~NetworkPanel() override;  // cancels and joins a running job without asking
 
   void setConfirmer(Confirmer confirmer);
@@ -117,7 +119,7 @@ class NetworkPanel : public QWidget {
   // Style clips per content label: an empty label pairs by the clip's file name / as the default.
   void addStyleClip(const QString& file, const QString& label = QString());
   int styleClipCount() const;
-  // With no style clip listed, MainWindow's style clip is used.
+  // With no style clip listed, the clip with the Style role is used.
   std::vector<style::StyleSource> styleSources() const;
 
   // Starts a run (retrain: warm start from the selected network, its shape and loss network). Returns
@@ -127,7 +129,7 @@ class NetworkPanel : public QWidget {
   // settings and name, up to its epoch count. false (and why) when there is none.
   bool resumeTraining();
   bool canResumeTraining() const;
-  // The optimisation method on MainWindow's content and style clips (stage-1 iterations; the
+  // The optimisation method on the content and style clips (stage-1 iterations; the
   // constraint stage gets 100 / 250 of them).
   bool startTransfer(int iterations);
   bool isBusy() const;  // a training, optimisation or adaptation job is running
@@ -148,6 +150,8 @@ class NetworkPanel : public QWidget {
   QString statusText() const;
 
  public slots:
+  // The clips or their roles changed: the training summary, the Adapt tab and a stale preview follow.
+  void onClipsChanged();
   void browseLoad();
   void browseSave();
   void browseTrainingFolder();
@@ -157,7 +161,7 @@ class NetworkPanel : public QWidget {
   // The live preview / optimisation result as the blue output figure (display space like the clips).
   void previewReady(const motionstyle::FigureData& figure);
   void previewCleared();  // a new run started: the old preview is stale
-  // The optimisation method's output for MainWindow's content clip (for the result panel's clean-up).
+  // The optimisation method's output for the content clip (for the result panel's clean-up).
   void stylizedClipReady(const motionstyle::style::StylizedClip& clip, const QString& label);
   void errorOccurred(const QString& title, const QString& message);
   void trainingProgress(const motionstyle::style::TrainingProgress& progress);
@@ -179,7 +183,6 @@ class NetworkPanel : public QWidget {
   void addNetwork(NetworkEntry entry);
   void refreshNetworkList();
   void refreshTrainingSummary();
-  void onClipsChanged();
   void showNetworkDetails();
   void updateButtons();
   void report(const QString& title, const QString& message);
@@ -201,7 +204,7 @@ class NetworkPanel : public QWidget {
   void capturePreviewTarget();
   std::filesystem::path scratchFile(const QString& name);
 
-  MainWindow* window_;
+  ClipRoles roles_;
   bool persist_settings_;
   AdaptTab* adapt_tab_ = nullptr;
   Confirmer confirmer_;

@@ -2,28 +2,22 @@
 // networks) and what becomes of its results (the adapted loss network for the Train tab, the retrained
 // styles in the list, unsaved).
 #include <QDateTime>
+#include <QTabWidget>
 
 #include <exception>
 
 #include "adapt_tab.h"
-#include "main_window.h"
 #include "network_panel.h"
 
 namespace motionstyle {
 
 AdaptTab* NetworkPanel::createAdaptTab() {
-  const auto clips = [this] {
-    std::vector<const LoadedClip*> all;
-    for (int i = 0; i < window_->clipCount(); ++i) all.push_back(&window_->clip(i));
-    return all;
-  };
   const auto networks = [this] {
     std::vector<AdaptTab::NamedNetwork> all;
     for (const NetworkEntry& entry : networks_) all.push_back({entry.name, entry.model});
     return all;
   };
-  adapt_tab_ = new AdaptTab(clips, networks, this);
-  connect(window_, &MainWindow::clipsChanged, adapt_tab_, &AdaptTab::refresh);
+  adapt_tab_ = new AdaptTab(roles_.clips, networks, this);
   connect(adapt_tab_, &AdaptTab::errorOccurred, this, &NetworkPanel::report);
   connect(adapt_tab_, &AdaptTab::busyChanged, this, [this](bool) { updateButtons(); });
   connect(adapt_tab_, &AdaptTab::adapted, this,

@@ -10,6 +10,7 @@
 #include <QFileInfo>
 #include <QLabel>
 #include <QProgressBar>
+#include <QTabWidget>
 #include <QTemporaryDir>
 
 #include <cmath>
@@ -18,11 +19,9 @@
 #include "adapt_tab.h"
 #include "features/feature_layout.h"
 #include "loss_curve_widget.h"
-#include "main_window.h"
 #include "error_text.h"
 #include "job_runner.h"
 #include "style/optimization_transfer_job.h"
-#include "timeline_widget.h"
 
 namespace motionstyle {
 namespace {
@@ -62,24 +61,24 @@ QString NetworkPanel::lastCheckpointFile() const { return last_checkpoint_; }
 
 void NetworkPanel::capturePreviewTarget() {
   preview_target_ = {};
-  const int content = window_->contentClip();
-  if (content < 0) return;
-  const LoadedClip& clip = window_->clip(content);
-  if (clip.frameCount() < 1) return;
+  const LoadedClip* content = roles_.content();
+  if (content == nullptr || content->frameCount() < 1) return;
+  const LoadedClip& clip = *content;
   // The output is in the content's file space: the content's display space puts it on the same floor at
   // the same size, and the timeline's rate keeps it in step with the other figures.
   preview_target_.valid = true;
   preview_target_.content_id = clip.id;
   preview_target_.name = clip.name;
   preview_target_.display_space = clip.display_space;
-  preview_target_.display_fps = window_->timeline()->frameRate() > 0 ? window_->timeline()->frameRate() : clip.fps();
+  const double display_fps = roles_.display_fps();
+  preview_target_.display_fps = display_fps > 0 ? display_fps : clip.fps();
 }
 
 void NetworkPanel::onPreview(const std::shared_ptr<const style::StylizedClip>& clip) {
   if (!clip || !preview_target_.valid || clip->frameCount() < 1) return;
   // The run previews the content clip it started with; once the user picks another, stay quiet.
-  const int content = window_->contentClip();
-  if (content < 0 || window_->clip(content).id != preview_target_.content_id) return;
+  const LoadedClip* content = roles_.content();
+  if (content == nullptr || content->id != preview_target_.content_id) return;
   try {
     const Eigen::MatrixXd shown = rowsAtRate(preview_target_.display_space.toDisplay(clip->world_positions), clip->fps,
                                              preview_target_.display_fps);
@@ -100,7 +99,7 @@ bool NetworkPanel::startTraining(bool retrain) {
   const TrainingForm form = trainingForm();
   style::StyleTrainingJob job;
   style::StyleTrainingConfig& config = job.config;
-  for (const QString& file : window_->trainingClipPaths()) config.content.emplace_back(file.toStdString());
+  for (const QString& file : roles_.training_paths()) config.content.emplace_back(file.toStdString());
   for (const QString& folder : trainingFolders()) config.content.emplace_back(folder.toStdString());
   if (config.content.empty()) {
     report(tr("No training set"), tr("Right-click clips in the Clips list and choose \"In the Training Set\", or add a "
@@ -160,7 +159,7 @@ bool NetworkPanel::startTraining(bool retrain) {
   }
   config.settings.checkpoint = checkpoint;
   last_checkpoint_ = QString::fromStdString(checkpoint.string());
-  if (window_->contentClip() >= 0) job.preview_content = window_->clip(window_->contentClip()).path.toStdString();
+  if (const LoadedClip* content = roles_.content()) job.preview_content = content->path.toStdString();
   capturePreviewTarget();
 
   // Named after the style and the start time, so that runs from one style clip tell apart at a glance;
@@ -188,7 +187,7 @@ bool NetworkPanel::resumeTraining() {
   job.config.settings.init.clear();
   job.config.init_model.reset();
   training_name_ = resumable_name_;
-  if (window_->contentClip() >= 0) job.preview_content = window_->clip(window_->contentClip()).path.toStdString();
+  if (const LoadedClip* content = roles_.content()) job.preview_content = content->path.toStdString();
   capturePreviewTarget();
   return runTraining(std::move(job), tr("Resuming %1 from its checkpoint...").arg(training_name_));
 }
@@ -235,9 +234,9 @@ bool NetworkPanel::startTransfer(int iterations) {
     report(tr("A job is running"), tr("Cancel the running job before starting another."));
     return false;
   }
-  const int content = window_->contentClip();
-  const int style = window_->styleClip();
-  if (content < 0 || style < 0) {
+  const LoadedClip* content = roles_.content();
+  const LoadedClip* style = roles_.style();
+  if (content == nullptr || style == nullptr) {
     report(tr("Content and style needed"), tr("The optimisation method needs a clip with the Content role and one with "
                                               "the Style role."));
     return false;
@@ -260,12 +259,12 @@ bool NetworkPanel::startTransfer(int iterations) {
     report(tr("Could not load the loss network"), errorText(std::current_exception(), loss_file));
     return false;
   }
-  job.content = window_->clip(content).path.toStdString();
-  job.style = window_->clip(style).path.toStdString();
+  job.content = content->path.toStdString();
+  job.style = style->path.toStdString();
   job.options.iterations = iterations;
   job.options.constraint_iterations = std::max(1, iterations * 100 / 250);
   job.options.style_weight = transfer_style_weight_->value();
-  const QString label = tr("optimised towards %1").arg(window_->clip(style).name);
+  const QString label = tr("optimised towards %1").arg(style->name);
   const int total = job.options.iterations + job.options.constraint_iterations;
 
   // The progress (throttled) and the result reach the GUI thread through the runner's context.
@@ -300,7 +299,7 @@ bool NetworkPanel::startTransfer(int iterations) {
   if (!started) return false;
   running_ = Running::Transfer;
   loss_curve_->clear();
-  status_label_->setText(tr("Optimising %1 towards %2...").arg(window_->clip(content).name, window_->clip(style).name));
+  status_label_->setText(tr("Optimising %1 towards %2...").arg(content->name, style->name));
   updateButtons();
   return true;
 }

@@ -33,7 +33,6 @@
 #include "common/resource_paths.h"
 #include "adapt_tab.h"
 #include "loss_curve_widget.h"
-#include "main_window.h"
 #include "network_panel_internal.h"
 #include "style/optimization_transfer.h"
 
@@ -182,9 +181,9 @@ QWidget* NetworkPanel::createTrainTab() {
   auto* add_file = new QPushButton(tr("Add File..."), style_box);
   auto* remove_style = new QPushButton(tr("Remove"), style_box);
   connect(add_current, &QPushButton::clicked, this, [this] {
-    const int index = window_->styleClip();
-    if (index < 0) report(tr("No style clip"), tr("Give a clip the Style role first (right-click it in the Clips list)."));
-    else addStyleClip(window_->clip(index).path);
+    const LoadedClip* style = roles_.style();
+    if (style == nullptr) report(tr("No style clip"), tr("Give a clip the Style role first (right-click it in the Clips list)."));
+    else addStyleClip(style->path);
   });
   connect(add_file, &QPushButton::clicked, this, [this] {
     const QString file = QFileDialog::getOpenFileName(this, tr("Style clip"), lastClipFolder(), tr("BVH motion (*.bvh *.BVH)"));
