@@ -1,8 +1,8 @@
 #pragma once
 // The viewport's space for a clip: MotionStyle's canonical space (features/space_convention.h: Y-up,
-// right-handed, centimetres) with the clip's floor moved to y = 0. Replaces the earlier heuristic
-// (first-frame extent) with the core's convention, found from the clip's joint mapping: the up axis
-// from the feet-to-head direction over the whole clip, the unit given or guessed from skeletal height.
+// right-handed, centimetres) with the clip's floor moved to y = 0, found from the clip's joint mapping
+// as the core finds it: the up axis from the feet-to-head direction over the whole clip, the unit given
+// or guessed from skeletal height.
 //
 // A clip and everything derived from it in its FILE space (the cleaned output on its skeleton, the
 // raw network output's canonical joints) share one DisplaySpace, so they stand on the same floor.

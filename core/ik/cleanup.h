@@ -35,9 +35,7 @@ struct CleanupOptions {
   // output's root path (the content's, when its path is kept: style/path_mode.h) while the locked feet
   // and the legs take up what the targets cannot all have. Per cm.
   double hips_weight = 1.0;
-  // 40 rather than 20: a quarter of the skate after clean-up (0.58 -> 0.16 cm/s on the shipped
-  // masculine network's CMU output, 0.11 -> 0.03 on the damaged CMU fixture) for the same residual
-  // (+-0.1 cm), for ~25 % more solver iterations (bench_ik: 1,640 instead of 1,970 frames/s).
+  // Locked feet win over the targets: planted feet do not skate (the choice of 40: docs/decisions.md).
   double contact_weight = 40.0;         // heel/toe vs its contact lock position, per cm
   double floor_weight = 20.0;           // foot joint below the floor (one-sided), per cm of depth
   double root_smoothness_weight = 0.5;  // root position second difference (per frame), per cm
@@ -57,9 +55,8 @@ struct CleanupOptions {
   // window_frames = 1 (default): each frame solved alone, warm-started from the previous frame's
   // solution, whose two predecessors enter the smoothness terms as constants. window_frames > 1:
   // overlapping windows of that many frames solved jointly, advancing by window_frames - window_overlap.
-  // Measured on the damaged CMU / zombie fixtures (240 frames, one core, contact weight 20): per-frame ~2000 frames/s,
-  // skate 0.11 / 0.05 cm/s, residual 1.46 / 1.76 cm; windows of 4/1, 8/2, 16/4 frames were 3-9x slower
-  // (550-220 frames/s) for the same skate and residual (+-0.01 cm) and 10-18 % less jerk.
+  // Per frame is the default because windows gave the same skate and residual several times slower
+  // (docs/decisions.md, "Clean-up: per frame or windows").
   int window_frames = 1;
   int window_overlap = 0;
   int max_iterations = 25;       // Levenberg-Marquardt iterations per solve (frame or window), >= 1

@@ -47,9 +47,8 @@ struct ReconstructionTerms {
 };
 
 // Optional for training: eq. 7 (losses.h, footContactLoss) on the RECONSTRUCTION with the input's
-// contact labels, so that the manifold projection keeps planted feet planted (a plain MSE lets
-// small errors of the feet and root velocities add up to sliding: 19 cm/s on a held-out Bandai walk,
-// 94 cm/s on a CMU walk; docs/decisions.md).
+// contact labels, so that the manifold projection keeps planted feet planted (a plain MSE lets small
+// errors of the feet and root velocities add up to sliding; the figures: docs/decisions.md).
 template <typename S>
 struct ReconstructionFootTerm {
   const Mat<S>* contacts = nullptr;            // kContactCount x (B*frames), 0/1

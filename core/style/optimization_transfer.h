@@ -14,10 +14,8 @@
 // (the 2016 code ran the constraint pass on the constraints alone).
 //
 // START: H = L(C), the content's own hidden units, instead of the 2016 code's noise: it starts at the
-// content term's minimum and needs no seed. Measured (held-out Bandai walk, elderly walk style, 30-epoch
-// loss network, 250 + 100 iterations, s = 0.1): from noise the final content term was 0.0425 against 0.0034
-// from the content, with no better style term (0.00286 against 0.00275).
-// OptimizationOptions::start_from_noise reproduces the 2016 start for comparison.
+// content term's minimum and needs no seed (ends far closer to the content for the same style term:
+// docs/decisions.md). OptimizationOptions::start_from_noise reproduces the 2016 start for comparison.
 //
 // Progress and cancellation as in training: `cancel` is polled every iteration (milliseconds each).
 
@@ -37,9 +35,7 @@ struct OptimizationOptions {
   double learning_rate = 0.01;    // Adam, stage 1 and 2
   double content_weight = 1.0;    // c, before renormalisation: how much of the content's hidden units stay
   // s, before renormalisation: how hard the Gram matrix is pulled to the style clip's. 30 (s' = 0.97)
-  // takes held-out Bandai walks, runs and turns to a style distance ratio of 0.25 / 0.20 / 0.37 with
-  // the elderly clips (the style networks reach 0.1-0.3); 10 left turns at 0.51, 1 walks at 0.88
-  // (docs/decisions.md).
+  // adds as much style as the style networks do (the figures per weight: docs/decisions.md).
   double style_weight = 30.0;
   int constraint_iterations = 100;
   // Stage 2 only, added to stage 1's objective: planted feet stay planted (eq. 7), bones keep their

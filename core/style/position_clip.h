@@ -1,6 +1,6 @@
 #pragma once
-// A positions-only clip of the 21 canonical joints: the stylize/transfer output until the IK clean-up
-// (core/ik/cleanup.h) puts the result back on the content's own skeleton.
+// A positions-only clip of the 21 canonical joints: the raw stylize/transfer output as a BVH file
+// (--no-cleanup, --raw), before the IK clean-up (core/ik/cleanup.h) puts it on the content's skeleton.
 //
 // Skeleton: the canonical tree (kCanonicalParent), joints named as canonicalJointName(), EVERY joint
 // with three position channels (Xposition Yposition Zposition) and no rotation channels. A BVH position

@@ -87,12 +87,9 @@ enum class TrainingStatus { Completed, Cancelled };
 // How Adam's learning rate moves over a run. Cosine decays it from learning_rate to
 // kFinalLearningRateFraction x learning_rate along half a cosine over all the run's steps (epochs x
 // steps per epoch, resumed epochs included), so that training ends at a small rate instead of
-// wherever a late spike left it: with a constant 1e-3 the loss network's epoch loss on the Bandai data
-// jumped from 0.04 to 55 at epoch 20 and to 1.3 at epoch 57 of 60 (seed 1; README).
-// Cosine also warms up: the rate rises linearly over the first kWarmupSteps steps (at most a tenth of
-// the run), because Adam's first steps move every weight by about the full rate whatever its gradient,
-// and a wide layer's output then jumps (a style network's loss rose from ~1 to 10^4 in its first
-// steps and the network collapsed to the identity; docs/decisions.md).
+// wherever a late loss spike left it. Cosine also warms up: the rate rises linearly over the first
+// kWarmupSteps steps (at most a tenth of the run), because Adam's first steps move every weight by about
+// the full rate whatever its gradient (the runs behind both: docs/decisions.md).
 enum class LearningRateSchedule { Constant, Cosine };
 constexpr double kFinalLearningRateFraction = 0.01;
 constexpr long kWarmupSteps = 100;
