@@ -8,8 +8,6 @@
 #include <QDoubleSpinBox>
 #include <QFileDialog>
 #include <QFileInfo>
-#include <QFormLayout>
-#include <QGroupBox>
 #include <QHBoxLayout>
 #include <QHeaderView>
 #include <QLabel>
@@ -23,7 +21,6 @@
 #include <QSplitter>
 #include <QTabWidget>
 #include <QTemporaryDir>
-#include <QThread>
 #include <QTreeWidget>
 #include <QVBoxLayout>
 
@@ -70,12 +67,22 @@ NetworkPanel::NetworkPanel(ClipRoles roles, QWidget* parent, bool persist_settin
   tabs_ = new QTabWidget(this);
   tabs_->addTab(createNetworksTab(), tr("Networks"));
   // The training form is tall: it scrolls rather than squeezing its fields on a small screen.
+  train_tab_ = new TrainTab(roles_, this);
+  train_tab_->setFolders([this] { return lastClipFolder(); }, [this] { return lastFolder(); });
+  connect(train_tab_, &TrainTab::errorOccurred, this, &NetworkPanel::report);
+  connect(train_tab_, &TrainTab::clipFolderChosen, this, &NetworkPanel::rememberClipFolder);
+  connect(train_tab_, &TrainTab::lossNetworkChanged, this, [this](const QString& file) {
+    if (persist_settings_ && !file.isEmpty()) QSettings().setValue(kLossNetworkKey, file);
+  });
   auto* train_scroll = new QScrollArea(this);
-  train_scroll->setWidget(createTrainTab());
+  train_scroll->setWidget(train_tab_);
   train_scroll->setWidgetResizable(true);
   train_scroll->setFrameShape(QFrame::NoFrame);
   tabs_->addTab(train_scroll, tr("Train"));
-  tabs_->addTab(createOptimiseTab(), tr("Optimise"));
+  optimise_tab_ = new OptimiseTab(this);
+  connect(optimise_tab_, &OptimiseTab::optimiseRequested, this, &NetworkPanel::startTransfer);
+  connect(optimise_tab_, &OptimiseTab::cancelRequested, this, &NetworkPanel::cancelJob);
+  tabs_->addTab(optimise_tab_, tr("Optimise"));
   tabs_->addTab(createAdaptTab(), tr("Adapt"));
 
   progress_bar_ = new QProgressBar(this);
@@ -96,7 +103,24 @@ NetworkPanel::NetworkPanel(ClipRoles roles, QWidget* parent, bool persist_settin
   auto* bottom = new QWidget(this);
   auto* bottom_layout = new QVBoxLayout(bottom);
   bottom_layout->setContentsMargins(0, 0, 0, 0);
-  // Train, Retrain and Cancel stay in view under the (scrolling) form, next to the progress they start.
+  // Train, Retrain, Cancel and Resume stay in view under the (scrolling) form, next to the progress
+  // they start.
+  train_button_ = new QPushButton(tr("&Train"), this);
+  train_button_->setObjectName(QStringLiteral("TrainButton"));
+  train_button_->setToolTip(tr("Train a new network on the training set"));
+  retrain_button_ = new QPushButton(tr("&Retrain"), this);
+  retrain_button_->setObjectName(QStringLiteral("RetrainButton"));
+  retrain_button_->setToolTip(tr("Warm start from the selected network with these weights"));
+  cancel_button_ = new QPushButton(tr("Cancel"), this);
+  cancel_button_->setObjectName(QStringLiteral("CancelButton"));
+  cancel_button_->setToolTip(tr("Stop; the last completed epoch is kept"));
+  resume_button_ = new QPushButton(tr("Res&ume"), this);
+  resume_button_->setObjectName(QStringLiteral("ResumeButton"));
+  resume_button_->setToolTip(tr("Continue the cancelled training from its last completed epoch"));
+  connect(train_button_, &QPushButton::clicked, this, [this] { startTraining(false); });
+  connect(retrain_button_, &QPushButton::clicked, this, [this] { startTraining(true); });
+  connect(cancel_button_, &QPushButton::clicked, this, &NetworkPanel::cancelJob);
+  connect(resume_button_, &QPushButton::clicked, this, [this] { resumeTraining(); });
   auto* run_buttons = new QHBoxLayout;
   run_buttons->addWidget(train_button_);
   run_buttons->addWidget(retrain_button_);
@@ -119,8 +143,7 @@ NetworkPanel::NetworkPanel(ClipRoles roles, QWidget* parent, bool persist_settin
   // training needs nothing but clips.
   QString loss_file = persist_settings_ ? QSettings().value(kLossNetworkKey).toString() : QString();
   if (loss_file.isEmpty() || !QFileInfo::exists(loss_file)) loss_file = shippedLossNetworkFile();
-  loss_network_edit_->setText(loss_file);
-  refreshTrainingSummary();
+  train_tab_->setLossNetworkFile(loss_file);
   updateButtons();
 }
 
@@ -327,108 +350,24 @@ void NetworkPanel::browseSave() {
 
 // ---- Training form ----------------------------------------------------------------------------------
 
-NetworkPanel::TrainingForm NetworkPanel::trainingForm() const {
-  TrainingForm form;
-  form.weights.content = content_weight_->value();
-  form.weights.style = style_weight_->value();
-  form.weights.foot = foot_weight_->value();
-  form.weights.bone = bone_weight_->value();
-  form.weights.trajectory = trajectory_weight_->value();
-  form.epochs = epochs_spin_->value();
-  form.learning_rate = learning_rate_spin_->value();
-  form.hidden_units = hidden_spin_->value();
-  return form;
-}
-
-void NetworkPanel::setTrainingForm(const TrainingForm& form) {
-  content_weight_->setValue(form.weights.content);
-  style_weight_->setValue(form.weights.style);
-  foot_weight_->setValue(form.weights.foot);
-  bone_weight_->setValue(form.weights.bone);
-  trajectory_weight_->setValue(form.weights.trajectory);
-  epochs_spin_->setValue(form.epochs);
-  learning_rate_spin_->setValue(form.learning_rate);
-  hidden_spin_->setValue(form.hidden_units);
-}
-
-QString NetworkPanel::lossNetworkFile() const { return loss_network_edit_->text().trimmed(); }
-
-void NetworkPanel::setLossNetworkFile(const QString& file) {
-  loss_network_edit_->setText(file);
-  if (persist_settings_ && !file.isEmpty()) QSettings().setValue(kLossNetworkKey, file);
-}
-
-QStringList NetworkPanel::trainingFolders() const {
-  QStringList folders;
-  for (int i = 0; i < folder_list_->count(); ++i) folders << folder_list_->item(i)->text();
-  return folders;
-}
-
-void NetworkPanel::addTrainingFolder(const QString& folder) {
-  const QString absolute = QDir(folder).absolutePath();
-  if (!QDir(absolute).exists()) {
-    report(tr("Could not add the folder"), tr("%1 does not exist.").arg(absolute));
-    return;
-  }
-  if (!trainingFolders().contains(absolute)) folder_list_->addItem(absolute);
-  refreshTrainingSummary();
-}
+NetworkPanel::TrainingForm NetworkPanel::trainingForm() const { return train_tab_->form(); }
+void NetworkPanel::setTrainingForm(const TrainingForm& form) { train_tab_->setForm(form); }
+QString NetworkPanel::lossNetworkFile() const { return train_tab_->lossNetworkFile(); }
+void NetworkPanel::setLossNetworkFile(const QString& file) { train_tab_->setLossNetworkFile(file); }
+QStringList NetworkPanel::trainingFolders() const { return train_tab_->trainingFolders(); }
+void NetworkPanel::addTrainingFolder(const QString& folder) { train_tab_->addTrainingFolder(folder); }
+void NetworkPanel::addStyleClip(const QString& file, const QString& label) { train_tab_->addStyleClip(file, label); }
+int NetworkPanel::styleClipCount() const { return train_tab_->styleClipCount(); }
+std::vector<style::StyleSource> NetworkPanel::styleSources() const { return train_tab_->styleSources(); }
 
 void NetworkPanel::browseTrainingFolder() {
-  const QString folder = QFileDialog::getExistingDirectory(this, tr("Add a folder to the training set"), lastClipFolder());
-  if (folder.isEmpty()) return;
-  rememberClipFolder(folder);
-  addTrainingFolder(folder);
   tabs_->setCurrentIndex(1);
-}
-
-void NetworkPanel::addStyleClip(const QString& file, const QString& label) {
-  auto* item = new QTreeWidgetItem(style_list_);
-  item->setText(kStyleLabel, label);
-  item->setText(kStyleFile, QFileInfo(file).absoluteFilePath());
-  item->setToolTip(kStyleFile, QFileInfo(file).absoluteFilePath());
-  item->setFlags(item->flags() | Qt::ItemIsEditable);
-  refreshTrainingSummary();
-}
-
-int NetworkPanel::styleClipCount() const { return style_list_->topLevelItemCount(); }
-
-std::vector<style::StyleSource> NetworkPanel::styleSources() const {
-  std::vector<style::StyleSource> sources;
-  for (int i = 0; i < style_list_->topLevelItemCount(); ++i) {
-    const QTreeWidgetItem* item = style_list_->topLevelItem(i);
-    style::StyleSource source;
-    const QString label = item->text(kStyleLabel).trimmed();
-    if (!label.isEmpty()) source.label = label.toStdString();
-    source.file = item->text(kStyleFile).toStdString();
-    sources.push_back(std::move(source));
-  }
-  if (const LoadedClip* style = roles_.style(); sources.empty() && style != nullptr)
-    sources.push_back({std::nullopt, style->path.toStdString()});
-  return sources;
-}
-
-void NetworkPanel::refreshTrainingSummary() {
-  const int clips = static_cast<int>(roles_.training_paths().size());
-  const int folders = folder_list_->count();
-  if (clips == 0 && folders == 0)
-    database_label_->setText(tr("No training set yet: right-click clips and choose \"In the Training Set\", or add a "
-                                "folder of BVH files."));
-  else
-    database_label_->setText(tr("%n clip(s) with the training-database role", nullptr, clips) +
-                             tr(", %n folder(s)", nullptr, folders));
-  if (style_list_->topLevelItemCount() > 0)
-    style_hint_label_->setText(tr("Each content clip is paired with the style clip of its label (from the file name, "
-                                  "or the label given here); an unlabelled clip is the default."));
-  else if (const LoadedClip* style = roles_.style())
-    style_hint_label_->setText(tr("None listed: the Style clip %1 is used for every content clip.").arg(style->name));
-  else
-    style_hint_label_->setText(tr("None listed and no clip has the Style role yet."));
+  train_tab_->browseTrainingFolder();
 }
 
 void NetworkPanel::onClipsChanged() {
   if (adapt_tab_) adapt_tab_->refresh();
-  refreshTrainingSummary();
+  train_tab_->refreshSummary();
   // A preview made from another content clip (or the same clip re-mapped) is stale.
   const LoadedClip* content = roles_.content();
   const std::uint64_t id = content != nullptr ? content->id : 0;
@@ -447,8 +386,7 @@ void NetworkPanel::updateButtons() {
   retrain_button_->setEnabled(!busy && has_current);
   cancel_button_->setEnabled(running_ == Running::Training);
   resume_button_->setEnabled(!busy && canResumeTraining());
-  optimise_button_->setEnabled(!busy);
-  optimise_cancel_button_->setEnabled(running_ == Running::Transfer);
+  optimise_tab_->setRunState(!busy, running_ == Running::Transfer);
   save_button_->setEnabled(has_current);
   remove_button_->setEnabled(has_current);
 }

@@ -39,6 +39,8 @@
 
 #include "clip_roles.h"
 #include "display_space.h"
+#include "optimise_tab.h"
+#include "train_tab.h"
 #include "figure_data.h"
 #include "nn/network_file.h"
 #include "style/style_training_job.h"
@@ -71,12 +73,7 @@ class NetworkPanel : public QWidget {
                                                               QMessageBox::StandardButtons buttons)>;
 
   // What the Train tab holds (editable data; validated when a run starts).
-  struct TrainingForm {
-    nn::LossWeights weights;  // unweighted terms are multiplied by these (eq. 10)
-    int epochs = 100;
-    double learning_rate = 1e-3;  // Adam
-    int hidden_units = 128;       // of the transformation network (new networks only)
-  };
+  using TrainingForm = TrainTab::Form;
 
   // `roles`: the window's clips and roles (clip_roles.h); the owner connects its clipsChanged() to
   // onClipsChanged(). persist_settings: folders and the loss network are kept in QSettings.
@@ -177,12 +174,9 @@ class NetworkPanel : public QWidget {
   };
 
   QWidget* createNetworksTab();
-  QWidget* createTrainTab();
-  QWidget* createOptimiseTab();
   AdaptTab* createAdaptTab();
   void addNetwork(NetworkEntry entry);
   void refreshNetworkList();
-  void refreshTrainingSummary();
   void showNetworkDetails();
   void updateButtons();
   void report(const QString& title, const QString& message);
@@ -239,27 +233,12 @@ class NetworkPanel : public QWidget {
   QLabel* details_label_ = nullptr;
   QPushButton* save_button_ = nullptr;
   QPushButton* remove_button_ = nullptr;
-  QLabel* database_label_ = nullptr;
-  QListWidget* folder_list_ = nullptr;
-  QTreeWidget* style_list_ = nullptr;
-  QLabel* style_hint_label_ = nullptr;
-  QLineEdit* loss_network_edit_ = nullptr;
-  QDoubleSpinBox* content_weight_ = nullptr;
-  QDoubleSpinBox* style_weight_ = nullptr;
-  QDoubleSpinBox* foot_weight_ = nullptr;
-  QDoubleSpinBox* bone_weight_ = nullptr;
-  QDoubleSpinBox* trajectory_weight_ = nullptr;
-  QSpinBox* epochs_spin_ = nullptr;
-  QDoubleSpinBox* learning_rate_spin_ = nullptr;
-  QSpinBox* hidden_spin_ = nullptr;
+  TrainTab* train_tab_ = nullptr;
   QPushButton* train_button_ = nullptr;
   QPushButton* retrain_button_ = nullptr;
   QPushButton* cancel_button_ = nullptr;
   QPushButton* resume_button_ = nullptr;
-  QSpinBox* iterations_spin_ = nullptr;
-  QDoubleSpinBox* transfer_style_weight_ = nullptr;  // the optimisation method's style weight (s)
-  QPushButton* optimise_button_ = nullptr;
-  QPushButton* optimise_cancel_button_ = nullptr;
+  OptimiseTab* optimise_tab_ = nullptr;
   QProgressBar* progress_bar_ = nullptr;
   QLabel* status_label_ = nullptr;
   LossCurveWidget* loss_curve_ = nullptr;

@@ -263,7 +263,7 @@ bool NetworkPanel::startTransfer(int iterations) {
   job.style = style->path.toStdString();
   job.options.iterations = iterations;
   job.options.constraint_iterations = std::max(1, iterations * 100 / 250);
-  job.options.style_weight = transfer_style_weight_->value();
+  job.options.style_weight = optimise_tab_->styleWeight();
   const QString label = tr("optimised towards %1").arg(style->name);
   const int total = job.options.iterations + job.options.constraint_iterations;
 
