@@ -97,16 +97,6 @@ ReconstructionTerms Autoencoder<S>::accumulateReconstruction(const Mat<S>& x, in
   return terms;
 }
 
-template <typename S>
-ReconstructionTerms Autoencoder<S>::evaluateReconstruction(const Mat<S>& x, int frames, S alpha) const {
-  ReconstructionTerms terms;
-  terms.mse = static_cast<double>(meanSquaredError<S>(project(x, frames), x, S(0), nullptr));
-  const double count = static_cast<double>(encoder.weight.value.size() + decoder.weight.value.size());
-  terms.sparsity = static_cast<double>(encoder.weight.value.cwiseAbs().sum() + decoder.weight.value.cwiseAbs().sum()) / count;
-  terms.total = terms.mse + static_cast<double>(alpha) * terms.sparsity;
-  return terms;
-}
-
 template class Autoencoder<float>;
 template class Autoencoder<double>;
 

@@ -83,8 +83,6 @@ class Autoencoder {
   // [0, 1) applies inverted dropout to the input (rng required when > 0); the target is the clean x.
   ReconstructionTerms accumulateReconstruction(const Mat<S>& x, int frames, S alpha, S dropout_rate = S(0),
                                                std::mt19937* rng = nullptr, const ReconstructionFootTerm<S>& foot = {});
-  // The same loss without gradients or dropout (validation).
-  ReconstructionTerms evaluateReconstruction(const Mat<S>& x, int frames, S alpha) const;
 
   std::vector<Parameter<S>*> parameters() { return {&encoder.weight, &encoder.bias, &decoder.weight}; }
   void zeroGrad();

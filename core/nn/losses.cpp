@@ -102,16 +102,6 @@ Mat<S> gramMatrix(const Mat<S>& hidden) {
 }
 
 template <typename S>
-std::vector<Mat<S>> gramMatrices(const Mat<S>& hidden, int frames) {
-  const int windows = windowCount("gramMatrices", hidden.cols(), frames);
-  std::vector<Mat<S>> grams;
-  grams.reserve(static_cast<std::size_t>(windows));
-  for (int b = 0; b < windows; ++b)
-    grams.push_back(gramMatrix<S>(hidden.middleCols(static_cast<Eigen::Index>(b) * frames, frames)));
-  return grams;
-}
-
-template <typename S>
 S styleLoss(const Mat<S>& hidden, int frames, const std::vector<Mat<S>>& style_grams, S weight,
             Mat<S>* grad) {
   const int windows = windowCount("styleLoss", hidden.cols(), frames);
@@ -259,7 +249,6 @@ S trajectoryLoss(const Mat<S>& x_normalised, const Mat<S>& target_normalised,
   template S meanSquaredError<S>(const Mat<S>&, const Mat<S>&, S, Mat<S>*);                          \
   template S meanAbsoluteWeight<S>(const std::vector<Parameter<S>*>&, S);                            \
   template Mat<S> gramMatrix<S>(const Mat<S>&);                                                       \
-  template std::vector<Mat<S>> gramMatrices<S>(const Mat<S>&, int);                                   \
   template S styleLoss<S>(const Mat<S>&, int, const std::vector<Mat<S>>&, S, Mat<S>*);               \
   template S footContactLoss<S>(const Mat<S>&, int, const Mat<S>&, const Normalisation&, S, Mat<S>*); \
   template S boneLengthLoss<S>(const Mat<S>&, int, const Mat<S>&, const Normalisation&, S, Mat<S>*);  \

@@ -57,10 +57,6 @@ S meanAbsoluteWeight(const std::vector<Parameter<S>*>& parameters, S weight);
 template <typename S>
 Mat<S> gramMatrix(const Mat<S>& hidden);
 
-// One Gram matrix per window of a batch (hidden: channels x (B*frames)).
-template <typename S>
-std::vector<Mat<S>> gramMatrices(const Mat<S>& hidden, int frames);
-
 // Eq. 5, style: mean over windows b and entries of (Gram(h_b) - G_b)^2, where G_b is
 // style_grams[b], or style_grams[0] for every window when only one is given (one style clip).
 // hidden: channels x (B*frames) = L(T(I)); each G channels x channels, precomputed per style clip.
