@@ -97,7 +97,15 @@ ReconstructionTerms Autoencoder<S>::accumulateReconstruction(const Mat<S>& x, in
   return terms;
 }
 
+template <typename S>
+bool sameWeights(const Autoencoder<S>& a, const Autoencoder<S>& b) {
+  return a.shape() == b.shape() && a.encoder.weight.value == b.encoder.weight.value &&
+         a.encoder.bias.value == b.encoder.bias.value && a.decoder.weight.value == b.decoder.weight.value;
+}
+
 template class Autoencoder<float>;
 template class Autoencoder<double>;
+template bool sameWeights(const Autoencoder<float>&, const Autoencoder<float>&);
+template bool sameWeights(const Autoencoder<double>&, const Autoencoder<double>&);
 
 }  // namespace motionstyle::nn

@@ -53,7 +53,7 @@ struct ReconstructionTerms {
 template <typename S>
 struct ReconstructionFootTerm {
   const Mat<S>* contacts = nullptr;            // kContactCount x (B*frames), 0/1
-  const Normalisation* normalisation = nullptr;
+  const FeatureStatistics* normalisation = nullptr;
   S weight = S(0);                             // per cm^2; 0 = off
 };
 
@@ -98,5 +98,10 @@ class Autoencoder {
   Dropout<S> dropout_;
   int frames_ = 0;
 };
+
+// The same loss network: equal shapes and bit-identical W0, b0 and W~0 (a style network embeds the
+// loss network it was trained against; a stylize with another one's projection would be wrong).
+template <typename S>
+bool sameWeights(const Autoencoder<S>& a, const Autoencoder<S>& b);
 
 }  // namespace motionstyle::nn
