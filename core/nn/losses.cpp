@@ -33,7 +33,7 @@ template <typename S>
 struct Denormaliser {
   Vec<S> mean;
   Vec<S> std;
-  explicit Denormaliser(const Normalisation& n) {
+  explicit Denormaliser(const FeatureStatistics& n) {
     n.validate();
     mean = n.mean.cast<S>();
     std = n.std.cast<S>();
@@ -54,15 +54,6 @@ void addPositionGrad(Mat<S>& grad, const Vec<S>& std, int joint, Eigen::Index t,
 }
 
 }  // namespace
-
-void Normalisation::validate() const {
-  if (mean.size() != kFeatureCount || std.size() != kFeatureCount)
-    throw std::invalid_argument("Normalisation: mean and std need " + std::to_string(kFeatureCount) +
-                                " values each, got " + std::to_string(mean.size()) + " and " +
-                                std::to_string(std.size()));
-  if (!mean.allFinite() || !std.allFinite() || (std.array() <= 0.0).any())
-    throw std::invalid_argument("Normalisation: values must be finite and std > 0");
-}
 
 template <typename S>
 S meanSquaredError(const Mat<S>& output, const Mat<S>& target, S weight, Mat<S>* grad) {
@@ -137,7 +128,7 @@ S styleLoss(const Mat<S>& hidden, int frames, const std::vector<Mat<S>>& style_g
 
 template <typename S>
 S footContactLoss(const Mat<S>& x_normalised, int frames, const Mat<S>& contacts,
-                  const Normalisation& normalisation, S weight, Mat<S>* grad) {
+                  const FeatureStatistics& normalisation, S weight, Mat<S>* grad) {
   using V3 = Eigen::Matrix<S, 3, 1>;
   const int windows = windowCount("footContactLoss", x_normalised.cols(), frames);
   requireShape("footContactLoss frames", x_normalised.rows(), x_normalised.cols(), kFeatureCount,
@@ -192,7 +183,7 @@ S footContactLoss(const Mat<S>& x_normalised, int frames, const Mat<S>& contacts
 
 template <typename S>
 S boneLengthLoss(const Mat<S>& x_normalised, int frames, const Mat<S>& bone_lengths,
-                 const Normalisation& normalisation, S weight, Mat<S>* grad) {
+                 const FeatureStatistics& normalisation, S weight, Mat<S>* grad) {
   using V3 = Eigen::Matrix<S, 3, 1>;
   const int windows = windowCount("boneLengthLoss", x_normalised.cols(), frames);
   requireShape("boneLengthLoss frames", x_normalised.rows(), x_normalised.cols(), kFeatureCount,
@@ -224,7 +215,7 @@ S boneLengthLoss(const Mat<S>& x_normalised, int frames, const Mat<S>& bone_leng
 
 template <typename S>
 S trajectoryLoss(const Mat<S>& x_normalised, const Mat<S>& target_normalised,
-                 const Normalisation& normalisation, S weight, Mat<S>* grad) {
+                 const FeatureStatistics& normalisation, S weight, Mat<S>* grad) {
   requireShape("trajectoryLoss frames", x_normalised.rows(), x_normalised.cols(), kFeatureCount,
                x_normalised.cols());
   requireShape("trajectoryLoss target", target_normalised.rows(), target_normalised.cols(),
@@ -250,9 +241,9 @@ S trajectoryLoss(const Mat<S>& x_normalised, const Mat<S>& target_normalised,
   template S meanAbsoluteWeight<S>(const std::vector<Parameter<S>*>&, S);                            \
   template Mat<S> gramMatrix<S>(const Mat<S>&);                                                       \
   template S styleLoss<S>(const Mat<S>&, int, const std::vector<Mat<S>>&, S, Mat<S>*);               \
-  template S footContactLoss<S>(const Mat<S>&, int, const Mat<S>&, const Normalisation&, S, Mat<S>*); \
-  template S boneLengthLoss<S>(const Mat<S>&, int, const Mat<S>&, const Normalisation&, S, Mat<S>*);  \
-  template S trajectoryLoss<S>(const Mat<S>&, const Mat<S>&, const Normalisation&, S, Mat<S>*);
+  template S footContactLoss<S>(const Mat<S>&, int, const Mat<S>&, const FeatureStatistics&, S, Mat<S>*); \
+  template S boneLengthLoss<S>(const Mat<S>&, int, const Mat<S>&, const FeatureStatistics&, S, Mat<S>*);  \
+  template S trajectoryLoss<S>(const Mat<S>&, const Mat<S>&, const FeatureStatistics&, S, Mat<S>*);
 
 MOTIONSTYLE_INSTANTIATE_LOSSES(float)
 MOTIONSTYLE_INSTANTIATE_LOSSES(double)

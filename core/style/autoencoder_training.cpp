@@ -73,7 +73,7 @@ AutoencoderTrainingResult trainAutoencoder(const AutoencoderTrainingConfig& conf
   } else {
     std::vector<Eigen::MatrixXd> values;
     for (const MotionClip& clip : data.clips) values.push_back(clip.features.values);
-    model.normalisation = toNormalisation(computeFeatureStatistics(values));
+    model.normalisation = computeFeatureStatistics(values);
     model.network.initialise(settings.seed);
   }
 
@@ -81,7 +81,7 @@ AutoencoderTrainingResult trainAutoencoder(const AutoencoderTrainingConfig& conf
     parameters = {&model.network.decoder.weight};
     optimiser = nn::Adam<float>(parameters, settings.adamOptions());
   }
-  const FeatureStatistics statistics = toStatistics(model.normalisation);
+  const FeatureStatistics& statistics = model.normalisation;
   WindowSet windows = makeWindows(data.clips, statistics, settings.windows);
   if (callbacks.log)
     callbacks.log(std::to_string(windows.count()) + " windows of " + std::to_string(windows.frames) + " frames");
@@ -102,7 +102,7 @@ AutoencoderTrainingResult trainAutoencoder(const AutoencoderTrainingConfig& conf
                             statistics, settings.windows);
       return windows.count();
     };
-  const nn::Normalisation normalisation = model.normalisation;
+  const FeatureStatistics normalisation = model.normalisation;
   setup.micro_step = [&](const std::vector<int>& indices, std::mt19937& rng) {
     const nn::Mat<float> batch = gatherWindows(windows.values, frames, indices);
     const nn::Mat<float> contacts = gatherWindows(windows.contacts, frames, indices);

@@ -14,15 +14,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-nn::Mat<float> normalised(const Eigen::MatrixXd& features, const nn::Normalisation& n) {
-  return ((features.colwise() - n.mean).array().colwise() / n.std.array()).matrix().cast<float>();
-}
-
-bool sameWeights(const nn::Autoencoder<float>& a, const nn::Autoencoder<float>& b) {
-  return a.shape() == b.shape() && a.encoder.weight.value == b.encoder.weight.value &&
-         a.encoder.bias.value == b.encoder.bias.value && a.decoder.weight.value == b.decoder.weight.value;
-}
-
 // The per-clip figures weighted by frames into `sum`.
 void accumulate(ClipEvaluation& sum, const ClipEvaluation& clip) {
   const double w = clip.frames;
@@ -67,13 +58,13 @@ nlohmann::json clipJson(const ClipEvaluation& c) {
 
 }  // namespace
 
-StyleDistances measureStyleDistances(const nn::Autoencoder<float>& encoder, const nn::Normalisation& normalisation,
+StyleDistances measureStyleDistances(const nn::Autoencoder<float>& encoder, const FeatureStatistics& normalisation,
                                      const Eigen::MatrixXd& content, const Eigen::MatrixXd& output,
                                      const nn::Mat<float>& style_gram) {
   const int frames = static_cast<int>(content.cols());
   const int pooled = nn::evenFrames(frames) / 2;
-  const nn::Mat<float> h_content = encoder.encode(normalised(content, normalisation), frames);
-  const nn::Mat<float> h_output = encoder.encode(normalised(output, normalisation), frames);
+  const nn::Mat<float> h_content = encoder.encode(normalisation.normalized(content), frames);
+  const nn::Mat<float> h_output = encoder.encode(normalisation.normalized(output), frames);
   const std::vector<nn::Mat<float>> gram = {style_gram};
   StyleDistances d;
   d.content_after = static_cast<double>(nn::meanSquaredError<float>(h_output, h_content, 0.0f, nullptr));
@@ -82,9 +73,9 @@ StyleDistances measureStyleDistances(const nn::Autoencoder<float>& encoder, cons
   return d;
 }
 
-nn::Mat<float> styleGramOf(const nn::Autoencoder<float>& encoder, const nn::Normalisation& normalisation,
+nn::Mat<float> styleGramOf(const nn::Autoencoder<float>& encoder, const FeatureStatistics& normalisation,
                            const Eigen::MatrixXd& style) {
-  return nn::styleGram(encoder, normalised(style, normalisation));
+  return nn::styleGram(encoder, normalisation.normalized(style));
 }
 
 double boneLengthError(const Eigen::MatrixXd& features, const Eigen::VectorXd& bone_lengths) {
@@ -121,10 +112,10 @@ EvaluationReport evaluateStyleNetwork(const nn::AutoencoderModel& autoencoder, c
   if (pairing.size() != clips.size()) throw std::invalid_argument("evaluateStyleNetwork: one pairing per clip");
   const auto started = Clock::now();
   EvaluationReport report;
-  report.autoencoder_matches_network = sameWeights(autoencoder.network, network.loss_network);
+  report.autoencoder_matches_network = nn::sameWeights(autoencoder.network, network.loss_network);
   const Stylizer stylizer(network);
   const nn::Autoencoder<float>& loss = network.loss_network;
-  const nn::Normalisation& norm = network.normalisation;
+  const FeatureStatistics& norm = network.normalisation;
   std::vector<nn::Mat<float>> style_grams;
   for (const MotionClip& style : styles) style_grams.push_back(styleGramOf(loss, norm, style.features.values));
 
@@ -138,9 +129,9 @@ EvaluationReport evaluateStyleNetwork(const nn::AutoencoderModel& autoencoder, c
     e.frames = frames;
 
     const Eigen::MatrixXd reconstructed = projectFeatures(autoencoder, content);
-    const nn::Mat<float> content_ae = normalised(content, autoencoder.normalisation);
+    const nn::Mat<float> content_ae = autoencoder.normalisation.normalized(content);
     e.reconstruction_mse = static_cast<double>(
-        nn::meanSquaredError<float>(normalised(reconstructed, autoencoder.normalisation), content_ae, 0.0f, nullptr));
+        nn::meanSquaredError<float>(autoencoder.normalisation.normalized(reconstructed), content_ae, 0.0f, nullptr));
     e.reconstruction_joint_error_cm = familiarityFromReconstruction(content, reconstructed).mean_cm;
 
     const auto t0 = Clock::now();

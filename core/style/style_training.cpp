@@ -97,7 +97,7 @@ StyleTrainingResult trainStyleNetwork(const StyleTrainingConfig& config, const T
   const nn::AutoencoderModel loss = config.autoencoder_model
                                         ? *config.autoencoder_model
                                         : loadCompatibleAutoencoder(config.autoencoder, settings.dataset.features);
-  const FeatureStatistics statistics = toStatistics(loss.normalisation);
+  const FeatureStatistics& statistics = loss.normalisation;
 
   // Style clips: every one must cover the loss network's filter (25 frames at 60 fps).
   const DatasetOptions style_options = styleClipOptions(settings.dataset, loss.network.shape().width);
@@ -214,7 +214,7 @@ StyleTrainingResult trainStyleNetwork(const StyleTrainingConfig& config, const T
   }
 
   nn::Autoencoder<float> loss_network = loss.network;  // forward caches are per instance
-  const nn::Normalisation normalisation = loss.normalisation;
+  const FeatureStatistics normalisation = loss.normalisation;
   const int frames = windows.frames;
   const int pooled = nn::evenFrames(frames) / 2;
   LoopSetup setup;
