@@ -1,5 +1,6 @@
 #include "style/evaluation.h"
 
+#include <array>
 #include <chrono>
 #include <nlohmann/json.hpp>
 
@@ -14,23 +15,21 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// The per-clip figures weighted by frames into `sum`.
+// The per-clip figures whose mean over clips is weighted by each clip's frames.
+constexpr std::array<double ClipEvaluation::*, 13> kFrameWeighted = {
+    &ClipEvaluation::reconstruction_mse,          &ClipEvaluation::reconstruction_joint_error_cm,
+    &ClipEvaluation::content_distance_before,     &ClipEvaluation::content_distance_after,
+    &ClipEvaluation::style_distance_before,       &ClipEvaluation::style_distance_after,
+    &ClipEvaluation::style_distance_projection,   &ClipEvaluation::bone_error_cm_content,
+    &ClipEvaluation::bone_error_cm_output,        &ClipEvaluation::foot_skate_cm_s_content,
+    &ClipEvaluation::foot_skate_cm_s_output,      &ClipEvaluation::network_path_distance_ratio,
+    &ClipEvaluation::network_path_end_error_fraction};
+
+// The per-clip figures weighted by frames into `sum` (the times summed as they are).
 void accumulate(ClipEvaluation& sum, const ClipEvaluation& clip) {
   const double w = clip.frames;
   sum.frames += clip.frames;
-  sum.reconstruction_mse += w * clip.reconstruction_mse;
-  sum.reconstruction_joint_error_cm += w * clip.reconstruction_joint_error_cm;
-  sum.content_distance_before += w * clip.content_distance_before;
-  sum.content_distance_after += w * clip.content_distance_after;
-  sum.style_distance_before += w * clip.style_distance_before;
-  sum.style_distance_after += w * clip.style_distance_after;
-  sum.style_distance_projection += w * clip.style_distance_projection;
-  sum.bone_error_cm_content += w * clip.bone_error_cm_content;
-  sum.bone_error_cm_output += w * clip.bone_error_cm_output;
-  sum.foot_skate_cm_s_content += w * clip.foot_skate_cm_s_content;
-  sum.foot_skate_cm_s_output += w * clip.foot_skate_cm_s_output;
-  sum.network_path_distance_ratio += w * clip.network_path_distance_ratio;
-  sum.network_path_end_error_fraction += w * clip.network_path_end_error_fraction;
+  for (double ClipEvaluation::*figure : kFrameWeighted) sum.*figure += w * clip.*figure;
   sum.stylize_seconds += clip.stylize_seconds;
 }
 
@@ -164,13 +163,7 @@ EvaluationReport evaluateStyleNetwork(const nn::AutoencoderModel& autoencoder, c
   mean.file = "mean";
   if (mean.frames > 0) {
     const double n = mean.frames;
-    for (double* v : {&mean.reconstruction_mse, &mean.reconstruction_joint_error_cm, &mean.content_distance_before,
-                      &mean.content_distance_after, &mean.style_distance_before, &mean.style_distance_after,
-                      &mean.style_distance_projection,
-                      &mean.bone_error_cm_content, &mean.bone_error_cm_output, &mean.foot_skate_cm_s_content,
-                      &mean.foot_skate_cm_s_output, &mean.network_path_distance_ratio,
-                      &mean.network_path_end_error_fraction})
-      *v /= n;
+    for (double ClipEvaluation::*figure : kFrameWeighted) mean.*figure /= n;
     report.stylize_frames_per_second = mean.stylize_seconds > 0 ? n / mean.stylize_seconds : 0.0;
   }
   report.seconds = std::chrono::duration<double>(Clock::now() - started).count();
