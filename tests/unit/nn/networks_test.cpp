@@ -216,6 +216,20 @@ TEST(Determinism, SameSeedSameWeightsOtherSeedOtherWeights) {
   EXPECT_EQ(ta.conv3.weight.value, tb.conv3.weight.value);
 }
 
+TEST(Autoencoder, SameWeightsNeedsTheShapeAndEveryParameterToMatch) {
+  Autoencoder<float> a({kFeatureCount, 4, 3});
+  a.initialise(7);
+  Autoencoder<float> b = a;
+  EXPECT_TRUE(sameWeights(a, b));
+  b.encoder.bias.value(1, 0) += 1e-3f;  // b0 alone: eq. 2 subtracts it too
+  EXPECT_FALSE(sameWeights(a, b));
+  b = a;
+  b.decoder.weight.value(0, 0) += 1e-3f;
+  EXPECT_FALSE(sameWeights(a, b));
+  Autoencoder<float> wider({kFeatureCount, 5, 3});
+  EXPECT_FALSE(sameWeights(a, wider));
+}
+
 TEST(Adam, ConvergesOnAQuadraticAndUsesBiasCorrection) {
   // f(w) = sum_i c_i (w_i - t_i)^2 with very different curvatures.
   Parameter<double> w;
