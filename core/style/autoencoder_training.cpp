@@ -31,15 +31,10 @@ AutoencoderTrainingResult trainAutoencoder(const AutoencoderTrainingConfig& conf
   AutoencoderTrainingResult result;
   result.model.network = nn::Autoencoder<float>(config.shape);
 
-  TrainingClips data;
-  try {
-    data = loadTrainingClips(config.data, config.clips, loading, callbacks, "training", started);
-  } catch (const OperationCancelled&) {
-    markCancelledBeforeTraining(result, started);
-    return result;
-  }
-  result.training_files = data.training_files;
-  result.held_out_files = data.held_out_files;
+  std::optional<TrainingClips> loaded =
+      loadTrainingClips(config.data, config.clips, loading, callbacks, "training", started, result);
+  if (!loaded) return result;
+  const TrainingClips& data = *loaded;
 
   nn::AutoencoderModel& model = result.model;
   std::vector<EpochRecord> history;

@@ -128,15 +128,10 @@ StyleTrainingResult trainStyleNetwork(const StyleTrainingConfig& config, const T
   }
   for (const nn::StyleTarget& target : stored) style_hashes.push_back("stored:" + target.label + ":" + gramHash(target.gram));
 
-  TrainingClips data;
-  try {
-    data = loadTrainingClips(config.content, config.content_clips, settings, callbacks, "content", started);
-  } catch (const OperationCancelled&) {
-    markCancelledBeforeTraining(result, started);
-    return result;
-  }
-  result.training_files = data.training_files;
-  result.held_out_files = data.held_out_files;
+  std::optional<TrainingClips> loaded =
+      loadTrainingClips(config.content, config.content_clips, settings, callbacks, "content", started, result);
+  if (!loaded) return result;
+  const TrainingClips& data = *loaded;
   std::vector<std::string> labels;
   for (const MotionClip& clip : data.clips) labels.push_back(clip.labels.content);
   std::vector<std::string> target_names;  // per style clip or stored target, for the log

@@ -234,10 +234,11 @@ TrainingStatus runTrainingLoop(const LoopSetup& setup, std::vector<EpochRecord>&
   return TrainingStatus::Completed;
 }
 
-TrainingClips loadTrainingClips(const std::vector<std::filesystem::path>& inputs,
-                                const std::vector<MotionClip>& preloaded, const TrainingSettings& settings,
-                                const TrainingCallbacks& callbacks, const std::string& what,
-                                std::chrono::steady_clock::time_point started) {
+namespace {
+
+TrainingClips loadClips(const std::vector<std::filesystem::path>& inputs, const std::vector<MotionClip>& preloaded,
+                        const TrainingSettings& settings, const TrainingCallbacks& callbacks, const std::string& what,
+                        std::chrono::steady_clock::time_point started) {
   TrainingClips data;
   if (!preloaded.empty()) {
     for (const MotionClip& clip : preloaded)
@@ -297,6 +298,24 @@ TrainingClips loadTrainingClips(const std::vector<std::filesystem::path>& inputs
     callbacks.log(note);
   }
   return data;
+}
+
+}  // namespace
+
+std::optional<TrainingClips> loadTrainingClips(const std::vector<std::filesystem::path>& inputs,
+                                               const std::vector<MotionClip>& preloaded,
+                                               const TrainingSettings& settings, const TrainingCallbacks& callbacks,
+                                               const std::string& what, std::chrono::steady_clock::time_point started,
+                                               TrainingResult& result) {
+  try {
+    TrainingClips data = loadClips(inputs, preloaded, settings, callbacks, what, started);
+    result.training_files = data.training_files;
+    result.held_out_files = data.held_out_files;
+    return data;
+  } catch (const OperationCancelled&) {
+    markCancelledBeforeTraining(result, started);
+    return std::nullopt;
+  }
 }
 
 nn::NetworkMetadata trainingMetadata(const TrainingSettings& settings, const std::vector<EpochRecord>& history,

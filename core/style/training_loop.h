@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -122,10 +123,13 @@ struct TrainingClips {
   std::vector<std::filesystem::path> training_files;
   std::vector<std::filesystem::path> held_out_files;
 };
-TrainingClips loadTrainingClips(const std::vector<std::filesystem::path>& inputs,
-                                const std::vector<MotionClip>& preloaded, const TrainingSettings& settings,
-                                const TrainingCallbacks& callbacks, const std::string& what,
-                                std::chrono::steady_clock::time_point started);
+// The result's training and held-out file lists are filled in; cancelled while loading, it returns
+// std::nullopt with the result marked as markCancelledBeforeTraining does.
+std::optional<TrainingClips> loadTrainingClips(const std::vector<std::filesystem::path>& inputs,
+                                               const std::vector<MotionClip>& preloaded,
+                                               const TrainingSettings& settings, const TrainingCallbacks& callbacks,
+                                               const std::string& what, std::chrono::steady_clock::time_point started,
+                                               TrainingResult& result);
 
 // Metadata shared by both network kinds: representation, training settings, loss history, properties.
 nn::NetworkMetadata trainingMetadata(const TrainingSettings& settings, const std::vector<EpochRecord>& history,
