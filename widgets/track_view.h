@@ -47,7 +47,6 @@ class TrackView : public QWidget {
 
   // Whether boolean tracks can be painted with the mouse (default true).
   void setEditable(bool editable) { editable_ = editable; }
-  bool isEditable() const { return editable_; }
 
   int playhead() const { return playhead_; }
 

@@ -83,11 +83,12 @@ int runCleanup(const Args& args) {
   // The clip's own canonical joints are the targets, and all the planning needs (up axis, floor,
   // contacts): the world positions of every joint are only ever computed a block at a time.
   Eigen::MatrixXd targets = canonicalJointPositions(motion, mapping);
-  const SpaceConvention convention = detectSpaceConvention(motion.skeleton, targets, mapping, unit);
-  const Eigen::Vector3d up = convention.fileUp();
-  const double floor = estimateFloorHeight(targets, canonicalContactJoints(), up);
+  FileSpaceGround ground = detectFileSpaceGround(motion, mapping, targets, unit);
+  const SpaceConvention& convention = ground.convention;
+  const Eigen::Vector3d up = ground.up;
+  const double floor = ground.floor_height;
 
-  Eigen::MatrixXi contacts;
+  Eigen::MatrixXi contacts = std::move(ground.contacts);
   std::optional<std::filesystem::path> tracks_file;
   if (auto given = parsed.value("contacts")) tracks_file = *given;
   else if (std::filesystem::exists(contactTracksPath(input_file))) tracks_file = contactTracksPath(input_file);
@@ -99,9 +100,6 @@ int runCleanup(const Args& args) {
                            std::to_string(motion.frameCount()));
     contacts = tracks.labels;
     std::cout << "contacts from " << tracks_file->string() << "\n";
-  } else {
-    contacts = detectContacts(targets, canonicalContactJoints(), up, floor, motion.fps(),
-                              restPoseBodyHeight(motion.skeleton, up));
   }
   const ClipMetrics before = measureInput(motion, mapping, contacts, convention, floor);
 
@@ -109,7 +107,7 @@ int runCleanup(const Args& args) {
   const CleanupInput input(motion, mapping, std::move(targets), contacts, up, floor, convention.cm_per_unit);
   CleanupOptions options;
   options.max_total_seconds = timeLimitOption(parsed);
-  const bool resample = output_fps > 0.0 && std::abs(output_fps - motion.fps()) > 1e-6 * output_fps;
+  const bool resample = output_fps > 0.0 && !sameFrameRate(motion.fps(), output_fps);
   const std::vector<BoneReference> bones = skeletonBones(motion.skeleton);
   MetricsAccumulator after(/*keep_tracks=*/false);
   auto measureBlock = [&](const CleanedBlock& block) {

@@ -13,6 +13,7 @@
 #include "cli_args.h"
 #include "commands.h"
 #include "common/errors.h"
+#include "nn/autoencoder.h"
 #include "style/motion_dataset.h"
 #include "style/position_clip.h"
 #include "style/familiarity.h"
@@ -32,16 +33,11 @@ struct StylizeRequest {
   style::DatasetOptions dataset;
 };
 
-bool sameLossNetwork(const nn::Autoencoder<float>& a, const nn::Autoencoder<float>& b) {
-  return a.shape() == b.shape() && a.encoder.weight.value == b.encoder.weight.value &&
-         a.encoder.bias.value == b.encoder.bias.value && a.decoder.weight.value == b.decoder.weight.value;
-}
-
 style::StylizedClip stylizedTargets(const StylizeRequest& request, double& seconds, style::Familiarity& familiarity) {
   nn::StyleModel model = style::loadCompatibleStyleModel(request.network, request.dataset.features);
   if (request.autoencoder) {
     const nn::AutoencoderModel autoencoder = style::loadCompatibleAutoencoder(*request.autoencoder, request.dataset.features);
-    if (!sameLossNetwork(autoencoder.network, model.loss_network))
+    if (!nn::sameWeights(autoencoder.network, model.loss_network))
       throw InputError(request.network.string(), 0,
                        "this style network was trained against another loss network than " +
                            request.autoencoder->string() + " (it embeds its own; omit --ae to use it)");

@@ -35,6 +35,16 @@ void FeatureStatistics::denormalize(Eigen::MatrixXd& features) const {
   features = (features.array().colwise() * std.array()).matrix().colwise() + mean;
 }
 
+Eigen::MatrixXf FeatureStatistics::normalized(const Eigen::MatrixXd& features) const {
+  if (features.rows() != kFeatureCount) throw std::invalid_argument("normalized: features must have 66 rows");
+  return ((features.colwise() - mean).array().colwise() / std.array()).matrix().cast<float>();
+}
+
+Eigen::MatrixXd FeatureStatistics::denormalized(const Eigen::MatrixXf& normalized_features) const {
+  if (normalized_features.rows() != kFeatureCount) throw std::invalid_argument("denormalized: features must have 66 rows");
+  return (normalized_features.cast<double>().array().colwise() * std.array()).matrix().colwise() + mean;
+}
+
 FeatureStatistics computeFeatureStatistics(const std::vector<Eigen::MatrixXd>& clips) {
   Eigen::VectorXd sum = Eigen::VectorXd::Zero(kFeatureCount);
   Eigen::VectorXd sum_squares = Eigen::VectorXd::Zero(kFeatureCount);

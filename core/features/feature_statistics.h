@@ -17,9 +17,13 @@ struct FeatureStatistics {
 
   // Throws std::invalid_argument unless both have 66 finite entries and every std is > 0.
   void validate() const;
-  // features: kFeatureCount x frames (in place).
+  // features: kFeatureCount x frames (in place): x_n = (x - mean) / std and back, x = x_n * std + mean.
   void normalize(Eigen::MatrixXd& features) const;
   void denormalize(Eigen::MatrixXd& features) const;
+  // The same as copies in the networks' float precision (computed in double, rounded once), so that
+  // every caller feeds a network the very same numbers. std::invalid_argument unless 66 rows.
+  Eigen::MatrixXf normalized(const Eigen::MatrixXd& features) const;
+  Eigen::MatrixXd denormalized(const Eigen::MatrixXf& normalized_features) const;
 };
 
 // clips: each kFeatureCount x frames. Throws std::invalid_argument when there are no frames at all.

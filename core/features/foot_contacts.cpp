@@ -166,4 +166,15 @@ double estimateFloorHeight(const Eigen::MatrixXd& world_positions, const std::ar
   return quantile(lowest, 0.02);
 }
 
+FileSpaceGround detectFileSpaceGround(const Motion& motion, const JointMapping& mapping,
+                                      const Eigen::MatrixXd& canonical_positions, const std::optional<std::string>& unit) {
+  FileSpaceGround ground;
+  ground.convention = detectSpaceConvention(motion.skeleton, canonical_positions, mapping, unit);
+  ground.up = ground.convention.fileUp();
+  ground.floor_height = estimateFloorHeight(canonical_positions, canonicalContactJoints(), ground.up);
+  ground.contacts = detectContacts(canonical_positions, canonicalContactJoints(), ground.up, ground.floor_height,
+                                   motion.fps(), restPoseBodyHeight(motion.skeleton, ground.up));
+  return ground;
+}
+
 }  // namespace motionstyle

@@ -29,9 +29,13 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <optional>
+#include <string>
 
 #include "features/feature_layout.h"
+#include "features/space_convention.h"
 #include "mapping/joint_mapping.h"
+#include "motion/motion.h"
 #include "motion/skeleton.h"
 
 namespace motionstyle {
@@ -82,5 +86,21 @@ double restPoseBodyHeight(const Skeleton& skeleton, const Eigen::Vector3d& up);
 // height along up, minus nothing: the caller adds the sole offset if it wants one. Positions' unit.
 double estimateFloorHeight(const Eigen::MatrixXd& world_positions, const std::array<int, kContactCount>& foot_joints,
                            const Eigen::Vector3d& up);
+
+// The ground of a clip in its own file space, in the order every clean-up front end needs it:
+//   convention = detectSpaceConvention(skeleton, canonical_positions, mapping, unit), up = its fileUp(),
+//   floor      = estimateFloorHeight over the contact joints along up,
+//   contacts   = detectContacts on that floor with the rest pose's body height (restPoseBodyHeight).
+// canonical_positions: frames x 63, the 21 canonical joints in file space (canonicalJointPositions).
+// One sequence, so that the CLI, the app and the benchmarks lock the same feet on the same floor.
+struct FileSpaceGround {
+  SpaceConvention convention;
+  Eigen::Vector3d up = Eigen::Vector3d::UnitY();
+  double floor_height = 0.0;  // file units along up
+  ContactLabels contacts;     // frames x kContactCount
+};
+FileSpaceGround detectFileSpaceGround(const Motion& motion, const JointMapping& mapping,
+                                      const Eigen::MatrixXd& canonical_positions,
+                                      const std::optional<std::string>& unit = std::nullopt);
 
 }  // namespace motionstyle

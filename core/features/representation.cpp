@@ -63,7 +63,7 @@ Eigen::MatrixXd canonicalJointPositions(const Motion& motion, const JointMapping
 
 MotionFeatures extractFeatures(const Motion& motion, const JointMapping& mapping, const FeatureOptions& options) {
   if (!(options.fps > 0.0)) throw std::invalid_argument("extractFeatures: fps must be positive");
-  const bool same_rate = std::abs(motion.fps() - options.fps) <= 1e-6 * options.fps;
+  const bool same_rate = sameFrameRate(motion.fps(), options.fps);
   // Resampled as local transforms (what resampleMotion does before it returns to Euler angles), so that
   // the only Euler -> quaternion conversion is the vectorised one in localPoses.
   LocalPoses poses = localPoses(motion);

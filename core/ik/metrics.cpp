@@ -5,7 +5,6 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-#include "common/atomic_file.h"
 
 namespace motionstyle {
 namespace {
@@ -235,10 +234,6 @@ std::string metricsToJson(const ClipMetrics& metrics, bool include_tracks) {
     json["bone_error_track_cm"] = metrics.bone_error_track_cm;
   }
   return json.dump(2) + "\n";
-}
-
-void writeMetricsJson(const ClipMetrics& metrics, const std::filesystem::path& file, bool include_tracks) {
-  writeFileAtomically(file, metricsToJson(metrics, include_tracks));
 }
 
 }  // namespace motionstyle

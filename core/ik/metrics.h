@@ -19,7 +19,6 @@
 
 #include <Eigen/Core>
 #include <array>
-#include <filesystem>
 #include <string>
 #include <utility>
 #include <vector>
@@ -121,7 +120,5 @@ class MetricsAccumulator {
 
 // {"frames": ..., "foot_skate_cm_s": ..., ...}; `include_tracks` adds the per-frame tracks.
 std::string metricsToJson(const ClipMetrics& metrics, bool include_tracks = false);
-// Written atomically (WriteError on failure).
-void writeMetricsJson(const ClipMetrics& metrics, const std::filesystem::path& file, bool include_tracks = false);
 
 }  // namespace motionstyle

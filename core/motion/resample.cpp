@@ -29,6 +29,12 @@ void checkTiming(int source_frames, double source_frame_time, double target_fps)
                                 std::to_string(1.0 / source_frame_time) + " fps");
 }
 
+}  // namespace
+
+bool sameFrameRate(double a, double b) { return std::abs(a - b) <= kRateTolerance * b; }
+
+namespace {
+
 // `ratio` rounded to a whole number n >= 1 when it is one to within kRateTolerance (relative), else 0.
 int wholeNumber(double ratio) {
   const double nearest = std::round(ratio);

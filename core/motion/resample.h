@@ -33,6 +33,10 @@ namespace motionstyle {
 
 inline constexpr double kMaxUpsampling = 100.0;  // target fps / source fps
 
+// Whether two frame rates are the same for resampling: |a - b| <= 1e-5 * b, the tolerance above, so
+// a caller that skips resampling when this holds gets what resampleMotion would return (a copy).
+bool sameFrameRate(double a, double b);
+
 // For a rate the user asks for (--fps): throws InputError(motion.source, 0, ...) naming the clip's rate
 // and the fastest allowed when resampleMotion(motion, target_fps) would refuse it (more than
 // kMaxUpsampling x the clip's rate). Does nothing for an allowed rate.

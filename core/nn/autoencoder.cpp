@@ -98,16 +98,14 @@ ReconstructionTerms Autoencoder<S>::accumulateReconstruction(const Mat<S>& x, in
 }
 
 template <typename S>
-ReconstructionTerms Autoencoder<S>::evaluateReconstruction(const Mat<S>& x, int frames, S alpha) const {
-  ReconstructionTerms terms;
-  terms.mse = static_cast<double>(meanSquaredError<S>(project(x, frames), x, S(0), nullptr));
-  const double count = static_cast<double>(encoder.weight.value.size() + decoder.weight.value.size());
-  terms.sparsity = static_cast<double>(encoder.weight.value.cwiseAbs().sum() + decoder.weight.value.cwiseAbs().sum()) / count;
-  terms.total = terms.mse + static_cast<double>(alpha) * terms.sparsity;
-  return terms;
+bool sameWeights(const Autoencoder<S>& a, const Autoencoder<S>& b) {
+  return a.shape() == b.shape() && a.encoder.weight.value == b.encoder.weight.value &&
+         a.encoder.bias.value == b.encoder.bias.value && a.decoder.weight.value == b.decoder.weight.value;
 }
 
 template class Autoencoder<float>;
 template class Autoencoder<double>;
+template bool sameWeights(const Autoencoder<float>&, const Autoencoder<float>&);
+template bool sameWeights(const Autoencoder<double>&, const Autoencoder<double>&);
 
 }  // namespace motionstyle::nn

@@ -52,7 +52,7 @@ struct ReconstructionTerms {
 template <typename S>
 struct ReconstructionFootTerm {
   const Mat<S>* contacts = nullptr;            // kContactCount x (B*frames), 0/1
-  const Normalisation* normalisation = nullptr;
+  const FeatureStatistics* normalisation = nullptr;
   S weight = S(0);                             // per cm^2; 0 = off
 };
 
@@ -82,8 +82,6 @@ class Autoencoder {
   // [0, 1) applies inverted dropout to the input (rng required when > 0); the target is the clean x.
   ReconstructionTerms accumulateReconstruction(const Mat<S>& x, int frames, S alpha, S dropout_rate = S(0),
                                                std::mt19937* rng = nullptr, const ReconstructionFootTerm<S>& foot = {});
-  // The same loss without gradients or dropout (validation).
-  ReconstructionTerms evaluateReconstruction(const Mat<S>& x, int frames, S alpha) const;
 
   std::vector<Parameter<S>*> parameters() { return {&encoder.weight, &encoder.bias, &decoder.weight}; }
   void zeroGrad();
@@ -99,5 +97,10 @@ class Autoencoder {
   Dropout<S> dropout_;
   int frames_ = 0;
 };
+
+// The same loss network: equal shapes and bit-identical W0, b0 and W~0 (a style network embeds the
+// loss network it was trained against; a stylize with another one's projection would be wrong).
+template <typename S>
+bool sameWeights(const Autoencoder<S>& a, const Autoencoder<S>& b);
 
 }  // namespace motionstyle::nn

@@ -36,8 +36,6 @@ class FastStylizer {
   // (std::invalid_argument otherwise).
   FastStylizer(const Transformer<float>& transformer, const Autoencoder<float>& autoencoder);
 
-  bool hasTransformer() const { return has_transformer_; }
-
   // x: features x frames (frames >= 1), normalised. out: features x frames. Throws
   // std::invalid_argument on a shape mismatch or if stylize() is called without a transformer.
   void stylize(const Mat<float>& x, Mat<float>& out);

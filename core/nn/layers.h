@@ -57,7 +57,6 @@ template <typename S>
 class SubtractSharedBias {
  public:
   explicit SubtractSharedBias(Parameter<S>* shared = nullptr) : shared_(shared) {}
-  void bind(Parameter<S>* shared) { shared_ = shared; }
   Mat<S> apply(const Mat<S>& x) const;
   Mat<S> backward(const Mat<S>& grad_out, bool accumulate_parameter) const;
 

@@ -33,7 +33,7 @@ template <typename S>
 struct Denormaliser {
   Vec<S> mean;
   Vec<S> std;
-  explicit Denormaliser(const Normalisation& n) {
+  explicit Denormaliser(const FeatureStatistics& n) {
     n.validate();
     mean = n.mean.cast<S>();
     std = n.std.cast<S>();
@@ -54,15 +54,6 @@ void addPositionGrad(Mat<S>& grad, const Vec<S>& std, int joint, Eigen::Index t,
 }
 
 }  // namespace
-
-void Normalisation::validate() const {
-  if (mean.size() != kFeatureCount || std.size() != kFeatureCount)
-    throw std::invalid_argument("Normalisation: mean and std need " + std::to_string(kFeatureCount) +
-                                " values each, got " + std::to_string(mean.size()) + " and " +
-                                std::to_string(std.size()));
-  if (!mean.allFinite() || !std.allFinite() || (std.array() <= 0.0).any())
-    throw std::invalid_argument("Normalisation: values must be finite and std > 0");
-}
 
 template <typename S>
 S meanSquaredError(const Mat<S>& output, const Mat<S>& target, S weight, Mat<S>* grad) {
@@ -102,16 +93,6 @@ Mat<S> gramMatrix(const Mat<S>& hidden) {
 }
 
 template <typename S>
-std::vector<Mat<S>> gramMatrices(const Mat<S>& hidden, int frames) {
-  const int windows = windowCount("gramMatrices", hidden.cols(), frames);
-  std::vector<Mat<S>> grams;
-  grams.reserve(static_cast<std::size_t>(windows));
-  for (int b = 0; b < windows; ++b)
-    grams.push_back(gramMatrix<S>(hidden.middleCols(static_cast<Eigen::Index>(b) * frames, frames)));
-  return grams;
-}
-
-template <typename S>
 S styleLoss(const Mat<S>& hidden, int frames, const std::vector<Mat<S>>& style_grams, S weight,
             Mat<S>* grad) {
   const int windows = windowCount("styleLoss", hidden.cols(), frames);
@@ -147,7 +128,7 @@ S styleLoss(const Mat<S>& hidden, int frames, const std::vector<Mat<S>>& style_g
 
 template <typename S>
 S footContactLoss(const Mat<S>& x_normalised, int frames, const Mat<S>& contacts,
-                  const Normalisation& normalisation, S weight, Mat<S>* grad) {
+                  const FeatureStatistics& normalisation, S weight, Mat<S>* grad) {
   using V3 = Eigen::Matrix<S, 3, 1>;
   const int windows = windowCount("footContactLoss", x_normalised.cols(), frames);
   requireShape("footContactLoss frames", x_normalised.rows(), x_normalised.cols(), kFeatureCount,
@@ -202,7 +183,7 @@ S footContactLoss(const Mat<S>& x_normalised, int frames, const Mat<S>& contacts
 
 template <typename S>
 S boneLengthLoss(const Mat<S>& x_normalised, int frames, const Mat<S>& bone_lengths,
-                 const Normalisation& normalisation, S weight, Mat<S>* grad) {
+                 const FeatureStatistics& normalisation, S weight, Mat<S>* grad) {
   using V3 = Eigen::Matrix<S, 3, 1>;
   const int windows = windowCount("boneLengthLoss", x_normalised.cols(), frames);
   requireShape("boneLengthLoss frames", x_normalised.rows(), x_normalised.cols(), kFeatureCount,
@@ -234,7 +215,7 @@ S boneLengthLoss(const Mat<S>& x_normalised, int frames, const Mat<S>& bone_leng
 
 template <typename S>
 S trajectoryLoss(const Mat<S>& x_normalised, const Mat<S>& target_normalised,
-                 const Normalisation& normalisation, S weight, Mat<S>* grad) {
+                 const FeatureStatistics& normalisation, S weight, Mat<S>* grad) {
   requireShape("trajectoryLoss frames", x_normalised.rows(), x_normalised.cols(), kFeatureCount,
                x_normalised.cols());
   requireShape("trajectoryLoss target", target_normalised.rows(), target_normalised.cols(),
@@ -259,11 +240,10 @@ S trajectoryLoss(const Mat<S>& x_normalised, const Mat<S>& target_normalised,
   template S meanSquaredError<S>(const Mat<S>&, const Mat<S>&, S, Mat<S>*);                          \
   template S meanAbsoluteWeight<S>(const std::vector<Parameter<S>*>&, S);                            \
   template Mat<S> gramMatrix<S>(const Mat<S>&);                                                       \
-  template std::vector<Mat<S>> gramMatrices<S>(const Mat<S>&, int);                                   \
   template S styleLoss<S>(const Mat<S>&, int, const std::vector<Mat<S>>&, S, Mat<S>*);               \
-  template S footContactLoss<S>(const Mat<S>&, int, const Mat<S>&, const Normalisation&, S, Mat<S>*); \
-  template S boneLengthLoss<S>(const Mat<S>&, int, const Mat<S>&, const Normalisation&, S, Mat<S>*);  \
-  template S trajectoryLoss<S>(const Mat<S>&, const Mat<S>&, const Normalisation&, S, Mat<S>*);
+  template S footContactLoss<S>(const Mat<S>&, int, const Mat<S>&, const FeatureStatistics&, S, Mat<S>*); \
+  template S boneLengthLoss<S>(const Mat<S>&, int, const Mat<S>&, const FeatureStatistics&, S, Mat<S>*);  \
+  template S trajectoryLoss<S>(const Mat<S>&, const Mat<S>&, const FeatureStatistics&, S, Mat<S>*);
 
 MOTIONSTYLE_INSTANTIATE_LOSSES(float)
 MOTIONSTYLE_INSTANTIATE_LOSSES(double)

@@ -14,18 +14,12 @@
 #include <vector>
 
 #include "features/feature_layout.h"
+#include "features/feature_statistics.h"
 #include "nn/tensor.h"
 
 namespace motionstyle::nn {
 
-// Per-feature normalisation statistics of the 66-value frames: x_n = (x - mean) / std.
-struct Normalisation {
-  Eigen::VectorXd mean;  // 66, representation units
-  Eigen::VectorXd std;   // 66, > 0
-
-  // Throws std::invalid_argument unless both have kFeatureCount finite entries and std > 0.
-  void validate() const;
-};
+// The normalisation x_n = (x - mean) / std is FeatureStatistics (features/feature_statistics.h).
 
 // Bones for eq. 8: bone b joins canonical joint b + 1 to its parent kCanonicalParent[b + 1] (every
 // joint but the hips has a parent, so there are 20).
@@ -57,10 +51,6 @@ S meanAbsoluteWeight(const std::vector<Parameter<S>*>& parameters, S weight);
 template <typename S>
 Mat<S> gramMatrix(const Mat<S>& hidden);
 
-// One Gram matrix per window of a batch (hidden: channels x (B*frames)).
-template <typename S>
-std::vector<Mat<S>> gramMatrices(const Mat<S>& hidden, int frames);
-
 // Eq. 5, style: mean over windows b and entries of (Gram(h_b) - G_b)^2, where G_b is
 // style_grams[b], or style_grams[0] for every window when only one is given (one style clip).
 // hidden: channels x (B*frames) = L(T(I)); each G channels x channels, precomputed per style clip.
@@ -79,7 +69,7 @@ S styleLoss(const Mat<S>& hidden, int frames, const std::vector<Mat<S>>& style_g
 // x_normalised: 66 x (B*frames); contacts: kContactCount x (B*frames), 0 or 1.
 template <typename S>
 S footContactLoss(const Mat<S>& x_normalised, int frames, const Mat<S>& contacts,
-                  const Normalisation& normalisation, S weight, Mat<S>* grad);
+                  const FeatureStatistics& normalisation, S weight, Mat<S>* grad);
 
 // Eq. 8, bone lengths: mean over the kBoneCount bones and every frame of (|p_c - p_parent| - l_b)^2
 // in cm^2, where l_b = bone_lengths(b, window) are the target lengths in cm (the content clip's own).
@@ -87,13 +77,13 @@ S footContactLoss(const Mat<S>& x_normalised, int frames, const Mat<S>& contacts
 // at the wrist) are safe. bone_lengths: kBoneCount x B.
 template <typename S>
 S boneLengthLoss(const Mat<S>& x_normalised, int frames, const Mat<S>& bone_lengths,
-                 const Normalisation& normalisation, S weight, Mat<S>* grad);
+                 const FeatureStatistics& normalisation, S weight, Mat<S>* grad);
 
 // Eq. 9, trajectory: mean over frames of (w - w')^2 + (v_x - v_x')^2 + (v_z - v_z')^2 with the
 // content's de-normalised velocities as targets (w in rad/frame, v in cm/frame). Both 66 x N; the
 // gradient flows only into x_normalised.
 template <typename S>
 S trajectoryLoss(const Mat<S>& x_normalised, const Mat<S>& target_normalised,
-                 const Normalisation& normalisation, S weight, Mat<S>* grad);
+                 const FeatureStatistics& normalisation, S weight, Mat<S>* grad);
 
 }  // namespace motionstyle::nn

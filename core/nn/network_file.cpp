@@ -40,7 +40,7 @@ void writeConvTensors(ByteWriter& w, const Conv1d<float>& conv, WeightPrecision 
   if (conv.hasBias()) writeChecked(w, conv.bias.name, conv.bias.value, precision, kMaxWeightMagnitude);
 }
 
-void requireWritable(const Normalisation& normalisation, const NetworkMetadata& metadata) {
+void requireWritable(const FeatureStatistics& normalisation, const NetworkMetadata& metadata) {
   normalisation.validate();
   for (const std::string& problem : {normalisationProblem(normalisation), metadataProblem(metadata)})
     if (!problem.empty()) throw std::invalid_argument("network file: " + problem);
@@ -52,7 +52,7 @@ void requireWritable(const Normalisation& normalisation, const NetworkMetadata& 
 }
 
 // format_version 1 has no weight-encoding field and is always f32.
-std::string serialise(NetworkKind kind, const Normalisation& normalisation, const NetworkMetadata& m,
+std::string serialise(NetworkKind kind, const FeatureStatistics& normalisation, const NetworkMetadata& m,
                       const Autoencoder<float>& ae, const Transformer<float>* transformer,
                       WeightPrecision precision, std::uint32_t format_version,
                       const std::vector<StyleTarget>& targets = {}) {
@@ -135,7 +135,7 @@ struct Parsed {
   NetworkKind kind{};
   WeightPrecision precision = WeightPrecision::F32;
   NetworkMetadata metadata;
-  Normalisation normalisation;
+  FeatureStatistics normalisation;
   AutoencoderShape ae_shape;
   TransformerShape t_shape;
   std::vector<ByteReader::Tensor> tensors;

@@ -81,7 +81,7 @@ struct NetworkMetadata {
 
 struct AutoencoderModel {
   Autoencoder<float> network;
-  Normalisation normalisation;  // 66 + 66: x_n = (x - mean) / std
+  FeatureStatistics normalisation;  // 66 + 66: x_n = (x - mean) / std
   NetworkMetadata metadata;
 };
 
@@ -100,7 +100,7 @@ struct StyleTarget {
 struct StyleModel {
   Transformer<float> transformer;
   Autoencoder<float> loss_network;
-  Normalisation normalisation;
+  FeatureStatistics normalisation;
   NetworkMetadata metadata;
   std::vector<StyleTarget> style_targets;
 };

@@ -22,7 +22,7 @@ std::string countProblem(const char* field, int value) {
 
 }  // namespace
 
-std::string normalisationProblem(const Normalisation& n) {
+std::string normalisationProblem(const FeatureStatistics& n) {
   if (n.mean.size() != kFeatureCount || n.std.size() != kFeatureCount)
     return "normalisation needs " + std::to_string(kFeatureCount) + " means and stds, got " +
            std::to_string(n.mean.size()) + " and " + std::to_string(n.std.size());

@@ -47,7 +47,7 @@ std::string metadataProblem(const NetworkMetadata& metadata);
 
 // "" when mean and std have kFeatureCount entries within the bounds above; otherwise what is wrong,
 // naming the first bad entry ("normalisation std[3] = 1e-301 is outside [1e-6, 1e6]").
-std::string normalisationProblem(const Normalisation& normalisation);
+std::string normalisationProblem(const FeatureStatistics& normalisation);
 
 // "" when every entry of `values` is finite with |v| <= max_magnitude; otherwise e.g.
 // "tensor 'encoder.bias' has the value 1e+30 at (0, 0); trained networks stay within +-100000".

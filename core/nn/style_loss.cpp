@@ -18,7 +18,7 @@ void requireRows(const char* what, Eigen::Index rows, Eigen::Index cols, Eigen::
 // Computes every term on y = T(I) (and h = L(y)); adds weighted gradients when the pointers are set.
 template <typename S>
 StyleLossTerms lossTerms(const Mat<S>& output, const Mat<S>& hidden, const StyleBatch<S>& batch,
-                         const Normalisation& normalisation, const LossWeights& w, Mat<S>* grad_output,
+                         const FeatureStatistics& normalisation, const LossWeights& w, Mat<S>* grad_output,
                          Mat<S>* grad_hidden) {
   const int pooled = evenFrames(batch.frames) / 2;
   StyleLossTerms terms;
@@ -74,7 +74,7 @@ Mat<S> styleGram(const Autoencoder<S>& loss_network, const Mat<S>& style_clip) {
 
 template <typename S>
 StyleLossTerms accumulateStyleLoss(Transformer<S>& transformer, Autoencoder<S>& loss_network,
-                                   const StyleBatch<S>& batch, const Normalisation& normalisation,
+                                   const StyleBatch<S>& batch, const FeatureStatistics& normalisation,
                                    const LossWeights& weights) {
   weights.validate();
   batch.validate(transformer.shape().features, loss_network.shape().hidden);
@@ -91,7 +91,7 @@ StyleLossTerms accumulateStyleLoss(Transformer<S>& transformer, Autoencoder<S>& 
 
 template <typename S>
 StyleLossTerms evaluateStyleLoss(const Transformer<S>& transformer, const Autoencoder<S>& loss_network,
-                                 const StyleBatch<S>& batch, const Normalisation& normalisation,
+                                 const StyleBatch<S>& batch, const FeatureStatistics& normalisation,
                                  const LossWeights& weights) {
   weights.validate();
   batch.validate(transformer.shape().features, loss_network.shape().hidden);
@@ -105,9 +105,9 @@ StyleLossTerms evaluateStyleLoss(const Transformer<S>& transformer, const Autoen
   template Mat<S> contentHidden<S>(const Autoencoder<S>&, const Mat<S>&, int);                         \
   template Mat<S> styleGram<S>(const Autoencoder<S>&, const Mat<S>&);                                  \
   template StyleLossTerms accumulateStyleLoss<S>(Transformer<S>&, Autoencoder<S>&, const StyleBatch<S>&, \
-                                                 const Normalisation&, const LossWeights&);            \
+                                                 const FeatureStatistics&, const LossWeights&);            \
   template StyleLossTerms evaluateStyleLoss<S>(const Transformer<S>&, const Autoencoder<S>&,           \
-                                               const StyleBatch<S>&, const Normalisation&, const LossWeights&);
+                                               const StyleBatch<S>&, const FeatureStatistics&, const LossWeights&);
 
 MOTIONSTYLE_INSTANTIATE_STYLE_LOSS(float)
 MOTIONSTYLE_INSTANTIATE_STYLE_LOSS(double)

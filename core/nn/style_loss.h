@@ -70,13 +70,13 @@ Mat<S> styleGram(const Autoencoder<S>& loss_network, const Mat<S>& style_clip);
 // network's weights are neither changed nor given gradients (only its caches are used).
 template <typename S>
 StyleLossTerms accumulateStyleLoss(Transformer<S>& transformer, Autoencoder<S>& loss_network,
-                                   const StyleBatch<S>& batch, const Normalisation& normalisation,
+                                   const StyleBatch<S>& batch, const FeatureStatistics& normalisation,
                                    const LossWeights& weights);
 
 // The same value without gradients (validation).
 template <typename S>
 StyleLossTerms evaluateStyleLoss(const Transformer<S>& transformer, const Autoencoder<S>& loss_network,
-                                 const StyleBatch<S>& batch, const Normalisation& normalisation,
+                                 const StyleBatch<S>& batch, const FeatureStatistics& normalisation,
                                  const LossWeights& weights);
 
 }  // namespace motionstyle::nn

@@ -31,57 +31,50 @@ AutoencoderTrainingResult trainAutoencoder(const AutoencoderTrainingConfig& conf
   AutoencoderTrainingResult result;
   result.model.network = nn::Autoencoder<float>(config.shape);
 
-  TrainingClips data;
-  try {
-    data = loadTrainingClips(config.data, config.clips, loading, callbacks, "training", started);
-  } catch (const OperationCancelled&) {
-    markCancelledBeforeTraining(result, started);
-    return result;
-  }
-  result.training_files = data.training_files;
-  result.held_out_files = data.held_out_files;
+  std::optional<TrainingClips> loaded =
+      loadTrainingClips(config.data, config.clips, loading, callbacks, "training", started, result);
+  if (!loaded) return result;
+  const TrainingClips& data = *loaded;
 
   nn::AutoencoderModel& model = result.model;
   std::vector<EpochRecord> history;
-  std::vector<nn::Parameter<float>*> parameters = model.network.parameters();
-  nn::Adam<float> optimiser(parameters, settings.adamOptions());
+  nn::Adam<float> optimiser(model.network.parameters(), settings.adamOptions());
   const std::uint64_t fingerprint = dataFingerprint(data, settings, settingsParts(config));
-  int first_epoch = 1;
-
-  if (settings.resume) {
-    const LoadedCheckpoint checkpoint = readCheckpoint(settings.checkpointPath());
-    nn::AutoencoderModel resumed = nn::parseAutoencoder(checkpoint.network_bytes, settings.checkpointPath().string());
+  TrainedNetwork network;
+  network.kind = nn::NetworkKind::Autoencoder;
+  network.resume = [&](const std::string& network_bytes, const std::filesystem::path& checkpoint) {
+    nn::AutoencoderModel resumed = nn::parseAutoencoder(network_bytes, checkpoint.string());
     if (!(resumed.network.shape() == config.shape))
-      throw InputError(settings.checkpointPath().string(), 0, "the checkpoint's autoencoder has another shape");
+      throw InputError(checkpoint.string(), 0, "the checkpoint's autoencoder has another shape");
     model = std::move(resumed);
-    parameters = model.network.parameters();
-    optimiser = nn::Adam<float>(parameters, settings.adamOptions());
-    first_epoch = restoreFromState(checkpoint.state, nn::NetworkKind::Autoencoder, fingerprint,
-                                   settings.checkpointPath(), optimiser, history);
-    if (callbacks.log) callbacks.log("resuming after epoch " + std::to_string(first_epoch - 1));
-  } else if (config.init_model || !settings.init.empty()) {
-    // Warm start: the earlier network's weights AND its normalisation (the weights only make sense on
-    // inputs normalised the way they were trained).
-    nn::AutoencoderModel initial =
-        config.init_model ? *config.init_model : loadCompatibleAutoencoder(settings.init, settings.dataset.features);
-    if (!(initial.network.shape() == config.shape))
-      throw InputError(settings.init.string(), 0, "the --init autoencoder has another shape than requested");
-    model.network = std::move(initial.network);
-    model.normalisation = initial.normalisation;
-    parameters = model.network.parameters();
-    optimiser = nn::Adam<float>(parameters, settings.adamOptions());
-  } else {
+  };
+  if (config.init_model || !settings.init.empty())
+    network.warm_start = [&] {
+      // The earlier network's weights AND its normalisation (the weights only make sense on inputs
+      // normalised the way they were trained).
+      nn::AutoencoderModel initial =
+          config.init_model ? *config.init_model : loadCompatibleAutoencoder(settings.init, settings.dataset.features);
+      if (!(initial.network.shape() == config.shape))
+        throw InputError(settings.init.string(), 0, "the --init autoencoder has another shape than requested");
+      model.network = std::move(initial.network);
+      model.normalisation = initial.normalisation;
+    };
+  network.fresh = [&] {
     std::vector<Eigen::MatrixXd> values;
     for (const MotionClip& clip : data.clips) values.push_back(clip.features.values);
-    model.normalisation = toNormalisation(computeFeatureStatistics(values));
+    model.normalisation = computeFeatureStatistics(values);
     model.network.initialise(settings.seed);
-  }
-
-  if (!config.train_encoder) {
-    parameters = {&model.network.decoder.weight};
-    optimiser = nn::Adam<float>(parameters, settings.adamOptions());
-  }
-  const FeatureStatistics statistics = toStatistics(model.normalisation);
+  };
+  // A frozen encoder (adaptation) trains the decoder's W~0 alone: the optimiser's state is the decoder's.
+  network.parameters = [&] {
+    return config.train_encoder ? model.network.parameters()
+                                : std::vector<nn::Parameter<float>*>{&model.network.decoder.weight};
+  };
+  network.serialise = [&] { return nn::serialiseAutoencoder(model); };
+  network.save = [&](const std::filesystem::path& file) { nn::saveAutoencoder(model, file); };
+  if (callbacks.autoencoder_snapshot) network.snapshot = [&] { callbacks.autoencoder_snapshot(model); };
+  LoopSetup setup = startTraining(network, settings, fingerprint, optimiser, history, callbacks, started);
+  const FeatureStatistics& statistics = model.normalisation;
   WindowSet windows = makeWindows(data.clips, statistics, settings.windows);
   if (callbacks.log)
     callbacks.log(std::to_string(windows.count()) + " windows of " + std::to_string(windows.frames) + " frames");
@@ -89,20 +82,14 @@ AutoencoderTrainingResult trainAutoencoder(const AutoencoderTrainingConfig& conf
   const float alpha = static_cast<float>(config.sparsity);
   const float dropout = static_cast<float>(config.dropout);
 
-  LoopSetup setup;
-  setup.settings = &settings;
   setup.window_count = windows.count();
-  setup.first_epoch = first_epoch;
-  setup.parameters = parameters;
-  setup.optimiser = &optimiser;
-  setup.started = started;
   if (settings.augmentation.enabled())
     setup.begin_epoch = [&](int epoch) {
       windows = makeWindows(augmentedEpoch(data.clips, settings.augmentation, settings.seed, epoch, loading.dataset),
                             statistics, settings.windows);
       return windows.count();
     };
-  const nn::Normalisation normalisation = model.normalisation;
+  const FeatureStatistics normalisation = model.normalisation;
   setup.micro_step = [&](const std::vector<int>& indices, std::mt19937& rng) {
     const nn::Mat<float> batch = gatherWindows(windows.values, frames, indices);
     const nn::Mat<float> contacts = gatherWindows(windows.contacts, frames, indices);
@@ -124,19 +111,8 @@ AutoencoderTrainingResult trainAutoencoder(const AutoencoderTrainingConfig& conf
     if (config.foot_weight > 0.0) m.properties.emplace_back("foot_weight", std::to_string(config.foot_weight));
     return m;
   };
-  setup.end_epoch = [&](const std::vector<EpochRecord>& so_far) {
-    model.metadata = metadata(so_far);
-    saveCheckpoint(settings, nn::serialiseAutoencoder(model), nn::NetworkKind::Autoencoder, optimiser, so_far, fingerprint);
-    if (callbacks.autoencoder_snapshot) callbacks.autoencoder_snapshot(model);
-  };
-
-  runTrainingLoop(setup, history, callbacks, result);
-  model.metadata = metadata(history);
-  if (result.status == TrainingStatus::Completed && !settings.output.empty()) {
-    nn::saveAutoencoder(model, settings.output);
-    if (!settings.keep_checkpoint) removeCheckpoint(settings.checkpointPath());
-  }
-  result.seconds = secondsSince(started);
+  network.set_metadata = [&](const std::vector<EpochRecord>& so_far) { model.metadata = metadata(so_far); };
+  runTraining(network, setup, fingerprint, history, callbacks, result);
   return result;
 }
 

@@ -1,5 +1,6 @@
 #include "style/evaluation.h"
 
+#include <array>
 #include <chrono>
 #include <nlohmann/json.hpp>
 
@@ -14,32 +15,21 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-nn::Mat<float> normalised(const Eigen::MatrixXd& features, const nn::Normalisation& n) {
-  return ((features.colwise() - n.mean).array().colwise() / n.std.array()).matrix().cast<float>();
-}
+// The per-clip figures whose mean over clips is weighted by each clip's frames.
+constexpr std::array<double ClipEvaluation::*, 13> kFrameWeighted = {
+    &ClipEvaluation::reconstruction_mse,          &ClipEvaluation::reconstruction_joint_error_cm,
+    &ClipEvaluation::content_distance_before,     &ClipEvaluation::content_distance_after,
+    &ClipEvaluation::style_distance_before,       &ClipEvaluation::style_distance_after,
+    &ClipEvaluation::style_distance_projection,   &ClipEvaluation::bone_error_cm_content,
+    &ClipEvaluation::bone_error_cm_output,        &ClipEvaluation::foot_skate_cm_s_content,
+    &ClipEvaluation::foot_skate_cm_s_output,      &ClipEvaluation::network_path_distance_ratio,
+    &ClipEvaluation::network_path_end_error_fraction};
 
-bool sameWeights(const nn::Autoencoder<float>& a, const nn::Autoencoder<float>& b) {
-  return a.shape() == b.shape() && a.encoder.weight.value == b.encoder.weight.value &&
-         a.encoder.bias.value == b.encoder.bias.value && a.decoder.weight.value == b.decoder.weight.value;
-}
-
-// The per-clip figures weighted by frames into `sum`.
+// The per-clip figures weighted by frames into `sum` (the times summed as they are).
 void accumulate(ClipEvaluation& sum, const ClipEvaluation& clip) {
   const double w = clip.frames;
   sum.frames += clip.frames;
-  sum.reconstruction_mse += w * clip.reconstruction_mse;
-  sum.reconstruction_joint_error_cm += w * clip.reconstruction_joint_error_cm;
-  sum.content_distance_before += w * clip.content_distance_before;
-  sum.content_distance_after += w * clip.content_distance_after;
-  sum.style_distance_before += w * clip.style_distance_before;
-  sum.style_distance_after += w * clip.style_distance_after;
-  sum.style_distance_projection += w * clip.style_distance_projection;
-  sum.bone_error_cm_content += w * clip.bone_error_cm_content;
-  sum.bone_error_cm_output += w * clip.bone_error_cm_output;
-  sum.foot_skate_cm_s_content += w * clip.foot_skate_cm_s_content;
-  sum.foot_skate_cm_s_output += w * clip.foot_skate_cm_s_output;
-  sum.network_path_distance_ratio += w * clip.network_path_distance_ratio;
-  sum.network_path_end_error_fraction += w * clip.network_path_end_error_fraction;
+  for (double ClipEvaluation::*figure : kFrameWeighted) sum.*figure += w * clip.*figure;
   sum.stylize_seconds += clip.stylize_seconds;
 }
 
@@ -67,13 +57,13 @@ nlohmann::json clipJson(const ClipEvaluation& c) {
 
 }  // namespace
 
-StyleDistances measureStyleDistances(const nn::Autoencoder<float>& encoder, const nn::Normalisation& normalisation,
+StyleDistances measureStyleDistances(const nn::Autoencoder<float>& encoder, const FeatureStatistics& normalisation,
                                      const Eigen::MatrixXd& content, const Eigen::MatrixXd& output,
                                      const nn::Mat<float>& style_gram) {
   const int frames = static_cast<int>(content.cols());
   const int pooled = nn::evenFrames(frames) / 2;
-  const nn::Mat<float> h_content = encoder.encode(normalised(content, normalisation), frames);
-  const nn::Mat<float> h_output = encoder.encode(normalised(output, normalisation), frames);
+  const nn::Mat<float> h_content = encoder.encode(normalisation.normalized(content), frames);
+  const nn::Mat<float> h_output = encoder.encode(normalisation.normalized(output), frames);
   const std::vector<nn::Mat<float>> gram = {style_gram};
   StyleDistances d;
   d.content_after = static_cast<double>(nn::meanSquaredError<float>(h_output, h_content, 0.0f, nullptr));
@@ -82,9 +72,9 @@ StyleDistances measureStyleDistances(const nn::Autoencoder<float>& encoder, cons
   return d;
 }
 
-nn::Mat<float> styleGramOf(const nn::Autoencoder<float>& encoder, const nn::Normalisation& normalisation,
+nn::Mat<float> styleGramOf(const nn::Autoencoder<float>& encoder, const FeatureStatistics& normalisation,
                            const Eigen::MatrixXd& style) {
-  return nn::styleGram(encoder, normalised(style, normalisation));
+  return nn::styleGram(encoder, normalisation.normalized(style));
 }
 
 double boneLengthError(const Eigen::MatrixXd& features, const Eigen::VectorXd& bone_lengths) {
@@ -121,10 +111,10 @@ EvaluationReport evaluateStyleNetwork(const nn::AutoencoderModel& autoencoder, c
   if (pairing.size() != clips.size()) throw std::invalid_argument("evaluateStyleNetwork: one pairing per clip");
   const auto started = Clock::now();
   EvaluationReport report;
-  report.autoencoder_matches_network = sameWeights(autoencoder.network, network.loss_network);
+  report.autoencoder_matches_network = nn::sameWeights(autoencoder.network, network.loss_network);
   const Stylizer stylizer(network);
   const nn::Autoencoder<float>& loss = network.loss_network;
-  const nn::Normalisation& norm = network.normalisation;
+  const FeatureStatistics& norm = network.normalisation;
   std::vector<nn::Mat<float>> style_grams;
   for (const MotionClip& style : styles) style_grams.push_back(styleGramOf(loss, norm, style.features.values));
 
@@ -138,9 +128,9 @@ EvaluationReport evaluateStyleNetwork(const nn::AutoencoderModel& autoencoder, c
     e.frames = frames;
 
     const Eigen::MatrixXd reconstructed = projectFeatures(autoencoder, content);
-    const nn::Mat<float> content_ae = normalised(content, autoencoder.normalisation);
+    const nn::Mat<float> content_ae = autoencoder.normalisation.normalized(content);
     e.reconstruction_mse = static_cast<double>(
-        nn::meanSquaredError<float>(normalised(reconstructed, autoencoder.normalisation), content_ae, 0.0f, nullptr));
+        nn::meanSquaredError<float>(autoencoder.normalisation.normalized(reconstructed), content_ae, 0.0f, nullptr));
     e.reconstruction_joint_error_cm = familiarityFromReconstruction(content, reconstructed).mean_cm;
 
     const auto t0 = Clock::now();
@@ -173,13 +163,7 @@ EvaluationReport evaluateStyleNetwork(const nn::AutoencoderModel& autoencoder, c
   mean.file = "mean";
   if (mean.frames > 0) {
     const double n = mean.frames;
-    for (double* v : {&mean.reconstruction_mse, &mean.reconstruction_joint_error_cm, &mean.content_distance_before,
-                      &mean.content_distance_after, &mean.style_distance_before, &mean.style_distance_after,
-                      &mean.style_distance_projection,
-                      &mean.bone_error_cm_content, &mean.bone_error_cm_output, &mean.foot_skate_cm_s_content,
-                      &mean.foot_skate_cm_s_output, &mean.network_path_distance_ratio,
-                      &mean.network_path_end_error_fraction})
-      *v /= n;
+    for (double ClipEvaluation::*figure : kFrameWeighted) mean.*figure /= n;
     report.stylize_frames_per_second = mean.stylize_seconds > 0 ? n / mean.stylize_seconds : 0.0;
   }
   report.seconds = std::chrono::duration<double>(Clock::now() - started).count();

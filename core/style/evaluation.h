@@ -83,11 +83,11 @@ struct StyleDistances {
   double style_after = 0;
   double styleRatio() const { return style_before > 0 ? style_after / style_before : 0.0; }
 };
-StyleDistances measureStyleDistances(const nn::Autoencoder<float>& encoder, const nn::Normalisation& normalisation,
+StyleDistances measureStyleDistances(const nn::Autoencoder<float>& encoder, const FeatureStatistics& normalisation,
                                      const Eigen::MatrixXd& content, const Eigen::MatrixXd& output,
                                      const nn::Mat<float>& style_gram);
 // Gram(L(S)) of a style clip's features (representation units) through `encoder`.
-nn::Mat<float> styleGramOf(const nn::Autoencoder<float>& encoder, const nn::Normalisation& normalisation,
+nn::Mat<float> styleGramOf(const nn::Autoencoder<float>& encoder, const FeatureStatistics& normalisation,
                            const Eigen::MatrixXd& style);
 
 // Figures used by the report, public for tests and the GUI's metrics panel. features: 66 x frames,

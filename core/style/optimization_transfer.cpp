@@ -18,14 +18,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-nn::Mat<float> normalised(const Eigen::MatrixXd& features, const nn::Normalisation& n) {
-  return ((features.colwise() - n.mean).array().colwise() / n.std.array()).matrix().cast<float>();
-}
-
-Eigen::MatrixXd denormalised(const nn::Mat<float>& x, const nn::Normalisation& n) {
-  return (x.cast<double>().array().colwise() * n.std.array()).matrix().colwise() + n.mean;
-}
-
 // decode(H) with the decoder's forward cache (for the constraint pass) and its input gradient.
 class Decoder {
  public:
@@ -74,11 +66,11 @@ OptimizationResult optimizeStyleTransfer(const nn::AutoencoderModel& autoencoder
                                         std::to_string(width));
   if (!content.allFinite() || !style.allFinite()) throw std::invalid_argument("optimizeStyleTransfer: non-finite input");
 
-  const nn::Normalisation& norm = autoencoder.normalisation;
+  const FeatureStatistics& norm = autoencoder.normalisation;
   const nn::Autoencoder<float>& network = autoencoder.network;
-  const nn::Mat<float> content_n = normalised(content, norm);
+  const nn::Mat<float> content_n = norm.normalized(content);
   const nn::Mat<float> content_hidden = network.encode(content_n, frames);
-  const std::vector<nn::Mat<float>> style_gram = {nn::styleGram(network, normalised(style, norm))};
+  const std::vector<nn::Mat<float>> style_gram = {nn::styleGram(network, norm.normalized(style))};
   const int pooled = static_cast<int>(content_hidden.cols());
   const float c = static_cast<float>(options.content_weight / (options.content_weight + options.style_weight));
   const float s = static_cast<float>(options.style_weight / (options.content_weight + options.style_weight));
@@ -149,7 +141,7 @@ OptimizationResult optimizeStyleTransfer(const nn::AutoencoderModel& autoencoder
   }
   if (!hidden.value.allFinite()) throw std::runtime_error("the optimisation diverged (non-finite hidden units)");
 
-  result.clip.features = denormalised(Decoder(network, frames).forward(hidden.value), norm);
+  result.clip.features = norm.denormalized(Decoder(network, frames).forward(hidden.value));
   applyPathMode(result.clip.features, content, options.path);
   enforceBoneLengths(result.clip.features, referenceProportions());
   result.clip.path = options.path;

@@ -97,7 +97,7 @@ StyleTrainingResult trainStyleNetwork(const StyleTrainingConfig& config, const T
   const nn::AutoencoderModel loss = config.autoencoder_model
                                         ? *config.autoencoder_model
                                         : loadCompatibleAutoencoder(config.autoencoder, settings.dataset.features);
-  const FeatureStatistics statistics = toStatistics(loss.normalisation);
+  const FeatureStatistics& statistics = loss.normalisation;
 
   // Style clips: every one must cover the loss network's filter (25 frames at 60 fps).
   const DatasetOptions style_options = styleClipOptions(settings.dataset, loss.network.shape().width);
@@ -128,15 +128,10 @@ StyleTrainingResult trainStyleNetwork(const StyleTrainingConfig& config, const T
   }
   for (const nn::StyleTarget& target : stored) style_hashes.push_back("stored:" + target.label + ":" + gramHash(target.gram));
 
-  TrainingClips data;
-  try {
-    data = loadTrainingClips(config.content, config.content_clips, settings, callbacks, "content", started);
-  } catch (const OperationCancelled&) {
-    markCancelledBeforeTraining(result, started);
-    return result;
-  }
-  result.training_files = data.training_files;
-  result.held_out_files = data.held_out_files;
+  std::optional<TrainingClips> loaded =
+      loadTrainingClips(config.content, config.content_clips, settings, callbacks, "content", started, result);
+  if (!loaded) return result;
+  const TrainingClips& data = *loaded;
   std::vector<std::string> labels;
   for (const MotionClip& clip : data.clips) labels.push_back(clip.labels.content);
   std::vector<std::string> target_names;  // per style clip or stored target, for the log
@@ -164,9 +159,7 @@ StyleTrainingResult trainStyleNetwork(const StyleTrainingConfig& config, const T
   // Targets computed once: style Gram matrices per style clip (or stored), L(I) per content window.
   std::vector<nn::Mat<float>> style_grams;
   for (const MotionClip& clip : style_clips) {
-    Eigen::MatrixXd values = clip.features.values;
-    statistics.normalize(values);
-    style_grams.push_back(nn::styleGram(loss.network, nn::Mat<float>(values.cast<float>())));
+    style_grams.push_back(nn::styleGram(loss.network, statistics.normalized(clip.features.values)));
   }
   for (const nn::StyleTarget& target : stored) style_grams.push_back(target.gram);
   result.model.style_targets = config.styles.empty() ? stored : targetsOf(config.styles, style_grams);
@@ -185,45 +178,37 @@ StyleTrainingResult trainStyleNetwork(const StyleTrainingConfig& config, const T
   model.loss_network = loss.network;
   model.normalisation = loss.normalisation;
   std::vector<EpochRecord> history;
-  std::vector<nn::Parameter<float>*> parameters = model.transformer.parameters();
-  nn::Adam<float> optimiser(parameters, settings.adamOptions());
+  nn::Adam<float> optimiser(model.transformer.parameters(), settings.adamOptions());
   const std::uint64_t fingerprint = dataFingerprint(data, settings, settingsParts(config, style_hashes, result.pairing, loss));
-  int first_epoch = 1;
-  if (settings.resume) {
-    const LoadedCheckpoint checkpoint = readCheckpoint(settings.checkpointPath());
-    nn::StyleModel resumed = nn::parseStyleModel(checkpoint.network_bytes, settings.checkpointPath().string());
+  TrainedNetwork network;
+  network.kind = nn::NetworkKind::Style;
+  network.resume = [&](const std::string& network_bytes, const std::filesystem::path& checkpoint) {
+    nn::StyleModel resumed = nn::parseStyleModel(network_bytes, checkpoint.string());
     if (!(resumed.transformer.shape() == config.shape))
-      throw InputError(settings.checkpointPath().string(), 0, "the checkpoint's network has another shape");
+      throw InputError(checkpoint.string(), 0, "the checkpoint's network has another shape");
     model.transformer = std::move(resumed.transformer);
-    parameters = model.transformer.parameters();
-    optimiser = nn::Adam<float>(parameters, settings.adamOptions());
-    first_epoch = restoreFromState(checkpoint.state, nn::NetworkKind::Style, fingerprint, settings.checkpointPath(),
-                                   optimiser, history);
-    if (callbacks.log) callbacks.log("resuming after epoch " + std::to_string(first_epoch - 1));
-  } else if (config.init_model || !settings.init.empty()) {
-    nn::StyleModel initial =
-        config.init_model ? *config.init_model : loadCompatibleStyleModel(settings.init, settings.dataset.features);
-    if (!(initial.transformer.shape() == config.shape))
-      throw InputError(settings.init.string(), 0, "the --init network has another shape than requested");
-    model.transformer = std::move(initial.transformer);
-    parameters = model.transformer.parameters();
-    optimiser = nn::Adam<float>(parameters, settings.adamOptions());
-    if (callbacks.log) callbacks.log("warm start from " + (config.init_model ? stored_source : settings.init.string()));
-  } else {
-    model.transformer.initialise(settings.seed);
-  }
+  };
+  if (config.init_model || !settings.init.empty())
+    network.warm_start = [&] {
+      nn::StyleModel initial =
+          config.init_model ? *config.init_model : loadCompatibleStyleModel(settings.init, settings.dataset.features);
+      if (!(initial.transformer.shape() == config.shape))
+        throw InputError(settings.init.string(), 0, "the --init network has another shape than requested");
+      model.transformer = std::move(initial.transformer);
+      if (callbacks.log) callbacks.log("warm start from " + (config.init_model ? stored_source : settings.init.string()));
+    };
+  network.fresh = [&] { model.transformer.initialise(settings.seed); };
+  network.parameters = [&] { return model.transformer.parameters(); };
+  network.serialise = [&] { return nn::serialiseStyleModel(model); };
+  network.save = [&](const std::filesystem::path& file) { nn::saveStyleModel(model, file); };
+  if (callbacks.style_snapshot) network.snapshot = [&] { callbacks.style_snapshot(model); };
+  LoopSetup setup = startTraining(network, settings, fingerprint, optimiser, history, callbacks, started);
 
   nn::Autoencoder<float> loss_network = loss.network;  // forward caches are per instance
-  const nn::Normalisation normalisation = loss.normalisation;
+  const FeatureStatistics normalisation = loss.normalisation;
   const int frames = windows.frames;
   const int pooled = nn::evenFrames(frames) / 2;
-  LoopSetup setup;
-  setup.settings = &settings;
   setup.window_count = windows.count();
-  setup.first_epoch = first_epoch;
-  setup.parameters = parameters;
-  setup.optimiser = &optimiser;
-  setup.started = started;
   if (settings.augmentation.enabled())
     setup.begin_epoch = [&](int epoch) {
       windows = makeWindows(augmentedEpoch(data.clips, settings.augmentation, settings.seed, epoch, settings.dataset),
@@ -268,19 +253,8 @@ StyleTrainingResult trainStyleNetwork(const StyleTrainingConfig& config, const T
     }
     return m;
   };
-  setup.end_epoch = [&](const std::vector<EpochRecord>& so_far) {
-    model.metadata = metadata(so_far);
-    saveCheckpoint(settings, nn::serialiseStyleModel(model), nn::NetworkKind::Style, optimiser, so_far, fingerprint);
-    if (callbacks.style_snapshot) callbacks.style_snapshot(model);
-  };
-
-  runTrainingLoop(setup, history, callbacks, result);
-  model.metadata = metadata(history);
-  if (result.status == TrainingStatus::Completed && !settings.output.empty()) {
-    nn::saveStyleModel(model, settings.output);
-    if (!settings.keep_checkpoint) removeCheckpoint(settings.checkpointPath());
-  }
-  result.seconds = secondsSince(started);
+  network.set_metadata = [&](const std::vector<EpochRecord>& so_far) { model.metadata = metadata(so_far); };
+  runTraining(network, setup, fingerprint, history, callbacks, result);
   return result;
 }
 

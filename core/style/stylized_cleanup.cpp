@@ -12,8 +12,6 @@
 namespace motionstyle::style {
 namespace {
 
-bool sameRate(double a, double b) { return std::abs(a - b) <= 1e-6 * b; }
-
 Eigen::MatrixXi contactsPerFrame(const Eigen::MatrixXd& contacts) {
   return (contacts.transpose().array() > 0.5).cast<int>().matrix();
 }
@@ -72,7 +70,7 @@ StylizedCleanup cleanUpStylizedClip(const Motion& content, const JointMapping& m
     throw std::invalid_argument("cleanUpStylizedClip: contact overrides are " + std::to_string(contact_overrides.rows()) +
                                 " x " + std::to_string(contact_overrides.cols()) + ", expected " +
                                 std::to_string(content.frameCount()) + " x 4 (the content's frames)");
-  const Motion at_rate = sameRate(content.fps(), stylized.fps) ? content : resampleMotion(content, stylized.fps);
+  const Motion at_rate = sameFrameRate(content.fps(), stylized.fps) ? content : resampleMotion(content, stylized.fps);
   if (at_rate.frameCount() != stylized.frameCount())
     throw std::invalid_argument("cleanUpStylizedClip: the stylized clip has " + std::to_string(stylized.frameCount()) +
                                 " frames, its content " + std::to_string(at_rate.frameCount()) + " at the same rate");
@@ -124,12 +122,12 @@ StylizedCleanup cleanUpStylizedClip(const Motion& content, const JointMapping& m
   result.cleaned = computeMetrics(after);
 
   const double target_fps = output_fps > 0.0 ? output_fps : content.fps();
-  result.motion = sameRate(cleaned.fps(), target_fps) ? std::move(cleaned) : resampleMotion(cleaned, target_fps);
+  result.motion = sameFrameRate(cleaned.fps(), target_fps) ? std::move(cleaned) : resampleMotion(cleaned, target_fps);
   // Back at the content's rate the clip can come out a frame or two short (720 frames at 120 fps are
   // 360 at 60 fps, which give 719 at 120 fps): the content's last frames lie past the last solved one.
   // They hold that pose, as resampling does past the end, so that the export has the content's count.
   const Eigen::Index solved = result.motion.values.rows();
-  if (sameRate(target_fps, content.fps()) && solved > 0 && solved < content.frameCount()) {
+  if (sameFrameRate(target_fps, content.fps()) && solved > 0 && solved < content.frameCount()) {
     result.motion.values.conservativeResize(content.frameCount(), Eigen::NoChange);
     for (Eigen::Index f = solved; f < result.motion.values.rows(); ++f)
       result.motion.values.row(f) = result.motion.values.row(solved - 1);

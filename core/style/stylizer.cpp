@@ -32,14 +32,6 @@ Eigen::MatrixXd cropEdges(const Eigen::MatrixXd& padded) {
   return padded.middleCols(kEdgePaddingFrames, padded.cols() - 2 * kEdgePaddingFrames);
 }
 
-nn::Mat<float> normalised(const Eigen::MatrixXd& features, const nn::Normalisation& n) {
-  return ((features.colwise() - n.mean).array().colwise() / n.std.array()).matrix().cast<float>();
-}
-
-Eigen::MatrixXd denormalised(const nn::Mat<float>& x, const nn::Normalisation& n) {
-  return (x.cast<double>().array().colwise() * n.std.array()).matrix().colwise() + n.mean;
-}
-
 }  // namespace
 
 Stylizer::Stylizer(nn::StyleModel model, std::string source_name)
@@ -57,9 +49,9 @@ Eigen::MatrixXd Stylizer::stylizeFeatures(const Eigen::MatrixXd& features, doubl
   nn::Mat<float> styled;
   {
     const std::lock_guard<std::mutex> lock(mutex_);
-    styled = fast_->stylize(normalised(padEdges(features), model_.normalisation));
+    styled = fast_->stylize(model_.normalisation.normalized(padEdges(features)));
   }
-  Eigen::MatrixXd result = cropEdges(denormalised(styled, model_.normalisation));
+  Eigen::MatrixXd result = cropEdges(model_.normalisation.denormalized(styled));
   if (strength != 1.0) result = features + strength * (result - features);
   applyPathMode(result, features, path);
   enforceBoneLengths(result, referenceProportions());
@@ -84,8 +76,8 @@ StylizedClip Stylizer::stylize(const MotionFeatures& content, double strength, P
 Eigen::MatrixXd projectFeatures(const nn::AutoencoderModel& autoencoder, const Eigen::MatrixXd& features) {
   requireFeatures(features, "projectFeatures");
   nn::FastStylizer fast(autoencoder.network);
-  return cropEdges(denormalised(fast.project(normalised(padEdges(features), autoencoder.normalisation)),
-                                autoencoder.normalisation));
+  const FeatureStatistics& normalisation = autoencoder.normalisation;
+  return cropEdges(normalisation.denormalized(fast.project(normalisation.normalized(padEdges(features)))));
 }
 
 }  // namespace motionstyle::style

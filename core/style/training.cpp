@@ -101,15 +101,4 @@ nn::StyleModel loadCompatibleStyleModel(const std::filesystem::path& file, const
   return model;
 }
 
-nn::Normalisation toNormalisation(const FeatureStatistics& statistics) {
-  return {statistics.mean, statistics.std};
-}
-
-FeatureStatistics toStatistics(const nn::Normalisation& normalisation) {
-  FeatureStatistics statistics;
-  statistics.mean = normalisation.mean;
-  statistics.std = normalisation.std;
-  return statistics;
-}
-
 }  // namespace motionstyle::style

@@ -204,9 +204,6 @@ nn::RepresentationInfo currentRepresentation(const FeatureOptions& options = {})
 nn::AutoencoderModel loadCompatibleAutoencoder(const std::filesystem::path& file, const FeatureOptions& options = {});
 nn::StyleModel loadCompatibleStyleModel(const std::filesystem::path& file, const FeatureOptions& options = {});
 
-// nn::Normalisation <-> FeatureStatistics (the same numbers).
-nn::Normalisation toNormalisation(const FeatureStatistics& statistics);
-FeatureStatistics toStatistics(const nn::Normalisation& normalisation);
 
 StyleTrainingResult trainStyleNetwork(const StyleTrainingConfig& config, const TrainingCallbacks& callbacks = {});
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <system_error>
 
@@ -65,6 +66,49 @@ void runTrainingLoop(const LoopSetup& setup, std::vector<EpochRecord>& history, 
   result.status = runTrainingLoop(setup, history, callbacks);
   result.history = history;
   result.epochs_completed = history.empty() ? 0 : history.back().epoch;
+}
+
+LoopSetup startTraining(const TrainedNetwork& network, const TrainingSettings& settings, std::uint64_t data_fingerprint,
+                        nn::Adam<float>& optimiser, std::vector<EpochRecord>& history,
+                        const TrainingCallbacks& callbacks, std::chrono::steady_clock::time_point started) {
+  std::optional<LoadedCheckpoint> checkpoint;
+  if (settings.resume) {
+    checkpoint = readCheckpoint(settings.checkpointPath());
+    network.resume(checkpoint->network_bytes, settings.checkpointPath());
+  } else if (network.warm_start) {
+    network.warm_start();
+  } else {
+    network.fresh();
+  }
+  LoopSetup setup;
+  setup.settings = &settings;
+  setup.parameters = network.parameters();
+  optimiser = nn::Adam<float>(setup.parameters, settings.adamOptions());
+  setup.optimiser = &optimiser;
+  setup.started = started;
+  if (checkpoint) {
+    setup.first_epoch = restoreFromState(checkpoint->state, network.kind, data_fingerprint, settings.checkpointPath(),
+                                         optimiser, history);
+    if (callbacks.log) callbacks.log("resuming after epoch " + std::to_string(setup.first_epoch - 1));
+  }
+  return setup;
+}
+
+void runTraining(const TrainedNetwork& network, LoopSetup setup, std::uint64_t data_fingerprint,
+                 std::vector<EpochRecord>& history, const TrainingCallbacks& callbacks, TrainingResult& result) {
+  const TrainingSettings& settings = *setup.settings;
+  setup.end_epoch = [&](const std::vector<EpochRecord>& so_far) {
+    network.set_metadata(so_far);
+    saveCheckpoint(settings, network.serialise(), network.kind, *setup.optimiser, so_far, data_fingerprint);
+    if (network.snapshot) network.snapshot();
+  };
+  runTrainingLoop(setup, history, callbacks, result);
+  network.set_metadata(history);
+  if (result.status == TrainingStatus::Completed && !settings.output.empty()) {
+    network.save(settings.output);
+    if (!settings.keep_checkpoint) removeCheckpoint(settings.checkpointPath());
+  }
+  result.seconds = secondsSince(setup.started);
 }
 
 void markCancelledBeforeTraining(TrainingResult& result, std::chrono::steady_clock::time_point started) {
@@ -190,10 +234,11 @@ TrainingStatus runTrainingLoop(const LoopSetup& setup, std::vector<EpochRecord>&
   return TrainingStatus::Completed;
 }
 
-TrainingClips loadTrainingClips(const std::vector<std::filesystem::path>& inputs,
-                                const std::vector<MotionClip>& preloaded, const TrainingSettings& settings,
-                                const TrainingCallbacks& callbacks, const std::string& what,
-                                std::chrono::steady_clock::time_point started) {
+namespace {
+
+TrainingClips loadClips(const std::vector<std::filesystem::path>& inputs, const std::vector<MotionClip>& preloaded,
+                        const TrainingSettings& settings, const TrainingCallbacks& callbacks, const std::string& what,
+                        std::chrono::steady_clock::time_point started) {
   TrainingClips data;
   if (!preloaded.empty()) {
     for (const MotionClip& clip : preloaded)
@@ -253,6 +298,24 @@ TrainingClips loadTrainingClips(const std::vector<std::filesystem::path>& inputs
     callbacks.log(note);
   }
   return data;
+}
+
+}  // namespace
+
+std::optional<TrainingClips> loadTrainingClips(const std::vector<std::filesystem::path>& inputs,
+                                               const std::vector<MotionClip>& preloaded,
+                                               const TrainingSettings& settings, const TrainingCallbacks& callbacks,
+                                               const std::string& what, std::chrono::steady_clock::time_point started,
+                                               TrainingResult& result) {
+  try {
+    TrainingClips data = loadClips(inputs, preloaded, settings, callbacks, what, started);
+    result.training_files = data.training_files;
+    result.held_out_files = data.held_out_files;
+    return data;
+  } catch (const OperationCancelled&) {
+    markCancelledBeforeTraining(result, started);
+    return std::nullopt;
+  }
 }
 
 nn::NetworkMetadata trainingMetadata(const TrainingSettings& settings, const std::vector<EpochRecord>& history,

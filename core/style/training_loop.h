@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -76,6 +77,39 @@ TrainingStatus runTrainingLoop(const LoopSetup& setup, std::vector<EpochRecord>&
 void runTrainingLoop(const LoopSetup& setup, std::vector<EpochRecord>& history, const TrainingCallbacks& callbacks,
                      TrainingResult& result);
 
+// The network a run trains, as the steps both trainers share need it. Taking a network over (each
+// throws InputError on a network of another shape):
+//   RESUME     (settings.resume): resume(the checkpoint's network bytes, its path), then the optimiser's
+//              state and the history are restored (restoreFromState), "resuming after epoch N" logged;
+//   WARM START (warm_start set): warm_start() takes an earlier network's weights;
+//   FRESH      otherwise: fresh() initialises.
+// Its file: set_metadata(history so far), serialise() for checkpoints, save(settings.output) at the end,
+// snapshot() after each epoch (optional). One shape, so that the autoencoder and the style network
+// start, checkpoint and finish the same way.
+struct TrainedNetwork {
+  nn::NetworkKind kind = nn::NetworkKind::Autoencoder;
+  std::function<void(const std::string& network_bytes, const std::filesystem::path& checkpoint)> resume;
+  std::function<void()> warm_start;  // empty: no earlier network to start from
+  std::function<void()> fresh;
+  std::function<std::vector<nn::Parameter<float>*>()> parameters;  // the trained ones, once taken over
+  std::function<void(const std::vector<EpochRecord>& history)> set_metadata;
+  std::function<std::string()> serialise;
+  std::function<void(const std::filesystem::path& file)> save;
+  std::function<void()> snapshot;
+};
+
+// Takes the network over (resume, warm start or fresh, above), makes `optimiser` a new Adam on its
+// parameters (restored when resuming) and returns the loop's setup with settings, first epoch,
+// parameters, optimiser and start time filled in; the caller adds the windows and the steps.
+LoopSetup startTraining(const TrainedNetwork& network, const TrainingSettings& settings, std::uint64_t data_fingerprint,
+                        nn::Adam<float>& optimiser, std::vector<EpochRecord>& history,
+                        const TrainingCallbacks& callbacks, std::chrono::steady_clock::time_point started);
+
+// Runs the loop with a checkpoint (and snapshot) after each epoch, then sets the final metadata; once
+// Completed, saves to settings.output (when set) and removes the checkpoint unless kept; the time spent.
+void runTraining(const TrainedNetwork& network, LoopSetup setup, std::uint64_t data_fingerprint,
+                 std::vector<EpochRecord>& history, const TrainingCallbacks& callbacks, TrainingResult& result);
+
 // A run cancelled before its first step (while loading data or encoding content): status Cancelled,
 // the time spent. Nothing was trained or written.
 void markCancelledBeforeTraining(TrainingResult& result, std::chrono::steady_clock::time_point started);
@@ -89,10 +123,13 @@ struct TrainingClips {
   std::vector<std::filesystem::path> training_files;
   std::vector<std::filesystem::path> held_out_files;
 };
-TrainingClips loadTrainingClips(const std::vector<std::filesystem::path>& inputs,
-                                const std::vector<MotionClip>& preloaded, const TrainingSettings& settings,
-                                const TrainingCallbacks& callbacks, const std::string& what,
-                                std::chrono::steady_clock::time_point started);
+// The result's training and held-out file lists are filled in; cancelled while loading, it returns
+// std::nullopt with the result marked as markCancelledBeforeTraining does.
+std::optional<TrainingClips> loadTrainingClips(const std::vector<std::filesystem::path>& inputs,
+                                               const std::vector<MotionClip>& preloaded,
+                                               const TrainingSettings& settings, const TrainingCallbacks& callbacks,
+                                               const std::string& what, std::chrono::steady_clock::time_point started,
+                                               TrainingResult& result);
 
 // Metadata shared by both network kinds: representation, training settings, loss history, properties.
 nn::NetworkMetadata trainingMetadata(const TrainingSettings& settings, const std::vector<EpochRecord>& history,

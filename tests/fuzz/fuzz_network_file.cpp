@@ -45,7 +45,7 @@ void requireSafe(const std::string& text, const char* what) {
 }
 
 template <typename Network>
-bool sameWeights(Network a, Network b) {  // by value: parameters() is not const
+bool sameParameters(Network a, Network b) {  // names, shapes and values; by value: parameters() is not const
   const auto pa = a.parameters();
   const auto pb = b.parameters();
   if (pa.size() != pb.size()) return false;
@@ -56,7 +56,7 @@ bool sameWeights(Network a, Network b) {  // by value: parameters() is not const
   return true;
 }
 
-bool sameCommon(const Normalisation& a, const Normalisation& b, const NetworkMetadata& ma, const NetworkMetadata& mb) {
+bool sameCommon(const FeatureStatistics& a, const FeatureStatistics& b, const NetworkMetadata& ma, const NetworkMetadata& mb) {
   return a.mean == b.mean && a.std == b.std && ma == mb;
 }
 
@@ -68,7 +68,7 @@ void checkAccepted(std::string_view bytes, const NetworkFileInfo& info) {
     requireSafe(describe(model), "describe()");
     again = serialiseStyleModel(model, info.precision);
     const StyleModel reloaded = parseStyleModel(again, "rewritten.net");
-    if (!sameWeights(model.transformer, reloaded.transformer) || !sameWeights(model.loss_network, reloaded.loss_network) ||
+    if (!sameParameters(model.transformer, reloaded.transformer) || !sameParameters(model.loss_network, reloaded.loss_network) ||
         !sameCommon(model.normalisation, reloaded.normalisation, model.metadata, reloaded.metadata) ||
         model.style_targets != reloaded.style_targets || model.transformer.shape().residual != reloaded.transformer.shape().residual)
       finding("style network: save -> load changed the model");
@@ -77,7 +77,7 @@ void checkAccepted(std::string_view bytes, const NetworkFileInfo& info) {
     requireSafe(describe(model), "describe()");
     again = serialiseAutoencoder(model, info.precision);
     const AutoencoderModel reloaded = parseAutoencoder(again, "rewritten.net");
-    if (!sameWeights(model.network, reloaded.network) ||
+    if (!sameParameters(model.network, reloaded.network) ||
         !sameCommon(model.normalisation, reloaded.normalisation, model.metadata, reloaded.metadata))
       finding("autoencoder: save -> load changed the model");
   }

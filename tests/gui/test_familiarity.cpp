@@ -47,13 +47,13 @@ std::filesystem::path writeTinyNetwork(const QTemporaryDir& dir) {
     values.push_back(clips.back().features.values);
   }
   nn::StyleModel model{nn::Transformer<float>({kFeatureCount, 8, 5, true}), nn::Autoencoder<float>({kFeatureCount, 16, 5}),
-                       style::toNormalisation(computeFeatureStatistics(values)), {}, {}};
+                       computeFeatureStatistics(values), {}, {}};
   model.transformer.initialise(5);
   model.loss_network.initialise(3);
   model.metadata.representation = style::currentRepresentation();
   model.metadata.training.weights.style = 1.0;
   Eigen::MatrixXd style = clips[1].features.values;
-  style::toStatistics(model.normalisation).normalize(style);
+  model.normalisation.normalize(style);
   model.style_targets = {{"", nn::styleGram(model.loss_network, nn::Mat<float>(style.cast<float>()))}};
   const std::filesystem::path file = dir.filePath(QStringLiteral("tiny_style.net")).toStdString();
   nn::saveStyleModel(model, file);

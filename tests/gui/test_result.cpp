@@ -51,7 +51,7 @@ std::filesystem::path writeTinyNetwork(const QTemporaryDir& dir, const QString& 
   for (const char* clip : {"cmu_131_01.bvh", "zombie.bvh"})
     values.push_back(style::loadMotionClip(test::fixture(QString::fromLatin1(clip)).toStdString()).features.values);
   nn::StyleModel model{nn::Transformer<float>({kFeatureCount, 8, 5, true}), nn::Autoencoder<float>({kFeatureCount, 16, 5}),
-                       style::toNormalisation(computeFeatureStatistics(values)), {}, {}};
+                       computeFeatureStatistics(values), {}, {}};
   model.transformer.initialise(seed);
   model.loss_network.initialise(3);
   model.metadata.representation = style::currentRepresentation();

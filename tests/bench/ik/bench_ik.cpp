@@ -64,12 +64,11 @@ struct Scenario {
 
 Scenario makeScenario(const Motion& clip) {
   Scenario s{clip, mapJoints(clip.skeleton, clip.source), {}, 1.0, 0.0, worldPositions(clip), {}};
-  const SpaceConvention space = detectSpaceConvention(clip.skeleton, canonicalJointPositions(clip, s.mapping), s.mapping);
-  s.up = space.fileUp();
-  s.cm_per_unit = space.cm_per_unit;
-  const std::array<int, kContactCount> feet = contactJoints(s.mapping);
-  s.floor = estimateFloorHeight(s.world, feet, s.up);
-  s.contacts = detectContacts(s.world, feet, s.up, s.floor, clip.fps(), restPoseBodyHeight(clip.skeleton, s.up));
+  const FileSpaceGround ground = detectFileSpaceGround(clip, s.mapping, canonicalJointPositions(clip, s.mapping));
+  s.up = ground.up;
+  s.cm_per_unit = ground.convention.cm_per_unit;
+  s.floor = ground.floor_height;
+  s.contacts = ground.contacts;
   return s;
 }
 

@@ -122,10 +122,10 @@ Mat<double> syntheticMotion(Eigen::Index frames, std::mt19937& rng) {
 }
 
 // Per-feature statistics of synthetic motion (std floored so constant features stay finite).
-Normalisation syntheticNormalisation() {
+FeatureStatistics syntheticNormalisation() {
   std::mt19937 rng(123);
   const Mat<double> x = syntheticMotion(4000, rng);
-  Normalisation n;
+  FeatureStatistics n;
   n.mean = x.rowwise().mean();
   n.std = ((x.colwise() - n.mean).array().square().rowwise().mean()).sqrt().matrix();
   n.std = n.std.cwiseMax(1e-2);
@@ -134,7 +134,7 @@ Normalisation syntheticNormalisation() {
 
 template <typename S>
 Mat<S> syntheticClip(Eigen::Index frames, std::mt19937& rng) {
-  static const Normalisation norm = syntheticNormalisation();
+  static const FeatureStatistics norm = syntheticNormalisation();
   const Mat<double> x = syntheticMotion(frames, rng);
   return ((x.colwise() - norm.mean).array().colwise() / norm.std.array()).matrix().template cast<S>();
 }
@@ -142,7 +142,7 @@ Mat<S> syntheticClip(Eigen::Index frames, std::mt19937& rng) {
 // Constraint targets taken from the content itself, as the real pipeline does: each window's bone
 // lengths are the content's mean lengths, and a foot is "in contact" where the content's own foot
 // displacement (eq. 7) is in the lower third for that foot.
-void contentTargets(StyleBatch<float>& batch, const Normalisation& norm) {
+void contentTargets(StyleBatch<float>& batch, const FeatureStatistics& norm) {
   const int windows = batch.windows();
   const Mat<double> x = (batch.content.cast<double>().array().colwise() * norm.std.array()).colwise() + norm.mean.array();
   batch.bone_lengths.resize(kBoneCount, windows);
@@ -175,7 +175,7 @@ void contentTargets(StyleBatch<float>& batch, const Normalisation& norm) {
   }
 }
 
-StyleBatch<float> syntheticBatch(const Autoencoder<float>& ae, const Normalisation& norm, int windows, int frames,
+StyleBatch<float> syntheticBatch(const Autoencoder<float>& ae, const FeatureStatistics& norm, int windows, int frames,
                                  std::mt19937& rng) {
   StyleBatch<float> batch;
   batch.frames = frames;
@@ -216,7 +216,7 @@ void speedBench() {
     std::printf("[threads=%d] project %6d frames: wall %8.2f ms %9.0f frames/s | cpu %8.2f ms\n", threads, 14400,
                 ms.wall_ms, 14400 / ms.wall_ms * 1000.0, ms.cpu_ms);
   }
-  const Normalisation norm = syntheticNormalisation();
+  const FeatureStatistics norm = syntheticNormalisation();
   const StyleBatch<float> batch = syntheticBatch(ae, norm, 16, 240, rng);
   const Timing t_ms = medianMs(1, 7, [&] {
     t.zeroGrad();
@@ -252,7 +252,7 @@ void residualExperiment(int steps, double style_weight) {
       if (step % 50 == 0 || step == 149) std::printf("  AE step %3d  mse %.4f\n", step, terms.mse);
     }
   }
-  const Normalisation norm = syntheticNormalisation();
+  const FeatureStatistics norm = syntheticNormalisation();
   std::vector<StyleBatch<float>> batches;
   for (int i = 0; i < 4; ++i) batches.push_back(syntheticBatch(ae, norm, 8, 240, data_rng));
   const StyleBatch<float> validation = syntheticBatch(ae, norm, 8, 240, data_rng);

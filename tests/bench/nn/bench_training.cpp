@@ -117,7 +117,7 @@ int fullTrainingBench(int epochs, bool synthetic_only) {
 
   std::vector<Eigen::MatrixXd> values;
   for (const style::MotionClip& clip : data.content) values.push_back(clip.features.values);
-  nn::AutoencoderModel loss{nn::Autoencoder<float>(), style::toNormalisation(computeFeatureStatistics(values)), {}};
+  nn::AutoencoderModel loss{nn::Autoencoder<float>(), computeFeatureStatistics(values), {}};
   loss.network.initialise(1);
   loss.metadata.representation = style::currentRepresentation();
 

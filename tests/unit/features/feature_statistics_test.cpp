@@ -2,6 +2,7 @@
 
 #include <fstream>
 #include <random>
+#include <stdexcept>
 
 #include "common/errors.h"
 #include "features/feature_layout.h"
@@ -67,6 +68,20 @@ TEST(FeatureStatistics, SaveLoadRoundTrip) {
   const FeatureStatistics loaded = loadFeatureStatistics(path);
   EXPECT_EQ(loaded.mean, statistics.mean);
   EXPECT_EQ(loaded.std, statistics.std);
+}
+
+TEST(FeatureStatistics, NormalizedCopiesAreTheInPlaceValuesInFloat) {
+  FeatureStatistics statistics;
+  statistics.mean = Eigen::VectorXd::LinSpaced(kFeatureCount, -3.0, 3.0);
+  statistics.std = Eigen::VectorXd::LinSpaced(kFeatureCount, 0.5, 9.0);
+  const Eigen::MatrixXd x = Eigen::MatrixXd::Random(kFeatureCount, 7) * 50.0;
+  Eigen::MatrixXd in_place = x;
+  statistics.normalize(in_place);
+  const Eigen::MatrixXf normalized = statistics.normalized(x);
+  EXPECT_EQ(normalized, in_place.cast<float>());
+  EXPECT_LT((statistics.denormalized(normalized) - x).cwiseAbs().maxCoeff(), 1e-4);  // float rounding
+  EXPECT_THROW(statistics.normalized(Eigen::MatrixXd::Zero(65, 2)), std::invalid_argument);
+  EXPECT_THROW(statistics.denormalized(Eigen::MatrixXf::Zero(65, 2)), std::invalid_argument);
 }
 
 }  // namespace

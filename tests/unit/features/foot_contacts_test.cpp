@@ -6,6 +6,7 @@
 #include "features/foot_contacts.h"
 #include "features/representation.h"
 #include "mapping/joint_mapping.h"
+#include "motion/kinematics.h"
 #include "test_paths.h"
 
 namespace motionstyle {
@@ -106,6 +107,27 @@ TEST(FootContacts, RealWalkAlternatesFeetAtTheWalksCadence) {
       EXPECT_GT(stride_s, 0.8);
       EXPECT_LT(stride_s, 2.0);
     }
+}
+
+TEST(FootContacts, FileSpaceGroundIsTheSameOnEveryJointAndInAnyUnit) {
+  const Motion motion = readBvh(test::fixture("cmu_131_01.bvh"));
+  const JointMapping mapping = mapJoints(motion.skeleton);
+  const FileSpaceGround ground = detectFileSpaceGround(motion, mapping, canonicalJointPositions(motion, mapping));
+  ASSERT_EQ(ground.contacts.rows(), motion.frameCount());
+  EXPECT_GT(ground.contacts.sum(), 0);
+  EXPECT_TRUE(ground.up.isApprox(ground.convention.fileUp()));
+  // The app detects on every joint's positions through the mapping: the same floor and labels.
+  const Eigen::MatrixXd world = worldPositions(motion);
+  EXPECT_DOUBLE_EQ(estimateFloorHeight(world, contactJoints(mapping), ground.up), ground.floor_height);
+  EXPECT_EQ(detectContacts(world, contactJoints(mapping), ground.up, ground.floor_height, motion.fps(),
+                           restPoseBodyHeight(motion.skeleton, ground.up)),
+            ground.contacts);
+  // The same clip read as metres: the floor scales, the labels do not change.
+  const FileSpaceGround in_metres =
+      detectFileSpaceGround(motion, mapping, canonicalJointPositions(motion, mapping), std::string("m"));
+  EXPECT_EQ(in_metres.floor_height, ground.floor_height);  // file units: the unit only scales cm_per_unit
+  EXPECT_EQ(in_metres.contacts, ground.contacts);
+  EXPECT_NE(in_metres.convention.cm_per_unit, ground.convention.cm_per_unit);
 }
 
 }  // namespace

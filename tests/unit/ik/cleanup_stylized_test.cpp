@@ -58,7 +58,7 @@ nn::Autoencoder<float> lowPassAutoencoder() {
 // output_scale multiplies the transformer's (already 0.1-scaled) output layer.
 nn::StyleModel networkLikeModel(const MotionFeatures& content, std::uint32_t seed, float output_scale) {
   nn::StyleModel model{nn::Transformer<float>(nn::TransformerShape{kFeatureCount, 32, 25, true}),
-                       lowPassAutoencoder(), style::toNormalisation(computeFeatureStatistics({content.values})), {}, {}};
+                       lowPassAutoencoder(), computeFeatureStatistics({content.values}), {}, {}};
   model.transformer.initialise(seed);
   model.transformer.conv3.weight.value *= output_scale;
   model.metadata.representation = style::currentRepresentation();

@@ -146,6 +146,18 @@ TEST(ResampleMotion, SameRateReturnsAnIdenticalCopy) {
   EXPECT_EQ(resampleMotion(rounded, 30.0).values, m.values);
 }
 
+TEST(ResampleMotion, SameFrameRateIsWhereResamplingLeavesTheFramesAsTheyAre) {
+  const Motion m = mixedAt(30.0, 17, 2);
+  Motion off = m;
+  off.frame_time = 1.0 / (30.0 * (1.0 + 5e-6));  // within the tolerance: a copy
+  EXPECT_TRUE(sameFrameRate(off.fps(), 30.0));
+  EXPECT_EQ(resampleMotion(off, 30.0).values, m.values);
+  off.frame_time = 1.0 / (30.0 * (1.0 + 2e-5));  // beyond it: resampled, one frame fewer
+  EXPECT_FALSE(sameFrameRate(off.fps(), 30.0));
+  EXPECT_NE(resampleMotion(off, 30.0).frameCount(), m.frameCount());
+  EXPECT_FALSE(sameFrameRate(60.0, 30.0));
+}
+
 TEST(ResampleMotion, HalvingTheRateKeepsEverySecondFrameExactly) {
   const Motion m = mixedAt(120.0, 41, 3);
   const Motion half = resampleMotion(m, 60.0);

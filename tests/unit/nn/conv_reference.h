@@ -35,4 +35,22 @@ inline Conv1d<double> randomConv(int in, int out, int width, bool bias, std::mt1
   return conv;
 }
 
+// dx, dW and db of `conv` (with its algorithm as set) on a random x of `windows` windows of `frames`
+// against finite differences of sum(conv(x) .* r) for a random r; `samples` entries of x and W are
+// checked (0: all, as checkGradient), every entry of b. `trial` names the case in failures.
+inline void expectConvGradientsMatch(Conv1d<double>& conv, int frames, int windows, int samples, std::mt19937& rng,
+                                     int trial) {
+  MatD x = randomMatrix(conv.inChannels(), windows * frames, rng);
+  const MatD r = randomMatrix(conv.outChannels(), windows * frames, rng);
+  auto loss = [&] { return conv.apply(x, frames).cwiseProduct(r).sum(); };
+  conv.zeroGrad();
+  conv.forward(x, frames);
+  const MatD dx = conv.backward(r, Gradients::All);
+  EXPECT_LT(checkGradient(x, dx, loss, samples, rng).max_error, kGradientTolerance) << "dx trial " << trial;
+  const MatD dw = conv.weight.grad;
+  EXPECT_LT(checkGradient(conv.weight.value, dw, loss, samples, rng).max_error, kGradientTolerance) << trial;
+  const MatD db = conv.bias.grad;
+  EXPECT_LT(checkGradient(conv.bias.value, db, loss, 0, rng).max_error, kGradientTolerance) << trial;
+}
+
 }  // namespace motionstyle::nn::test

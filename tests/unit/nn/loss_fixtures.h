@@ -9,9 +9,9 @@
 namespace motionstyle::nn::test {
 
 // Positions with a std of ~15 cm around a random mean, velocities ~1.5 cm/frame, turning ~0.03 rad.
-inline Normalisation randomNormalisation(std::mt19937& rng) {
+inline FeatureStatistics randomNormalisation(std::mt19937& rng) {
   std::uniform_real_distribution<double> u(0.5, 1.5);
-  Normalisation n;
+  FeatureStatistics n;
   n.mean = randomMatrix(kFeatureCount, 1, rng, 30.0);
   n.std.resize(kFeatureCount);
   for (int f = 0; f < kFeatureCount; ++f) n.std(f) = 15.0 * u(rng);

@@ -20,7 +20,7 @@ using test::randomMatrix;
 
 TEST(LossesInvalid, MismatchedShapesThrow) {
   std::mt19937 rng(1);
-  const Normalisation n = test::randomNormalisation(rng);
+  const FeatureStatistics n = test::randomNormalisation(rng);
   const MatD x = randomMatrix(kFeatureCount, 8, rng);
   MatD wrong_grad(3, 3);
   EXPECT_THROW(meanSquaredError<double>(x, MatD::Zero(kFeatureCount, 7), 1.0, nullptr), std::invalid_argument);
@@ -36,7 +36,7 @@ TEST(LossesInvalid, MismatchedShapesThrow) {
                std::invalid_argument);
   EXPECT_THROW(styleLoss<double>(h, 4, {MatD::Zero(4, 4)}, 1.0, nullptr), std::invalid_argument);
   EXPECT_THROW(gramMatrix<double>(MatD::Zero(5, 0)), std::invalid_argument);
-  Normalisation bad = n;
+  FeatureStatistics bad = n;
   bad.std(3) = 0.0;
   EXPECT_THROW(trajectoryLoss<double>(x, x, bad, 1.0, nullptr), std::invalid_argument);
   bad = n;
@@ -57,7 +57,7 @@ TEST(Gram, IsDividedByTheFrameCountSoRepeatingAClipChangesNothing) {
 
 TEST(FootContact, ZeroForAPlantedFootAndPositiveForASlidingOne) {
   std::mt19937 rng(3);
-  Normalisation n;
+  FeatureStatistics n;
   n.mean = Eigen::VectorXd::Zero(kFeatureCount);
   n.std = Eigen::VectorXd::Ones(kFeatureCount);
   // De-normalised = normalised here. Root moves and turns; every foot stays planted in the world.
@@ -99,7 +99,7 @@ TEST(FootContact, ZeroForAPlantedFootAndPositiveForASlidingOne) {
 
 TEST(FootContact, LastFrameOfAWindowIsNeverPairedWithTheNextWindow) {
   std::mt19937 rng(4);
-  const Normalisation n = test::randomNormalisation(rng);
+  const FeatureStatistics n = test::randomNormalisation(rng);
   const MatD x = randomMatrix(kFeatureCount, 8, rng);
   MatD contacts = MatD::Zero(kContactCount, 8);
   contacts.col(3).setOnes();  // last frame of window 0
@@ -109,7 +109,7 @@ TEST(FootContact, LastFrameOfAWindowIsNeverPairedWithTheNextWindow) {
 
 TEST(BoneLength, ZeroForMatchingLengthsAndSafeForZeroLengthBones) {
   std::mt19937 rng(5);
-  Normalisation n;
+  FeatureStatistics n;
   n.mean = Eigen::VectorXd::Zero(kFeatureCount);
   n.std = Eigen::VectorXd::Ones(kFeatureCount);
   MatD x = randomMatrix(kFeatureCount, 3, rng, 30.0);
@@ -140,7 +140,7 @@ TEST(BoneLength, ZeroForMatchingLengthsAndSafeForZeroLengthBones) {
 }
 
 TEST(Trajectory, MeasuresDeNormalisedVelocityErrors) {
-  Normalisation n;
+  FeatureStatistics n;
   n.mean = Eigen::VectorXd::Constant(kFeatureCount, 5.0);
   n.std = Eigen::VectorXd::Constant(kFeatureCount, 2.0);
   MatD target = MatD::Zero(kFeatureCount, 4);
@@ -156,7 +156,7 @@ TEST(LossGradient, EveryTermOverRandomShapes) {
     const int frames = 2 + static_cast<int>(rng() % 6);
     const int windows = 1 + static_cast<int>(rng() % 3);
     const Eigen::Index n = static_cast<Eigen::Index>(windows) * frames;
-    const Normalisation norm = test::randomNormalisation(rng);
+    const FeatureStatistics norm = test::randomNormalisation(rng);
     MatD x = randomMatrix(kFeatureCount, n, rng);
     const double weight = 0.7;
     auto check = [&](const char* name, MatD& input, const std::function<double(MatD*)>& term) {

@@ -13,6 +13,7 @@
 #include "common/errors.h"
 #include "gradient_check.h"
 #include "loss_fixtures.h"
+#include "network_file_fixtures.h"
 #include "nn/binary_io.h"
 #include "nn/network_file.h"
 
@@ -64,16 +65,7 @@ void putU32(std::string& bytes, std::size_t offset, std::uint32_t v) {
 // models here keep RepresentationInfo's default joint set.
 std::size_t featureCountOffset() { return kHeaderBytes + 8 + 4 + std::string(kRetargetedJointSetName).size() + 8; }
 
-template <typename F>
-void expectInputError(F&& f, const std::string& needle) {
-  try {
-    f();
-    ADD_FAILURE() << "no InputError (expected one mentioning '" << needle << "')";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-    EXPECT_EQ(e.file(), "net.msn");
-  }
-}
+using test::expectInputError;
 
 TEST(NetworkFileInvalid, TruncatedAtEveryByteBoundary) {
   const std::string bytes = serialiseStyleModel(smallStyleModel());

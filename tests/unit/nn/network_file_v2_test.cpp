@@ -11,6 +11,7 @@
 
 #include "common/errors.h"
 #include "loss_fixtures.h"
+#include "network_file_fixtures.h"
 #include "nn/binary_io.h"
 #include "nn/half_float.h"
 #include "nn/network_file.h"
@@ -74,16 +75,7 @@ std::string downgradeToFormat1(std::string bytes) {
   return bytes;
 }
 
-template <typename F>
-void expectInputError(F&& f, const std::string& needle) {
-  try {
-    f();
-    ADD_FAILURE() << "no InputError (expected one mentioning '" << needle << "')";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-    EXPECT_EQ(e.file(), "net.msn");
-  }
-}
+using test::expectInputError;
 
 template <typename Network>
 std::vector<Mat<float>> weightsOf(Network network) {

@@ -57,7 +57,7 @@ TEST(NetworksInvalid, MismatchedShapesThrow) {
   Autoencoder<double> loss_net({kFeatureCount, 8, 3});
   loss_net.initialise(1);
   Transformer<double> tt({kFeatureCount, 5, 3, true});
-  const Normalisation norm = test::randomNormalisation(rng);
+  const FeatureStatistics norm = test::randomNormalisation(rng);
   StyleBatch<double> batch = randomStyleBatch(loss_net, 2, 4, rng, false);
   EXPECT_NO_THROW(evaluateStyleLoss(tt, loss_net, batch, norm, LossWeights{}));
   auto broken = batch;
@@ -162,7 +162,7 @@ TEST(TransformerGradient, TotalStyleLossWrtEveryParameter) {
   Autoencoder<double> ae({kFeatureCount, 256, 25});
   ae.initialise(8);
   ae.encoder.bias.value = randomMatrix(256, 1, rng, 0.05);
-  const Normalisation norm = test::randomNormalisation(rng);
+  const FeatureStatistics norm = test::randomNormalisation(rng);
   const LossWeights weights = testWeights();
   for (bool residual : {true, false}) {
     Transformer<double> t({kFeatureCount, 128, 25, residual});
@@ -214,6 +214,20 @@ TEST(Determinism, SameSeedSameWeightsOtherSeedOtherWeights) {
   tb.initialise(1);
   EXPECT_EQ(ta.conv2.weight.value, tb.conv2.weight.value);
   EXPECT_EQ(ta.conv3.weight.value, tb.conv3.weight.value);
+}
+
+TEST(Autoencoder, SameWeightsNeedsTheShapeAndEveryParameterToMatch) {
+  Autoencoder<float> a({kFeatureCount, 4, 3});
+  a.initialise(7);
+  Autoencoder<float> b = a;
+  EXPECT_TRUE(sameWeights(a, b));
+  b.encoder.bias.value(1, 0) += 1e-3f;  // b0 alone: eq. 2 subtracts it too
+  EXPECT_FALSE(sameWeights(a, b));
+  b = a;
+  b.decoder.weight.value(0, 0) += 1e-3f;
+  EXPECT_FALSE(sameWeights(a, b));
+  Autoencoder<float> wider({kFeatureCount, 5, 3});
+  EXPECT_FALSE(sameWeights(a, wider));
 }
 
 TEST(Adam, ConvergesOnAQuadraticAndUsesBiasCorrection) {

@@ -243,7 +243,7 @@ class PyTorchReference : public ::testing::TestWithParam<ConvAlgorithm> {
   static inline std::string load_error_;
   Transformer<double> transformer_;
   Autoencoder<double> loss_network_;
-  Normalisation normalisation_;
+  FeatureStatistics normalisation_;
   LossWeights weights_;
   StyleBatch<double> batch_;
   MatD style_clip_;

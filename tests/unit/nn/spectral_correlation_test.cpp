@@ -15,6 +15,7 @@ namespace motionstyle::nn {
 namespace {
 
 using test::checkGradient;
+using test::expectConvGradientsMatch;
 using test::kGradientTolerance;
 using test::MatD;
 using test::naiveConv;
@@ -137,17 +138,7 @@ TEST(SpectralCorrelationGradient, InputWeightsAndBiasOverRandomShapes) {
     const int windows = 1 + static_cast<int>(rng() % 3);
     Conv1d<double> conv = randomConv(in, out, width, true, rng);
     conv.setAlgorithm(ConvAlgorithm::Spectral);
-    MatD x = randomMatrix(in, windows * frames, rng);
-    const MatD r = randomMatrix(out, windows * frames, rng);
-    auto loss = [&] { return conv.apply(x, frames).cwiseProduct(r).sum(); };
-    conv.zeroGrad();
-    conv.forward(x, frames);
-    const MatD dx = conv.backward(r, Gradients::All);
-    EXPECT_LT(checkGradient(x, dx, loss, 60, rng).max_error, kGradientTolerance) << "dx trial " << trial;
-    const MatD dw = conv.weight.grad;
-    EXPECT_LT(checkGradient(conv.weight.value, dw, loss, 60, rng).max_error, kGradientTolerance) << trial;
-    const MatD db = conv.bias.grad;
-    EXPECT_LT(checkGradient(conv.bias.value, db, loss, 0, rng).max_error, kGradientTolerance) << trial;
+    expectConvGradientsMatch(conv, frames, windows, 60, rng, trial);
   }
 }
 

@@ -86,7 +86,7 @@ TEST(Windows, ShortSlicesArePaddedWithFirstAndLastFramesAtZeroVelocity) {
 TEST(Windows, WindowSetCountsAndNormalisesTheClips) {
   const auto& clips = test::fixtureClips();
   const nn::AutoencoderModel model = test::tinyAutoencoderModel();
-  const FeatureStatistics statistics = style::toStatistics(model.normalisation);
+  const FeatureStatistics& statistics = model.normalisation;
   const style::WindowSet set = style::makeWindows(clips, statistics, {60, 30});
   std::size_t expected = 0;
   for (const auto& clip : clips) expected += style::windowSpans(clip.frameCount(), {60, 30}).size();

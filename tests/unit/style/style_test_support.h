@@ -107,7 +107,7 @@ inline nn::AutoencoderModel tinyAutoencoderModel(std::uint32_t seed = 3) {
   model.network.initialise(seed);
   std::vector<Eigen::MatrixXd> values;
   for (const auto& clip : fixtureClips()) values.push_back(clip.features.values);
-  model.normalisation = style::toNormalisation(computeFeatureStatistics(values));
+  model.normalisation = computeFeatureStatistics(values);
   model.metadata.representation = style::currentRepresentation();
   return model;
 }
