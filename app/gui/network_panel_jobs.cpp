@@ -131,7 +131,7 @@ bool NetworkPanel::startTraining(bool retrain) {
     loss.metadata.training.sparsity = model->metadata.training.sparsity;
     loss.metadata.training.dropout = model->metadata.training.dropout;
     config.autoencoder_model = std::move(loss);
-    config.shape = model->transformer.shape();
+    config.shape = model->transformation.shape();
     const std::filesystem::path init = scratchFile(QStringLiteral("retrain-start.net"));
     try {
       if (init.empty()) throw std::runtime_error("no temporary folder");

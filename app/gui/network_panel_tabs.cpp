@@ -150,7 +150,7 @@ void NetworkPanel::showNetworkDetails() {
           .arg(training.learning_rate, 0, 'g', 4)
           .arg(training.batch_windows)
           .arg(training.window_frames)
-          .arg(entry.model->transformer.shape().hidden));
+          .arg(entry.model->transformation.shape().hidden));
   if (!isBusy()) {
     QStringList terms;
     for (const std::string& term : metadata.loss_history.terms) terms << QString::fromStdString(term);

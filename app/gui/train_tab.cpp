@@ -16,7 +16,7 @@
 #include <QVBoxLayout>
 
 #include "network_panel_internal.h"
-#include "nn/transformer.h"
+#include "nn/transformation_network.h"
 
 namespace motionstyle {
 namespace {
@@ -131,7 +131,7 @@ TrainTab::TrainTab(ClipRoles roles, QWidget* parent)
   hidden_spin_ = new QSpinBox(this);
   hidden_spin_->setObjectName(QStringLiteral("HiddenUnits"));
   hidden_spin_->setRange(1, 4096);
-  hidden_spin_->setValue(nn::TransformerShape{}.hidden);
+  hidden_spin_->setValue(nn::TransformationShape{}.hidden);
   hidden_spin_->setToolTip(tr("Hidden units of a new network (Retrain keeps the selected network's)"));
 
   auto* form = new QFormLayout;

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "clip_roles.h"
-#include "nn/style_loss.h"
+#include "nn/transformation_objective.h"
 #include "style/style_pairing.h"
 
 class QDoubleSpinBox;

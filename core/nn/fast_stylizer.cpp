@@ -65,17 +65,17 @@ FastStylizer::FastStylizer(const Autoencoder<float>& autoencoder) {
   buildPolyphase(autoencoder);
 }
 
-FastStylizer::FastStylizer(const Transformer<float>& transformer, const Autoencoder<float>& autoencoder)
+FastStylizer::FastStylizer(const TransformationNetwork<float>& transformation, const Autoencoder<float>& autoencoder)
     : FastStylizer(autoencoder) {
-  if (transformer.shape().features != features_)
+  if (transformation.shape().features != features_)
     throw std::invalid_argument("FastStylizer: the transformation network has " +
-                                std::to_string(transformer.shape().features) +
+                                std::to_string(transformation.shape().features) +
                                 " features, the autoencoder " + std::to_string(features_));
   has_transformer_ = true;
-  residual_ = transformer.shape().residual;
-  t1_ = copyLayer(transformer.conv1);
-  t2_ = copyLayer(transformer.conv2);
-  t3_ = copyLayer(transformer.conv3);
+  residual_ = transformation.shape().residual;
+  t1_ = copyLayer(transformation.conv1);
+  t2_ = copyLayer(transformation.conv2);
+  t3_ = copyLayer(transformation.conv3);
 }
 
 void FastStylizer::buildPolyphase(const Autoencoder<float>& autoencoder) {

@@ -1,7 +1,7 @@
 #pragma once
 // Fast float32 inference: stylize(x) = project(T(x)) and project(x) = decode(encode(x)) for ONE clip of
 // any length (features x frames, normalised), whole-clip and fully convolutional: no windows, so no
-// seams, and exactly the reference forward pass (Transformer::apply, Autoencoder::project) up to
+// seams, and exactly the reference forward pass (TransformationNetwork::apply, Autoencoder::project) up to
 // float rounding, including the odd-length rule (last frame repeated through the pool, cropped after).
 //
 // Where the speed comes from (see tests/bench/nn for figures):
@@ -24,7 +24,7 @@
 
 #include "nn/autoencoder.h"
 #include "nn/spectral_correlation.h"
-#include "nn/transformer.h"
+#include "nn/transformation_network.h"
 
 namespace motionstyle::nn {
 
@@ -32,12 +32,12 @@ class FastStylizer {
  public:
   // Projection only (no transformation network).
   explicit FastStylizer(const Autoencoder<float>& autoencoder);
-  // Style transfer: transformer then the autoencoder's projection. The feature counts must match
+  // Style transfer: transformation then the autoencoder's projection. The feature counts must match
   // (std::invalid_argument otherwise).
-  FastStylizer(const Transformer<float>& transformer, const Autoencoder<float>& autoencoder);
+  FastStylizer(const TransformationNetwork<float>& transformation, const Autoencoder<float>& autoencoder);
 
   // x: features x frames (frames >= 1), normalised. out: features x frames. Throws
-  // std::invalid_argument on a shape mismatch or if stylize() is called without a transformer.
+  // std::invalid_argument on a shape mismatch or if stylize() is called without a transformation.
   void stylize(const Mat<float>& x, Mat<float>& out);
   void project(const Mat<float>& x, Mat<float>& out);
   Mat<float> stylize(const Mat<float>& x);

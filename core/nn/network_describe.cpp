@@ -61,13 +61,13 @@ std::string describe(const AutoencoderModel& model) {
 
 std::string describe(const StyleModel& model) {
   std::ostringstream out;
-  const TransformerShape& t = model.transformer.shape();
+  const TransformationShape& t = model.transformation.shape();
   const AutoencoderShape& s = model.loss_network.shape();
   out << "MotionStyle network: style (transformation network)\n";
   out << "  transformation: " << t.features << " -> " << t.hidden << " -> " << t.hidden << " -> " << t.features
       << ", conv width " << t.width << (t.residual ? ", residual (output = input + T(input))" : ", plain") << "\n";
   out << "  loss network: " << s.features << " features -> " << s.hidden << " hidden units, width " << s.width << "\n";
-  Transformer<float> tc = model.transformer;
+  TransformationNetwork<float> tc = model.transformation;
   Autoencoder<float> ac = model.loss_network;
   out << "  parameters: " << parameterCount(tc.parameters()) << " + " << parameterCount(ac.parameters())
       << " (loss network)\n";

@@ -53,7 +53,7 @@ void requireWritable(const FeatureStatistics& normalisation, const NetworkMetada
 
 // format_version 1 has no weight-encoding field and is always f32.
 std::string serialise(NetworkKind kind, const FeatureStatistics& normalisation, const NetworkMetadata& m,
-                      const Autoencoder<float>& ae, const Transformer<float>* transformer,
+                      const Autoencoder<float>& ae, const TransformationNetwork<float>* transformation,
                       WeightPrecision precision, std::uint32_t format_version,
                       const std::vector<StyleTarget>& targets = {}) {
   if (format_version == 1 && precision != WeightPrecision::F32)
@@ -97,19 +97,19 @@ std::string serialise(NetworkKind kind, const FeatureStatistics& normalisation, 
   body.u32(static_cast<std::uint32_t>(ae.shape().features));
   body.u32(static_cast<std::uint32_t>(ae.shape().hidden));
   body.u32(static_cast<std::uint32_t>(ae.shape().width));
-  if (transformer != nullptr) {
-    body.u32(static_cast<std::uint32_t>(transformer->shape().features));
-    body.u32(static_cast<std::uint32_t>(transformer->shape().hidden));
-    body.u32(static_cast<std::uint32_t>(transformer->shape().width));
-    body.u8(transformer->shape().residual ? 1 : 0);
+  if (transformation != nullptr) {
+    body.u32(static_cast<std::uint32_t>(transformation->shape().features));
+    body.u32(static_cast<std::uint32_t>(transformation->shape().hidden));
+    body.u32(static_cast<std::uint32_t>(transformation->shape().width));
+    body.u8(transformation->shape().residual ? 1 : 0);
   }
   if (format_version < 3 && !targets.empty())
     throw std::invalid_argument("network file formats before 3 store no style targets");
-  body.u32(static_cast<std::uint32_t>((transformer != nullptr ? 9u : 3u) + targets.size()));
-  if (transformer != nullptr) {
-    writeConvTensors(body, transformer->conv1, precision);
-    writeConvTensors(body, transformer->conv2, precision);
-    writeConvTensors(body, transformer->conv3, precision);
+  body.u32(static_cast<std::uint32_t>((transformation != nullptr ? 9u : 3u) + targets.size()));
+  if (transformation != nullptr) {
+    writeConvTensors(body, transformation->conv1, precision);
+    writeConvTensors(body, transformation->conv2, precision);
+    writeConvTensors(body, transformation->conv3, precision);
   }
   writeConvTensors(body, ae.encoder, precision);
   writeConvTensors(body, ae.decoder, precision);
@@ -137,7 +137,7 @@ struct Parsed {
   NetworkMetadata metadata;
   FeatureStatistics normalisation;
   AutoencoderShape ae_shape;
-  TransformerShape t_shape;
+  TransformationShape t_shape;
   std::vector<ByteReader::Tensor> tensors;
 };
 
@@ -262,10 +262,10 @@ void readArchitecture(ByteReader& r, Parsed& p) {
   p.ae_shape.width = readDimension(r, "autoencoder width", kMaxWidth);
   std::uint64_t floats = 2ull * p.ae_shape.features * p.ae_shape.hidden * p.ae_shape.width + p.ae_shape.hidden;
   if (p.kind == NetworkKind::Style) {
-    p.t_shape.features = readDimension(r, "transformer features", kMaxDimension);
-    p.t_shape.hidden = readDimension(r, "transformer hidden units", kMaxDimension);
-    p.t_shape.width = readDimension(r, "transformer width", kMaxWidth);
-    const std::uint8_t residual = r.u8("transformer residual flag");
+    p.t_shape.features = readDimension(r, "transformation features", kMaxDimension);
+    p.t_shape.hidden = readDimension(r, "transformation hidden units", kMaxDimension);
+    p.t_shape.width = readDimension(r, "transformation width", kMaxWidth);
+    const std::uint8_t residual = r.u8("transformation residual flag");
     if (residual > 1) r.fail("corrupt network file: residual flag " + std::to_string(residual));
     p.t_shape.residual = residual == 1;
     const std::uint64_t f = static_cast<std::uint64_t>(p.t_shape.features);
@@ -346,9 +346,9 @@ std::string serialiseAutoencoderFormat1(const AutoencoderModel& model) {
 }
 
 std::string serialiseStyleModel(const StyleModel& model, WeightPrecision precision) {
-  if (model.transformer.shape().features != model.loss_network.shape().features)
-    throw std::invalid_argument("StyleModel: transformer and loss network feature counts differ");
-  return serialise(NetworkKind::Style, model.normalisation, model.metadata, model.loss_network, &model.transformer,
+  if (model.transformation.shape().features != model.loss_network.shape().features)
+    throw std::invalid_argument("StyleModel: transformation and loss network feature counts differ");
+  return serialise(NetworkKind::Style, model.normalisation, model.metadata, model.loss_network, &model.transformation,
                    precision, kNetworkFormatVersion, model.style_targets);
 }
 
@@ -375,13 +375,13 @@ StyleModel parseStyleModel(std::string_view bytes, const std::string& source_nam
   Parsed p = parse(bytes, source_name, NetworkKind::Style);
   ByteReader r(std::string_view(), source_name);
   if (p.t_shape.features != p.ae_shape.features)
-    r.fail("network file: transformer and loss network feature counts differ");
-  StyleModel model{Transformer<float>(p.t_shape), Autoencoder<float>(p.ae_shape), std::move(p.normalisation),
+    r.fail("network file: transformation and loss network feature counts differ");
+  StyleModel model{TransformationNetwork<float>(p.t_shape), Autoencoder<float>(p.ae_shape), std::move(p.normalisation),
                    std::move(p.metadata), {}};
   std::size_t next = 0;
-  assignConv(r, p.tensors, next, model.transformer.conv1);
-  assignConv(r, p.tensors, next, model.transformer.conv2);
-  assignConv(r, p.tensors, next, model.transformer.conv3);
+  assignConv(r, p.tensors, next, model.transformation.conv1);
+  assignConv(r, p.tensors, next, model.transformation.conv2);
+  assignConv(r, p.tensors, next, model.transformation.conv3);
   assignConv(r, p.tensors, next, model.loss_network.encoder);
   assignConv(r, p.tensors, next, model.loss_network.decoder);
   const auto hidden = static_cast<Eigen::Index>(p.ae_shape.hidden);

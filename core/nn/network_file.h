@@ -15,8 +15,8 @@
 #include "nn/autoencoder.h"
 #include "nn/binary_io.h"
 #include "nn/losses.h"
-#include "nn/style_loss.h"
-#include "nn/transformer.h"
+#include "nn/transformation_objective.h"
+#include "nn/transformation_network.h"
 
 namespace motionstyle::nn {
 
@@ -98,7 +98,7 @@ struct StyleTarget {
 // that it can be retrained (on other content, against a loss network with the same encoder) without
 // the style clips it was made from. Files before format 3 have no targets.
 struct StyleModel {
-  Transformer<float> transformer;
+  TransformationNetwork<float> transformation;
   Autoencoder<float> loss_network;
   FeatureStatistics normalisation;
   NetworkMetadata metadata;

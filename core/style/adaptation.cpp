@@ -187,7 +187,7 @@ AdaptNetworksJob::Result AdaptNetworksJob::run(const TrainingCallbacks& callback
     config.init_model = styles[i].model;
     config.style_targets = styles[i].model.style_targets;
     config.weights = styles[i].model.metadata.training.weights;
-    config.shape = styles[i].model.transformer.shape();
+    config.shape = styles[i].model.transformation.shape();
     const std::string stage = "retraining " + styles[i].name + " (" + std::to_string(i + 2) + " of " +
                               std::to_string(stages) + ")";
     StyleTrainingResult trained = trainStyleNetwork(config, stageCallbacks(stage));

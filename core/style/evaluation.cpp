@@ -7,7 +7,7 @@
 #include "features/root_path.h"
 #include "nn/losses.h"
 #include "style/familiarity.h"
-#include "nn/style_loss.h"
+#include "nn/transformation_objective.h"
 #include "style/stylizer.h"
 
 namespace motionstyle::style {

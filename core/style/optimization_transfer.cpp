@@ -10,7 +10,7 @@
 #include "nn/init.h"
 #include "nn/layers.h"
 #include "nn/losses.h"
-#include "nn/style_loss.h"
+#include "nn/transformation_objective.h"
 #include "style/cancellation.h"
 
 namespace motionstyle::style {

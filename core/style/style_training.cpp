@@ -92,7 +92,7 @@ StyleTrainingResult trainStyleNetwork(const StyleTrainingConfig& config, const T
   const TrainingSettings& settings = config.settings;
   const auto started = std::chrono::steady_clock::now();
   StyleTrainingResult result;
-  result.model.transformer = nn::Transformer<float>(config.shape);
+  result.model.transformation = nn::TransformationNetwork<float>(config.shape);
 
   const nn::AutoencoderModel loss = config.autoencoder_model
                                         ? *config.autoencoder_model
@@ -178,27 +178,27 @@ StyleTrainingResult trainStyleNetwork(const StyleTrainingConfig& config, const T
   model.loss_network = loss.network;
   model.normalisation = loss.normalisation;
   std::vector<EpochRecord> history;
-  nn::Adam<float> optimiser(model.transformer.parameters(), settings.adamOptions());
+  nn::Adam<float> optimiser(model.transformation.parameters(), settings.adamOptions());
   const std::uint64_t fingerprint = dataFingerprint(data, settings, settingsParts(config, style_hashes, result.pairing, loss));
   TrainedNetwork network;
   network.kind = nn::NetworkKind::Style;
   network.resume = [&](const std::string& network_bytes, const std::filesystem::path& checkpoint) {
     nn::StyleModel resumed = nn::parseStyleModel(network_bytes, checkpoint.string());
-    if (!(resumed.transformer.shape() == config.shape))
+    if (!(resumed.transformation.shape() == config.shape))
       throw InputError(checkpoint.string(), 0, "the checkpoint's network has another shape");
-    model.transformer = std::move(resumed.transformer);
+    model.transformation = std::move(resumed.transformation);
   };
   if (config.init_model || !settings.init.empty())
     network.warm_start = [&] {
       nn::StyleModel initial =
           config.init_model ? *config.init_model : loadCompatibleStyleModel(settings.init, settings.dataset.features);
-      if (!(initial.transformer.shape() == config.shape))
+      if (!(initial.transformation.shape() == config.shape))
         throw InputError(settings.init.string(), 0, "the --init network has another shape than requested");
-      model.transformer = std::move(initial.transformer);
+      model.transformation = std::move(initial.transformation);
       if (callbacks.log) callbacks.log("warm start from " + (config.init_model ? stored_source : settings.init.string()));
     };
-  network.fresh = [&] { model.transformer.initialise(settings.seed); };
-  network.parameters = [&] { return model.transformer.parameters(); };
+  network.fresh = [&] { model.transformation.initialise(settings.seed); };
+  network.parameters = [&] { return model.transformation.parameters(); };
   network.serialise = [&] { return nn::serialiseStyleModel(model); };
   network.save = [&](const std::filesystem::path& file) { nn::saveStyleModel(model, file); };
   if (callbacks.style_snapshot) network.snapshot = [&] { callbacks.style_snapshot(model); };
@@ -230,7 +230,7 @@ StyleTrainingResult trainStyleNetwork(const StyleTrainingConfig& config, const T
       const int clip = windows.clip_index[static_cast<std::size_t>(indices[i])];
       batch.style_grams.push_back(style_grams[static_cast<std::size_t>(result.pairing[static_cast<std::size_t>(clip)])]);
     }
-    const nn::StyleLossTerms terms = nn::accumulateStyleLoss(model.transformer, loss_network, batch, normalisation, config.weights);
+    const nn::ObjectiveTerms terms = nn::accumulateObjective(model.transformation, loss_network, batch, normalisation, config.weights);
     return StepLosses{terms.total,
                       {{"content", terms.content}, {"style", terms.style}, {"foot", terms.foot}, {"bone", terms.bone},
                        {"trajectory", terms.trajectory}}};

@@ -37,9 +37,9 @@ Eigen::MatrixXd cropEdges(const Eigen::MatrixXd& padded) {
 Stylizer::Stylizer(nn::StyleModel model, std::string source_name)
     : model_(std::move(model)), source_name_(std::move(source_name)) {
   model_.normalisation.validate();
-  if (model_.transformer.shape().features != kFeatureCount || model_.loss_network.shape().features != kFeatureCount)
+  if (model_.transformation.shape().features != kFeatureCount || model_.loss_network.shape().features != kFeatureCount)
     throw std::invalid_argument("Stylizer: the networks must take 66 features");
-  fast_ = std::make_unique<nn::FastStylizer>(model_.transformer, model_.loss_network);
+  fast_ = std::make_unique<nn::FastStylizer>(model_.transformation, model_.loss_network);
 }
 
 Eigen::MatrixXd Stylizer::stylizeFeatures(const Eigen::MatrixXd& features, double strength, PathMode path) const {

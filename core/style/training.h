@@ -185,13 +185,13 @@ struct StyleTrainingConfig {
   // Warm start from a network in memory (wins over settings.init): its transformation network.
   std::optional<nn::StyleModel> init_model;
   nn::LossWeights weights;                     // content 1, style 100, foot/bone/trajectory 0.01
-  nn::TransformerShape shape;
+  nn::TransformationShape shape;
 
   void validate() const;
 };
 
 struct StyleTrainingResult : TrainingResult {
-  nn::StyleModel model;      // transformer + the loss network it was trained against + normalisation
+  nn::StyleModel model;      // transformation + the loss network it was trained against + normalisation
   std::vector<int> pairing;  // per training clip: index into config.styles (or the stored targets)
 };
 

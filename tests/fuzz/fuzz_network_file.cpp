@@ -68,9 +68,9 @@ void checkAccepted(std::string_view bytes, const NetworkFileInfo& info) {
     requireSafe(describe(model), "describe()");
     again = serialiseStyleModel(model, info.precision);
     const StyleModel reloaded = parseStyleModel(again, "rewritten.net");
-    if (!sameParameters(model.transformer, reloaded.transformer) || !sameParameters(model.loss_network, reloaded.loss_network) ||
+    if (!sameParameters(model.transformation, reloaded.transformation) || !sameParameters(model.loss_network, reloaded.loss_network) ||
         !sameCommon(model.normalisation, reloaded.normalisation, model.metadata, reloaded.metadata) ||
-        model.style_targets != reloaded.style_targets || model.transformer.shape().residual != reloaded.transformer.shape().residual)
+        model.style_targets != reloaded.style_targets || model.transformation.shape().residual != reloaded.transformation.shape().residual)
       finding("style network: save -> load changed the model");
   } else {
     const AutoencoderModel model = parseAutoencoder(bytes, kSource);

@@ -23,7 +23,7 @@
 #include "gui_test_support.h"
 #include "main_window.h"
 #include "network_panel.h"
-#include "nn/style_loss.h"
+#include "nn/transformation_objective.h"
 #include "result_panel.h"
 #include "style/familiarity.h"
 #include "style/motion_dataset.h"
@@ -46,9 +46,9 @@ std::filesystem::path writeTinyNetwork(const QTemporaryDir& dir) {
     clips.push_back(style::loadMotionClip(test::fixture(QString::fromLatin1(name)).toStdString()));
     values.push_back(clips.back().features.values);
   }
-  nn::StyleModel model{nn::Transformer<float>({kFeatureCount, 8, 5, true}), nn::Autoencoder<float>({kFeatureCount, 16, 5}),
+  nn::StyleModel model{nn::TransformationNetwork<float>({kFeatureCount, 8, 5, true}), nn::Autoencoder<float>({kFeatureCount, 16, 5}),
                        computeFeatureStatistics(values), {}, {}};
-  model.transformer.initialise(5);
+  model.transformation.initialise(5);
   model.loss_network.initialise(3);
   model.metadata.representation = style::currentRepresentation();
   model.metadata.training.weights.style = 1.0;

@@ -50,9 +50,9 @@ std::filesystem::path writeTinyNetwork(const QTemporaryDir& dir, const QString& 
   std::vector<Eigen::MatrixXd> values;
   for (const char* clip : {"cmu_131_01.bvh", "zombie.bvh"})
     values.push_back(style::loadMotionClip(test::fixture(QString::fromLatin1(clip)).toStdString()).features.values);
-  nn::StyleModel model{nn::Transformer<float>({kFeatureCount, 8, 5, true}), nn::Autoencoder<float>({kFeatureCount, 16, 5}),
+  nn::StyleModel model{nn::TransformationNetwork<float>({kFeatureCount, 8, 5, true}), nn::Autoencoder<float>({kFeatureCount, 16, 5}),
                        computeFeatureStatistics(values), {}, {}};
-  model.transformer.initialise(seed);
+  model.transformation.initialise(seed);
   model.loss_network.initialise(3);
   model.metadata.representation = style::currentRepresentation();
   const std::filesystem::path file = dir.filePath(name + QStringLiteral(".net")).toStdString();

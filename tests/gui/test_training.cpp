@@ -67,8 +67,8 @@ bool writeAll(const QString& path, const QByteArray& bytes) {
 // Largest weight difference between two transformation networks (parameters() is non-const: copies).
 float maxAbsDifference(const nn::StyleModel& a, const nn::StyleModel& b) {
   float worst = 0.0f;
-  nn::Transformer<float> ta = a.transformer;
-  nn::Transformer<float> tb = b.transformer;
+  nn::TransformationNetwork<float> ta = a.transformation;
+  nn::TransformationNetwork<float> tb = b.transformation;
   const auto pa = ta.parameters();
   const auto pb = tb.parameters();
   if (pa.size() != pb.size()) return std::numeric_limits<float>::infinity();
@@ -350,7 +350,7 @@ class TrainingTest : public QObject {
     QVERIFY(current.count() >= 1);
     const nn::StyleModel checkpoint = nn::loadStyleModel(panel->lastCheckpointFile().toStdString());
     QVERIFY(checkpoint.metadata.training.epochs >= 1);
-    QCOMPARE(checkpoint.transformer.shape().hidden, 8);
+    QCOMPARE(checkpoint.transformation.shape().hidden, 8);
     QVERIFY(panel->currentNetwork()->metadata.training.epochs >= checkpoint.metadata.training.epochs);
 
     // The network list shows the metadata, and the result panel got the network to stylize with.
@@ -403,7 +403,7 @@ class TrainingTest : public QObject {
     QCOMPARE(panel->currentIndex(), 1);
     QCOMPARE(retrained->metadata.training.epochs, 2);
     QCOMPARE(retrained->metadata.training.weights.style, 7.0);
-    QCOMPARE(retrained->transformer.shape().hidden, 8);
+    QCOMPARE(retrained->transformation.shape().hidden, 8);
     const float moved = maxAbsDifference(*retrained, reloaded);
     QVERIFY2(moved > 0.0f && moved < 1e-3f, qPrintable(QString::number(static_cast<double>(moved))));
     QCOMPARE(readAll(saved), resaved);  // retraining never writes the file it started from

@@ -32,7 +32,7 @@
 #include "nn/compute_pool.h"
 #include "common/allocator_tuning.h"
 #include "nn/fast_stylizer.h"
-#include "nn/style_loss.h"
+#include "nn/transformation_objective.h"
 
 namespace {
 
@@ -196,7 +196,7 @@ void speedBench() {
   std::printf("[threads=%d] load average %.2f (the figures assume an otherwise idle machine)\n", threads,
               loadAverage());
   std::mt19937 rng(1);
-  Transformer<float> t;
+  TransformationNetwork<float> t;
   Autoencoder<float> ae;
   t.initialise(1);
   ae.initialise(2);
@@ -220,7 +220,7 @@ void speedBench() {
   const StyleBatch<float> batch = syntheticBatch(ae, norm, 16, 240, rng);
   const Timing t_ms = medianMs(1, 7, [&] {
     t.zeroGrad();
-    accumulateStyleLoss(t, ae, batch, norm, LossWeights{});
+    accumulateObjective(t, ae, batch, norm, LossWeights{});
   });
   std::printf("[threads=%d] T training step (fwd+bwd, eq. 10), batch 16 x 240: wall %8.1f ms | cpu %8.1f ms\n",
               threads, t_ms.wall_ms, t_ms.cpu_ms);
@@ -235,7 +235,7 @@ void speedBench() {
 }
 
 // Trains T on synthetic data with and without the residual connection, same seeds and budget, and
-// prints the loss curve. Behind TransformerShape::residual's default.
+// prints the loss curve. Behind TransformationShape::residual's default.
 void residualExperiment(int steps, double style_weight) {
   std::mt19937 data_rng(7);
   Autoencoder<float> ae;
@@ -261,19 +261,19 @@ void residualExperiment(int steps, double style_weight) {
   std::printf("loss weights: content %g style %g foot %g bone %g trajectory %g\n", weights.content, weights.style,
               weights.foot, weights.bone, weights.trajectory);
   for (bool residual : {false, true}) {
-    Transformer<float> t({kFeatureCount, 128, 25, residual});
+    TransformationNetwork<float> t({kFeatureCount, 128, 25, residual});
     t.initialise(11);
     Adam<float> adam(t.parameters(), AdamOptions{1e-3});
     std::printf("%s:\n", residual ? "residual (output = input + T(input))" : "plain (paper)");
     for (int step = 0; step <= steps; ++step) {
       if (step % (steps / 5) == 0) {
-        const StyleLossTerms v = evaluateStyleLoss(t, ae, validation, norm, weights);
+        const ObjectiveTerms v = evaluateObjective(t, ae, validation, norm, weights);
         std::printf("  step %4d  total %9.4f  content %8.4f  style %9.4f  foot %9.3f  bone %9.3f  traj %8.4f\n",
                     step, v.total, v.content, v.style, v.foot, v.bone, v.trajectory);
       }
       if (step == steps) break;
       adam.zeroGrad();
-      accumulateStyleLoss(t, ae, batches[static_cast<std::size_t>(step) % batches.size()], norm, weights);
+      accumulateObjective(t, ae, batches[static_cast<std::size_t>(step) % batches.size()], norm, weights);
       adam.step();
     }
   }

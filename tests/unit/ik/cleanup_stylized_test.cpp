@@ -55,12 +55,12 @@ nn::Autoencoder<float> lowPassAutoencoder() {
   return network;
 }
 
-// output_scale multiplies the transformer's (already 0.1-scaled) output layer.
+// output_scale multiplies the transformation's (already 0.1-scaled) output layer.
 nn::StyleModel networkLikeModel(const MotionFeatures& content, std::uint32_t seed, float output_scale) {
-  nn::StyleModel model{nn::Transformer<float>(nn::TransformerShape{kFeatureCount, 32, 25, true}),
+  nn::StyleModel model{nn::TransformationNetwork<float>(nn::TransformationShape{kFeatureCount, 32, 25, true}),
                        lowPassAutoencoder(), computeFeatureStatistics({content.values}), {}, {}};
-  model.transformer.initialise(seed);
-  model.transformer.conv3.weight.value *= output_scale;
+  model.transformation.initialise(seed);
+  model.transformation.conv3.weight.value *= output_scale;
   model.metadata.representation = style::currentRepresentation();
   return model;
 }
@@ -91,7 +91,7 @@ TEST_F(CleanupStylized, RejectsAStylizedClipOfAnotherLength) {
 }
 
 TEST_F(CleanupStylized, TheLowPassProjectionKeepsTheMotionButDamagesIt) {
-  // Zero transformer output: what is left is the projection alone, which must be close to the content
+  // Zero transformation output: what is left is the projection alone, which must be close to the content
   // (a few cm) but not exact, or the clean-up below would have nothing to repair.
   const nn::StyleModel model = networkLikeModel(features, 11, 0.0f);
   const Eigen::MatrixXd projected = style::Stylizer(model).stylizeFeatures(features.values, 1.0);

@@ -20,9 +20,9 @@ void copyWeights(Conv1d<To>& to, const Conv1d<From>& from) {
 }
 
 struct Networks {
-  Transformer<float> t;
+  TransformationNetwork<float> t;
   Autoencoder<float> ae;
-  Transformer<double> t_ref;
+  TransformationNetwork<double> t_ref;
   Autoencoder<double> ae_ref;
   explicit Networks(bool residual)
       : t({kFeatureCount, 128, 25, residual}), t_ref({kFeatureCount, 128, 25, residual}) {
@@ -49,7 +49,7 @@ TEST(FastStylizerInvalid, RejectsBadClipsAndMissingTransformer) {
   EXPECT_THROW(projection_only.stylize(Mat<float>::Zero(kFeatureCount, 10)), std::invalid_argument);
   EXPECT_THROW(projection_only.project(Mat<float>::Zero(kFeatureCount - 1, 10)), std::invalid_argument);
   EXPECT_THROW(projection_only.project(Mat<float>::Zero(kFeatureCount, 0)), std::invalid_argument);
-  Transformer<float> small({12, 8, 5, false});
+  TransformationNetwork<float> small({12, 8, 5, false});
   EXPECT_THROW(FastStylizer(small, ae), std::invalid_argument);
 }
 

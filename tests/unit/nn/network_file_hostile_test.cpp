@@ -33,9 +33,9 @@ const std::string kPropertyValue = "PROPVALPROPV";
 
 StyleModel smallStyleModel() {
   std::mt19937 rng(21);
-  StyleModel model{Transformer<float>({kFeatureCount, 3, 3, true}), Autoencoder<float>({kFeatureCount, 4, 3}),
+  StyleModel model{TransformationNetwork<float>({kFeatureCount, 3, 3, true}), Autoencoder<float>({kFeatureCount, 4, 3}),
                    test::randomNormalisation(rng), {}, {}};
-  model.transformer.initialise(22);
+  model.transformation.initialise(22);
   model.loss_network.initialise(23);
   model.metadata.training.epochs = 2;
   model.metadata.style_clips = {{kClipName, contentHash("clip")}};
@@ -249,7 +249,7 @@ TEST(NetworkFileHostile, TheWriterNeverWritesWhatTheReaderRefuses) {
   huge_mean.normalisation.mean(3) = 1e308;
   EXPECT_THROW(serialiseStyleModel(huge_mean), std::invalid_argument);
   StyleModel huge_weight = smallStyleModel();
-  huge_weight.transformer.conv1.weight.value(0, 0) = 1e6f;  // above 1e5
+  huge_weight.transformation.conv1.weight.value(0, 0) = 1e6f;  // above 1e5
   EXPECT_THROW(serialiseStyleModel(huge_weight), std::invalid_argument);
   StyleModel bad_dropout = smallStyleModel();
   bad_dropout.metadata.training.dropout = 1.0;

@@ -36,9 +36,9 @@ NetworkMetadata sampleMetadata() {
 
 StyleModel smallStyleModel() {
   std::mt19937 rng(1);
-  StyleModel model{Transformer<float>({kFeatureCount, 3, 3, true}), Autoencoder<float>({kFeatureCount, 4, 3}),
+  StyleModel model{TransformationNetwork<float>({kFeatureCount, 3, 3, true}), Autoencoder<float>({kFeatureCount, 4, 3}),
                    test::randomNormalisation(rng), sampleMetadata(), {}};
-  model.transformer.initialise(2);
+  model.transformation.initialise(2);
   model.loss_network.initialise(3);
   model.loss_network.encoder.bias.value.setConstant(0.25f);
   return model;
@@ -121,7 +121,7 @@ TEST(NetworkFileInvalid, MismatchedRepresentationAndShapes) {
   EXPECT_NO_THROW(checkCompatible(expected, expected, "net.msn"));
 
   StyleModel nan_weight = smallStyleModel();
-  nan_weight.transformer.conv2.weight.value(0, 0) = std::numeric_limits<float>::quiet_NaN();
+  nan_weight.transformation.conv2.weight.value(0, 0) = std::numeric_limits<float>::quiet_NaN();
   EXPECT_THROW(serialiseStyleModel(nan_weight), std::invalid_argument);  // never written
   std::string nan_bytes = serialiseStyleModel(smallStyleModel());         // so made by hand
   putU32(nan_bytes, nan_bytes.find("transform2.weight") + std::string("transform2.weight").size() + 8, 0x7FC00000u);
@@ -136,7 +136,7 @@ TEST(NetworkFileInvalid, MismatchedRepresentationAndShapes) {
 TEST(NetworkFileInvalid, HugeDeclaredSizesAreRejectedBeforeAllocating) {
   // The autoencoder's hidden count sits after the metadata: find it as the second u32 after the
   // properties by re-serialising with a marker-free approach: patch every u32 equal to the hidden count
-  // (4) that is followed by the width (3) and precedes the transformer dimensions.
+  // (4) that is followed by the width (3) and precedes the transformation dimensions.
   const std::string bytes = serialiseStyleModel(smallStyleModel());
   bool patched = false;
   for (std::size_t i = kHeaderBytes; i + 12 <= bytes.size() && !patched; ++i) {
@@ -166,10 +166,10 @@ TEST(NetworkFileInvalid, MissingFileIsAnInputError) {
 TEST(NetworkFile, StyleModelRoundTripsExactly) {
   const StyleModel model = smallStyleModel();
   const StyleModel loaded = parseStyleModel(serialiseStyleModel(model), "net.msn");
-  EXPECT_EQ(loaded.transformer.shape(), model.transformer.shape());
+  EXPECT_EQ(loaded.transformation.shape(), model.transformation.shape());
   EXPECT_EQ(loaded.loss_network.shape(), model.loss_network.shape());
-  Transformer<float> a = model.transformer;
-  Transformer<float> b = loaded.transformer;
+  TransformationNetwork<float> a = model.transformation;
+  TransformationNetwork<float> b = loaded.transformation;
   for (std::size_t i = 0; i < a.parameters().size(); ++i) EXPECT_EQ(a.parameters()[i]->value, b.parameters()[i]->value);
   EXPECT_EQ(loaded.loss_network.encoder.weight.value, model.loss_network.encoder.weight.value);
   EXPECT_EQ(loaded.loss_network.encoder.bias.value, model.loss_network.encoder.bias.value);

@@ -23,9 +23,9 @@ constexpr std::size_t kHeaderBytes = 24;
 
 StyleModel smallStyleModel() {
   std::mt19937 rng(11);
-  StyleModel model{Transformer<float>({kFeatureCount, 3, 3, true}), Autoencoder<float>({kFeatureCount, 4, 3}),
+  StyleModel model{TransformationNetwork<float>({kFeatureCount, 3, 3, true}), Autoencoder<float>({kFeatureCount, 4, 3}),
                    test::randomNormalisation(rng), {}, {}};
-  model.transformer.initialise(12);
+  model.transformation.initialise(12);
   model.loss_network.initialise(13);
   model.loss_network.encoder.bias.value.setConstant(0.125f);
   model.metadata.training.epochs = 2;
@@ -127,16 +127,16 @@ TEST(NetworkFileV2Invalid, NonFiniteHalfWeightIsRejected) {
 
 TEST(NetworkFileV2Invalid, WeightsOutsideTheHalfRangeAreNotWrittenAsF16) {
   StyleModel big = smallStyleModel();
-  big.transformer.conv2.weight.value(1, 1) = 70000.0f;
+  big.transformation.conv2.weight.value(1, 1) = 70000.0f;
   EXPECT_THROW(serialiseStyleModel(big, WeightPrecision::F16), std::invalid_argument);
   EXPECT_NO_THROW(parseStyleModel(serialiseStyleModel(big, WeightPrecision::F32), "net.msn"));
   StyleModel nan = smallStyleModel();
   nan.loss_network.decoder.weight.value(0, 0) = std::numeric_limits<float>::quiet_NaN();
   EXPECT_THROW(serialiseStyleModel(nan, WeightPrecision::F16), std::invalid_argument);
   StyleModel at_limit = smallStyleModel();
-  at_limit.transformer.conv1.weight.value(0, 0) = -kHalfMax;
+  at_limit.transformation.conv1.weight.value(0, 0) = -kHalfMax;
   const StyleModel loaded = parseStyleModel(serialiseStyleModel(at_limit, WeightPrecision::F16), "net.msn");
-  EXPECT_EQ(loaded.transformer.conv1.weight.value(0, 0), -kHalfMax);
+  EXPECT_EQ(loaded.transformation.conv1.weight.value(0, 0), -kHalfMax);
 }
 
 TEST(NetworkFileV2, F32RoundTripIsExactAndWritesTheCurrentFormat) {
@@ -145,7 +145,7 @@ TEST(NetworkFileV2, F32RoundTripIsExactAndWritesTheCurrentFormat) {
   EXPECT_EQ(readU32(bytes, 8), 3u);
   EXPECT_EQ(kNetworkFormatVersion, 3u);
   const StyleModel loaded = parseStyleModel(bytes, "net.msn");
-  EXPECT_EQ(weightsOf(loaded.transformer), weightsOf(model.transformer));
+  EXPECT_EQ(weightsOf(loaded.transformation), weightsOf(model.transformation));
   EXPECT_EQ(weightsOf(loaded.loss_network), weightsOf(model.loss_network));
   EXPECT_EQ(loaded.metadata, model.metadata);
   const NetworkFileInfo info = networkFileInfo(bytes, "net.msn");
@@ -163,8 +163,8 @@ TEST(NetworkFileV2, F16RoundTripRoundsEachWeightOnceAndIsStable) {
   EXPECT_EQ(loaded.metadata, model.metadata);
   EXPECT_EQ(loaded.normalisation.mean, model.normalisation.mean);  // statistics stay f64
   EXPECT_EQ(loaded.normalisation.std, model.normalisation.std);
-  const auto original = weightsOf(model.transformer);
-  const auto rounded = weightsOf(loaded.transformer);
+  const auto original = weightsOf(model.transformation);
+  const auto rounded = weightsOf(loaded.transformation);
   ASSERT_EQ(original.size(), rounded.size());
   for (std::size_t i = 0; i < original.size(); ++i)
     for (Eigen::Index k = 0; k < original[i].size(); ++k) {
@@ -175,7 +175,7 @@ TEST(NetworkFileV2, F16RoundTripRoundsEachWeightOnceAndIsStable) {
   // Values already representable survive exactly: f16 -> f32 -> f16 gives the same bytes.
   EXPECT_EQ(serialiseStyleModel(loaded, WeightPrecision::F16), bytes);
   const StyleModel as_f32 = parseStyleModel(serialiseStyleModel(loaded, WeightPrecision::F32), "net.msn");
-  EXPECT_EQ(weightsOf(as_f32.transformer), rounded);
+  EXPECT_EQ(weightsOf(as_f32.transformation), rounded);
   // About half the size: the weights dominate.
   const std::string f32 = serialiseStyleModel(model);
   const std::size_t weight_count = 3 * 66 * 3 + 3 + 3 * 3 * 3 + 3 + 66 * 3 * 3 + 66 + 2 * 66 * 4 * 3 + 4;
@@ -210,7 +210,7 @@ TEST(NetworkFileV2, Format1FilesStillLoad) {
 
   const StyleModel style = smallStyleModel();
   const StyleModel loaded_style = parseStyleModel(downgradeToFormat1(serialiseStyleModel(style)), "net.msn");
-  EXPECT_EQ(weightsOf(loaded_style.transformer), weightsOf(style.transformer));
+  EXPECT_EQ(weightsOf(loaded_style.transformation), weightsOf(style.transformation));
   // Re-saving a format-1 network writes format 2 with the same weights.
   EXPECT_EQ(serialiseStyleModel(loaded_style), serialiseStyleModel(style));
 }

@@ -9,8 +9,8 @@
 #include "loss_fixtures.h"
 #include "nn/adam.h"
 #include "nn/autoencoder.h"
-#include "nn/style_loss.h"
-#include "nn/transformer.h"
+#include "nn/transformation_objective.h"
+#include "nn/transformation_network.h"
 
 namespace motionstyle::nn {
 namespace {
@@ -51,31 +51,31 @@ TEST(NetworksInvalid, MismatchedShapesThrow) {
   EXPECT_THROW(ae.encodeBackward(MatD::Zero(8, 2)), std::logic_error);
   std::mt19937 rng(1);
   EXPECT_THROW(ae.accumulateReconstruction(MatD::Zero(6, 8), 4, 0.1, 0.25, nullptr), std::invalid_argument);
-  Transformer<double> t({6, 5, 3, false});
+  TransformationNetwork<double> t({6, 5, 3, false});
   EXPECT_THROW(t.apply(MatD::Zero(7, 8), 4), std::invalid_argument);
 
   Autoencoder<double> loss_net({kFeatureCount, 8, 3});
   loss_net.initialise(1);
-  Transformer<double> tt({kFeatureCount, 5, 3, true});
+  TransformationNetwork<double> tt({kFeatureCount, 5, 3, true});
   const FeatureStatistics norm = test::randomNormalisation(rng);
   StyleBatch<double> batch = randomStyleBatch(loss_net, 2, 4, rng, false);
-  EXPECT_NO_THROW(evaluateStyleLoss(tt, loss_net, batch, norm, LossWeights{}));
+  EXPECT_NO_THROW(evaluateObjective(tt, loss_net, batch, norm, LossWeights{}));
   auto broken = batch;
   broken.contacts = MatD::Zero(kContactCount, 7);
-  EXPECT_THROW(accumulateStyleLoss(tt, loss_net, broken, norm, LossWeights{}), std::invalid_argument);
+  EXPECT_THROW(accumulateObjective(tt, loss_net, broken, norm, LossWeights{}), std::invalid_argument);
   broken = batch;
   broken.bone_lengths = MatD::Zero(kBoneCount, 3);
-  EXPECT_THROW(accumulateStyleLoss(tt, loss_net, broken, norm, LossWeights{}), std::invalid_argument);
+  EXPECT_THROW(accumulateObjective(tt, loss_net, broken, norm, LossWeights{}), std::invalid_argument);
   broken = batch;
   broken.content_hidden = MatD::Zero(8, 3);
-  EXPECT_THROW(accumulateStyleLoss(tt, loss_net, broken, norm, LossWeights{}), std::invalid_argument);
+  EXPECT_THROW(accumulateObjective(tt, loss_net, broken, norm, LossWeights{}), std::invalid_argument);
   broken = batch;
   broken.style_grams.push_back(broken.style_grams[0]);
   broken.style_grams.push_back(broken.style_grams[0]);
-  EXPECT_THROW(accumulateStyleLoss(tt, loss_net, broken, norm, LossWeights{}), std::invalid_argument);
+  EXPECT_THROW(accumulateObjective(tt, loss_net, broken, norm, LossWeights{}), std::invalid_argument);
   LossWeights negative;
   negative.style = -1.0;
-  EXPECT_THROW(accumulateStyleLoss(tt, loss_net, batch, norm, negative), std::invalid_argument);
+  EXPECT_THROW(accumulateObjective(tt, loss_net, batch, norm, negative), std::invalid_argument);
   AdamOptions bad;
   bad.beta1 = 1.0;
   std::vector<Parameter<double>*> none;
@@ -165,19 +165,19 @@ TEST(TransformerGradient, TotalStyleLossWrtEveryParameter) {
   const FeatureStatistics norm = test::randomNormalisation(rng);
   const LossWeights weights = testWeights();
   for (bool residual : {true, false}) {
-    Transformer<double> t({kFeatureCount, 128, 25, residual});
+    TransformationNetwork<double> t({kFeatureCount, 128, 25, residual});
     t.initialise(9);
     for (Parameter<double>* p : t.parameters())
       if (p->value.cols() == 1) p->value = randomMatrix(p->value.rows(), 1, rng, 0.05);
     const StyleBatch<double> batch = randomStyleBatch(ae, 2, 8, rng, !residual);
     t.zeroGrad();
-    const StyleLossTerms terms = accumulateStyleLoss(t, ae, batch, norm, weights);
-    const StyleLossTerms evaluated = evaluateStyleLoss(t, ae, batch, norm, weights);
+    const ObjectiveTerms terms = accumulateObjective(t, ae, batch, norm, weights);
+    const ObjectiveTerms evaluated = evaluateObjective(t, ae, batch, norm, weights);
     EXPECT_NEAR(terms.total, evaluated.total, 1e-10 * std::abs(evaluated.total));
     for (double term : {terms.content, terms.style, terms.foot, terms.bone, terms.trajectory})
       EXPECT_GT(term, 0.0);
     EXPECT_EQ(ae.encoder.weight.grad.cwiseAbs().maxCoeff(), 0.0);  // the loss network stays frozen
-    auto loss = [&] { return evaluateStyleLoss(t, ae, batch, norm, weights).total; };
+    auto loss = [&] { return evaluateObjective(t, ae, batch, norm, weights).total; };
     for (Parameter<double>* p : t.parameters()) {
       const MatD analytic = p->grad;
       const auto result = checkGradient(p->value, analytic, loss, 10, rng);  // 10 random entries each
@@ -186,8 +186,8 @@ TEST(TransformerGradient, TotalStyleLossWrtEveryParameter) {
   }
 }
 
-TEST(Transformer, OutputHasTheInputLengthAndResidualStartsNearIdentity) {
-  Transformer<double> t;
+TEST(TransformationNetwork, OutputHasTheInputLengthAndResidualStartsNearIdentity) {
+  TransformationNetwork<double> t;
   t.initialise(10);
   std::mt19937 rng(8);
   for (int frames : {1, 5, 24, 25}) {
@@ -208,8 +208,8 @@ TEST(Determinism, SameSeedSameWeightsOtherSeedOtherWeights) {
   EXPECT_EQ(a.decoder.weight.value, b.decoder.weight.value);
   b.initialise(43);
   EXPECT_NE(a.encoder.weight.value, b.encoder.weight.value);
-  Transformer<float> ta;
-  Transformer<float> tb;
+  TransformationNetwork<float> ta;
+  TransformationNetwork<float> tb;
   ta.initialise(1);
   tb.initialise(1);
   EXPECT_EQ(ta.conv2.weight.value, tb.conv2.weight.value);

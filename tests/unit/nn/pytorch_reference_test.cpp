@@ -30,8 +30,8 @@
 #include <vector>
 
 #include "nn/autoencoder.h"
-#include "nn/style_loss.h"
-#include "nn/transformer.h"
+#include "nn/transformation_objective.h"
+#include "nn/transformation_network.h"
 #include "test_paths.h"
 
 namespace motionstyle::nn {
@@ -160,7 +160,7 @@ class PyTorchReference : public ::testing::TestWithParam<ConvAlgorithm> {
   }
   void loadNetworks() {
     const int width = config("width");
-    transformer_ = Transformer<double>({config("features"), config("t_hidden"), width, config("residual") != 0});
+    transformer_ = TransformationNetwork<double>({config("features"), config("t_hidden"), width, config("residual") != 0});
     loss_network_ = Autoencoder<double>({config("features"), config("ae_hidden"), width});
     for (const auto& [layer, conv] : transformerLayers()) {
       const std::string prefix = std::string("transformer.") + layer;
@@ -231,7 +231,7 @@ class PyTorchReference : public ::testing::TestWithParam<ConvAlgorithm> {
       return m(static_cast<Eigen::Index>(c), static_cast<Eigen::Index>(b * t + f));
     });
   }
-  void expectTermsMatch(const StyleLossTerms& terms) const {
+  void expectTermsMatch(const ObjectiveTerms& terms) const {
     const std::map<std::string, double> values = {{"content", terms.content}, {"style", terms.style},
                                                   {"foot", terms.foot},       {"bone", terms.bone},
                                                   {"trajectory", terms.trajectory}, {"total", terms.total}};
@@ -241,7 +241,7 @@ class PyTorchReference : public ::testing::TestWithParam<ConvAlgorithm> {
 
   static inline const std::map<std::string, ReferenceTensor>* file_ = nullptr;
   static inline std::string load_error_;
-  Transformer<double> transformer_;
+  TransformationNetwork<double> transformer_;
   Autoencoder<double> loss_network_;
   FeatureStatistics normalisation_;
   LossWeights weights_;
@@ -266,12 +266,12 @@ TEST_P(PyTorchReference, ForwardOutput) {
 }
 
 TEST_P(PyTorchReference, LossTerms) {
-  expectTermsMatch(evaluateStyleLoss(transformer_, loss_network_, batch_, normalisation_, weights_));
+  expectTermsMatch(evaluateObjective(transformer_, loss_network_, batch_, normalisation_, weights_));
 }
 
 TEST_P(PyTorchReference, ParameterGradients) {
   transformer_.zeroGrad();
-  const StyleLossTerms terms = accumulateStyleLoss(transformer_, loss_network_, batch_, normalisation_, weights_);
+  const ObjectiveTerms terms = accumulateObjective(transformer_, loss_network_, batch_, normalisation_, weights_);
   expectTermsMatch(terms);
   const int width = config("width");
   for (const auto& [layer, conv] : transformerLayers()) {
@@ -287,7 +287,7 @@ TEST_P(PyTorchReference, ParameterGradients) {
     expectMatches(std::string("expected.grad.transformer.") + layer + ".bias",
                   [&](std::size_t i) { return bias_grad(static_cast<Eigen::Index>(i), 0); });
   }
-  // The loss network is frozen: accumulateStyleLoss must leave its gradients alone.
+  // The loss network is frozen: accumulateObjective must leave its gradients alone.
   EXPECT_EQ(loss_network_.encoder.weight.grad.cwiseAbs().maxCoeff(), 0.0);
 }
 

@@ -123,7 +123,7 @@ TEST(StyleTrainingJob, PreviewsEachEpochAndACancelledRunKeepsItsLastEpoch) {
   EXPECT_EQ(previews, 2);
   EXPECT_TRUE(std::filesystem::exists(result.checkpoint));
   // The kept network is the checkpoint's.
-  EXPECT_EQ(test::weightsOf(result.model->transformer), test::weightsOf(nn::loadStyleModel(result.checkpoint).transformer));
+  EXPECT_EQ(test::weightsOf(result.model->transformation), test::weightsOf(nn::loadStyleModel(result.checkpoint).transformation));
 }
 
 }  // namespace

@@ -68,7 +68,7 @@ inline const std::vector<style::MotionClip>& fixtureClips() {
 
 // Small shapes: 16 hidden units, width 5; windows of 60 frames with a step of 30.
 inline nn::AutoencoderShape tinyAutoencoderShape() { return {kFeatureCount, 16, 5}; }
-inline nn::TransformerShape tinyTransformerShape() { return {kFeatureCount, 8, 5, true}; }
+inline nn::TransformationShape tinyTransformerShape() { return {kFeatureCount, 8, 5, true}; }
 
 inline style::TrainingSettings tinySettings(const std::filesystem::path& output, int epochs) {
   style::TrainingSettings settings;
@@ -114,8 +114,8 @@ inline nn::AutoencoderModel tinyAutoencoderModel(std::uint32_t seed = 3) {
 
 inline nn::StyleModel tinyStyleModel(std::uint32_t seed = 5) {
   const nn::AutoencoderModel loss = tinyAutoencoderModel();
-  nn::StyleModel model{nn::Transformer<float>(tinyTransformerShape()), loss.network, loss.normalisation, {}, {}};
-  model.transformer.initialise(seed);
+  nn::StyleModel model{nn::TransformationNetwork<float>(tinyTransformerShape()), loss.network, loss.normalisation, {}, {}};
+  model.transformation.initialise(seed);
   model.metadata.representation = style::currentRepresentation();
   return model;
 }

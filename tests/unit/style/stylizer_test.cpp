@@ -31,7 +31,7 @@ Eigen::MatrixXd longFeatures(int frames) {
 // names the network, not a clip the clean-up chokes on.
 TEST(Stylizer, RefusesANetworkWhoseOutputIsNotPhysical) {
   nn::StyleModel model = test::tinyStyleModel();
-  for (nn::Parameter<float>* p : model.transformer.parameters())
+  for (nn::Parameter<float>* p : model.transformation.parameters())
     if (p->value.cols() == 1) p->value.setConstant(1e5f);
   const style::Stylizer stylizer(std::move(model), "damaged.net");
   try {
@@ -83,8 +83,8 @@ TEST(Stylizer, OutputHasTheInputLengthForOddAndLongClips) {
 // of the cut. With the full-size networks (width 25) the field is T's 3 x 12 frames plus the
 // autoencoder's ~3 x 12 (encode, pool, decode): 120 frames of margin is ample.
 TEST(Stylizer, NoSeamsAwayFromACut) {
-  nn::StyleModel model{nn::Transformer<float>(), nn::Autoencoder<float>(), test::tinyAutoencoderModel().normalisation, {}, {}};
-  model.transformer.initialise(21);
+  nn::StyleModel model{nn::TransformationNetwork<float>(), nn::Autoencoder<float>(), test::tinyAutoencoderModel().normalisation, {}, {}};
+  model.transformation.initialise(21);
   model.loss_network.initialise(22);
   model.metadata.representation = style::currentRepresentation();
   const style::Stylizer stylizer(model);

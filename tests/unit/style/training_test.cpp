@@ -275,13 +275,13 @@ TEST(TrainStyleNetwork, DeterministicResumableAndWarmStartable) {
   const auto first = style::trainStyleNetwork(config);
   config.settings.output = dir / "again.net";
   const auto second = style::trainStyleNetwork(config);
-  EXPECT_EQ(test::weightsOf(first.model.transformer), test::weightsOf(second.model.transformer));
+  EXPECT_EQ(test::weightsOf(first.model.transformation), test::weightsOf(second.model.transformation));
 
   config.settings.output = dir / "split.net";
   ASSERT_EQ(style::trainStyleNetwork(config, test::cancelAtEndOfEpoch(1)).status, style::TrainingStatus::Cancelled);
   config.settings.resume = true;
   const auto resumed = style::trainStyleNetwork(config);
-  EXPECT_EQ(test::weightsOf(first.model.transformer), test::weightsOf(resumed.model.transformer));
+  EXPECT_EQ(test::weightsOf(first.model.transformation), test::weightsOf(resumed.model.transformation));
 
   // Warm start: continues from the given network's weights, so its first epoch starts lower.
   config.settings.resume = false;

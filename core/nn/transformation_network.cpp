@@ -1,4 +1,4 @@
-#include "nn/transformer.h"
+#include "nn/transformation_network.h"
 
 #include <random>
 
@@ -7,14 +7,14 @@
 namespace motionstyle::nn {
 
 template <typename S>
-Transformer<S>::Transformer(const TransformerShape& shape)
+TransformationNetwork<S>::TransformationNetwork(const TransformationShape& shape)
     : conv1("transform1", shape.features, shape.hidden, shape.width, true),
       conv2("transform2", shape.hidden, shape.hidden, shape.width, true),
       conv3("transform3", shape.hidden, shape.features, shape.width, true),
       shape_(shape) {}
 
 template <typename S>
-void Transformer<S>::initialise(std::uint32_t seed) {
+void TransformationNetwork<S>::initialise(std::uint32_t seed) {
   std::mt19937 rng(seed);
   initialiseConv(conv1, InitScheme::HeUniform, rng);
   initialiseConv(conv2, InitScheme::HeUniform, rng);
@@ -25,23 +25,23 @@ void Transformer<S>::initialise(std::uint32_t seed) {
 }
 
 template <typename S>
-Mat<S> Transformer<S>::apply(const Mat<S>& x, int frames) const {
-  checkBatch("Transformer::apply", x.rows(), x.cols(), shape_.features, frames);
+Mat<S> TransformationNetwork<S>::apply(const Mat<S>& x, int frames) const {
+  checkBatch("TransformationNetwork::apply", x.rows(), x.cols(), shape_.features, frames);
   Mat<S> y = conv3.apply(Relu<S>::apply(conv2.apply(Relu<S>::apply(conv1.apply(x, frames)), frames)), frames);
   if (shape_.residual) y += x;
   return y;
 }
 
 template <typename S>
-Mat<S> Transformer<S>::forward(const Mat<S>& x, int frames) {
-  checkBatch("Transformer::forward", x.rows(), x.cols(), shape_.features, frames);
+Mat<S> TransformationNetwork<S>::forward(const Mat<S>& x, int frames) {
+  checkBatch("TransformationNetwork::forward", x.rows(), x.cols(), shape_.features, frames);
   Mat<S> y = conv3.forward(relu2_.forward(conv2.forward(relu1_.forward(conv1.forward(x, frames)), frames)), frames);
   if (shape_.residual) y += x;
   return y;
 }
 
 template <typename S>
-void Transformer<S>::backward(const Mat<S>& grad_output) {
+void TransformationNetwork<S>::backward(const Mat<S>& grad_output) {
   // The residual path x -> y ends at the (data) input, so it adds nothing to parameter gradients.
   const Mat<S> g2 = relu2_.backward(conv3.backward(grad_output, Gradients::All));
   const Mat<S> g1 = relu1_.backward(conv2.backward(g2, Gradients::All));
@@ -49,18 +49,18 @@ void Transformer<S>::backward(const Mat<S>& grad_output) {
 }
 
 template <typename S>
-std::vector<Parameter<S>*> Transformer<S>::parameters() {
+std::vector<Parameter<S>*> TransformationNetwork<S>::parameters() {
   return {&conv1.weight, &conv1.bias, &conv2.weight, &conv2.bias, &conv3.weight, &conv3.bias};
 }
 
 template <typename S>
-void Transformer<S>::zeroGrad() {
+void TransformationNetwork<S>::zeroGrad() {
   conv1.zeroGrad();
   conv2.zeroGrad();
   conv3.zeroGrad();
 }
 
-template class Transformer<float>;
-template class Transformer<double>;
+template class TransformationNetwork<float>;
+template class TransformationNetwork<double>;
 
 }  // namespace motionstyle::nn

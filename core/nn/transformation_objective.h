@@ -7,13 +7,13 @@
 //
 // A training loop (not here) builds StyleBatch values: per content window its contacts and bone
 // lengths, L(I) computed ONCE per content clip (contentHidden), and the style Gram matrices computed
-// ONCE per style clip (styleGram). accumulateStyleLoss then runs forward + backward.
+// ONCE per style clip (styleGram). accumulateObjective then runs forward + backward.
 
 #include <vector>
 
 #include "nn/autoencoder.h"
 #include "nn/losses.h"
-#include "nn/transformer.h"
+#include "nn/transformation_network.h"
 
 namespace motionstyle::nn {
 
@@ -35,7 +35,7 @@ struct LossWeights {
   bool operator==(const LossWeights&) const = default;
 };
 
-struct StyleLossTerms {  // unweighted terms and the weighted total
+struct ObjectiveTerms {  // unweighted terms and the weighted total
   double content = 0;
   double style = 0;
   double foot = 0;
@@ -69,13 +69,13 @@ Mat<S> styleGram(const Autoencoder<S>& loss_network, const Mat<S>& style_clip);
 // Forward T(I), eq. 10, backward: ADDS into the transformation network's parameter gradients. The loss
 // network's weights are neither changed nor given gradients (only its caches are used).
 template <typename S>
-StyleLossTerms accumulateStyleLoss(Transformer<S>& transformer, Autoencoder<S>& loss_network,
+ObjectiveTerms accumulateObjective(TransformationNetwork<S>& transformation, Autoencoder<S>& loss_network,
                                    const StyleBatch<S>& batch, const FeatureStatistics& normalisation,
                                    const LossWeights& weights);
 
 // The same value without gradients (validation).
 template <typename S>
-StyleLossTerms evaluateStyleLoss(const Transformer<S>& transformer, const Autoencoder<S>& loss_network,
+ObjectiveTerms evaluateObjective(const TransformationNetwork<S>& transformation, const Autoencoder<S>& loss_network,
                                  const StyleBatch<S>& batch, const FeatureStatistics& normalisation,
                                  const LossWeights& weights);
 

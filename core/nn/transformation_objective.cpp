@@ -1,4 +1,4 @@
-#include "nn/style_loss.h"
+#include "nn/transformation_objective.h"
 
 #include <cmath>
 #include <stdexcept>
@@ -17,11 +17,11 @@ void requireRows(const char* what, Eigen::Index rows, Eigen::Index cols, Eigen::
 
 // Computes every term on y = T(I) (and h = L(y)); adds weighted gradients when the pointers are set.
 template <typename S>
-StyleLossTerms lossTerms(const Mat<S>& output, const Mat<S>& hidden, const StyleBatch<S>& batch,
+ObjectiveTerms lossTerms(const Mat<S>& output, const Mat<S>& hidden, const StyleBatch<S>& batch,
                          const FeatureStatistics& normalisation, const LossWeights& w, Mat<S>* grad_output,
                          Mat<S>* grad_hidden) {
   const int pooled = evenFrames(batch.frames) / 2;
-  StyleLossTerms terms;
+  ObjectiveTerms terms;
   terms.content = static_cast<double>(
       contentLoss(hidden, batch.content_hidden, static_cast<S>(w.content), grad_hidden));
   terms.style = static_cast<double>(
@@ -73,29 +73,29 @@ Mat<S> styleGram(const Autoencoder<S>& loss_network, const Mat<S>& style_clip) {
 }
 
 template <typename S>
-StyleLossTerms accumulateStyleLoss(Transformer<S>& transformer, Autoencoder<S>& loss_network,
+ObjectiveTerms accumulateObjective(TransformationNetwork<S>& transformation, Autoencoder<S>& loss_network,
                                    const StyleBatch<S>& batch, const FeatureStatistics& normalisation,
                                    const LossWeights& weights) {
   weights.validate();
-  batch.validate(transformer.shape().features, loss_network.shape().hidden);
-  const Mat<S> output = transformer.forward(batch.content, batch.frames);
+  batch.validate(transformation.shape().features, loss_network.shape().hidden);
+  const Mat<S> output = transformation.forward(batch.content, batch.frames);
   const Mat<S> hidden = loss_network.encodeForward(output, batch.frames);
   Mat<S> grad_output = Mat<S>::Zero(output.rows(), output.cols());
   Mat<S> grad_hidden = Mat<S>::Zero(hidden.rows(), hidden.cols());
-  const StyleLossTerms terms =
+  const ObjectiveTerms terms =
       lossTerms(output, hidden, batch, normalisation, weights, &grad_output, &grad_hidden);
   grad_output += loss_network.encodeBackward(grad_hidden);
-  transformer.backward(grad_output);
+  transformation.backward(grad_output);
   return terms;
 }
 
 template <typename S>
-StyleLossTerms evaluateStyleLoss(const Transformer<S>& transformer, const Autoencoder<S>& loss_network,
+ObjectiveTerms evaluateObjective(const TransformationNetwork<S>& transformation, const Autoencoder<S>& loss_network,
                                  const StyleBatch<S>& batch, const FeatureStatistics& normalisation,
                                  const LossWeights& weights) {
   weights.validate();
-  batch.validate(transformer.shape().features, loss_network.shape().hidden);
-  const Mat<S> output = transformer.apply(batch.content, batch.frames);
+  batch.validate(transformation.shape().features, loss_network.shape().hidden);
+  const Mat<S> output = transformation.apply(batch.content, batch.frames);
   const Mat<S> hidden = loss_network.encode(output, batch.frames);
   return lossTerms<S>(output, hidden, batch, normalisation, weights, nullptr, nullptr);
 }
@@ -104,9 +104,9 @@ StyleLossTerms evaluateStyleLoss(const Transformer<S>& transformer, const Autoen
   template struct StyleBatch<S>;                                                                       \
   template Mat<S> contentHidden<S>(const Autoencoder<S>&, const Mat<S>&, int);                         \
   template Mat<S> styleGram<S>(const Autoencoder<S>&, const Mat<S>&);                                  \
-  template StyleLossTerms accumulateStyleLoss<S>(Transformer<S>&, Autoencoder<S>&, const StyleBatch<S>&, \
+  template ObjectiveTerms accumulateObjective<S>(TransformationNetwork<S>&, Autoencoder<S>&, const StyleBatch<S>&, \
                                                  const FeatureStatistics&, const LossWeights&);            \
-  template StyleLossTerms evaluateStyleLoss<S>(const Transformer<S>&, const Autoencoder<S>&,           \
+  template ObjectiveTerms evaluateObjective<S>(const TransformationNetwork<S>&, const Autoencoder<S>&,           \
                                                const StyleBatch<S>&, const FeatureStatistics&, const LossWeights&);
 
 MOTIONSTYLE_INSTANTIATE_STYLE_LOSS(float)

@@ -6,7 +6,7 @@
 //
 // Residual option: output = input + T(input). The paper trains the plain form from scratch; the
 // residual form starts at "output = content" instead of "output = noise", so the content and motion
-// constraint terms start near zero. See TransformerShape::residual for the default and why.
+// constraint terms start near zero. See TransformationShape::residual for the default and why.
 
 #include <cstdint>
 #include <vector>
@@ -17,7 +17,7 @@
 
 namespace motionstyle::nn {
 
-struct TransformerShape {
+struct TransformationShape {
   int features = kFeatureCount;
   int hidden = 128;
   int width = 25;
@@ -28,18 +28,18 @@ struct TransformerShape {
   // error of ~0.1, the residual one starts there. Costs one addition per value. The paper's form is
   // residual = false.
   bool residual = true;
-  bool operator==(const TransformerShape&) const = default;
+  bool operator==(const TransformationShape&) const = default;
 };
 
 template <typename S>
-class Transformer {
+class TransformationNetwork {
  public:
-  explicit Transformer(const TransformerShape& shape = {});
+  explicit TransformationNetwork(const TransformationShape& shape = {});
 
   // He-uniform for the two ReLU layers, Glorot-uniform for the output layer, zero biases. With
   // `residual` the output layer is scaled by 0.1 so the network starts close to the identity map.
   void initialise(std::uint32_t seed);
-  const TransformerShape& shape() const { return shape_; }
+  const TransformationShape& shape() const { return shape_; }
 
   Mat<S> apply(const Mat<S>& x, int frames) const;  // inference, no caches
   Mat<S> forward(const Mat<S>& x, int frames);      // caches for backward
@@ -54,7 +54,7 @@ class Transformer {
   Conv1d<S> conv3;
 
  private:
-  TransformerShape shape_;
+  TransformationShape shape_;
   Relu<S> relu1_;
   Relu<S> relu2_;
 };
