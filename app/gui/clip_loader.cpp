@@ -7,6 +7,7 @@
 #include <atomic>
 
 #include "bvh/bvh_reader.h"
+#include "features/foot_contacts.h"
 #include "common/errors.h"
 #include "mapping/canonical_joints.h"
 #include "mapping/mapping_file.h"
@@ -35,10 +36,14 @@ void prepare(LoadedClip& clip) {
   clip.contact_overrides.resize(0, 0);
   if (clip.mapping) {
     requireMeasurableRestPose(clip.motion, *clip.mapping);  // InputError: a flat skeleton is not loaded
-    clip.display_space = mappedDisplaySpace(clip.motion, *clip.mapping, world);
-    const Eigen::Vector3d up = clip.display_space.convention.fileUp();
-    clip.detected_contacts = detectContacts(world, contactJoints(*clip.mapping), up, clip.display_space.floor_height,
-                                            clip.fps(), restPoseBodyHeight(clip.motion.skeleton, up));
+    // The convention, floor and contacts as every clean-up front end finds them (foot_contacts.h).
+    Eigen::MatrixXd canonical(world.rows(), 3 * kCanonicalJointCount);
+    for (int c = 0; c < kCanonicalJointCount; ++c)
+      canonical.middleCols<3>(3 * c) = world.middleCols<3>(3 * clip.mapping->joints[static_cast<size_t>(c)]);
+    FileSpaceGround ground = detectFileSpaceGround(clip.motion, *clip.mapping, canonical);
+    clip.display_space.convention = ground.convention;
+    clip.display_space.floor_height = ground.floor_height;
+    clip.detected_contacts = std::move(ground.contacts);
     clip.contact_overrides = Eigen::MatrixXi::Constant(clip.detected_contacts.rows(), kContactCount, -1);
   } else {
     clip.display_space = unmappedDisplaySpace(clip.motion, world);

@@ -12,8 +12,6 @@ namespace {
 
 constexpr double kUnmappedDisplayHeightCm = 170.0;
 
-bool sameRate(double a, double b) { return std::abs(a - b) <= 1e-5 * b; }
-
 }  // namespace
 
 Eigen::MatrixXd DisplaySpace::toDisplay(const Eigen::MatrixXd& file_positions) const {
@@ -30,16 +28,6 @@ Eigen::MatrixXd DisplaySpace::toDisplay(const Eigen::MatrixXd& file_positions) c
   return display;
 }
 
-DisplaySpace mappedDisplaySpace(const Motion& motion, const JointMapping& mapping, const Eigen::MatrixXd& file_positions) {
-  DisplaySpace space;
-  Eigen::MatrixXd canonical(file_positions.rows(), 3 * kCanonicalJointCount);
-  for (int c = 0; c < kCanonicalJointCount; ++c)
-    canonical.middleCols<3>(3 * c) = file_positions.middleCols<3>(3 * mapping.joints[static_cast<size_t>(c)]);
-  space.convention = detectSpaceConvention(motion.skeleton, canonical, mapping);
-  space.floor_height = estimateFloorHeight(file_positions, contactJoints(mapping), space.convention.fileUp());
-  return space;
-}
-
 DisplaySpace unmappedDisplaySpace(const Motion& motion, const Eigen::MatrixXd& file_positions) {
   DisplaySpace space;
   space.convention.unit = "unknown";
@@ -53,7 +41,7 @@ DisplaySpace unmappedDisplaySpace(const Motion& motion, const Eigen::MatrixXd& f
 }
 
 Eigen::MatrixXd rowsAtRate(const Eigen::MatrixXd& rows, double source_fps, double target_fps) {
-  if (rows.rows() == 0 || sameRate(source_fps, target_fps)) return rows;
+  if (rows.rows() == 0 || sameFrameRate(source_fps, target_fps)) return rows;
   return resampleRowsLinear(rows, 1.0 / source_fps, target_fps);
 }
 

@@ -26,10 +26,6 @@ struct DisplaySpace {
   Eigen::MatrixXd toDisplay(const Eigen::MatrixXd& file_positions) const;
 };
 
-// The convention of a mapped clip (up axis and unit from the core) and its floor: a soft minimum of
-// the contact joints' heights (estimateFloorHeight). file_positions: frames x 3*joints of the clip.
-DisplaySpace mappedDisplaySpace(const Motion& motion, const JointMapping& mapping, const Eigen::MatrixXd& file_positions);
-
 // A best effort for a clip that cannot be mapped (no feet or head to find the up axis): +Y up, scaled
 // so that the rest pose is 170 cm tall, floor at the lowest joint over the clip. Shown only so that
 // the user can see the rig while fixing its mapping.

@@ -21,6 +21,7 @@
 #include "contact_tracks.h"
 #include "features/feature_statistics.h"
 #include "gui_test_support.h"
+#include "tiny_style_network.h"
 #include "main_window.h"
 #include "network_panel.h"
 #include "nn/transformation_objective.h"
@@ -40,24 +41,13 @@ constexpr int kJobTimeoutMs = 120000;  // a hang guard, not a speed test
 // A tiny style network (random weights, the fixtures' statistics) that stores a style target, so that
 // the Adapt tab can retrain it without its style clip.
 std::filesystem::path writeTinyNetwork(const QTemporaryDir& dir) {
-  std::vector<style::MotionClip> clips;
-  std::vector<Eigen::MatrixXd> values;
-  for (const char* name : {"cmu_131_01.bvh", "zombie.bvh"}) {
-    clips.push_back(style::loadMotionClip(test::fixture(QString::fromLatin1(name)).toStdString()));
-    values.push_back(clips.back().features.values);
-  }
-  nn::StyleModel model{nn::TransformationNetwork<float>({kFeatureCount, 8, 5, true}), nn::Autoencoder<float>({kFeatureCount, 16, 5}),
-                       computeFeatureStatistics(values), {}, {}};
-  model.transformation.initialise(5);
-  model.loss_network.initialise(3);
-  model.metadata.representation = style::currentRepresentation();
+  nn::StyleModel model = test::tinyStyleModel();
   model.metadata.training.weights.style = 1.0;
-  Eigen::MatrixXd style = clips[1].features.values;
-  model.normalisation.normalize(style);
-  model.style_targets = {{"", nn::styleGram(model.loss_network, nn::Mat<float>(style.cast<float>()))}};
-  const std::filesystem::path file = dir.filePath(QStringLiteral("tiny_style.net")).toStdString();
-  nn::saveStyleModel(model, file);
-  return file;
+  Eigen::MatrixXd style_clip =
+      style::loadMotionClip(test::fixture(QStringLiteral("zombie.bvh")).toStdString()).features.values;
+  model.normalisation.normalize(style_clip);
+  model.style_targets = {{"", nn::styleGram(model.loss_network, nn::Mat<float>(style_clip.cast<float>()))}};
+  return test::saveInto(dir, QStringLiteral("tiny_style"), model);
 }
 
 }  // namespace

@@ -21,6 +21,7 @@
 #include "demo_scene.h"
 #include "features/feature_statistics.h"
 #include "gui_test_support.h"
+#include "tiny_style_network.h"
 #include "ik/contact_file.h"
 #include "main_window.h"
 #include "mapping/mapping_file.h"
@@ -47,17 +48,7 @@ constexpr int kJobTimeoutMs = 120000;
 // An untrained but valid tiny style network (16 hidden units, width 5) with the fixtures' statistics.
 std::filesystem::path writeTinyNetwork(const QTemporaryDir& dir, const QString& name = QStringLiteral("tiny_style"),
                                        unsigned seed = 5) {
-  std::vector<Eigen::MatrixXd> values;
-  for (const char* clip : {"cmu_131_01.bvh", "zombie.bvh"})
-    values.push_back(style::loadMotionClip(test::fixture(QString::fromLatin1(clip)).toStdString()).features.values);
-  nn::StyleModel model{nn::TransformationNetwork<float>({kFeatureCount, 8, 5, true}), nn::Autoencoder<float>({kFeatureCount, 16, 5}),
-                       computeFeatureStatistics(values), {}, {}};
-  model.transformation.initialise(seed);
-  model.loss_network.initialise(3);
-  model.metadata.representation = style::currentRepresentation();
-  const std::filesystem::path file = dir.filePath(name + QStringLiteral(".net")).toStdString();
-  nn::saveStyleModel(model, file);
-  return file;
+  return test::saveInto(dir, name, test::tinyStyleModel(seed));
 }
 
 QString copyInto(const QTemporaryDir& dir, const QString& source, const QString& name) {
