@@ -250,8 +250,7 @@ bool AdaptTab::start() {
     // else the shipped one.
     if (!job.styles.empty()) {
       const nn::StyleModel& first = job.styles.front().model;
-      job.loss.loss_network = {first.loss_network, first.normalisation, first.metadata};
-      job.loss.loss_network.metadata.training.sparsity = first.metadata.training.sparsity;
+      job.loss.loss_network = nn::embeddedLossNetwork(first);
       job.loss.loss_network_name = job.styles.front().name + "'s loss network";
       for (const style::StyleToRetrain& style : job.styles)
         if (style.model.loss_network.encoder.weight.value != first.loss_network.encoder.weight.value)

@@ -124,13 +124,7 @@ bool NetworkPanel::startTraining(bool retrain) {
       return false;
     }
     // The warm start keeps the selected network's shape and the loss network it was trained against.
-    nn::AutoencoderModel loss;
-    loss.network = model->loss_network;
-    loss.normalisation = model->normalisation;
-    loss.metadata.representation = model->metadata.representation;
-    loss.metadata.training.sparsity = model->metadata.training.sparsity;
-    loss.metadata.training.dropout = model->metadata.training.dropout;
-    config.autoencoder_model = std::move(loss);
+    config.autoencoder_model = nn::embeddedLossNetwork(*model);
     config.shape = model->transformation.shape();
     const std::filesystem::path init = scratchFile(QStringLiteral("retrain-start.net"));
     try {
@@ -248,9 +242,7 @@ bool NetworkPanel::startTransfer(int iterations) {
     if (!loss_file.isEmpty()) {
       job.loss_network = style::loadCompatibleAutoencoder(loss_file.toStdString());
     } else if (const auto model = currentNetwork()) {
-      job.loss_network.network = model->loss_network;
-      job.loss_network.normalisation = model->normalisation;
-      job.loss_network.metadata.representation = model->metadata.representation;
+      job.loss_network = nn::embeddedLossNetwork(*model);
     } else {
       report(tr("No loss network"), tr("Choose the loss network (an autoencoder .net file) on the Train tab."));
       return false;
@@ -261,8 +253,7 @@ bool NetworkPanel::startTransfer(int iterations) {
   }
   job.content = content->path.toStdString();
   job.style = style->path.toStdString();
-  job.options.iterations = iterations;
-  job.options.constraint_iterations = std::max(1, iterations * 100 / 250);
+  job.options.setIterations(iterations);
   job.options.style_weight = optimise_tab_->styleWeight();
   const QString label = tr("optimised towards %1").arg(style->name);
   const int total = job.options.iterations + job.options.constraint_iterations;

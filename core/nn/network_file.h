@@ -105,6 +105,11 @@ struct StyleModel {
   std::vector<StyleTarget> style_targets;
 };
 
+// The loss network a style network embeds, as a loss network model of its own: the network, the
+// normalisation and the representation, and the sparsity and dropout it was trained with (what a warm
+// start, the optimisation method or an adaptation needs of it).
+AutoencoderModel embeddedLossNetwork(const StyleModel& model);
+
 // Serialise to bytes (the exact file content, format kNetworkFormatVersion) / save atomically, the
 // weights stored in `precision` (F16: half the size; metadata and statistics stay f64). Strings are
 // written as safeText() (common/text_safety.h: a Latin-1 file name becomes U+FFFD, not an unreadable

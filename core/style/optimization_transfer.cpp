@@ -41,6 +41,13 @@ class Decoder {
 
 }  // namespace
 
+void OptimizationOptions::setIterations(int stage_one) {
+  const OptimizationOptions defaults;
+  iterations = stage_one;
+  constraint_iterations = std::max(1, static_cast<int>(static_cast<long long>(stage_one) * defaults.constraint_iterations /
+                                                       defaults.iterations));
+}
+
 void OptimizationOptions::validate() const {
   if (iterations < 0 || constraint_iterations < 0) throw std::invalid_argument("iterations must be >= 0");
   if (!std::isfinite(learning_rate) || learning_rate <= 0) throw std::invalid_argument("learning rate must be > 0");

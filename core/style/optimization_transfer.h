@@ -47,6 +47,9 @@ struct OptimizationOptions {
   PathMode path = PathMode::Content;  // whose root path the result follows (path_mode.h)
   std::uint32_t seed = 1;         // for start_from_noise
 
+  // Stage 1 gets `iterations`, stage 2 the defaults' share of them (100 per 250, at least 1): one knob
+  // for a front end that offers one.
+  void setIterations(int iterations);
   void validate() const;  // std::invalid_argument naming the field
 };
 

@@ -71,6 +71,27 @@ TEST(OptimizationTransferJob, RefusesMissingFilesAndBadOptions) {
   EXPECT_THROW(job.validate(), std::invalid_argument);
 }
 
+TEST(OptimizationOptions, OneIterationKnobKeepsTheDefaultsShareForTheConstraints) {
+  style::OptimizationOptions options;
+  options.setIterations(250);
+  EXPECT_EQ(options.constraint_iterations, 100);
+  options.setIterations(5);
+  EXPECT_EQ(options.iterations, 5);
+  EXPECT_EQ(options.constraint_iterations, 2);
+  options.setIterations(1);
+  EXPECT_EQ(options.constraint_iterations, 1);  // never none
+}
+
+TEST(EmbeddedLossNetwork, IsTheStyleNetworksOwn) {
+  nn::StyleModel model = test::tinyStyleModel();
+  model.metadata.training.sparsity = 0.25;
+  const nn::AutoencoderModel loss = nn::embeddedLossNetwork(model);
+  EXPECT_TRUE(nn::sameWeights(loss.network, model.loss_network));
+  EXPECT_EQ(loss.normalisation.mean, model.normalisation.mean);
+  EXPECT_EQ(loss.metadata.representation, model.metadata.representation);
+  EXPECT_EQ(loss.metadata.training.sparsity, 0.25);
+}
+
 TEST(OptimizationTransferJob, CancelledBeforeItStartsGivesNoClip) {
   style::OptimizationTransferJob job;
   job.loss_network = test::tinyAutoencoderModel();
