@@ -11,7 +11,7 @@ namespace motionstyle::cli {
 namespace {
 
 // "content=1,style=100,foot=F,bone=B,traj=R": any subset, any order; unnamed terms keep the
-// nn::LossWeights defaults (style_loss.h).
+// nn::LossWeights defaults (transformation_objective.h).
 nn::LossWeights parseWeights(const std::string& text) {
   nn::LossWeights weights;
   for (const auto& [name, value] : parseNamedNumbers(text, "--weights")) {

@@ -3,7 +3,7 @@
 //   motionstyle-filmstrip --content C.bvh --style-clip S.bvh --net N.net --out PICTURE.png
 //                         [--times 0.8,1.6,2.4,3.2] [--tile 400x300] [--title TEXT]
 //
-// Stylizes C with N and cleans it up (the Result panel's job, cleanup_worker.h), then poses content
+// Stylizes C with N and cleans it up (the Result panel's job, style::StylizeCleanupJob), then poses content
 // (green), style (red) and output (blue) side by side at each time (seconds on the content's clock; a
 // shorter clip holds its last pose) and writes one tile per time, left to right, under a caption.
 // (Not "--style": QApplication takes that for its widget style.) Needs a display: run it under xvfb-run on a machine without one. Used by

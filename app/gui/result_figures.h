@@ -1,5 +1,5 @@
 #pragma once
-// The viewport's figures of a stylize + clean-up result (cleanup_worker.h), shared by the Result panel
+// The viewport's figures of a stylize + clean-up result (style::StylizeCleanupJob), shared by the Result panel
 // and the off-screen filmstrip renderer, so that both draw exactly what the user sees:
 //   - the cleaned clip on the content's own skeleton (blue), with the contacts the clean-up locked;
 //   - the raw network output, 21 canonical joints (grey), with the content's contacts (what the

@@ -3,7 +3,7 @@
 //
 // Convention for every function here: it returns the UNWEIGHTED value of its term and, when `grad` is
 // not null, ADDS weight * d(term)/d(input) into *grad, which must already have the input's shape. The
-// caller sums weight * value for the total (eq. 10, see style_loss.h).
+// caller sums weight * value for the total (eq. 10, see transformation_objective.h).
 //
 // Spaces: the networks see NORMALISED frames x_n = (x - mean) / std (per feature, 66 values,
 // feature_layout.h). The reconstruction, content and style terms live in that space or in the hidden

@@ -1,4 +1,5 @@
-// describe(): the human-readable summary of a network file (`motionstyle-cli info NET`).
+// What is read off a loaded network: describe(), the human-readable summary of a network file
+// (`motionstyle-cli info NET`), and embeddedLossNetwork(), a style network's loss network as a model.
 
 #include <iomanip>
 #include <sstream>
@@ -90,6 +91,14 @@ std::string describeNetworkFile(const std::filesystem::path& file) {
   const std::size_t first_line_end = text.find('\n');
   text.insert(first_line_end == std::string::npos ? text.size() : first_line_end + 1, line.str());
   return text;
+}
+
+AutoencoderModel embeddedLossNetwork(const StyleModel& model) {
+  AutoencoderModel loss{model.loss_network, model.normalisation, {}};
+  loss.metadata.representation = model.metadata.representation;
+  loss.metadata.training.sparsity = model.metadata.training.sparsity;
+  loss.metadata.training.dropout = model.metadata.training.dropout;
+  return loss;
 }
 
 }  // namespace motionstyle::nn

@@ -447,12 +447,4 @@ void checkCompatible(const RepresentationInfo& actual, const RepresentationInfo&
   if (!text.empty()) throw InputError(file, 0, "network trained on another representation:" + text);
 }
 
-AutoencoderModel embeddedLossNetwork(const StyleModel& model) {
-  AutoencoderModel loss{model.loss_network, model.normalisation, {}};
-  loss.metadata.representation = model.metadata.representation;
-  loss.metadata.training.sparsity = model.metadata.training.sparsity;
-  loss.metadata.training.dropout = model.metadata.training.dropout;
-  return loss;
-}
-
 }  // namespace motionstyle::nn

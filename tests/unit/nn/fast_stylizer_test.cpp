@@ -43,7 +43,7 @@ double relativeMaxError(const MatD& actual, const MatD& expected) {
   return (actual - expected).cwiseAbs().maxCoeff() / expected.cwiseAbs().maxCoeff();
 }
 
-TEST(FastStylizerInvalid, RejectsBadClipsAndMissingTransformer) {
+TEST(FastStylizerInvalid, RejectsBadClipsAndMissingTransformationNetwork) {
   Autoencoder<float> ae;
   FastStylizer projection_only(ae);
   EXPECT_THROW(projection_only.stylize(Mat<float>::Zero(kFeatureCount, 10)), std::invalid_argument);

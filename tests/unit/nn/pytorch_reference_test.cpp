@@ -194,7 +194,7 @@ class PyTorchReference : public ::testing::TestWithParam<ConvAlgorithm> {
     const ReferenceTensor& style = tensor("input.style_clip", {kFeatureCount, style_frames});
     style_clip_ = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
         style.values.data(), kFeatureCount, style_frames);
-    // The training pipeline's own targets (style_loss.h), compared with the reference in their own test.
+    // The training pipeline's own targets (transformation_objective.h), compared with the reference in their own test.
     batch_.content_hidden = contentHidden(loss_network_, batch_.content, frames);
     batch_.style_grams = {styleGram(loss_network_, style_clip_)};
   }
