@@ -80,8 +80,9 @@ struct SkeletonViewport::Impl {
     // Horizontal only: bobbing the camera with the hips is tiring to watch.
     detail::translateCamera(camera(), {anchor[0] - followed[0], 0.0, anchor[2] - followed[2]});
     followed = anchor;
-    // Figures that walk at different speeds spread along their lanes: back off to keep them all.
-    detail::keepBoxInView(camera(), scene.bounds(scene.frame()), aspect());
+    // Figures that walk at different speeds spread along their lanes: back off to keep them all. One
+    // figure never pushes the camera back, so that the user may follow it close up.
+    if (scene.figures().size() >= 2) detail::keepBoxInView(camera(), scene.bounds(scene.frame()), aspect());
   }
 
   SkeletonViewport* self;

@@ -292,6 +292,16 @@ class ViewportRenderTest : public QObject {
                       Qt::NoButton, Qt::NoModifier, Qt::NoScrollPhase, false);
     QApplication::sendEvent(&viewport, &wheel);
     QVERIFY(spread() > before * 1.2);
+    for (int notch = 0; notch < 3; ++notch) QApplication::sendEvent(&viewport, &wheel);  // a close-up
+    const double zoomed = spread();
+    // Playing on in follow mode keeps the user's close-up of a single figure (the camera backs off only
+    // to keep several figures in view).
+    QCOMPARE(viewport.cameraMode(), SkeletonViewport::CameraMode::Follow);
+    viewport.setFrame(10);
+    viewport.setFrame(20);
+    const int head_joint = jointNamed(cmu_, {"Head"});
+    const double later = QLineF(*viewport.projectToWidget(0, 0, 20), *viewport.projectToWidget(0, head_joint, 20)).length();
+    QVERIFY2(later > 0.8 * zoomed, qPrintable(QStringLiteral("hips-head %1 px after playing, %2 px zoomed").arg(later).arg(zoomed)));
   }
 
   void threeFiguresPlayAtInteractiveRates() {
