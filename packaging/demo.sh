@@ -27,7 +27,7 @@ echo
 echo "== Every shipped style on the CMU walk, cleaned up on its own skeleton (results in $out)"
 for net in "$root"/resources/models/*.net; do
   name=$(basename "$net" .net)
-  [ "$name" = autoencoder ] && continue
+  [ "$name" = loss_network ] && continue
   "$cli" stylize --net "$name" "$samples/cmu_131_01_walk.bvh" --out "$out/cmu_131_01_walk_$name.bvh" \
     --metrics "$out/cmu_131_01_walk_$name.json" | tail -n 2
 done

@@ -153,7 +153,7 @@ style_net=""
 for net in /usr/share/motionstyle/models/*.net; do
   [ -f "$net" ] || continue
   name=$(basename "$net" .net)
-  [ "$name" = "autoencoder" ] && continue
+  [ "$name" = "loss_network" ] && continue
   style_net="$name"; break
 done
 if [ -n "$style_net" ]; then

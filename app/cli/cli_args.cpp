@@ -116,6 +116,12 @@ std::optional<std::string> lengthUnit(const ParsedArgs& parsed) {
   return unit;
 }
 
+std::string canonicalOptionName(const std::string& name) {
+  for (const OptionAlias& alias : kOptionAliases)
+    if (name == alias.old_name) return alias.name;
+  return name;
+}
+
 ParsedArgs parseArgs(const std::vector<std::string>& args, const std::vector<OptionSpec>& specs) {
   ParsedArgs parsed;
   bool options_done = false;
@@ -135,6 +141,7 @@ ParsedArgs parseArgs(const std::vector<std::string>& args, const std::vector<Opt
       inline_value = name.substr(eq + 1);
       name = name.substr(0, eq);
     }
+    name = canonicalOptionName(name);
     const OptionSpec* spec = nullptr;
     for (const OptionSpec& s : specs)
       if (s.name == name) spec = &s;

@@ -33,6 +33,16 @@ inline constexpr Range kLearningRateRange{0.0, 1.0, /*min_open=*/true};  // --lr
 inline constexpr Range kLossWeightRange{0.0, 1e6};  // loss weights: beyond, float losses overflow (3e38)
 inline constexpr int kMaxEpochs = 100000;
 
+// Old option names kept working after a rename (one name per idea: "loss network" for the autoencoder).
+struct OptionAlias {
+  const char* old_name;  // without the leading "--"
+  const char* name;
+};
+inline constexpr OptionAlias kOptionAliases[] = {{"ae", "loss-network"}};
+
+// The option's current name: `name` itself, or what an alias in kOptionAliases stands for.
+std::string canonicalOptionName(const std::string& name);
+
 struct OptionSpec {
   std::string name;         // without the leading "--"
   bool takes_value = true;  // false: a flag

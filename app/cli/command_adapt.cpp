@@ -13,7 +13,7 @@
 namespace motionstyle::cli {
 
 int runAdapt(const Args& args) {
-  const ParsedArgs parsed = parseArgs(args, {{"ae"}, {"data", true, true}, {"out"}, {"epochs"}, {"lr"}, {"seed"},
+  const ParsedArgs parsed = parseArgs(args, {{"loss-network"}, {"data", true, true}, {"out"}, {"epochs"}, {"lr"}, {"seed"},
                                              {"replay", true, true}, {"replay-ratio"}, {"train-encoder", false},
                                              {"threads"}, {"skip-bad", false}, {"unit"}, {"checkpoint"},
                                              {"keep-checkpoints", false}});
@@ -36,18 +36,18 @@ int runAdapt(const Args& args) {
   for (const std::string& value : parsed.values("data")) data.emplace_back(value);
   for (const std::string& value : parsed.positional) data.emplace_back(value);  // --data A B C
   if (data.empty()) throw UsageError("adapt needs --data with your clips (folders or .bvh files)");
-  const std::filesystem::path ae_file = resolveNetworkArgument(parsed.required("ae"));
+  const std::filesystem::path loss_network_file = resolveNetworkArgument(parsed.required("loss-network"));
   {  // before any work: the outputs can be written and none of them is an input
     const std::filesystem::path checkpoint = settings.checkpointPath();
-    std::vector<NamedPath> inputs = {{ae_file, "--ae"}};
+    std::vector<NamedPath> inputs = {{loss_network_file, "--loss-network"}};
     for (const auto& value : data) inputs.push_back({value, "--data"});
     for (const std::string& value : parsed.values("replay")) inputs.push_back({value, "--replay"});
     checkOutputPaths(inputs, {{settings.output, "--out"},
                               {checkpoint, "the checkpoint"},
                               {style::statePath(checkpoint), "the checkpoint's state"}});
   }
-  job.loss_network = style::loadCompatibleAutoencoder(ae_file, dataset.features);
-  job.loss_network_name = ae_file.filename().string();
+  job.loss_network = style::loadCompatibleLossNetwork(loss_network_file, dataset.features);
+  job.loss_network_name = loss_network_file.filename().string();
 
   InterruptGuard guard;
   ProgressBar bar(std::cout, ProgressBar::stdoutIsTerminal());
@@ -81,7 +81,7 @@ int runAdapt(const Args& args) {
   std::printf("  %-40s %5.2f -> %5.2f (%s -> %s)\n", "all clips", result.mean_before_cm, result.mean_after_cm,
               style::familiarityName(style::familiarityLevel(result.mean_before_cm)),
               style::familiarityName(style::familiarityLevel(result.mean_after_cm)));
-  std::printf("wrote %s in %s; retrain a style against it with\n  motionstyle-cli train-style --ae %s --init STYLE "
+  std::printf("wrote %s in %s; retrain a style against it with\n  motionstyle-cli train-style --loss-network %s --init STYLE "
               "--content YOUR_CLIPS... --out STYLE_ADAPTED.net\n",
               settings.output.string().c_str(), formatDuration(result.seconds).c_str(), settings.output.string().c_str());
   return 0;

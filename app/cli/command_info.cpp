@@ -41,9 +41,9 @@ ContactSummary summarize(const Eigen::RowVectorXd& labels) {
 
 constexpr const char* kContactNames[kContactCount] = {"left heel", "left toe", "right heel", "right toe"};
 
-// The loss network that judges familiarity: --ae, else the shipped one when it is installed, else none.
+// The loss network that judges familiarity: --loss-network, else the shipped one when it is installed, else none.
 struct LossNetwork {
-  std::optional<nn::AutoencoderModel> model;
+  std::optional<nn::LossNetworkModel> model;
   std::string file;
   std::string problem;  // why the shipped loss network could not be used, if it could not
 };
@@ -51,19 +51,19 @@ struct LossNetwork {
 LossNetwork lossNetworkFor(const ParsedArgs& parsed) {
   LossNetwork loss;
   std::filesystem::path file;
-  if (auto ae = parsed.value("ae")) {
-    file = resolveNetworkArgument(*ae);
+  if (auto loss_network = parsed.value("loss-network")) {
+    file = resolveNetworkArgument(*loss_network);
   } else if (auto resources = resourceDirectory()) {
-    if (auto shipped = shippedNetworkFile(*resources, kShippedAutoencoderName)) file = *shipped;
+    if (auto shipped = shippedNetworkFile(*resources, kShippedLossNetworkName)) file = *shipped;
   }
   if (file.empty()) return loss;
   FeatureOptions options;
   options.unit = lengthUnit(parsed);
   loss.file = file.string();
   try {
-    loss.model = style::loadCompatibleAutoencoder(file, options);
+    loss.model = style::loadCompatibleLossNetwork(file, options);
   } catch (const InputError& error) {
-    if (parsed.has("ae")) throw;  // the user's choice: their error
+    if (parsed.has("loss-network")) throw;  // the user's choice: their error
     loss.problem = error.what();  // the shipped one is broken: the clip's facts still count
   }
   return loss;
@@ -173,7 +173,7 @@ bool isNetworkFile(const std::string& path) {
 }  // namespace
 
 int runInfo(const Args& args) {
-  const ParsedArgs parsed = parseArgs(args, {{"json", false}, {"mapping"}, {"unit"}, {"ae"}});
+  const ParsedArgs parsed = parseArgs(args, {{"json", false}, {"mapping"}, {"unit"}, {"loss-network"}});
   if (parsed.positional.empty()) throw UsageError("info needs at least one FILE");
   const std::optional<std::string> unit = lengthUnit(parsed);  // a usage error before any file is read
   std::optional<LossNetwork> loss_network;  // loaded on the first clip (network files need none)

@@ -1,6 +1,6 @@
 // motionstyle-cli models: the networks shipped in <resources>/models (common/resource_paths.h), and
 // resolveNetworkArgument(), which lets every network option take a shipped network's bare name
-// (--net elderly, --ae autoencoder). Names, paths and messages are printed as safe text
+// (--net elderly, --loss-network loss_network). Names, paths and messages are printed as safe text
 // (common/text_safety.h): a file name must not drive the terminal or break the JSON.
 #include <algorithm>
 #include <iostream>
@@ -20,7 +20,7 @@ namespace {
 struct ShippedNetwork {
   std::string name;
   std::filesystem::path file;
-  std::string kind;  // "autoencoder" or "style"
+  std::string kind;  // "loss_network" or "style"
   int epochs = 0;
   std::vector<std::string> style_clips;
   std::string error;  // non-empty: the file could not be read
@@ -36,8 +36,8 @@ ShippedNetwork describeShipped(const std::filesystem::path& file) {
         network.kind = "style";
         return nn::loadStyleModel(file).metadata;
       }
-      network.kind = "autoencoder";
-      return nn::loadAutoencoder(file).metadata;
+      network.kind = "loss_network";
+      return nn::loadLossNetwork(file).metadata;
     }();
     network.epochs = metadata.training.epochs;
     for (const nn::StyleClipRef& clip : metadata.style_clips) network.style_clips.push_back(safeText(clip.name));
@@ -55,7 +55,8 @@ std::string joined(const std::vector<std::string>& items) {
 
 }  // namespace
 
-std::filesystem::path resolveNetworkArgument(const std::string& value) {
+std::filesystem::path resolveNetworkArgument(const std::string& argument) {
+  const std::string value = argument == kFormerShippedLossNetworkName ? kShippedLossNetworkName : argument;
   std::error_code error;
   if (std::filesystem::exists(value, error) || !isValidNetworkName(value)) return value;
   const ResourceSearch search = currentResourceSearch();
@@ -110,7 +111,7 @@ int runModels(const Args& args) {
   std::cout << "resources: " << safeText(resources->string()) << "\n";
   if (networks.empty()) {
     std::cout << "no shipped networks in " << safeText((*resources / "models").string())
-              << " (train your own: motionstyle-cli train-ae, train-style)\n";
+              << " (train your own: motionstyle-cli train-loss-network, train-style)\n";
     return 0;
   }
   size_t width = 4;
@@ -118,13 +119,13 @@ int runModels(const Args& args) {
   auto padded = [](const std::string& text, size_t size) {
     return text + std::string(std::max(size, text.size()) - text.size() + 2, ' ');
   };
-  std::cout << padded("name", width) << padded("kind", 11) << padded("epochs", 6) << "style clips\n";
+  std::cout << padded("name", width) << padded("kind", 14) << padded("epochs", 6) << "style clips\n";
   for (const ShippedNetwork& n : networks) {
     if (!n.error.empty()) {
       std::cout << padded(n.name, width) << "UNREADABLE: " << n.error << "\n";
       continue;
     }
-    std::cout << padded(n.name, width) << padded(n.kind, 11) << padded(std::to_string(n.epochs), 6)
+    std::cout << padded(n.name, width) << padded(n.kind, 14) << padded(std::to_string(n.epochs), 6)
               << joined(n.style_clips) << "\n";
   }
   for (const ShippedNetwork& n : networks)

@@ -38,7 +38,7 @@ int runPack(const Args& args) {
   if (before.kind == nn::NetworkKind::Style)
     nn::saveStyleModel(nn::loadStyleModel(input), output, precision);
   else
-    nn::saveAutoencoder(nn::loadAutoencoder(input), output, precision);
+    nn::saveLossNetwork(nn::loadLossNetwork(input), output, precision);
   const nn::NetworkFileInfo after = nn::networkFileInfo(output);  // it reads back
   std::cout << input.string() << " (" << summary(before) << ") -> " << output.string() << " (" << summary(after)
             << ")\n";

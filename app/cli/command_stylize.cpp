@@ -13,7 +13,7 @@
 #include "cli_args.h"
 #include "commands.h"
 #include "common/errors.h"
-#include "nn/autoencoder.h"
+#include "nn/loss_network.h"
 #include "style/motion_dataset.h"
 #include "style/position_clip.h"
 #include "style/familiarity.h"
@@ -26,7 +26,7 @@ namespace {
 
 struct StylizeRequest {
   std::filesystem::path network;
-  std::optional<std::filesystem::path> autoencoder;  // checked against the network's own loss network
+  std::optional<std::filesystem::path> loss_network;  // checked against the network's own loss network
   std::filesystem::path input;
   double strength = 1.0;
   style::PathMode path = style::PathMode::Content;
@@ -35,12 +35,12 @@ struct StylizeRequest {
 
 style::StylizedClip stylizedTargets(const StylizeRequest& request, double& seconds, style::Familiarity& familiarity) {
   nn::StyleModel model = style::loadCompatibleStyleModel(request.network, request.dataset.features);
-  if (request.autoencoder) {
-    const nn::AutoencoderModel autoencoder = style::loadCompatibleAutoencoder(*request.autoencoder, request.dataset.features);
-    if (!nn::sameWeights(autoencoder.network, model.loss_network))
+  if (request.loss_network) {
+    const nn::LossNetworkModel loss_network = style::loadCompatibleLossNetwork(*request.loss_network, request.dataset.features);
+    if (!nn::sameWeights(loss_network.network, model.loss_network))
       throw InputError(request.network.string(), 0,
                        "this style network was trained against another loss network than " +
-                           request.autoencoder->string() + " (it embeds its own; omit --ae to use it)");
+                           request.loss_network->string() + " (it embeds its own; omit --loss-network to use it)");
   }
   const style::MotionClip clip = style::loadMotionClip(request.input, request.dataset);
   familiarity = style::measureFamiliarity(model, clip.features.values);
@@ -54,21 +54,21 @@ style::StylizedClip stylizedTargets(const StylizeRequest& request, double& secon
 }  // namespace
 
 int runStylize(const Args& args) {
-  std::vector<OptionSpec> specs = {{"ae"}, {"net"}, {"out"}, {"strength"}, {"unit"}};
+  std::vector<OptionSpec> specs = {{"loss-network"}, {"net"}, {"out"}, {"strength"}, {"unit"}};
   for (const OptionSpec& spec : outputOptionSpecs()) specs.push_back(spec);
   const ParsedArgs parsed = parseArgs(args, specs);
   const OutputOptions output_options = outputOptions(parsed);
   if (parsed.positional.size() != 1) throw UsageError("stylize needs exactly one input clip IN.bvh");
   StylizeRequest request;
   request.network = resolveNetworkArgument(parsed.required("net"));
-  if (auto ae = parsed.value("ae")) request.autoencoder = resolveNetworkArgument(*ae);
+  if (auto loss_network = parsed.value("loss-network")) request.loss_network = resolveNetworkArgument(*loss_network);
   request.input = parsed.positional[0];
   request.strength = parsed.number("strength", 1.0, {0.0, 1.0});
   request.path = output_options.path;
   request.dataset.features.unit = lengthUnit(parsed);
   const std::filesystem::path output = parsed.required("out");
   std::vector<NamedPath> inputs = {{request.input, "the input clip"}, {request.network, "--net"}};
-  if (request.autoencoder) inputs.push_back({*request.autoencoder, "--ae"});
+  if (request.loss_network) inputs.push_back({*request.loss_network, "--loss-network"});
   checkOutputPaths(inputs, outputPaths(output_options, output));
 
   double seconds = 0;

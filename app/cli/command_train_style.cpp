@@ -31,15 +31,16 @@ nn::LossWeights parseWeights(const std::string& text) {
 
 int runTrainStyle(const Args& args) {
   std::vector<OptionSpec> specs = trainingOptionSpecs();
-  specs.push_back({"ae"});
+  specs.push_back({"loss-network"});
   specs.push_back({"content", true, true});
   specs.push_back({"style", true, true});
   specs.push_back({"weights"});
   const ParsedArgs parsed = parseArgs(args, specs);
 
-  style::StyleTrainingConfig config;
+  style::StyleTrainingJob job;
+  style::StyleTrainingConfig& config = job.config;
   config.settings = trainingSettings(parsed, {1e-3, 100, style::defaultContentAugmentation()});
-  config.autoencoder = resolveNetworkArgument(parsed.required("ae"));
+  config.loss_network = resolveNetworkArgument(parsed.required("loss-network"));
   for (const std::string& content : parsed.values("content")) config.content.emplace_back(content);
   for (const std::string& content : parsed.positional) config.content.emplace_back(content);  // --content A B
   if (config.content.empty()) throw UsageError("train-style needs --content DIR (folders or .bvh files)");
@@ -50,7 +51,7 @@ int runTrainStyle(const Args& args) {
   if (auto weights = parsed.value("weights")) config.weights = parseWeights(*weights);
   config.shape.hidden = parsed.integer("hidden", config.shape.hidden, 1, 4096);
 
-  return runTrainingWithProgress(config);
+  return runTrainingWithProgress(job);
 }
 
 }  // namespace motionstyle::cli

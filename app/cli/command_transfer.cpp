@@ -14,7 +14,7 @@ namespace motionstyle::cli {
 
 
 int runTransfer(const Args& args) {
-  const ParsedArgs parsed = parseArgs(args, {{"ae"},
+  const ParsedArgs parsed = parseArgs(args, {{"loss-network"},
                                              {"style"},
                                              {"out"},
                                              {"iterations"},
@@ -39,13 +39,13 @@ int runTransfer(const Args& args) {
   style::DatasetOptions dataset;
   dataset.features.unit = lengthUnit(parsed);
   const std::filesystem::path output = parsed.required("out");
-  const std::filesystem::path ae_file = resolveNetworkArgument(parsed.required("ae"));
+  const std::filesystem::path loss_network_file = resolveNetworkArgument(parsed.required("loss-network"));
   const std::filesystem::path style_file = parsed.required("style");
-  checkOutputPaths({{parsed.positional[0], "the input clip"}, {ae_file, "--ae"}, {style_file, "--style"}},
+  checkOutputPaths({{parsed.positional[0], "the input clip"}, {loss_network_file, "--loss-network"}, {style_file, "--style"}},
                    outputPaths(output_options, output));
 
   style::OptimizationTransferJob job;
-  job.loss_network = style::loadCompatibleAutoencoder(ae_file, dataset.features);
+  job.loss_network = style::loadCompatibleLossNetwork(loss_network_file, dataset.features);
   job.content = parsed.positional[0];
   job.style = style_file;
   job.options = options;

@@ -7,19 +7,20 @@ namespace motionstyle::cli {
 const std::vector<Command>& commands() {
   static const std::vector<Command> table = {
       {"info", "describe BVH files (joints, frames, fps, units, mapping, contacts) or network files",
-       "usage: motionstyle-cli info FILE... [--json] [--mapping MAP.json] [--unit UNIT] [--ae NET]\n\n"
+       "usage: motionstyle-cli info FILE... [--json] [--mapping MAP.json] [--unit UNIT] [--loss-network LOSS]\n\n"
        "Prints what MotionStyle reads from each BVH file: joints, frames, frame rate, the up axis and\n"
        "length unit it assumed, the mapping to the 21 canonical joints, a foot-contact summary and how\n"
        "familiar the clip is to the networks (the loss network's reconstruction error: familiar up to\n"
        "1.5 cm, unusual up to 2.5 cm, far beyond: results will be weak; adapt the networks to such clips).\n"
-       "For a network file (train-ae, train-style): its kind, shapes, representation, training settings,\n"
+       "For a network file (train-loss-network, train-style): its kind, shapes, representation, training settings,\n"
        "style clips and loss history, and the file's format version and weight precision (f32/f16, see pack).\n"
        "A skeleton-only BVH (Frames: 0) is described as far as a skeleton goes (joints, mapping); the\n"
        "commands that need motion (convert --fps, cleanup, stylize, transfer) refuse it with exit code 2.\n\n"
        "  --json            print JSON instead of text\n"
        "  --mapping FILE    use this joint-mapping JSON instead of the automatic mapping\n"
        "  --unit UNIT       the file's length unit: cm, m, mm, inch, ft, dm or cmu (default: guessed)\n"
-       "  --ae NET          the loss network that judges how familiar the clip is (default: the shipped\n"
+       "  --loss-network LOSS\n"
+       "                    the loss network that judges how familiar the clip is (default: the shipped\n"
        "                    one): its reconstruction error, read as familiar, unusual or far\n",
        runInfo},
       {"convert", "read a BVH file, optionally resample it, write it",
@@ -27,8 +28,8 @@ const std::vector<Command>& commands() {
        "Reads IN, resamples it to N frames per second if --fps is given (slerp for rotations, linear\n"
        "for positions), and writes OUT atomically with the same hierarchy and channel layout.\n",
        runConvert},
-      {"train-ae", "train the loss network (convolutional autoencoder) on a motion database",
-       "usage: motionstyle-cli train-ae --data DIR... --out FILE [--epochs N] [--seed S] [--batch B] [--lr LR]\n"
+      {"train-loss-network", "train the loss network on a motion database",
+       "usage: motionstyle-cli train-loss-network --data DIR... --out FILE [--epochs N] [--seed S] [--batch B] [--lr LR]\n"
        "                                [--threads T] [--resume] [options]\n\n"
        "Trains the paper's loss network L (eq. 1-3: 66 -> 256 units, width 25, max-pool 2) on 240-frame\n"
        "windows (step 120) at 60 fps of every .bvh under the given folders (recursively) or files, and\n"
@@ -46,7 +47,7 @@ const std::vector<Command>& commands() {
        "                    one batch of extreme windows (fast spins) cannot throw the network off\n"
        "  --threads T       compute threads (default: all cores, at most 8)\n"
        "  --resume          continue from the checkpoint (same data and settings)\n"
-       "  --init NET        warm start from an existing autoencoder (its weights and normalisation)\n"
+       "  --init NET        warm start from an existing loss network (its weights and normalisation)\n"
        "  --checkpoint FILE checkpoint path (default FILE.checkpoint)\n"
        "  --keep-checkpoints keep the checkpoint (FILE.checkpoint and its .state) after a completed run\n"
        "                    (default: removed once FILE is written; an interrupted run always keeps it)\n"
@@ -65,21 +66,21 @@ const std::vector<Command>& commands() {
        "                    placement turned by up to DEG), offsets=DEG (the other joints'), proportions=J\n"
        "                    (bone lengths x 1+-J), warp=W (speed x 1/W..W), mirror=P (left/right swapped\n"
        "                    with probability P)\n",
-       runTrainAutoencoder},
+       runTrainLossNetwork, "train-ae"},
       {"train-style", "train a style network (transformation network) for one style",
-       "usage: motionstyle-cli train-style --ae AE --content DIR... --style CLIP.bvh [--style LABEL=CLIP.bvh ...]\n"
+       "usage: motionstyle-cli train-style --loss-network LOSS --content DIR... --style CLIP.bvh [--style LABEL=CLIP.bvh ...]\n"
        "                                   --out FILE [--weights content=1,style=100,foot=F,bone=B,traj=R]\n"
        "                                   [--epochs N] [--init NET] [--seed S] [--lr LR] [--resume] [options]\n\n"
        "Trains the transformation network T (3 convolutions, 128 units, width 25) so that T(content) keeps\n"
        "the content (eq. 4) in the style of the style clip (eq. 5), with no foot sliding (eq. 7), constant\n"
-       "bone lengths (eq. 8) and the content's trajectory (eq. 9), measured through the loss network AE.\n\n"
+       "bone lengths (eq. 8) and the content's trajectory (eq. 9), measured through the loss network LOSS.\n\n"
        "Pairing: each content clip is paired with the style clip of its content label, read from file names\n"
        "(dataset-2_walk_elderly_001.bvh: content 'walk', style 'elderly'; other names: the first word, e.g.\n"
        "walk_fast.bvh: 'walk'). A plain --style CLIP pairs by its own label and is the default for labels\n"
        "without a clip; --style LABEL=CLIP pairs that label explicitly. Labels left without a style clip\n"
        "are an error that lists them. Without --style, --init NET retrains NET with the style targets it\n"
        "stores (networks from this version on), e.g. against a loss network adapted to your clips (adapt).\n\n"
-       "  --ae AE             the trained loss network (train-ae)\n"
+       "  --loss-network LOSS  the trained loss network (train-loss-network)\n"
        "  --content DIR|FILE  content clips (repeatable; more may follow as plain arguments)\n"
        "  --style [LABEL=]CLIP  style clip(s), at least 25 frames at 60 fps (repeatable)\n"
        "  --out FILE          the style network file (embeds the loss network)\n"
@@ -87,23 +88,24 @@ const std::vector<Command>& commands() {
        "  --init NET          warm start from an existing style network (adjust the weights and retrain; a\n"
        "                      shipped network's name works)\n"
        "  --augment A         train on randomly varied copies of the content every epoch: on (the default:\n"
-       "                      offsets=20,mirror=0.5), off, or changes to it as for train-ae\n"
+       "                      offsets=20,mirror=0.5), off, or changes to it as for train-loss-network\n"
        "  --epochs N          epochs (default 100)\n"
        "  --lr LR             Adam learning rate (default 0.001; warm-up over the first 100 steps)\n"
        "  --hidden H          hidden units (default 128)\n"
        "  --seed S, --batch B, --lr-schedule S, --clip K, --threads T, --resume, --checkpoint FILE,\n"
-       "  --keep-checkpoints, --holdout N, --skip-bad, --unit UNIT: as for train-ae\n",
+       "  --keep-checkpoints, --holdout N, --skip-bad, --unit UNIT: as for train-loss-network\n",
        runTrainStyle},
       {"adapt", "fine-tune the loss network on your own clips (other studios, actors, rigs)",
-       "usage: motionstyle-cli adapt --ae AE --data DIR... --out FILE [--epochs N] [--lr LR]\n"
+       "usage: motionstyle-cli adapt --loss-network LOSS --data DIR... --out FILE [--epochs N] [--lr LR]\n"
        "                             [--replay DIR...] [--replay-ratio R] [--train-encoder] [options]\n\n"
-       "Fine-tunes the loss network AE on your clips (no labels needed) so that it reconstructs them: the\n"
+       "Fine-tunes the loss network LOSS on your clips (no labels needed) so that it reconstructs them: the\n"
        "manifold projection then keeps their content, and 'info' reads them as familiar. By default only\n"
        "the decoder learns and the encoder is kept, so every style network keeps its style targets:\n"
-       "retrain one against FILE on your clips with 'train-style --ae FILE --init STYLE --content DIR'.\n"
+       "retrain one against FILE on your clips with 'train-style --loss-network FILE --init STYLE --content DIR'.\n"
        "Prints how familiar each clip was before and after. A checkpoint is written every epoch; Ctrl-C\n"
        "stops within a second and keeps it.\n\n"
-       "  --ae AE            the loss network to adapt (a file, or 'autoencoder' for the shipped one)\n"
+       "  --loss-network LOSS\n"
+       "                     the loss network to adapt (a file, or loss_network for the shipped one)\n"
        "  --data DIR|FILE    your clips (repeatable; more may follow as plain arguments)\n"
        "  --out FILE         the adapted loss network (records what it was adapted on)\n"
        "  --epochs N         epochs (default 40)\n"
@@ -112,21 +114,22 @@ const std::vector<Command>& commands() {
        "  --replay-ratio R   replay frames per frame of yours (default 1)\n"
        "  --train-encoder    let the encoder learn too (style networks then need their style clips again)\n"
        "  --seed S, --threads T, --checkpoint FILE, --keep-checkpoints, --skip-bad, --unit UNIT: as for\n"
-       "  train-ae\n",
+       "  train-loss-network\n",
        runAdapt},
       {"stylize", "apply a trained style network to a clip",
-       "usage: motionstyle-cli stylize --net NET [--ae AE] IN.bvh --out OUT.bvh [--strength S]\n"
+       "usage: motionstyle-cli stylize --net NET [--loss-network LOSS] IN.bvh --out OUT.bvh [--strength S]\n"
        "                              [--no-cleanup] [--metrics FILE.json] [--fps N]\n\n"
        "Runs the style network on the whole clip (any length, no seams), projects the result onto the\n"
        "loss network's motion manifold (decode(encode(.))), cleans it up with IK onto IN's own skeleton\n"
        "and writes OUT atomically.\n\n"
        "  --net NET       the style network (train-style), or a shipped network's name (see models)\n"
-       "  --ae AE         optional: checked to be the loss network NET was trained against\n"
+       "  --loss-network LOSS\n"
+       "                  optional: checked to be the loss network NET was trained against\n"
        "  --strength S    0 = the content unchanged, 1 = fully styled (default 1), blended in feature space\n"
        "  --unit UNIT     IN's length unit (default: guessed)\n" MOTIONSTYLE_OUTPUT_OPTIONS_HELP,
        runStylize},
       {"transfer", "style transfer by optimisation (Holden et al. 2016), no style network needed",
-       "usage: motionstyle-cli transfer --ae AE --style CLIP.bvh IN.bvh --out OUT.bvh [--iterations N]\n\n"
+       "usage: motionstyle-cli transfer --loss-network LOSS --style CLIP.bvh IN.bvh --out OUT.bvh [--iterations N]\n\n"
        "Optimises the loss network's hidden units so that the decoded motion keeps IN's content and takes\n"
        "the style clip's Gram matrix (Adam, lr 0.01), starting from IN's own hidden units, then runs a\n"
        "constraint pass (feet, bone lengths, trajectory). OUT as for stylize (IK clean-up by default).\n"
@@ -159,9 +162,9 @@ const std::vector<Command>& commands() {
        MOTIONSTYLE_TIME_LIMIT_HELP,
        runCleanup},
       {"eval", "evaluate a style network on held-out clips (JSON report)",
-       "usage: motionstyle-cli eval --ae AE --net NET --style CLIP.bvh [--style LABEL=CLIP.bvh ...] CLIPS...\n"
+       "usage: motionstyle-cli eval --loss-network LOSS --net NET --style CLIP.bvh [--style LABEL=CLIP.bvh ...] CLIPS...\n"
        "                            [--json FILE] [--path content|style]\n\n"
-       "For each clip (files or folders): the autoencoder's reconstruction error (normalised MSE, mean joint\n"
+       "For each clip (files or folders): the loss network's reconstruction error (normalised MSE, mean joint\n"
        "error in cm; the familiarity reading: familiar, unusual, far), the content distance (eq. 4) and style distance (eq. 5, against the paired style clip)\n"
        "before and after stylizing (and the style distance of the projection decode(encode(.)) alone, to\n"
        "separate what the projection does from what the network does), bone-length error and foot skate\n"
@@ -184,8 +187,8 @@ const std::vector<Command>& commands() {
        runPack},
       {"models", "list the networks shipped with MotionStyle (usable by name: --net elderly)",
        "usage: motionstyle-cli models [--json]\n\n"
-       "Lists the default networks in the resources directory's models/ folder: name, kind (autoencoder\n"
-       "or style), training epochs and style clips. Every option that takes a network file (--net, --ae,\n"
+       "Lists the default networks in the resources directory's models/ folder: name, kind (loss network\n"
+       "or style), training epochs and style clips. Every option that takes a network file (--net, --loss-network,\n"
        "info) also takes such a name when no file of that name exists: --net elderly reads\n"
        "<resources>/models/elderly.net. The resources directory is $MOTIONSTYLE_RESOURCES if set, else the\n"
        "source tree's resources/ when run from a build tree, else <prefix>/share/motionstyle.\n\n"

@@ -20,13 +20,14 @@ struct Command {
   const char* summary;
   const char* help;  // full --help text
   int (*run)(const Args& args);
+  const char* old_name = nullptr;  // a former name that still runs it ("train-ae"), or none
 };
 
 const std::vector<Command>& commands();
 
 int runInfo(const Args& args);
 int runConvert(const Args& args);
-int runTrainAutoencoder(const Args& args);
+int runTrainLossNetwork(const Args& args);
 int runTrainStyle(const Args& args);
 int runAdapt(const Args& args);
 int runStylize(const Args& args);

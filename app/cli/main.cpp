@@ -1,4 +1,5 @@
 // motionstyle-cli: command dispatch and error-to-exit-code mapping only; the work is done by core.
+#include <algorithm>
 #include <exception>
 #include <iostream>
 #include <new>
@@ -15,8 +16,11 @@ void printUsage(std::ostream& out) {
   out << "usage: motionstyle-cli <command> [options]\n\n"
          "Fast neural style transfer for motion capture (Holden et al. 2017).\n\ncommands:\n";
   for (const auto& command : motionstyle::cli::commands())
-    out << "  " << command.name << std::string(14 - std::string(command.name).size(), ' ') << command.summary << "\n";
+    out << "  " << command.name << std::string(20 - std::min<std::size_t>(std::string(command.name).size(), 19), ' ')
+        << command.summary << "\n";
   out << "\nRun 'motionstyle-cli <command> --help' for a command's options.\n"
+         "Former names still work: train-ae (train-loss-network), --ae (--loss-network), the shipped\n"
+         "network 'autoencoder' (loss_network).\n"
          "Exit codes: 0 ok, 2 bad input (message names the file and line) or an output that cannot or\n"
          "must not be written (an input, a folder, a read-only place: checked before any work starts),\n"
          "1 internal error,\n"
@@ -70,7 +74,7 @@ int main(int argc, char** argv) {
   }
   const cli::Command* command = nullptr;
   for (const auto& candidate : cli::commands())
-    if (all[0] == candidate.name) command = &candidate;
+    if (all[0] == candidate.name || (candidate.old_name && all[0] == candidate.old_name)) command = &candidate;
   if (!command) {
     std::cerr << "motionstyle-cli: unknown command '" << all[0] << "'\n\n";
     printUsage(std::cerr);

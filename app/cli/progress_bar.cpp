@@ -231,8 +231,7 @@ style::TrainingSettings trainingSettings(const ParsedArgs& parsed, const Trainin
   return settings;
 }
 
-template <typename Result>
-int reportTraining(const Result& result, const style::TrainingSettings& settings, const InterruptGuard& guard,
+int reportTraining(const style::TrainingResult& result, const style::TrainingSettings& settings, const InterruptGuard& guard,
                    ProgressBar& bar) {
   bar.finish();
   for (const auto& file : result.held_out_files) bar.line("held out: " + file.string());
@@ -249,11 +248,6 @@ int reportTraining(const Result& result, const style::TrainingSettings& settings
            formatLosses(result.history.back().total, result.history.back().terms)));
   return 0;
 }
-
-template int reportTraining(const style::AutoencoderTrainingResult&, const style::TrainingSettings&,
-                            const InterruptGuard&, ProgressBar&);
-template int reportTraining(const style::StyleTrainingResult&, const style::TrainingSettings&, const InterruptGuard&,
-                            ProgressBar&);
 
 }  // namespace motionstyle::cli
 

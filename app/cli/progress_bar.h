@@ -1,5 +1,5 @@
 #pragma once
-// CLI support for the long commands (train-ae, train-style, transfer): progress display, Ctrl-C, and
+// CLI support for the long commands (train-loss-network, train-style, transfer): progress display, Ctrl-C, and
 // the options every training command shares.
 //
 // Progress:
@@ -85,7 +85,7 @@ void applyThreadOption(int threads);
 // with trailing text ("style=1," and "style=1x" are errors, not "style=1").
 std::vector<std::pair<std::string, double>> parseNamedNumbers(const std::string& text, const std::string& option);
 
-// Options shared by train-ae and train-style (their specs, then the settings they give):
+// Options shared by train-loss-network and train-style (their specs, then the settings they give):
 //   --out FILE --epochs N --seed S --batch B --lr LR --threads T --resume --init NET --checkpoint FILE
 //   --holdout N --skip-bad --unit UNIT --hidden H
 std::vector<OptionSpec> trainingOptionSpecs();
@@ -101,8 +101,7 @@ style::TrainingSettings trainingSettings(const ParsedArgs& parsed, const Trainin
 
 // Prints a finished training's outcome (held-out files, output or where the checkpoint is). Returns the
 // exit code: 0 done, 130 cancelled by Ctrl-C (checkpoint kept).
-template <typename Result>
-int reportTraining(const Result& result, const style::TrainingSettings& settings, const InterruptGuard& guard,
+int reportTraining(const style::TrainingResult& result, const style::TrainingSettings& settings, const InterruptGuard& guard,
                    ProgressBar& bar);
 
 }  // namespace motionstyle::cli

@@ -20,8 +20,8 @@ void checkTrainingOutputs(const style::TrainingSettings& settings, std::vector<N
   checkOutputPaths(inputs, outputs);
 }
 
-template <typename Config, typename Train>
-int trainAndReport(const Config& config, Train train) {
+template <typename Job>
+int trainAndReport(const Job& job) {
   InterruptGuard guard;
   ProgressBar bar(std::cout, ProgressBar::stdoutIsTerminal());
   TrainingReporter reporter(bar);
@@ -30,29 +30,25 @@ int trainAndReport(const Config& config, Train train) {
   callbacks.log = [&](const std::string& text) { bar.line(text); };
   callbacks.cancel = guard.flag();
   // A divergence (TrainingDiverged, naming the kept checkpoint) goes to main's one translation.
-  const auto result = train(config, callbacks);
-  return reportTraining(result, config.settings, guard, bar);
+  const typename Job::Result result = job.run(callbacks);
+  return reportTraining(result, job.config.settings, guard, bar);
 }
 
 }  // namespace
 
-int runTrainingWithProgress(const style::AutoencoderTrainingConfig& config) {
+int runTrainingWithProgress(const style::LossNetworkTrainingJob& job) {
   std::vector<NamedPath> inputs;
-  for (const auto& data : config.data) inputs.push_back({data, "--data"});
-  checkTrainingOutputs(config.settings, inputs);
-  return trainAndReport(config, [](const style::AutoencoderTrainingConfig& c, const style::TrainingCallbacks& callbacks) {
-    return style::trainAutoencoder(c, callbacks);
-  });
+  for (const auto& data : job.config.data) inputs.push_back({data, "--data"});
+  checkTrainingOutputs(job.config.settings, inputs);
+  return trainAndReport(job);
 }
 
-int runTrainingWithProgress(const style::StyleTrainingConfig& config) {
-  std::vector<NamedPath> inputs = {{config.autoencoder, "--ae"}};
-  for (const auto& content : config.content) inputs.push_back({content, "--content"});
-  for (const auto& style : config.styles) inputs.push_back({style.file, "--style"});
-  checkTrainingOutputs(config.settings, inputs);
-  return trainAndReport(config, [](const style::StyleTrainingConfig& c, const style::TrainingCallbacks& callbacks) {
-    return style::trainStyleNetwork(c, callbacks);
-  });
+int runTrainingWithProgress(const style::StyleTrainingJob& job) {
+  std::vector<NamedPath> inputs = {{job.config.loss_network, "--loss-network"}};
+  for (const auto& content : job.config.content) inputs.push_back({content, "--content"});
+  for (const auto& style : job.config.styles) inputs.push_back({style.file, "--style"});
+  checkTrainingOutputs(job.config.settings, inputs);
+  return trainAndReport(job);
 }
 
 }  // namespace motionstyle::cli

@@ -258,10 +258,10 @@ bool AdaptTab::start() {
                                               ": adapt them one at a time");
     } else {
       const auto resources = resourceDirectory();
-      const auto file = resources ? shippedNetworkFile(*resources, kShippedAutoencoderName) : std::nullopt;
+      const auto file = resources ? shippedNetworkFile(*resources, kShippedLossNetworkName) : std::nullopt;
       if (!file) throw InputError("", 0, "no loss network: choose a style to retrain, or install the shipped networks");
-      job.loss.loss_network = style::loadCompatibleAutoencoder(*file);
-      job.loss.loss_network_name = kShippedAutoencoderName;
+      job.loss.loss_network = style::loadCompatibleLossNetwork(*file);
+      job.loss.loss_network_name = kShippedLossNetworkName;
     }
   } catch (...) {
     emit errorOccurred(title, errorText(std::current_exception()));
@@ -336,7 +336,7 @@ void AdaptTab::showResult(const style::AdaptNetworksJob::Result& result) {
                        .arg(duration(result.seconds))
                        .arg(result.loss.mean_before_cm, 0, 'f', 2)
                        .arg(result.loss.mean_after_cm, 0, 'f', 2));
-  emit adapted(std::make_shared<const nn::AutoencoderModel>(result.loss.model), result.styles);
+  emit adapted(std::make_shared<const nn::LossNetworkModel>(result.loss.model), result.styles);
 }
 
 }  // namespace motionstyle

@@ -62,7 +62,7 @@ class AdaptTab : public QWidget {
   QString statusText() const;
 
  signals:
-  void adapted(std::shared_ptr<const nn::AutoencoderModel> loss_network,
+  void adapted(std::shared_ptr<const nn::LossNetworkModel> loss_network,
                std::vector<motionstyle::style::StyleToRetrain> styles);
   void errorOccurred(const QString& title, const QString& message);
   void busyChanged(bool busy);

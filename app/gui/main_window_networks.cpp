@@ -45,12 +45,12 @@ void MainWindow::createNetworkDock() {
     rebuildFigures();
   });
   // The result panel stylizes with the selected network and cleans up the optimisation method's output.
-  connect(network_panel_, &NetworkPanel::currentNetworkChanged, this,
+  connect(network_panel_->networkList(), &NetworkList::currentNetworkChanged, this,
           [this](std::shared_ptr<const nn::StyleModel> model) {
-            result_panel_->setStyleNetwork(std::move(model), network_panel_->currentNetworkName());
+            result_panel_->setStyleNetwork(std::move(model), network_panel_->networkList()->currentNetworkName());
           });
   connect(network_panel_, &NetworkPanel::stylizedClipReady, result_panel_, &ResultPanel::setStylizedClip);
-  connect(network_panel_, &NetworkPanel::networkRenamed, result_panel_, &ResultPanel::renameNetwork);
+  connect(network_panel_->networkList(), &NetworkList::networkRenamed, result_panel_, &ResultPanel::renameNetwork);
   // The familiarity row's "Adapt..." link: the Adapt tab with the content clip and the chosen style
   // checked.
   connect(result_panel_, &ResultPanel::adaptRequested, this, [this] {

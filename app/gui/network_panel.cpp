@@ -1,54 +1,36 @@
-// NetworkPanel: layout, the networks list (load, save, remove, details) and the training form's
-// values. The tabs' widgets are built in network_panel_tabs.cpp; the jobs (training, the optimisation
-// method, the live preview) are in network_panel_jobs.cpp.
+// NetworkPanel: the tabs and the run buttons, the training form's values, the status and the loss
+// curve. The jobs (training, the optimisation method, the live preview) are in network_panel_jobs.cpp,
+// the Adapt tab's connections in network_panel_adapt.cpp.
 #include "network_panel.h"
 
-#include <QDateTime>
 #include <QDir>
-#include <QDoubleSpinBox>
-#include <QFileDialog>
 #include <QFileInfo>
 #include <QHBoxLayout>
-#include <QHeaderView>
 #include <QLabel>
-#include <QLineEdit>
-#include <QListWidget>
 #include <QProgressBar>
 #include <QPushButton>
 #include <QScrollArea>
 #include <QSettings>
-#include <QSpinBox>
 #include <QSplitter>
 #include <QTabWidget>
 #include <QTemporaryDir>
-#include <QTreeWidget>
 #include <QVBoxLayout>
 
-#include <algorithm>
-
-#include <exception>
-
-#include "common/errors.h"
 #include "common/resource_paths.h"
 #include "adapt_tab.h"
 #include "loss_curve_widget.h"
-#include "network_panel_internal.h"
-#include "error_text.h"
 #include "job_runner.h"
 
 namespace motionstyle {
 namespace {
 
-using namespace network_panel_detail;
-
 const char* const kLossNetworkKey = "networks/lossNetwork";
-const char* const kNetworkFolderKey = "networks/lastFolder";
 const char* const kClipFolderKey = "networks/lastClipFolder";
 
-// <resources>/models/autoencoder.net when installed (resource_paths.h), else empty.
+// <resources>/models/loss_network.net when installed (resource_paths.h), else empty.
 QString shippedLossNetworkFile() {
   const auto resources = resourceDirectory();
-  const auto file = resources ? shippedNetworkFile(*resources, kShippedAutoencoderName) : std::nullopt;
+  const auto file = resources ? shippedNetworkFile(*resources, kShippedLossNetworkName) : std::nullopt;
   return file ? QString::fromStdString(file->string()) : QString();
 }
 
@@ -64,11 +46,20 @@ NetworkPanel::NetworkPanel(ClipRoles roles, QWidget* parent, bool persist_settin
     return QMessageBox::question(this, title, text, buttons);
   };
 
+  network_list_ = new NetworkList(persist_settings_, this);
+  network_list_->setConfirmer(confirmer_);
+  connect(network_list_, &NetworkList::errorOccurred, this, &NetworkPanel::report);
+  connect(network_list_, &NetworkList::statusMessage, this, [this](const QString& text) { status_label_->setText(text); });
+  connect(network_list_, &NetworkList::lossNetworkFileLoaded, this, &NetworkPanel::setLossNetworkFile);
+  connect(network_list_, &NetworkList::currentNetworkChanged, this, [this] {
+    showLossHistory();
+    updateButtons();
+  });
   tabs_ = new QTabWidget(this);
-  tabs_->addTab(createNetworksTab(), tr("Networks"));
+  tabs_->addTab(network_list_, tr("Networks"));
   // The training form is tall: it scrolls rather than squeezing its fields on a small screen.
   train_tab_ = new TrainTab(roles_, this);
-  train_tab_->setFolders([this] { return lastClipFolder(); }, [this] { return lastFolder(); });
+  train_tab_->setFolders([this] { return lastClipFolder(); }, [this] { return network_list_->networksFolder(); });
   connect(train_tab_, &TrainTab::errorOccurred, this, &NetworkPanel::report);
   connect(train_tab_, &TrainTab::clipFolderChosen, this, &NetworkPanel::rememberClipFolder);
   connect(train_tab_, &TrainTab::lossNetworkChanged, this, [this](const QString& file) {
@@ -151,201 +142,26 @@ NetworkPanel::~NetworkPanel() {
   // MainWindow is half destroyed by now: nothing may reach it through a signal (the list's clean-up could
   // otherwise announce a "current network change").
   blockSignals(true);
-  network_list_->blockSignals(true);
+  network_list_->blockSignals(true);  // its tree's clean-up would announce a "current network change"
   delete runner_;  // cancels the job and waits for its thread before the panel's members go
   runner_ = nullptr;
 }
 
-void NetworkPanel::setConfirmer(Confirmer confirmer) { confirmer_ = std::move(confirmer); }
-
-// ---- Networks ---------------------------------------------------------------------------------------
-
-int NetworkPanel::currentIndex() const { return network_list_->indexOfTopLevelItem(network_list_->currentItem()); }
-
-void NetworkPanel::setCurrentIndex(int index) {
-  if (index >= 0 && index < networkCount()) network_list_->setCurrentItem(network_list_->topLevelItem(index));
+void NetworkPanel::setConfirmer(Confirmer confirmer) {
+  confirmer_ = std::move(confirmer);
+  network_list_->setConfirmer(confirmer_);
 }
 
-std::shared_ptr<const nn::StyleModel> NetworkPanel::network(int index) const {
-  if (index < 0 || index >= networkCount()) return nullptr;
-  return networks_[static_cast<std::size_t>(index)].model;
-}
-
-std::shared_ptr<const nn::StyleModel> NetworkPanel::currentNetwork() const { return network(currentIndex()); }
-
-QString NetworkPanel::currentNetworkName() const {
-  const int index = currentIndex();
-  return index >= 0 ? networks_[static_cast<std::size_t>(index)].name : QString();
-}
-
-QString NetworkPanel::networkFile(int index) const {
-  return index >= 0 && index < networkCount() ? networks_[static_cast<std::size_t>(index)].file : QString();
-}
-
-bool NetworkPanel::isNetworkSaved(int index) const {
-  return index >= 0 && index < networkCount() && networks_[static_cast<std::size_t>(index)].saved;
-}
-
-void NetworkPanel::addNetwork(NetworkEntry entry) {
-  // Names tell networks apart everywhere (this list, the Result panel's Style choice, the close
-  // prompt): a taken name gets " (2)", " (3)", ...
-  const auto taken = [this](const QString& name) {
-    return std::any_of(networks_.begin(), networks_.end(), [&](const NetworkEntry& other) { return other.name == name; });
-  };
-  const QString base = entry.name;
-  for (int counter = 2; taken(entry.name); ++counter) entry.name = QStringLiteral("%1 (%2)").arg(base).arg(counter);
-  networks_.push_back(std::move(entry));
-  refreshNetworkList();
-  setCurrentIndex(networkCount() - 1);
-}
-
-bool NetworkPanel::loadNetworkFile(const QString& file) {
-  const QString absolute = QFileInfo(file).absoluteFilePath();
-  for (int i = 0; i < networkCount(); ++i) {
-    if (networks_[static_cast<std::size_t>(i)].file == absolute) {  // already listed: select it
-      setCurrentIndex(i);
-      return true;
-    }
+void NetworkPanel::showLossHistory() {
+  if (isBusy()) return;  // the run draws its own curve
+  const std::shared_ptr<const nn::StyleModel> model = network_list_->currentNetwork();
+  if (!model) {
+    loss_curve_->clear();
+    return;
   }
-  const std::filesystem::path path(absolute.toStdString());
-  try {
-    rememberFolder(QFileInfo(absolute).absolutePath());
-    NetworkEntry entry;
-    entry.model = std::make_shared<const nn::StyleModel>(style::loadCompatibleStyleModel(path));
-    entry.name = QFileInfo(absolute).completeBaseName();
-    entry.file = absolute;
-    entry.saved = true;
-    addNetwork(std::move(entry));
-    status_label_->setText(tr("Loaded %1").arg(absolute));
-    return true;
-  } catch (...) {
-    // An autoencoder file is not a style network, but it is what the Train tab needs as the loss network.
-    const std::exception_ptr failure = std::current_exception();
-    bool is_autoencoder = false;
-    try {
-      is_autoencoder = nn::networkFileKind(path) == nn::NetworkKind::Autoencoder;
-    } catch (const std::exception&) {  // not a network file at all: the first failure says so
-    }
-    if (is_autoencoder) {
-      setLossNetworkFile(absolute);
-      status_label_->setText(tr("%1 is a loss network (autoencoder): set as the loss network for training.").arg(absolute));
-      return true;
-    }
-    report(tr("Could not load the network"), errorText(failure, absolute));
-  }
-  return false;
-}
-
-bool NetworkPanel::saveNetwork(int index, const QString& file, bool overwrite_confirmed) {
-  if (index < 0 || index >= networkCount() || file.isEmpty()) return false;
-  NetworkEntry& entry = networks_[static_cast<std::size_t>(index)];
-  const QString absolute = QFileInfo(file).absoluteFilePath();
-  if (!overwrite_confirmed && QFileInfo::exists(absolute) &&
-      ask(tr("Replace the file?"), tr("%1 already exists. Replace it?").arg(absolute), QMessageBox::Yes | QMessageBox::No) !=
-          QMessageBox::Yes)
-    return false;
-  try {
-    nn::saveStyleModel(*entry.model, std::filesystem::path(absolute.toStdString()));  // atomic
-  } catch (...) {
-    report(tr("Could not save the network"), errorText(std::current_exception(), absolute));
-    return false;
-  }
-  entry.file = absolute;
-  entry.name = QFileInfo(absolute).completeBaseName();
-  entry.saved = true;
-  rememberFolder(QFileInfo(absolute).absolutePath());
-  refreshNetworkList();
-  showNetworkDetails();
-  status_label_->setText(tr("Saved %1").arg(absolute));
-  return true;
-}
-
-bool NetworkPanel::confirmDropUnsaved(int index, bool allow_cancel) {
-  if (isNetworkSaved(index)) return true;
-  const NetworkEntry& entry = networks_[static_cast<std::size_t>(index)];
-  const QMessageBox::StandardButtons buttons =
-      QMessageBox::Save | QMessageBox::Discard | (allow_cancel ? QMessageBox::Cancel : QMessageBox::NoButton);
-  const QMessageBox::StandardButton answer =
-      ask(tr("Unsaved network"), tr("The trained network \"%1\" has not been saved. Save it?").arg(entry.name), buttons);
-  if (answer == QMessageBox::Discard) return true;
-  if (answer != QMessageBox::Save) return false;
-  const QString file = QFileDialog::getSaveFileName(this, tr("Save network"), QDir(lastFolder()).filePath(entry.name + ".net"),
-                                                    networkFileFilter());
-  return !file.isEmpty() && saveNetwork(index, file, /*overwrite_confirmed=*/true);
-}
-
-bool NetworkPanel::removeNetwork(int index) {
-  if (index < 0 || index >= networkCount() || !confirmDropUnsaved(index, true)) return false;
-  networks_.erase(networks_.begin() + index);
-  // The list is rebuilt with its signals blocked, so announce the new selection (or none) here.
-  refreshNetworkList();
-  {
-    const QSignalBlocker blocker(network_list_);
-    setCurrentIndex(std::min(index, networkCount() - 1));
-  }
-  showNetworkDetails();
-  updateButtons();
-  emit currentNetworkChanged(currentNetwork());
-  return true;
-}
-
-bool NetworkPanel::renameNetwork(int index, const QString& name) {
-  if (index < 0 || index >= networkCount()) return false;
-  NetworkEntry& entry = networks_[static_cast<std::size_t>(index)];
-  const QString wanted = name.simplified();
-  if (wanted == entry.name) return true;
-  const auto taken = std::any_of(networks_.begin(), networks_.end(),
-                                 [&](const NetworkEntry& other) { return &other != &entry && other.name == wanted; });
-  if (wanted.isEmpty() || taken) {
-    refreshNetworkList();  // the cell shows the kept name again
-    report(tr("Name not changed"), wanted.isEmpty() ? tr("A network needs a name.")
-                                                    : tr("Another network is already called \"%1\".").arg(wanted));
-    return false;
-  }
-  const QString old_name = entry.name;
-  entry.name = wanted;
-  refreshNetworkList();
-  emit networkRenamed(old_name, wanted);
-  return true;
-}
-
-void NetworkPanel::refreshNetworkList() {
-  const QSignalBlocker blocker(network_list_);
-  const int current = currentIndex();
-  network_list_->clear();
-  for (const NetworkEntry& entry : networks_) {
-    const nn::NetworkMetadata& metadata = entry.model->metadata;
-    auto* item = new QTreeWidgetItem(network_list_);
-    item->setText(kNetName, entry.saved ? entry.name : entry.name + QStringLiteral(" *"));
-    item->setFlags(item->flags() | Qt::ItemIsEditable);
-    item->setToolTip(kNetName, entry.saved ? entry.file : tr("Not saved"));
-    item->setText(kNetStyles, styleClipNames(metadata));
-    item->setText(kNetEpochs, QString::number(metadata.training.epochs));
-    item->setTextAlignment(kNetEpochs, Qt::AlignRight | Qt::AlignVCenter);
-    QString created = propertyValue(metadata, "created");
-    const QDateTime stamp = QDateTime::fromString(created, Qt::ISODate);
-    if (stamp.isValid()) created = stamp.toString(QStringLiteral("yyyy-MM-dd hh:mm"));
-    if (created.isEmpty() && !entry.file.isEmpty())
-      created = QFileInfo(entry.file).lastModified().toString(QStringLiteral("yyyy-MM-dd hh:mm"));
-    item->setText(kNetCreated, created);
-  }
-  if (current >= 0 && current < networkCount()) network_list_->setCurrentItem(network_list_->topLevelItem(current));
-  updateButtons();
-}
-
-void NetworkPanel::browseLoad() {
-  const QStringList files = QFileDialog::getOpenFileNames(this, tr("Load networks"), lastFolder(), networkFileFilter());
-  for (const QString& file : files) loadNetworkFile(file);
-}
-
-void NetworkPanel::browseSave() {
-  const int index = currentIndex();
-  if (index < 0) return;
-  const NetworkEntry& entry = networks_[static_cast<std::size_t>(index)];
-  const QString suggestion = entry.file.isEmpty() ? QDir(lastFolder()).filePath(entry.name + ".net") : entry.file;
-  // The file dialog itself asks before replacing an existing file.
-  const QString file = QFileDialog::getSaveFileName(this, tr("Save network"), suggestion, networkFileFilter());
-  if (!file.isEmpty()) saveNetwork(index, file, /*overwrite_confirmed=*/true);
+  QStringList terms;
+  for (const std::string& term : model->metadata.loss_history.terms) terms << QString::fromStdString(term);
+  loss_curve_->setHistory(terms, model->metadata.loss_history.epochs);
 }
 
 // ---- Training form ----------------------------------------------------------------------------------
@@ -381,14 +197,12 @@ bool NetworkPanel::isBusy() const { return running_ != Running::None || (adapt_t
 
 void NetworkPanel::updateButtons() {
   const bool busy = isBusy();
-  const bool has_current = currentIndex() >= 0;
+  const bool has_current = network_list_->currentIndex() >= 0;
   train_button_->setEnabled(!busy);
   retrain_button_->setEnabled(!busy && has_current);
   cancel_button_->setEnabled(running_ == Running::Training);
   resume_button_->setEnabled(!busy && canResumeTraining());
   optimise_tab_->setRunState(!busy, running_ == Running::Transfer);
-  save_button_->setEnabled(has_current);
-  remove_button_->setEnabled(has_current);
 }
 
 QString NetworkPanel::statusText() const { return status_label_->text(); }
@@ -400,15 +214,6 @@ void NetworkPanel::report(const QString& title, const QString& message) {
 
 QMessageBox::StandardButton NetworkPanel::ask(const QString& title, const QString& text, QMessageBox::StandardButtons buttons) {
   return confirmer_ ? confirmer_(title, text, buttons) : QMessageBox::Cancel;
-}
-
-QString NetworkPanel::lastFolder() const {
-  const QString folder = persist_settings_ ? QSettings().value(kNetworkFolderKey).toString() : QString();
-  return !folder.isEmpty() && QDir(folder).exists() ? folder : QDir::homePath();
-}
-
-void NetworkPanel::rememberFolder(const QString& path) {
-  if (persist_settings_) QSettings().setValue(kNetworkFolderKey, path);
 }
 
 QString NetworkPanel::lastClipFolder() const {

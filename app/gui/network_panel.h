@@ -1,31 +1,26 @@
 #pragma once
-// NetworkPanel: the "Style networks" dock.
+// NetworkPanel: the "Style networks" dock: four tabs, the run buttons and the job they start.
 //
-//   Networks tab: load/save network files (saved atomically by the core; an existing file is never
-//     replaced without a confirmation), the list of networks with their metadata (style clips, loss
-//     weights, epochs, date) and the selected one's loss history in the curve below.
-//   Train tab: the training set (clips with the "training set" role plus folders),
-//     style clips per content label (style_pairing.h), the loss network, the loss weights (defaults
-//     from nn::LossWeights), epochs, learning rate and hidden units; Train, Retrain (warm start from
-//     the selected network with the new weights) and Cancel.
+//   Networks tab (network_list.h): the networks of the session (load, save, rename, remove, details).
+//   Train tab (train_tab.h): the training set, style clips per content label, the loss network, the
+//     loss weights, epochs, learning rate and hidden units.
+//   Optimise tab (optimise_tab.h): the optimisation method (Holden 2016) for the content and style
+//     clips; the result goes out as stylizedClipReady() (the result panel cleans it up and shows it).
 //   Adapt tab (adapt_tab.h): adapts the loss network and chosen styles to the user's own clips; the
-//     results join the networks list unsaved, the adapted loss network becomes the Train tab's.
-//   Optimise tab: the optimisation method (Holden 2016) for the content and style clips; the
-//     result goes out as stylizedClipReady() (the result panel cleans it up and shows it).
-//   Below the tabs: a progress bar with ETA, a status line and the live loss curve.
+//     results join the network list unsaved, the adapted loss network becomes the Train tab's.
+//   Below the tabs: Train, Retrain (warm start from the selected network with the new weights), Cancel
+//   and Resume, a progress bar with ETA, a status line and the loss curve (the live run's, else the
+//   selected network's history).
 //
 // Jobs (style::StyleTrainingJob, style::OptimizationTransferJob) run on a JobRunner; one at a time. A
 // cancelled training keeps its last epoch's network and can be resumed from its checkpoint (Resume).
 // While training, each epoch's network stylizes the content clip (at most every few seconds)
-// and previewReady() carries it as the blue "output" figure. The selected network is currentNetwork();
-// currentNetworkChanged() announces it to the other panels (the result panel).
+// and previewReady() carries it as the blue "output" figure.
 //
 // Safety: prepareToClose() asks before stopping a running job (then cancels, quits and waits; the
-// core keeps the last good checkpoint and never writes a network file half-way), and asks before any
-// trained network that was never saved is dropped: removing one asks for it; closing asks once for
-// all of them (Save All into one folder, never over a file; Discard; Cancel).
-// Dialogs go through the Confirmer (tests replace it) and errors through errorOccurred() (MainWindow's
-// ErrorReporter).
+// core keeps the last good checkpoint and never writes a network file half-way), then lets the
+// network list ask about unsaved networks. Dialogs go through the Confirmer (tests replace it) and
+// errors through errorOccurred() (MainWindow's ErrorReporter).
 
 #include <QMessageBox>
 #include <QWidget>
@@ -39,6 +34,7 @@
 
 #include "clip_roles.h"
 #include "display_space.h"
+#include "network_list.h"
 #include "optimise_tab.h"
 #include "train_tab.h"
 #include "figure_data.h"
@@ -47,16 +43,11 @@
 #include "style/stylizer.h"
 #include "style/training.h"
 
-class QDoubleSpinBox;
 class QLabel;
-class QLineEdit;
-class QListWidget;
 class QProgressBar;
 class QPushButton;
-class QSpinBox;
 class QTabWidget;
 class QTemporaryDir;
-class QTreeWidget;
 
 namespace motionstyle {
 
@@ -69,8 +60,7 @@ class NetworkPanel : public QWidget {
 
  public:
   // Shows a question and returns the button chosen (default: a QMessageBox).
-  using Confirmer = std::function<QMessageBox::StandardButton(const QString& title, const QString& text,
-                                                              QMessageBox::StandardButtons buttons)>;
+  using Confirmer = NetworkList::Confirmer;
 
   // What the Train tab holds (editable data; validated when a run starts).
   using TrainingForm = TrainTab::Form;
@@ -80,31 +70,10 @@ class NetworkPanel : public QWidget {
   explicit NetworkPanel(ClipRoles roles, QWidget* parent = nullptr, bool persist_settings = true);
   ~NetworkPanel() override;  // cancels and joins a running job without asking
 
-  void setConfirmer(Confirmer confirmer);
-  // Picks the folder "Save all" writes into, starting at `start` (default: a folder dialog).
-  using FolderChooser = std::function<QString(const QString& start)>;
-  void setFolderChooser(FolderChooser chooser) { folder_chooser_ = std::move(chooser); }
+  void setConfirmer(Confirmer confirmer);  // for this panel's questions and the network list's
 
-  // ---- Networks -----------------------------------------------------------------------------------
-  int networkCount() const { return static_cast<int>(networks_.size()); }
-  int currentIndex() const;
-  void setCurrentIndex(int index);
-  std::shared_ptr<const nn::StyleModel> currentNetwork() const;
-  QString currentNetworkName() const;  // the list's name (file name without .net), empty when none
-  std::shared_ptr<const nn::StyleModel> network(int index) const;
-  QString networkFile(int index) const;   // empty while never saved
-  bool isNetworkSaved(int index) const;
-  // Loads a style network (or, for an autoencoder file, takes it as the loss network). Errors are
-  // reported; returns false then.
-  bool loadNetworkFile(const QString& file);
-  // Saves atomically; an existing file is replaced only after the Confirmer answers Yes (or when
-  // `overwrite_confirmed`, e.g. after a file dialog asked). false (and a report) on failure.
-  bool saveNetwork(int index, const QString& file, bool overwrite_confirmed = false);
-  // Asks before dropping an unsaved network; false when the user keeps it.
-  bool removeNetwork(int index);
-  // A new name for the network (the list's name cell is editable: F2 or a double click). Refused, with
-  // a report, when empty or taken by another network; networkRenamed() tells the other panels.
-  bool renameNetwork(int index, const QString& name);
+  // The Networks tab: the session's networks (the selection, names, files; network_list.h).
+  NetworkList* networkList() const { return network_list_; }
 
   // ---- Training -----------------------------------------------------------------------------------
   TrainingForm trainingForm() const;
@@ -149,12 +118,9 @@ class NetworkPanel : public QWidget {
  public slots:
   // The clips or their roles changed: the training summary, the Adapt tab and a stale preview follow.
   void onClipsChanged();
-  void browseLoad();
-  void browseSave();
   void browseTrainingFolder();
 
  signals:
-  void currentNetworkChanged(std::shared_ptr<const motionstyle::nn::StyleModel> network);
   // The live preview / optimisation result as the blue output figure (display space like the clips).
   void previewReady(const motionstyle::FigureData& figure);
   void previewCleared();  // a new run started: the old preview is stale
@@ -163,29 +129,15 @@ class NetworkPanel : public QWidget {
   void errorOccurred(const QString& title, const QString& message);
   void trainingProgress(const motionstyle::style::TrainingProgress& progress);
   void jobFinished();  // any job ended (its completion has run)
-  void networkRenamed(const QString& old_name, const QString& new_name);
 
  private:
-  struct NetworkEntry {
-    std::shared_ptr<const nn::StyleModel> model;
-    QString name;
-    QString file;
-    bool saved = false;
-  };
-
-  QWidget* createNetworksTab();
   AdaptTab* createAdaptTab();
-  void addNetwork(NetworkEntry entry);
-  void refreshNetworkList();
-  void showNetworkDetails();
+  void showLossHistory();  // the selected network's, unless a run is drawing its own
   void updateButtons();
   void report(const QString& title, const QString& message);
   QMessageBox::StandardButton ask(const QString& title, const QString& text, QMessageBox::StandardButtons buttons);
-  bool confirmDropUnsaved(int index, bool allow_cancel);
-  // Where network files were last loaded or saved (the user's networks folder), and, apart from it,
-  // where clips and training folders were last chosen: saving a network never starts among the clips.
-  QString lastFolder() const;
-  void rememberFolder(const QString& path);
+  // Where clips and training folders were last chosen (apart from the networks folder: saving a
+  // network never starts among the clips).
   QString lastClipFolder() const;
   void rememberClipFolder(const QString& path);
 
@@ -202,8 +154,6 @@ class NetworkPanel : public QWidget {
   bool persist_settings_;
   AdaptTab* adapt_tab_ = nullptr;
   Confirmer confirmer_;
-  FolderChooser folder_chooser_;
-  std::vector<NetworkEntry> networks_;
 
   enum class Running { None, Training, Transfer };
   JobRunner* runner_ = nullptr;
@@ -229,10 +179,7 @@ class NetworkPanel : public QWidget {
   bool preview_shown_ = false;
 
   QTabWidget* tabs_ = nullptr;
-  QTreeWidget* network_list_ = nullptr;
-  QLabel* details_label_ = nullptr;
-  QPushButton* save_button_ = nullptr;
-  QPushButton* remove_button_ = nullptr;
+  NetworkList* network_list_ = nullptr;
   TrainTab* train_tab_ = nullptr;
   QPushButton* train_button_ = nullptr;
   QPushButton* retrain_button_ = nullptr;

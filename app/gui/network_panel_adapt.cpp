@@ -14,31 +14,31 @@ namespace motionstyle {
 AdaptTab* NetworkPanel::createAdaptTab() {
   const auto networks = [this] {
     std::vector<AdaptTab::NamedNetwork> all;
-    for (const NetworkEntry& entry : networks_) all.push_back({entry.name, entry.model});
+    for (int i = 0; i < network_list_->networkCount(); ++i)
+      all.push_back({network_list_->networkName(i), network_list_->network(i)});
     return all;
   };
   adapt_tab_ = new AdaptTab(roles_.clips, networks, this);
   connect(adapt_tab_, &AdaptTab::errorOccurred, this, &NetworkPanel::report);
   connect(adapt_tab_, &AdaptTab::busyChanged, this, [this](bool) { updateButtons(); });
   connect(adapt_tab_, &AdaptTab::adapted, this,
-          [this](std::shared_ptr<const nn::AutoencoderModel> loss, std::vector<style::StyleToRetrain> styles) {
+          [this](std::shared_ptr<const nn::LossNetworkModel> loss, std::vector<style::StyleToRetrain> styles) {
             // The adapted loss network is saved in the scratch folder and becomes the Train tab's, so
             // that new styles train against it; the retrained styles join the list, unsaved.
             const std::filesystem::path file = scratchFile(QStringLiteral("adapted-loss-network.net"));
             try {
               if (!file.empty()) {
-                nn::saveAutoencoder(*loss, file);
+                nn::saveLossNetwork(*loss, file);
                 setLossNetworkFile(QString::fromStdString(file.string()));
               }
             } catch (const std::exception& error) {
               report(tr("Could not keep the adapted loss network"), QString::fromStdString(error.what()));
             }
             for (style::StyleToRetrain& style : styles) {
-              NetworkEntry entry;
-              entry.model = std::make_shared<const nn::StyleModel>(std::move(style.model));
-              entry.name = tr("%1 adapted %2").arg(QString::fromStdString(style.name),
-                                                   QDateTime::currentDateTime().toString(QStringLiteral("MM-dd hh:mm")));
-              addNetwork(std::move(entry));  // the last one becomes current: the Result panel uses it
+              // The last one becomes current: the Result panel uses it.
+              network_list_->addNetwork(std::make_shared<const nn::StyleModel>(std::move(style.model)),
+                                        tr("%1 adapted %2").arg(QString::fromStdString(style.name),
+                                                                QDateTime::currentDateTime().toString(QStringLiteral("MM-dd hh:mm"))));
             }
           });
   return adapt_tab_;

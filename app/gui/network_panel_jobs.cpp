@@ -118,13 +118,13 @@ bool NetworkPanel::startTraining(bool retrain) {
 
   QString base_name = QString::fromStdString(config.styles.front().file.stem().string());
   if (retrain) {
-    const std::shared_ptr<const nn::StyleModel> model = currentNetwork();
+    const std::shared_ptr<const nn::StyleModel> model = network_list_->currentNetwork();
     if (!model) {
       report(tr("No network selected"), tr("Select the network to retrain on the Networks tab."));
       return false;
     }
     // The warm start keeps the selected network's shape and the loss network it was trained against.
-    config.autoencoder_model = nn::embeddedLossNetwork(*model);
+    config.loss_network_model = nn::embeddedLossNetwork(*model);
     config.shape = model->transformation.shape();
     const std::filesystem::path init = scratchFile(QStringLiteral("retrain-start.net"));
     try {
@@ -135,14 +135,14 @@ bool NetworkPanel::startTraining(bool retrain) {
       return false;
     }
     config.settings.init = init;
-    base_name = networks_[static_cast<std::size_t>(currentIndex())].name + tr(" retrained");
+    base_name = network_list_->currentNetworkName() + tr(" retrained");
   } else {
     const QString loss_file = lossNetworkFile();
     if (loss_file.isEmpty()) {
-      report(tr("No loss network"), tr("Choose the loss network (an autoencoder .net file) on the Train tab."));
+      report(tr("No loss network"), tr("Choose the loss network (.net file) on the Train tab."));
       return false;
     }
-    config.autoencoder = loss_file.toStdString();
+    config.loss_network = loss_file.toStdString();
     config.shape.hidden = form.hidden_units;
   }
   const std::filesystem::path checkpoint =
@@ -240,11 +240,11 @@ bool NetworkPanel::startTransfer(int iterations) {
   const QString loss_file = lossNetworkFile();
   try {
     if (!loss_file.isEmpty()) {
-      job.loss_network = style::loadCompatibleAutoencoder(loss_file.toStdString());
-    } else if (const auto model = currentNetwork()) {
+      job.loss_network = style::loadCompatibleLossNetwork(loss_file.toStdString());
+    } else if (const auto model = network_list_->currentNetwork()) {
       job.loss_network = nn::embeddedLossNetwork(*model);
     } else {
-      report(tr("No loss network"), tr("Choose the loss network (an autoencoder .net file) on the Train tab."));
+      report(tr("No loss network"), tr("Choose the loss network (.net file) on the Train tab."));
       return false;
     }
   } catch (...) {
@@ -338,10 +338,8 @@ void NetworkPanel::onTrainingFinished(const style::StyleTrainingJob::Result& out
   if (outcome.model) {
     auto model = std::make_shared<nn::StyleModel>(*outcome.model);
     model->metadata.properties.emplace_back("created", QDateTime::currentDateTime().toString(Qt::ISODate).toStdString());
-    NetworkEntry entry;
-    entry.model = std::move(model);
-    entry.name = cancelled ? tr("%1 (epoch %2)").arg(training_name_).arg(outcome.epochs_completed) : training_name_;
-    addNetwork(std::move(entry));
+    network_list_->addNetwork(std::move(model), cancelled ? tr("%1 (epoch %2)").arg(training_name_).arg(outcome.epochs_completed)
+                                                          : training_name_);
   }
   if (!cancelled) {
     progress_bar_->setValue(progress_bar_->maximum());
@@ -372,33 +370,7 @@ bool NetworkPanel::prepareToClose() {
     // network can be offered for saving below.
     runner_->cancelAndWait();
   }
-  // One question for all unsaved networks: save them all into one folder, or discard them all.
-  std::vector<int> unsaved;
-  QStringList names;
-  for (int i = 0; i < networkCount(); ++i)
-    if (!isNetworkSaved(i)) {
-      unsaved.push_back(i);
-      names << networks_[static_cast<std::size_t>(i)].name;
-    }
-  if (unsaved.empty()) return true;
-  const QMessageBox::StandardButton answer =
-      ask(tr("Unsaved networks"),
-          tr("%n trained network(s) not saved: %1.\n\nSave all of them into one folder, or discard all?", nullptr,
-             static_cast<int>(unsaved.size())).arg(names.join(QStringLiteral(", "))),
-          QMessageBox::SaveAll | QMessageBox::Discard | QMessageBox::Cancel);
-  if (answer == QMessageBox::Discard) return true;
-  if (answer != QMessageBox::SaveAll) return false;
-  const QString folder = folder_chooser_ ? folder_chooser_(lastFolder())
-                                         : QFileDialog::getExistingDirectory(this, tr("Save the networks in"), lastFolder());
-  if (folder.isEmpty()) return false;
-  for (int i : unsaved) {  // never over an existing file: "name (2).net" when "name.net" is taken
-    const QString name = networks_[static_cast<std::size_t>(i)].name;
-    QString file = QDir(folder).filePath(name + QStringLiteral(".net"));
-    for (int counter = 2; QFileInfo::exists(file); ++counter)
-      file = QDir(folder).filePath(QStringLiteral("%1 (%2).net").arg(name).arg(counter));
-    if (!saveNetwork(i, file, /*overwrite_confirmed=*/false)) return false;
-  }
-  return true;
+  return network_list_->prepareToClose();
 }
 
 }  // namespace motionstyle

@@ -45,7 +45,7 @@ std::vector<ShippedStyleNetwork> shippedStyleNetworks() {
   const std::optional<std::filesystem::path> resources = resourceDirectory();
   if (!resources) return networks;
   for (const std::filesystem::path& file : shippedNetworkFiles(*resources)) {
-    if (file.stem() == kShippedAutoencoderName) continue;  // the loss network is not a style
+    if (file.stem() == kShippedLossNetworkName) continue;  // the loss network is not a style
     ShippedStyleNetwork network;
     network.name = QString::fromStdString(safeText(file.stem().string()));
     network.file = QFileInfo(QString::fromStdString(file.string())).absoluteFilePath();

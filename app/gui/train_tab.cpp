@@ -15,13 +15,14 @@
 #include <QTreeWidget>
 #include <QVBoxLayout>
 
-#include "network_panel_internal.h"
+#include "network_list.h"
 #include "nn/transformation_network.h"
 
 namespace motionstyle {
 namespace {
 
-using namespace network_panel_detail;
+// The style-clip table's columns.
+enum StyleColumn { kStyleLabel, kStyleFile };
 
 QDoubleSpinBox* weightSpin(QWidget* parent, const QString& name, double value, const QString& tip) {
   auto* spin = new QDoubleSpinBox(parent);
@@ -101,10 +102,10 @@ TrainTab::TrainTab(ClipRoles roles, QWidget* parent)
 
   loss_network_edit_ = new QLineEdit(this);
   loss_network_edit_->setObjectName(QStringLiteral("LossNetwork"));
-  loss_network_edit_->setPlaceholderText(tr("autoencoder .net file"));
+  loss_network_edit_->setPlaceholderText(tr("loss network .net file"));
   auto* browse_loss = new QPushButton(tr("..."), this);
   connect(browse_loss, &QPushButton::clicked, this, [this] {
-    const QString file = QFileDialog::getOpenFileName(this, tr("Loss network"), network_folder_(), networkFileFilter());
+    const QString file = QFileDialog::getOpenFileName(this, tr("Loss network"), network_folder_(), NetworkList::fileFilter());
     if (!file.isEmpty()) setLossNetworkFile(file);
   });
   auto* loss_row = new QHBoxLayout;

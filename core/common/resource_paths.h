@@ -25,8 +25,10 @@ namespace motionstyle {
 
 inline constexpr const char* kResourcesEnvironmentVariable = "MOTIONSTYLE_RESOURCES";
 inline constexpr const char* kNetworkFileExtension = ".net";
-// The shipped loss network's name (models/autoencoder.net); every other shipped network is a style.
-inline constexpr const char* kShippedAutoencoderName = "autoencoder";
+// The shipped loss network's name (models/loss_network.net); every other shipped network is a style.
+inline constexpr const char* kShippedLossNetworkName = "loss_network";
+// Its name before the loss network had one name (models/autoencoder.net); still accepted on the command line.
+inline constexpr const char* kFormerShippedLossNetworkName = "autoencoder";
 
 // The inputs of the lookup, separated from the process so that tests can describe any layout.
 struct ResourceSearch {
@@ -51,7 +53,7 @@ std::optional<std::filesystem::path> findResourceDirectory(const ResourceSearch&
 // findResourceDirectory(currentResourceSearch()).
 std::optional<std::filesystem::path> resourceDirectory();
 
-// A shipped network's name is its file name without ".net" ("elderly", "autoencoder"): letters,
+// A shipped network's name is its file name without ".net" ("elderly", "loss_network"): letters,
 // digits, '_' and '-' only, so a name can never reach outside models/.
 bool isValidNetworkName(std::string_view name);
 

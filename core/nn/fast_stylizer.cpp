@@ -57,20 +57,20 @@ void FastStylizer::correlate(Layer& layer, const float* padded, Eigen::Index ava
   });
 }
 
-FastStylizer::FastStylizer(const Autoencoder<float>& autoencoder) {
-  features_ = autoencoder.shape().features;
-  hidden_ = autoencoder.shape().hidden;
-  encoder_ = copyLayer(autoencoder.encoder);
+FastStylizer::FastStylizer(const LossNetwork<float>& loss_network) {
+  features_ = loss_network.shape().features;
+  hidden_ = loss_network.shape().hidden;
+  encoder_ = copyLayer(loss_network.encoder);
   encoder_bias_ = encoder_.bias;
-  buildPolyphase(autoencoder);
+  buildPolyphase(loss_network);
 }
 
-FastStylizer::FastStylizer(const TransformationNetwork<float>& transformation, const Autoencoder<float>& autoencoder)
-    : FastStylizer(autoencoder) {
+FastStylizer::FastStylizer(const TransformationNetwork<float>& transformation, const LossNetwork<float>& loss_network)
+    : FastStylizer(loss_network) {
   if (transformation.shape().features != features_)
     throw std::invalid_argument("FastStylizer: the transformation network has " +
                                 std::to_string(transformation.shape().features) +
-                                " features, the autoencoder " + std::to_string(features_));
+                                " features, the loss network " + std::to_string(features_));
   has_transformer_ = true;
   residual_ = transformation.shape().residual;
   t1_ = copyLayer(transformation.conv1);
@@ -78,17 +78,17 @@ FastStylizer::FastStylizer(const TransformationNetwork<float>& transformation, c
   t3_ = copyLayer(transformation.conv3);
 }
 
-void FastStylizer::buildPolyphase(const Autoencoder<float>& autoencoder) {
+void FastStylizer::buildPolyphase(const LossNetwork<float>& loss_network) {
   // Output frame t = 2s + phase reads depooled frame u = t + k - pad = 2 * pooled + (u mod 2), so tap k
   // lands on pooled frame s + floorDiv(phase + k - pad, 2). Taps landing on the same pooled frame add.
-  const int width = autoencoder.decoder.width();
+  const int width = loss_network.decoder.width();
   const int pad = width / 2;
   const int first = floorDiv(-pad, 2);
   const int last = floorDiv(1 + pad, 2);
   phase_taps_ = last - first + 1;
   phase_left_ = -first;
   phase_right_ = last;
-  const Mat<float>& w = autoencoder.decoder.weight.value;  // features x (hidden * width)
+  const Mat<float>& w = loss_network.decoder.weight.value;  // features x (hidden * width)
   polyphase_.setZero(2 * features_, static_cast<Eigen::Index>(hidden_) * phase_taps_);
   for (int phase = 0; phase < 2; ++phase)
     for (int k = 0; k < width; ++k) {

@@ -1,7 +1,7 @@
 #pragma once
 // Fast float32 inference: stylize(x) = project(T(x)) and project(x) = decode(encode(x)) for ONE clip of
 // any length (features x frames, normalised), whole-clip and fully convolutional: no windows, so no
-// seams, and exactly the reference forward pass (TransformationNetwork::apply, Autoencoder::project) up to
+// seams, and exactly the reference forward pass (TransformationNetwork::apply, LossNetwork::project) up to
 // float rounding, including the odd-length rule (last frame repeated through the pool, cropped after).
 //
 // Where the speed comes from (see tests/bench/nn for figures):
@@ -22,7 +22,7 @@
 
 #include <optional>
 
-#include "nn/autoencoder.h"
+#include "nn/loss_network.h"
 #include "nn/spectral_correlation.h"
 #include "nn/transformation_network.h"
 
@@ -31,10 +31,10 @@ namespace motionstyle::nn {
 class FastStylizer {
  public:
   // Projection only (no transformation network).
-  explicit FastStylizer(const Autoencoder<float>& autoencoder);
-  // Style transfer: transformation then the autoencoder's projection. The feature counts must match
+  explicit FastStylizer(const LossNetwork<float>& loss_network);
+  // Style transfer: transformation then the loss network's projection. The feature counts must match
   // (std::invalid_argument otherwise).
-  FastStylizer(const TransformationNetwork<float>& transformation, const Autoencoder<float>& autoencoder);
+  FastStylizer(const TransformationNetwork<float>& transformation, const LossNetwork<float>& loss_network);
 
   // x: features x frames (frames >= 1), normalised. out: features x frames. Throws
   // std::invalid_argument on a shape mismatch or if stylize() is called without a transformation.
@@ -62,7 +62,7 @@ class FastStylizer {
   // layer's kernel at output positions 0..count-1 (correlatePadded's contract), no bias. Spectral or
   // direct, whichever the cost model picks for `count`.
   static void correlate(Layer& layer, const float* padded, Eigen::Index available, int count, float* out);
-  void buildPolyphase(const Autoencoder<float>& autoencoder);
+  void buildPolyphase(const LossNetwork<float>& loss_network);
   // Runs the projection on the (even-length) padded buffer input_to_encoder_, writing `frames` columns.
   void projectPadded(int frames, Mat<float>& out);
   void convolve(Layer& layer, const Mat<float>& in, Mat<float>& out, int frames, bool relu);

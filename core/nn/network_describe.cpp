@@ -48,13 +48,13 @@ void describeMetadata(std::ostringstream& out, const NetworkMetadata& m, bool st
 
 }  // namespace
 
-std::string describe(const AutoencoderModel& model) {
+std::string describe(const LossNetworkModel& model) {
   std::ostringstream out;
-  const AutoencoderShape& s = model.network.shape();
-  out << "MotionStyle network: autoencoder (loss network)\n";
+  const LossNetworkShape& s = model.network.shape();
+  out << "MotionStyle network: loss network\n";
   out << "  architecture: " << s.features << " features -> conv width " << s.width << " -> " << s.hidden
       << " hidden units, max-pool 2 (decoder: average depool, conv back to " << s.features << ")\n";
-  Autoencoder<float> copy = model.network;
+  LossNetwork<float> copy = model.network;
   out << "  parameters: " << parameterCount(copy.parameters()) << "\n";
   describeMetadata(out, model.metadata, false);
   return out.str();
@@ -63,13 +63,13 @@ std::string describe(const AutoencoderModel& model) {
 std::string describe(const StyleModel& model) {
   std::ostringstream out;
   const TransformationShape& t = model.transformation.shape();
-  const AutoencoderShape& s = model.loss_network.shape();
+  const LossNetworkShape& s = model.loss_network.shape();
   out << "MotionStyle network: style (transformation network)\n";
   out << "  transformation: " << t.features << " -> " << t.hidden << " -> " << t.hidden << " -> " << t.features
       << ", conv width " << t.width << (t.residual ? ", residual (output = input + T(input))" : ", plain") << "\n";
   out << "  loss network: " << s.features << " features -> " << s.hidden << " hidden units, width " << s.width << "\n";
   TransformationNetwork<float> tc = model.transformation;
-  Autoencoder<float> ac = model.loss_network;
+  LossNetwork<float> ac = model.loss_network;
   out << "  parameters: " << parameterCount(tc.parameters()) << " + " << parameterCount(ac.parameters())
       << " (loss network)\n";
   out << "  style targets: ";
@@ -83,7 +83,7 @@ std::string describe(const StyleModel& model) {
 
 std::string describeNetworkFile(const std::filesystem::path& file) {
   const NetworkFileInfo info = networkFileInfo(file);
-  std::string text = info.kind == NetworkKind::Style ? describe(loadStyleModel(file)) : describe(loadAutoencoder(file));
+  std::string text = info.kind == NetworkKind::Style ? describe(loadStyleModel(file)) : describe(loadLossNetwork(file));
   std::ostringstream line;
   line << "  file: format " << info.format_version << ", weights " << weightPrecisionName(info.precision)
        << (info.precision == WeightPrecision::F16 ? " (IEEE binary16, computed in f32)" : "") << ", " << std::fixed
@@ -93,8 +93,8 @@ std::string describeNetworkFile(const std::filesystem::path& file) {
   return text;
 }
 
-AutoencoderModel embeddedLossNetwork(const StyleModel& model) {
-  AutoencoderModel loss{model.loss_network, model.normalisation, {}};
+LossNetworkModel embeddedLossNetwork(const StyleModel& model) {
+  LossNetworkModel loss{model.loss_network, model.normalisation, {}};
   loss.metadata.representation = model.metadata.representation;
   loss.metadata.training.sparsity = model.metadata.training.sparsity;
   loss.metadata.training.dropout = model.metadata.training.dropout;

@@ -23,7 +23,7 @@ constexpr std::uint32_t kMaxStyleTargets = 64;
 constexpr std::string_view kStyleTargetPrefix = "style_target:";
 
 const char* kindName(NetworkKind kind) {
-  return kind == NetworkKind::Autoencoder ? "autoencoder (loss network)" : "style (transformation network)";
+  return kind == NetworkKind::LossNetwork ? "loss network" : "style (transformation network)";
 }
 
 // Writing.
@@ -53,7 +53,7 @@ void requireWritable(const FeatureStatistics& normalisation, const NetworkMetada
 
 // format_version 1 has no weight-encoding field and is always f32.
 std::string serialise(NetworkKind kind, const FeatureStatistics& normalisation, const NetworkMetadata& m,
-                      const Autoencoder<float>& ae, const TransformationNetwork<float>* transformation,
+                      const LossNetwork<float>& loss_network, const TransformationNetwork<float>* transformation,
                       WeightPrecision precision, std::uint32_t format_version,
                       const std::vector<StyleTarget>& targets = {}) {
   if (format_version == 1 && precision != WeightPrecision::F32)
@@ -94,9 +94,9 @@ std::string serialise(NetworkKind kind, const FeatureStatistics& normalisation, 
   }
   if (format_version >= 2) body.u32(static_cast<std::uint32_t>(precision));
   // Architecture, then tensors.
-  body.u32(static_cast<std::uint32_t>(ae.shape().features));
-  body.u32(static_cast<std::uint32_t>(ae.shape().hidden));
-  body.u32(static_cast<std::uint32_t>(ae.shape().width));
+  body.u32(static_cast<std::uint32_t>(loss_network.shape().features));
+  body.u32(static_cast<std::uint32_t>(loss_network.shape().hidden));
+  body.u32(static_cast<std::uint32_t>(loss_network.shape().width));
   if (transformation != nullptr) {
     body.u32(static_cast<std::uint32_t>(transformation->shape().features));
     body.u32(static_cast<std::uint32_t>(transformation->shape().hidden));
@@ -111,10 +111,10 @@ std::string serialise(NetworkKind kind, const FeatureStatistics& normalisation, 
     writeConvTensors(body, transformation->conv2, precision);
     writeConvTensors(body, transformation->conv3, precision);
   }
-  writeConvTensors(body, ae.encoder, precision);
-  writeConvTensors(body, ae.decoder, precision);
+  writeConvTensors(body, loss_network.encoder, precision);
+  writeConvTensors(body, loss_network.decoder, precision);
   for (const StyleTarget& target : targets) {
-    if (target.gram.rows() != ae.shape().hidden || target.gram.cols() != ae.shape().hidden || !target.gram.allFinite())
+    if (target.gram.rows() != loss_network.shape().hidden || target.gram.cols() != loss_network.shape().hidden || !target.gram.allFinite())
       throw std::invalid_argument("style target '" + target.label + "' must be a finite hidden x hidden matrix");
     writeChecked(body, std::string(kStyleTargetPrefix) + target.label, target.gram, precision, kMaxStyleTargetMagnitude);
   }
@@ -136,7 +136,7 @@ struct Parsed {
   WeightPrecision precision = WeightPrecision::F32;
   NetworkMetadata metadata;
   FeatureStatistics normalisation;
-  AutoencoderShape ae_shape;
+  LossNetworkShape loss_network_shape;
   TransformationShape t_shape;
   std::vector<ByteReader::Tensor> tensors;
 };
@@ -170,7 +170,7 @@ Header readHeader(std::string_view bytes, ByteReader& reader) {
   ByteReader crc_reader(bytes.substr(bytes.size() - kCrcBytes), reader.file());
   if (crc_reader.u32("CRC") != crc32(bytes.substr(0, bytes.size() - kCrcBytes)))
     reader.fail("corrupt network file: CRC-32 mismatch (the file was damaged or truncated)");
-  if (kind != static_cast<std::uint32_t>(NetworkKind::Autoencoder) && kind != static_cast<std::uint32_t>(NetworkKind::Style))
+  if (kind != static_cast<std::uint32_t>(NetworkKind::LossNetwork) && kind != static_cast<std::uint32_t>(NetworkKind::Style))
     reader.fail("corrupt network file: unknown kind " + std::to_string(kind));
   return {version, static_cast<NetworkKind>(kind)};
 }
@@ -243,8 +243,8 @@ void validateRepresentation(const ByteReader& r, const Parsed& p) {
   // Non-physical numbers (network_limits.h): the writer never writes them, later code trusts them.
   for (const std::string& problem : {metadataProblem(p.metadata), normalisationProblem(p.normalisation)})
     if (!problem.empty()) r.fail("corrupt network file: " + problem);
-  if (p.ae_shape.features != rep.feature_count)
-    r.fail("network file: the autoencoder has " + std::to_string(p.ae_shape.features) + " features, the representation " +
+  if (p.loss_network_shape.features != rep.feature_count)
+    r.fail("network file: the loss network has " + std::to_string(p.loss_network_shape.features) + " features, the representation " +
            std::to_string(rep.feature_count));
 }
 
@@ -257,10 +257,10 @@ WeightPrecision readWeightEncoding(ByteReader& r, std::uint32_t version) {
 }
 
 void readArchitecture(ByteReader& r, Parsed& p) {
-  p.ae_shape.features = readDimension(r, "autoencoder features", kMaxDimension);
-  p.ae_shape.hidden = readDimension(r, "autoencoder hidden units", kMaxDimension);
-  p.ae_shape.width = readDimension(r, "autoencoder width", kMaxWidth);
-  std::uint64_t floats = 2ull * p.ae_shape.features * p.ae_shape.hidden * p.ae_shape.width + p.ae_shape.hidden;
+  p.loss_network_shape.features = readDimension(r, "loss network features", kMaxDimension);
+  p.loss_network_shape.hidden = readDimension(r, "loss network hidden units", kMaxDimension);
+  p.loss_network_shape.width = readDimension(r, "loss network width", kMaxWidth);
+  std::uint64_t floats = 2ull * p.loss_network_shape.features * p.loss_network_shape.hidden * p.loss_network_shape.width + p.loss_network_shape.hidden;
   if (p.kind == NetworkKind::Style) {
     p.t_shape.features = readDimension(r, "transformation features", kMaxDimension);
     p.t_shape.hidden = readDimension(r, "transformation hidden units", kMaxDimension);
@@ -272,7 +272,7 @@ void readArchitecture(ByteReader& r, Parsed& p) {
     const std::uint64_t h = static_cast<std::uint64_t>(p.t_shape.hidden);
     floats += (2 * f * h + h * h) * static_cast<std::uint64_t>(p.t_shape.width) + 2 * h + f;
   }
-  if (p.ae_shape.width % 2 == 0 || (p.kind == NetworkKind::Style && p.t_shape.width % 2 == 0))
+  if (p.loss_network_shape.width % 2 == 0 || (p.kind == NetworkKind::Style && p.t_shape.width % 2 == 0))
     r.fail("corrupt network file: convolution widths must be odd");
   // Before any network is allocated: the declared architecture must fit in the bytes that remain.
   const std::uint64_t weight_bytes = floats * bytesPerWeight(p.precision);
@@ -335,13 +335,13 @@ std::string readWholeFile(const std::filesystem::path& file) {
 
 }  // namespace
 
-std::string serialiseAutoencoder(const AutoencoderModel& model, WeightPrecision precision) {
-  return serialise(NetworkKind::Autoencoder, model.normalisation, model.metadata, model.network, nullptr, precision,
+std::string serialiseLossNetwork(const LossNetworkModel& model, WeightPrecision precision) {
+  return serialise(NetworkKind::LossNetwork, model.normalisation, model.metadata, model.network, nullptr, precision,
                    kNetworkFormatVersion);
 }
 
-std::string serialiseAutoencoderFormat1(const AutoencoderModel& model) {
-  return serialise(NetworkKind::Autoencoder, model.normalisation, model.metadata, model.network, nullptr,
+std::string serialiseLossNetworkFormat1(const LossNetworkModel& model) {
+  return serialise(NetworkKind::LossNetwork, model.normalisation, model.metadata, model.network, nullptr,
                    WeightPrecision::F32, 1);
 }
 
@@ -352,18 +352,18 @@ std::string serialiseStyleModel(const StyleModel& model, WeightPrecision precisi
                    precision, kNetworkFormatVersion, model.style_targets);
 }
 
-void saveAutoencoder(const AutoencoderModel& model, const std::filesystem::path& file, WeightPrecision precision) {
-  writeFileAtomically(file, serialiseAutoencoder(model, precision));
+void saveLossNetwork(const LossNetworkModel& model, const std::filesystem::path& file, WeightPrecision precision) {
+  writeFileAtomically(file, serialiseLossNetwork(model, precision));
 }
 
 void saveStyleModel(const StyleModel& model, const std::filesystem::path& file, WeightPrecision precision) {
   writeFileAtomically(file, serialiseStyleModel(model, precision));
 }
 
-AutoencoderModel parseAutoencoder(std::string_view bytes, const std::string& source_name) {
-  Parsed p = parse(bytes, source_name, NetworkKind::Autoencoder);
+LossNetworkModel parseLossNetwork(std::string_view bytes, const std::string& source_name) {
+  Parsed p = parse(bytes, source_name, NetworkKind::LossNetwork);
   ByteReader r(std::string_view(), source_name);  // for messages
-  AutoencoderModel model{Autoencoder<float>(p.ae_shape), std::move(p.normalisation), std::move(p.metadata)};
+  LossNetworkModel model{LossNetwork<float>(p.loss_network_shape), std::move(p.normalisation), std::move(p.metadata)};
   std::size_t next = 0;
   assignConv(r, p.tensors, next, model.network.encoder);
   assignConv(r, p.tensors, next, model.network.decoder);
@@ -374,9 +374,9 @@ AutoencoderModel parseAutoencoder(std::string_view bytes, const std::string& sou
 StyleModel parseStyleModel(std::string_view bytes, const std::string& source_name) {
   Parsed p = parse(bytes, source_name, NetworkKind::Style);
   ByteReader r(std::string_view(), source_name);
-  if (p.t_shape.features != p.ae_shape.features)
+  if (p.t_shape.features != p.loss_network_shape.features)
     r.fail("network file: transformation and loss network feature counts differ");
-  StyleModel model{TransformationNetwork<float>(p.t_shape), Autoencoder<float>(p.ae_shape), std::move(p.normalisation),
+  StyleModel model{TransformationNetwork<float>(p.t_shape), LossNetwork<float>(p.loss_network_shape), std::move(p.normalisation),
                    std::move(p.metadata), {}};
   std::size_t next = 0;
   assignConv(r, p.tensors, next, model.transformation.conv1);
@@ -384,7 +384,7 @@ StyleModel parseStyleModel(std::string_view bytes, const std::string& source_nam
   assignConv(r, p.tensors, next, model.transformation.conv3);
   assignConv(r, p.tensors, next, model.loss_network.encoder);
   assignConv(r, p.tensors, next, model.loss_network.decoder);
-  const auto hidden = static_cast<Eigen::Index>(p.ae_shape.hidden);
+  const auto hidden = static_cast<Eigen::Index>(p.loss_network_shape.hidden);
   for (; next < p.tensors.size(); ++next) {
     ByteReader::Tensor& t = p.tensors[next];
     if (p.version < 3 || t.name.rfind(kStyleTargetPrefix, 0) != 0)
@@ -402,8 +402,8 @@ StyleModel parseStyleModel(std::string_view bytes, const std::string& source_nam
   return model;
 }
 
-AutoencoderModel loadAutoencoder(const std::filesystem::path& file) {
-  return parseAutoencoder(readWholeFile(file), file.string());
+LossNetworkModel loadLossNetwork(const std::filesystem::path& file) {
+  return parseLossNetwork(readWholeFile(file), file.string());
 }
 
 StyleModel loadStyleModel(const std::filesystem::path& file) { return parseStyleModel(readWholeFile(file), file.string()); }
@@ -416,7 +416,7 @@ NetworkFileInfo networkFileInfo(std::string_view bytes, const std::string& sourc
   if (header.kind == NetworkKind::Style)
     parseStyleModel(bytes, source_name);
   else
-    parseAutoencoder(bytes, source_name);
+    parseLossNetwork(bytes, source_name);
   return {p.version, p.kind, p.precision, bytes.size()};
 }
 

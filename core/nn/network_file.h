@@ -1,5 +1,5 @@
 #pragma once
-// Network files: the trained loss network (autoencoder) and per-style networks, with everything needed
+// Network files: the trained loss network and per-style networks, with everything needed
 // to use and to trust them. Binary, little-endian, versioned, CRC-protected; the byte-level
 // specification is core/nn/NETWORK_FORMAT.md. Saved atomically (writeFileAtomically). Loading a
 // truncated, corrupt, foreign, future-version or mismatched file throws InputError naming the file,
@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "nn/autoencoder.h"
+#include "nn/loss_network.h"
 #include "nn/binary_io.h"
 #include "nn/losses.h"
 #include "nn/transformation_objective.h"
@@ -32,7 +32,7 @@ inline constexpr std::string_view kRetargetedJointSetName = "canonical-21-refere
 inline constexpr std::string_view kProportionsJointSetName = "canonical-21-reference-proportions";
 inline constexpr std::string_view kCanonicalJointSetName = "canonical-21";
 
-enum class NetworkKind : std::uint32_t { Autoencoder = 1, Style = 2 };
+enum class NetworkKind : std::uint32_t { LossNetwork = 1, Style = 2 };
 
 // The representation the network was trained on. A network only makes sense on frames built the same
 // way: checkCompatible() compares.
@@ -52,8 +52,8 @@ struct TrainingConfig {
   int batch_windows = 16;    // windows per batch
   int window_frames = 240;   // frames per window
   LossWeights weights;       // style networks (eq. 10)
-  double sparsity = kDefaultSparsity;   // autoencoder alpha (eq. 3)
-  double dropout = kDefaultInputDropout;  // autoencoder input dropout
+  double sparsity = kDefaultSparsity;   // loss network alpha (eq. 3)
+  double dropout = kDefaultInputDropout;  // loss network input dropout
   bool operator==(const TrainingConfig&) const = default;
 };
 
@@ -79,8 +79,8 @@ struct NetworkMetadata {
   bool operator==(const NetworkMetadata&) const = default;
 };
 
-struct AutoencoderModel {
-  Autoencoder<float> network;
+struct LossNetworkModel {
+  LossNetwork<float> network;
   FeatureStatistics normalisation;  // 66 + 66: x_n = (x - mean) / std
   NetworkMetadata metadata;
 };
@@ -99,7 +99,7 @@ struct StyleTarget {
 // the style clips it was made from. Files before format 3 have no targets.
 struct StyleModel {
   TransformationNetwork<float> transformation;
-  Autoencoder<float> loss_network;
+  LossNetwork<float> loss_network;
   FeatureStatistics normalisation;
   NetworkMetadata metadata;
   std::vector<StyleTarget> style_targets;
@@ -108,7 +108,7 @@ struct StyleModel {
 // The loss network a style network embeds, as a loss network model of its own: the network, the
 // normalisation and the representation, and the sparsity and dropout it was trained with (what a warm
 // start, the optimisation method or an adaptation needs of it).
-AutoencoderModel embeddedLossNetwork(const StyleModel& model);
+LossNetworkModel embeddedLossNetwork(const StyleModel& model);
 
 // Serialise to bytes (the exact file content, format kNetworkFormatVersion) / save atomically, the
 // weights stored in `precision` (F16: half the size; metadata and statistics stay f64). Strings are
@@ -116,25 +116,25 @@ AutoencoderModel embeddedLossNetwork(const StyleModel& model);
 // file). Throws std::invalid_argument when the model is internally inconsistent (e.g. normalisation of
 // the wrong size), holds a number outside network_limits.h's bounds or, for F16, has a weight outside
 // binary16's finite range (what the reader would refuse is never written); WriteError on I/O.
-std::string serialiseAutoencoder(const AutoencoderModel& model, WeightPrecision precision = WeightPrecision::F32);
+std::string serialiseLossNetwork(const LossNetworkModel& model, WeightPrecision precision = WeightPrecision::F32);
 std::string serialiseStyleModel(const StyleModel& model, WeightPrecision precision = WeightPrecision::F32);
-void saveAutoencoder(const AutoencoderModel& model, const std::filesystem::path& file,
+void saveLossNetwork(const LossNetworkModel& model, const std::filesystem::path& file,
                      WeightPrecision precision = WeightPrecision::F32);
 void saveStyleModel(const StyleModel& model, const std::filesystem::path& file,
                     WeightPrecision precision = WeightPrecision::F32);
 
 // The bytes a format-1 build wrote for this model (f32, no weight-encoding field). Training
 // fingerprints hash these, so that checkpoints written before format 2 stay resumable; tests use it.
-std::string serialiseAutoencoderFormat1(const AutoencoderModel& model);
+std::string serialiseLossNetworkFormat1(const LossNetworkModel& model);
 
 // Parse bytes (source_name names them in errors) / load a file. InputError on anything wrong, incl.
 // a file of the other kind, a feature count or joint set this build does not use, shapes that do
 // not match the declared architecture, non-finite weights or statistics, numbers outside
 // network_limits.h's bounds, and strings that are not valid UTF-8 or hold control characters. The
 // message names the file and the field, and never echoes an unsafe string.
-AutoencoderModel parseAutoencoder(std::string_view bytes, const std::string& source_name);
+LossNetworkModel parseLossNetwork(std::string_view bytes, const std::string& source_name);
 StyleModel parseStyleModel(std::string_view bytes, const std::string& source_name);
-AutoencoderModel loadAutoencoder(const std::filesystem::path& file);
+LossNetworkModel loadLossNetwork(const std::filesystem::path& file);
 StyleModel loadStyleModel(const std::filesystem::path& file);
 
 // The kind of a network file after full validation (for a CLI that accepts either).
@@ -143,7 +143,7 @@ NetworkKind networkFileKind(const std::filesystem::path& file);
 // What a network file is, as stored (after full validation; InputError as for loading).
 struct NetworkFileInfo {
   std::uint32_t format_version = kNetworkFormatVersion;
-  NetworkKind kind = NetworkKind::Autoencoder;
+  NetworkKind kind = NetworkKind::LossNetwork;
   WeightPrecision precision = WeightPrecision::F32;  // format 1 is always F32
   std::uint64_t bytes = 0;                           // file size
 };
@@ -155,7 +155,7 @@ void checkCompatible(const RepresentationInfo& actual, const RepresentationInfo&
                      const std::string& file);
 
 // Human-readable summary (used by `motionstyle-cli info NET`).
-std::string describe(const AutoencoderModel& model);
+std::string describe(const LossNetworkModel& model);
 std::string describe(const StyleModel& model);
 // Loads either kind and describes it, with its format version, weight precision and size (InputError
 // as for loading).

@@ -62,18 +62,18 @@ void StyleBatch<S>::validate(int features, int hidden) const {
 }
 
 template <typename S>
-Mat<S> contentHidden(const Autoencoder<S>& loss_network, const Mat<S>& content, int frames) {
+Mat<S> contentHidden(const LossNetwork<S>& loss_network, const Mat<S>& content, int frames) {
   return loss_network.encode(content, frames);
 }
 
 template <typename S>
-Mat<S> styleGram(const Autoencoder<S>& loss_network, const Mat<S>& style_clip) {
+Mat<S> styleGram(const LossNetwork<S>& loss_network, const Mat<S>& style_clip) {
   const int frames = static_cast<int>(style_clip.cols());
   return gramMatrix<S>(loss_network.encode(style_clip, frames));
 }
 
 template <typename S>
-ObjectiveTerms accumulateObjective(TransformationNetwork<S>& transformation, Autoencoder<S>& loss_network,
+ObjectiveTerms accumulateObjective(TransformationNetwork<S>& transformation, LossNetwork<S>& loss_network,
                                    const StyleBatch<S>& batch, const FeatureStatistics& normalisation,
                                    const LossWeights& weights) {
   weights.validate();
@@ -90,7 +90,7 @@ ObjectiveTerms accumulateObjective(TransformationNetwork<S>& transformation, Aut
 }
 
 template <typename S>
-ObjectiveTerms evaluateObjective(const TransformationNetwork<S>& transformation, const Autoencoder<S>& loss_network,
+ObjectiveTerms evaluateObjective(const TransformationNetwork<S>& transformation, const LossNetwork<S>& loss_network,
                                  const StyleBatch<S>& batch, const FeatureStatistics& normalisation,
                                  const LossWeights& weights) {
   weights.validate();
@@ -102,11 +102,11 @@ ObjectiveTerms evaluateObjective(const TransformationNetwork<S>& transformation,
 
 #define MOTIONSTYLE_INSTANTIATE_STYLE_LOSS(S)                                                          \
   template struct StyleBatch<S>;                                                                       \
-  template Mat<S> contentHidden<S>(const Autoencoder<S>&, const Mat<S>&, int);                         \
-  template Mat<S> styleGram<S>(const Autoencoder<S>&, const Mat<S>&);                                  \
-  template ObjectiveTerms accumulateObjective<S>(TransformationNetwork<S>&, Autoencoder<S>&, const StyleBatch<S>&, \
+  template Mat<S> contentHidden<S>(const LossNetwork<S>&, const Mat<S>&, int);                         \
+  template Mat<S> styleGram<S>(const LossNetwork<S>&, const Mat<S>&);                                  \
+  template ObjectiveTerms accumulateObjective<S>(TransformationNetwork<S>&, LossNetwork<S>&, const StyleBatch<S>&, \
                                                  const FeatureStatistics&, const LossWeights&);            \
-  template ObjectiveTerms evaluateObjective<S>(const TransformationNetwork<S>&, const Autoencoder<S>&,           \
+  template ObjectiveTerms evaluateObjective<S>(const TransformationNetwork<S>&, const LossNetwork<S>&,           \
                                                const StyleBatch<S>&, const FeatureStatistics&, const LossWeights&);
 
 MOTIONSTYLE_INSTANTIATE_STYLE_LOSS(float)

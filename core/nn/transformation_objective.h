@@ -11,7 +11,7 @@
 
 #include <vector>
 
-#include "nn/autoencoder.h"
+#include "nn/loss_network.h"
 #include "nn/losses.h"
 #include "nn/transformation_network.h"
 
@@ -60,22 +60,22 @@ struct StyleBatch {
 
 // L(I) for a content batch: the content target of eq. 4 (compute once per clip).
 template <typename S>
-Mat<S> contentHidden(const Autoencoder<S>& loss_network, const Mat<S>& content, int frames);
+Mat<S> contentHidden(const LossNetwork<S>& loss_network, const Mat<S>& content, int frames);
 
 // Gram(L(S)) of a whole style clip (features x frames, one window of any length): eq. 5's target.
 template <typename S>
-Mat<S> styleGram(const Autoencoder<S>& loss_network, const Mat<S>& style_clip);
+Mat<S> styleGram(const LossNetwork<S>& loss_network, const Mat<S>& style_clip);
 
 // Forward T(I), eq. 10, backward: ADDS into the transformation network's parameter gradients. The loss
 // network's weights are neither changed nor given gradients (only its caches are used).
 template <typename S>
-ObjectiveTerms accumulateObjective(TransformationNetwork<S>& transformation, Autoencoder<S>& loss_network,
+ObjectiveTerms accumulateObjective(TransformationNetwork<S>& transformation, LossNetwork<S>& loss_network,
                                    const StyleBatch<S>& batch, const FeatureStatistics& normalisation,
                                    const LossWeights& weights);
 
 // The same value without gradients (validation).
 template <typename S>
-ObjectiveTerms evaluateObjective(const TransformationNetwork<S>& transformation, const Autoencoder<S>& loss_network,
+ObjectiveTerms evaluateObjective(const TransformationNetwork<S>& transformation, const LossNetwork<S>& loss_network,
                                  const StyleBatch<S>& batch, const FeatureStatistics& normalisation,
                                  const LossWeights& weights);
 

@@ -51,7 +51,7 @@ std::string fileList(const std::vector<MotionClip>& clips) {
   return list;
 }
 
-double meanFamiliarity(const nn::AutoencoderModel& model, const MotionClip& clip) {
+double meanFamiliarity(const nn::LossNetworkModel& model, const MotionClip& clip) {
   return measureFamiliarity(model, clip.features.values).mean_cm;
 }
 
@@ -92,7 +92,7 @@ std::vector<MotionClip> AdaptationJob::replayToMix() const {
 AdaptationResult AdaptationJob::run(const TrainingCallbacks& callbacks) const {
   validate();
   const auto started = std::chrono::steady_clock::now();
-  AutoencoderTrainingConfig config;
+  LossNetworkTrainingConfig config;
   TrainingSettings& training = config.settings;
   training.epochs = settings.epochs;
   training.learning_rate = settings.learning_rate;
@@ -112,7 +112,7 @@ AdaptationResult AdaptationJob::run(const TrainingCallbacks& callbacks) const {
                   (settings.train_encoder ? "encoder and decoder learn" : "the decoder learns, the encoder is kept"));
 
   AdaptationResult result;
-  AutoencoderTrainingResult trained = trainAutoencoder(config, callbacks);
+  LossNetworkTrainingResult trained = trainLossNetwork(config, callbacks);
   result.status = trained.status;
   result.model = std::move(trained.model);
   result.replay_clips = static_cast<int>(mixed.size());
@@ -135,7 +135,7 @@ AdaptationResult AdaptationJob::run(const TrainingCallbacks& callbacks) const {
     result.mean_before_cm = before / static_cast<double>(frameCount(clips));
     result.mean_after_cm = after / static_cast<double>(frameCount(clips));
     if (!settings.output.empty()) {
-      nn::saveAutoencoder(result.model, settings.output);
+      nn::saveLossNetwork(result.model, settings.output);
       if (!settings.keep_checkpoint) removeCheckpoint(training.checkpoint);
     }
   }
@@ -180,7 +180,7 @@ AdaptNetworksJob::Result AdaptNetworksJob::run(const TrainingCallbacks& callback
     settings.learning_rate = style_learning_rate;
     settings.seed = loss.settings.seed;
     settings.checkpoint = scratch / (styles[i].name + ".adapting.checkpoint");
-    config.autoencoder_model = result.loss.model;
+    config.loss_network_model = result.loss.model;
     config.content_clips = loss.clips;
     const std::vector<MotionClip> mixed = loss.replayToMix();
     config.content_clips.insert(config.content_clips.end(), mixed.begin(), mixed.end());

@@ -9,7 +9,7 @@
 //     the style clip it was made from (style targets: nn::StyleModel::style_targets).
 //   - Nothing is forgotten: clips of the original training data, when given (`replay`), are mixed in,
 //     replay_ratio times the user's frames; every epoch sees all of the user's windows.
-//   - Training as trainAutoencoder (training.h): a warm start from the given network, a checkpoint
+//   - Training as trainLossNetwork (training.h): a warm start from the given network, a checkpoint
 //     every epoch, cancellation within a second (the last good checkpoint is kept), progress, and the
 //     learning-rate schedule; deterministic for a seed and thread count.
 // The adapted network records what it was adapted on (metadata properties "adapted_*": the loss network
@@ -48,7 +48,7 @@ struct ClipFamiliarity {
 
 struct AdaptationResult {
   TrainingStatus status = TrainingStatus::Completed;
-  nn::AutoencoderModel model;            // the adapted network (when cancelled: after the last step)
+  nn::LossNetworkModel model;            // the adapted network (when cancelled: after the last step)
   std::vector<ClipFamiliarity> clips;    // per user clip (Completed only)
   double mean_before_cm = 0.0;           // frame-weighted over the user's clips
   double mean_after_cm = 0.0;
@@ -58,8 +58,8 @@ struct AdaptationResult {
 
 // Plain inputs of one adaptation.
 struct AdaptationJob {
-  nn::AutoencoderModel loss_network;       // the network to adapt (e.g. the shipped one)
-  std::string loss_network_name;           // for the metadata ("autoencoder", a file name)
+  nn::LossNetworkModel loss_network;       // the network to adapt (e.g. the shipped one)
+  std::string loss_network_name;           // for the metadata ("loss_network", a file name)
   std::vector<MotionClip> clips;           // the user's clips (at least one frame each)
   std::vector<MotionClip> replay;          // clips of the original training data; may be empty
   AdaptationSettings settings;

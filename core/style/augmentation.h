@@ -53,7 +53,7 @@ std::string describe(const AugmentationOptions& options);
 // The options the measurements chose (docs/decisions.md): for the loss network, girdle 75 degrees,
 // offsets 20, mirroring 0.5 (no time warp or proportions: they changed nothing); for a style
 // network's content, offsets 20 and mirroring 0.5 (its content is rig-canonicalised, which turns the
-// girdle back anyway). The CLI's train-ae and train-style use them unless told otherwise.
+// girdle back anyway). The CLI's train-loss-network and train-style use them unless told otherwise.
 AugmentationOptions defaultAugmentation();
 AugmentationOptions defaultContentAugmentation();
 

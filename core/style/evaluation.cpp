@@ -57,7 +57,7 @@ nlohmann::json clipJson(const ClipEvaluation& c) {
 
 }  // namespace
 
-StyleDistances measureStyleDistances(const nn::Autoencoder<float>& encoder, const FeatureStatistics& normalisation,
+StyleDistances measureStyleDistances(const nn::LossNetwork<float>& encoder, const FeatureStatistics& normalisation,
                                      const Eigen::MatrixXd& content, const Eigen::MatrixXd& output,
                                      const nn::Mat<float>& style_gram) {
   const int frames = static_cast<int>(content.cols());
@@ -72,7 +72,7 @@ StyleDistances measureStyleDistances(const nn::Autoencoder<float>& encoder, cons
   return d;
 }
 
-nn::Mat<float> styleGramOf(const nn::Autoencoder<float>& encoder, const FeatureStatistics& normalisation,
+nn::Mat<float> styleGramOf(const nn::LossNetwork<float>& encoder, const FeatureStatistics& normalisation,
                            const Eigen::MatrixXd& style) {
   return nn::styleGram(encoder, normalisation.normalized(style));
 }
@@ -105,15 +105,15 @@ double footSkate(const Eigen::MatrixXd& features, const Eigen::MatrixXd& contact
   return count > 0 ? sum / static_cast<double>(count) : 0.0;
 }
 
-EvaluationReport evaluateStyleNetwork(const nn::AutoencoderModel& autoencoder, const nn::StyleModel& network,
+EvaluationReport evaluateStyleNetwork(const nn::LossNetworkModel& loss_network, const nn::StyleModel& network,
                                       const std::vector<MotionClip>& clips, const std::vector<MotionClip>& styles,
                                       const std::vector<int>& pairing, PathMode path) {
   if (pairing.size() != clips.size()) throw std::invalid_argument("evaluateStyleNetwork: one pairing per clip");
   const auto started = Clock::now();
   EvaluationReport report;
-  report.autoencoder_matches_network = nn::sameWeights(autoencoder.network, network.loss_network);
+  report.loss_network_matches_network = nn::sameWeights(loss_network.network, network.loss_network);
   const Stylizer stylizer(network);
-  const nn::Autoencoder<float>& loss = network.loss_network;
+  const nn::LossNetwork<float>& loss = network.loss_network;
   const FeatureStatistics& norm = network.normalisation;
   std::vector<nn::Mat<float>> style_grams;
   for (const MotionClip& style : styles) style_grams.push_back(styleGramOf(loss, norm, style.features.values));
@@ -127,10 +127,10 @@ EvaluationReport evaluateStyleNetwork(const nn::AutoencoderModel& autoencoder, c
     e.style_clip = styles.at(static_cast<std::size_t>(pairing[i])).file.filename().string();
     e.frames = frames;
 
-    const Eigen::MatrixXd reconstructed = projectFeatures(autoencoder, content);
-    const nn::Mat<float> content_ae = autoencoder.normalisation.normalized(content);
+    const Eigen::MatrixXd reconstructed = projectFeatures(loss_network, content);
+    const nn::Mat<float> content_loss_network = loss_network.normalisation.normalized(content);
     e.reconstruction_mse = static_cast<double>(
-        nn::meanSquaredError<float>(autoencoder.normalisation.normalized(reconstructed), content_ae, 0.0f, nullptr));
+        nn::meanSquaredError<float>(loss_network.normalisation.normalized(reconstructed), content_loss_network, 0.0f, nullptr));
     e.reconstruction_joint_error_cm = familiarityFromReconstruction(content, reconstructed).mean_cm;
 
     const auto t0 = Clock::now();
@@ -174,9 +174,9 @@ std::string evaluationJson(const EvaluationReport& report) {
   nlohmann::json json;
   json["format"] = "motionstyle-evaluation";
   json["version"] = 1;
-  json["autoencoder"] = report.autoencoder_file;
+  json["loss_network"] = report.loss_network_file;
   json["network"] = report.network_file;
-  json["autoencoder_matches_network"] = report.autoencoder_matches_network;
+  json["loss_network_matches_network"] = report.loss_network_matches_network;
   json["units"] = {{"distances", "unweighted eq. 4 / eq. 5 means (normalised hidden units)"},
                    {"lengths", "reference cm"},
                    {"foot_skate", "reference cm per second"}};

@@ -28,7 +28,7 @@
 // figures compare across characters; the Bandai actors are at about their real size.
 // Summary: frame-weighted means over the clips, plus frames per second of stylize.
 // Encoders: the style network's own loss network (the one it was trained against) for the distances,
-// the given autoencoder for the reconstruction figures.
+// the given loss network for the reconstruction figures.
 
 #include <string>
 #include <vector>
@@ -60,9 +60,9 @@ struct ClipEvaluation {
 };
 
 struct EvaluationReport {
-  std::string autoencoder_file;
+  std::string loss_network_file;
   std::string network_file;
-  bool autoencoder_matches_network = true;  // the given autoencoder is the network's own loss network
+  bool loss_network_matches_network = true;  // the given loss network is the network's own loss network
   std::vector<ClipEvaluation> clips;
   ClipEvaluation mean;                      // frame-weighted means (file = "mean")
   double stylize_frames_per_second = 0;
@@ -70,7 +70,7 @@ struct EvaluationReport {
 };
 
 // clips: the content clips; styles: the style clips; pairing[i] indexes `styles` for clips[i].
-EvaluationReport evaluateStyleNetwork(const nn::AutoencoderModel& autoencoder, const nn::StyleModel& network,
+EvaluationReport evaluateStyleNetwork(const nn::LossNetworkModel& loss_network, const nn::StyleModel& network,
                                       const std::vector<MotionClip>& clips, const std::vector<MotionClip>& styles,
                                       const std::vector<int>& pairing, PathMode path = PathMode::Content);
 
@@ -83,11 +83,11 @@ struct StyleDistances {
   double style_after = 0;
   double styleRatio() const { return style_before > 0 ? style_after / style_before : 0.0; }
 };
-StyleDistances measureStyleDistances(const nn::Autoencoder<float>& encoder, const FeatureStatistics& normalisation,
+StyleDistances measureStyleDistances(const nn::LossNetwork<float>& encoder, const FeatureStatistics& normalisation,
                                      const Eigen::MatrixXd& content, const Eigen::MatrixXd& output,
                                      const nn::Mat<float>& style_gram);
 // Gram(L(S)) of a style clip's features (representation units) through `encoder`.
-nn::Mat<float> styleGramOf(const nn::Autoencoder<float>& encoder, const FeatureStatistics& normalisation,
+nn::Mat<float> styleGramOf(const nn::LossNetwork<float>& encoder, const FeatureStatistics& normalisation,
                            const Eigen::MatrixXd& style);
 
 // Figures used by the report, public for tests and the GUI's metrics panel. features: 66 x frames,

@@ -44,7 +44,7 @@ Familiarity familiarityFromReconstruction(const Eigen::MatrixXd& features, const
   return result;
 }
 
-Familiarity measureFamiliarity(const nn::AutoencoderModel& loss_network, const Eigen::MatrixXd& features) {
+Familiarity measureFamiliarity(const nn::LossNetworkModel& loss_network, const Eigen::MatrixXd& features) {
   requireFeatures(features);
   return familiarityFromReconstruction(features, projectFeatures(loss_network, features));
 }

@@ -1,5 +1,5 @@
 #pragma once
-// How familiar a clip is to a loss network: the network is an autoencoder trained on the motion the
+// How familiar a clip is to a loss network: the network is a loss network trained on the motion the
 // style networks learnt from, so how well it reconstructs a clip says how close the clip is to that
 // motion, and so how much to trust a stylized result (the paper's manifold projection distorts what it
 // cannot reconstruct).
@@ -34,7 +34,7 @@ struct Familiarity {
 };
 
 // features: 66 x frames (frames >= 1), representation units. Throws std::invalid_argument otherwise.
-Familiarity measureFamiliarity(const nn::AutoencoderModel& loss_network, const Eigen::MatrixXd& features);
+Familiarity measureFamiliarity(const nn::LossNetworkModel& loss_network, const Eigen::MatrixXd& features);
 // The same through a style network's own loss network.
 Familiarity measureFamiliarity(const nn::StyleModel& network, const Eigen::MatrixXd& features);
 // The reading from a reconstruction already computed: reconstructed = L(features), both 66 x frames

@@ -21,7 +21,7 @@ using Clock = std::chrono::steady_clock;
 // decode(H) with the decoder's forward cache (for the constraint pass) and its input gradient.
 class Decoder {
  public:
-  Decoder(const nn::Autoencoder<float>& network, int frames) : network_(network), frames_(frames) {}
+  Decoder(const nn::LossNetwork<float>& network, int frames) : network_(network), frames_(frames) {}
 
   nn::Mat<float> forward(const nn::Mat<float>& hidden) {
     nn::Mat<float> shifted = nn::AverageDepool2<float>::apply(hidden);
@@ -35,7 +35,7 @@ class Decoder {
   }
 
  private:
-  nn::Autoencoder<float> network_;  // a copy: forward() caches inside the decoder
+  nn::LossNetwork<float> network_;  // a copy: forward() caches inside the decoder
   int frames_;
 };
 
@@ -56,7 +56,7 @@ void OptimizationOptions::validate() const {
   if (content_weight + style_weight <= 0) throw std::invalid_argument("content and style weights cannot both be 0");
 }
 
-OptimizationResult optimizeStyleTransfer(const nn::AutoencoderModel& autoencoder, const Eigen::MatrixXd& content,
+OptimizationResult optimizeStyleTransfer(const nn::LossNetworkModel& loss_network, const Eigen::MatrixXd& content,
                                          const Eigen::MatrixXd& content_contacts, const Eigen::MatrixXd& style,
                                          const std::string& style_name, const OptimizationOptions& options,
                                          const OptimizationCallbacks& callbacks) {
@@ -66,15 +66,15 @@ OptimizationResult optimizeStyleTransfer(const nn::AutoencoderModel& autoencoder
   if (content.rows() != kFeatureCount || frames < 1 || content_contacts.rows() != kContactCount ||
       content_contacts.cols() != frames || style.rows() != kFeatureCount)
     throw std::invalid_argument("optimizeStyleTransfer: content 66 x frames, contacts 4 x frames, style 66 x frames");
-  const int width = autoencoder.network.shape().width;
+  const int width = loss_network.network.shape().width;
   if (style.cols() < width)
     throw InputError(style_name, 0, "the style clip is too short: " + std::to_string(style.cols()) +
                                         " frames at 60 fps, the loss network's filter needs at least " +
                                         std::to_string(width));
   if (!content.allFinite() || !style.allFinite()) throw std::invalid_argument("optimizeStyleTransfer: non-finite input");
 
-  const FeatureStatistics& norm = autoencoder.normalisation;
-  const nn::Autoencoder<float>& network = autoencoder.network;
+  const FeatureStatistics& norm = loss_network.normalisation;
+  const nn::LossNetwork<float>& network = loss_network.network;
   const nn::Mat<float> content_n = norm.normalized(content);
   const nn::Mat<float> content_hidden = network.encode(content_n, frames);
   const std::vector<nn::Mat<float>> style_gram = {nn::styleGram(network, norm.normalized(style))};
@@ -158,10 +158,10 @@ OptimizationResult optimizeStyleTransfer(const nn::AutoencoderModel& autoencoder
   return result;
 }
 
-OptimizationResult optimizeStyleTransfer(const nn::AutoencoderModel& autoencoder, const MotionFeatures& content,
+OptimizationResult optimizeStyleTransfer(const nn::LossNetworkModel& loss_network, const MotionFeatures& content,
                                          const MotionFeatures& style, const std::string& style_name,
                                          const OptimizationOptions& options, const OptimizationCallbacks& callbacks) {
-  OptimizationResult result = optimizeStyleTransfer(autoencoder, content.values, content.contacts, style.values,
+  OptimizationResult result = optimizeStyleTransfer(loss_network, content.values, content.contacts, style.values,
                                                     style_name, options, callbacks);
   if (result.cancelled) return result;
   result.clip.anchor = content.anchor;

@@ -77,13 +77,13 @@ struct OptimizationResult {
 // Feature-level core: content and style are 66 x frames in representation units, content_contacts
 // 4 x content frames; returns decode(H) in representation units. Throws InputError naming `style_name`
 // for a style clip shorter than the filter width, std::invalid_argument for bad shapes.
-OptimizationResult optimizeStyleTransfer(const nn::AutoencoderModel& autoencoder, const Eigen::MatrixXd& content,
+OptimizationResult optimizeStyleTransfer(const nn::LossNetworkModel& loss_network, const Eigen::MatrixXd& content,
                                          const Eigen::MatrixXd& content_contacts, const Eigen::MatrixXd& style,
                                          const std::string& style_name, const OptimizationOptions& options = {},
                                          const OptimizationCallbacks& callbacks = {});
 
 // The whole clip, with world positions in the content's file space (as Stylizer::stylize).
-OptimizationResult optimizeStyleTransfer(const nn::AutoencoderModel& autoencoder, const MotionFeatures& content,
+OptimizationResult optimizeStyleTransfer(const nn::LossNetworkModel& loss_network, const MotionFeatures& content,
                                          const MotionFeatures& style, const std::string& style_name,
                                          const OptimizationOptions& options = {},
                                          const OptimizationCallbacks& callbacks = {});

@@ -15,7 +15,7 @@
 namespace motionstyle::style {
 
 struct OptimizationTransferJob {
-  nn::AutoencoderModel loss_network;
+  nn::LossNetworkModel loss_network;
   std::filesystem::path content;  // BVH
   std::filesystem::path style;    // BVH, at least the loss network's filter width long
   OptimizationOptions options;

@@ -17,7 +17,7 @@ namespace {
 
 // Windows of hidden units L(I) per content window, computed once: the content target of eq. 4 never
 // changes while T trains (the biggest saving of the training loop after the GEMMs themselves).
-nn::Mat<float> encodeAllWindows(const nn::Autoencoder<float>& loss_network, const WindowSet& windows,
+nn::Mat<float> encodeAllWindows(const nn::LossNetwork<float>& loss_network, const WindowSet& windows,
                                 const TrainingCallbacks& callbacks, std::chrono::steady_clock::time_point started) {
   const int pooled = nn::evenFrames(windows.frames) / 2;
   nn::Mat<float> hidden(loss_network.shape().hidden, static_cast<Eigen::Index>(windows.count()) * pooled);
@@ -41,7 +41,7 @@ nn::Mat<float> encodeAllWindows(const nn::Autoencoder<float>& loss_network, cons
   return hidden;
 }
 
-bool sameEncoder(const nn::Autoencoder<float>& a, const nn::Autoencoder<float>& b) {
+bool sameEncoder(const nn::LossNetwork<float>& a, const nn::LossNetwork<float>& b) {
   return a.shape() == b.shape() && a.encoder.weight.value == b.encoder.weight.value &&
          a.encoder.bias.value == b.encoder.bias.value;
 }
@@ -73,7 +73,7 @@ std::string fileHash(const std::filesystem::path& file) {
 }
 
 std::vector<std::string> settingsParts(const StyleTrainingConfig& config, const std::vector<std::string>& style_hashes,
-                                       const std::vector<int>& pairing, const nn::AutoencoderModel& loss) {
+                                       const std::vector<int>& pairing, const nn::LossNetworkModel& loss) {
   std::vector<std::string> parts = {"style", "hidden=" + std::to_string(config.shape.hidden),
                                     "width=" + std::to_string(config.shape.width),
                                     "residual=" + std::to_string(config.shape.residual)};
@@ -81,7 +81,7 @@ std::vector<std::string> settingsParts(const StyleTrainingConfig& config, const 
   for (double v : {w.content, w.style, w.foot, w.bone, w.trajectory}) parts.push_back(std::to_string(v));
   parts.insert(parts.end(), style_hashes.begin(), style_hashes.end());
   for (int p : pairing) parts.push_back(std::to_string(p));
-  parts.push_back(nn::contentHash(nn::serialiseAutoencoderFormat1(nn::AutoencoderModel{loss.network, loss.normalisation, {}})));
+  parts.push_back(nn::contentHash(nn::serialiseLossNetworkFormat1(nn::LossNetworkModel{loss.network, loss.normalisation, {}})));
   return parts;
 }
 
@@ -94,9 +94,9 @@ StyleTrainingResult trainStyleNetwork(const StyleTrainingConfig& config, const T
   StyleTrainingResult result;
   result.model.transformation = nn::TransformationNetwork<float>(config.shape);
 
-  const nn::AutoencoderModel loss = config.autoencoder_model
-                                        ? *config.autoencoder_model
-                                        : loadCompatibleAutoencoder(config.autoencoder, settings.dataset.features);
+  const nn::LossNetworkModel loss = config.loss_network_model
+                                        ? *config.loss_network_model
+                                        : loadCompatibleLossNetwork(config.loss_network, settings.dataset.features);
   const FeatureStatistics& statistics = loss.normalisation;
 
   // Style clips: every one must cover the loss network's filter (25 frames at 60 fps).
@@ -204,7 +204,7 @@ StyleTrainingResult trainStyleNetwork(const StyleTrainingConfig& config, const T
   if (callbacks.style_snapshot) network.snapshot = [&] { callbacks.style_snapshot(model); };
   LoopSetup setup = startTraining(network, settings, fingerprint, optimiser, history, callbacks, started);
 
-  nn::Autoencoder<float> loss_network = loss.network;  // forward caches are per instance
+  nn::LossNetwork<float> loss_network = loss.network;  // forward caches are per instance
   const FeatureStatistics normalisation = loss.normalisation;
   const int frames = windows.frames;
   const int pooled = nn::evenFrames(frames) / 2;

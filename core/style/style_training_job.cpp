@@ -53,15 +53,13 @@ StyleTrainingJob::Result StyleTrainingJob::run(const TrainingCallbacks& callback
 
   StyleTrainingResult trained = trainStyleNetwork(config, inner);
   Result result;
-  result.status = trained.status;
-  result.epochs_completed = trained.epochs_completed;
-  result.history = std::move(trained.history);
+  result.pairing = std::move(trained.pairing);
   result.checkpoint = config.settings.checkpointPath();
   if (trained.status == TrainingStatus::Completed)
     result.model = std::make_shared<const nn::StyleModel>(std::move(trained.model));
   else
     result.model = last_snapshot;  // the weights after the last completed epoch = the checkpoint
-  result.seconds = secondsSince(started);
+  static_cast<TrainingResult&>(result) = std::move(static_cast<TrainingResult&>(trained));
   return result;
 }
 

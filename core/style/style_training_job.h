@@ -1,7 +1,8 @@
 #pragma once
-// StyleTrainingJob: trainStyleNetwork (training.h) as the app runs it: a new network, a warm start
-// (Retrain) or a resumed run, with a live preview of each snapshot on one content clip, and a
-// cancelled run's network of its last completed epoch kept as the result. The job shape of every long
+// StyleTrainingJob: trainStyleNetwork (training.h) as motionstyle-cli train-style and the app run it:
+// a new network, a warm start (Retrain) or a resumed run, with an optional live preview of each
+// snapshot on one content clip, and a cancelled run's network of its last completed epoch kept as the
+// result. The job shape of every long
 // operation (plain inputs, validate(), run() with callbacks and a cancel flag, a typed Result).
 
 #include <filesystem>
@@ -22,15 +23,14 @@ struct StyleTrainingJob {
 
   void validate() const { config.validate(); }  // std::invalid_argument naming the bad field
 
-  struct Result {
-    TrainingStatus status = TrainingStatus::Completed;
-    int epochs_completed = 0;
+  // The run's account (status, epochs, history, training and held-out files, seconds: training.h)
+  // with the network as a shared, immutable model.
+  struct Result : TrainingResult {
     // Completed: the trained network. Cancelled: the network of the last completed epoch (the same as
     // the checkpoint file), or null when no epoch completed.
     std::shared_ptr<const nn::StyleModel> model;
-    std::vector<EpochRecord> history;
+    std::vector<int> pairing;          // per training clip: index into config.styles (or stored targets)
     std::filesystem::path checkpoint;  // this run's checkpoint (absent when no epoch ended)
-    double seconds = 0.0;
   };
   // The snapshot of `epoch` applied to preview_content at strength 1; called on the training thread.
   using PreviewCallback = std::function<void(std::shared_ptr<const StylizedClip> clip, int epoch)>;

@@ -73,10 +73,10 @@ StylizedClip Stylizer::stylize(const MotionFeatures& content, double strength, P
   return clip;
 }
 
-Eigen::MatrixXd projectFeatures(const nn::AutoencoderModel& autoencoder, const Eigen::MatrixXd& features) {
+Eigen::MatrixXd projectFeatures(const nn::LossNetworkModel& loss_network, const Eigen::MatrixXd& features) {
   requireFeatures(features, "projectFeatures");
-  nn::FastStylizer fast(autoencoder.network);
-  const FeatureStatistics& normalisation = autoencoder.normalisation;
+  nn::FastStylizer fast(loss_network.network);
+  const FeatureStatistics& normalisation = loss_network.normalisation;
   return cropEdges(normalisation.denormalized(fast.project(normalisation.normalized(padEdges(features)))));
 }
 

@@ -67,8 +67,8 @@ class Stylizer {
   mutable std::unique_ptr<nn::FastStylizer> fast_;
 };
 
-// L(x) = decode(encode(x)) of a clip in representation units (66 x frames): the autoencoder's
+// L(x) = decode(encode(x)) of a clip in representation units (66 x frames): the loss network's
 // reconstruction, used by eval and as the "projection only" preview. float32 fast path.
-Eigen::MatrixXd projectFeatures(const nn::AutoencoderModel& autoencoder, const Eigen::MatrixXd& features);
+Eigen::MatrixXd projectFeatures(const nn::LossNetworkModel& loss_network, const Eigen::MatrixXd& features);
 
 }  // namespace motionstyle::style

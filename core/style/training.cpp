@@ -55,7 +55,7 @@ void TrainingSettings::validate() const {
   augmentation.validate();
 }
 
-void AutoencoderTrainingConfig::validate() const {
+void LossNetworkTrainingConfig::validate() const {
   settings.validate();
   if (data.empty() && clips.empty()) throw std::invalid_argument("no training data (folders, files or clips)");
   if (!std::isfinite(sparsity) || sparsity < 0) throw std::invalid_argument("sparsity must be >= 0");
@@ -63,14 +63,14 @@ void AutoencoderTrainingConfig::validate() const {
   if (!std::isfinite(foot_weight) || foot_weight < 0) throw std::invalid_argument("foot weight must be >= 0");
   if (!train_encoder && settings.resume)
     throw std::invalid_argument("a run that trains only the decoder cannot be resumed: start it again");
-  if (shape.features != kFeatureCount) throw std::invalid_argument("the autoencoder must take 66 features");
+  if (shape.features != kFeatureCount) throw std::invalid_argument("the loss network must take 66 features");
   if (shape.hidden < 1 || shape.width < 1 || shape.width % 2 == 0)
-    throw std::invalid_argument("autoencoder hidden units must be >= 1 and the width odd");
+    throw std::invalid_argument("loss network hidden units must be >= 1 and the width odd");
 }
 
 void StyleTrainingConfig::validate() const {
   settings.validate();
-  if (autoencoder.empty() && !autoencoder_model) throw std::invalid_argument("no loss network (--ae) given");
+  if (loss_network.empty() && !loss_network_model) throw std::invalid_argument("no loss network (--loss-network) given");
   if (content.empty() && content_clips.empty()) throw std::invalid_argument("no content clips given");
   if (styles.empty() && style_targets.empty() && settings.init.empty() && !init_model)
     throw std::invalid_argument("no style clip given (nor stored style targets or a network to take them from)");
@@ -89,8 +89,8 @@ nn::RepresentationInfo currentRepresentation(const FeatureOptions& options) {
   return info;
 }
 
-nn::AutoencoderModel loadCompatibleAutoencoder(const std::filesystem::path& file, const FeatureOptions& options) {
-  nn::AutoencoderModel model = nn::loadAutoencoder(file);
+nn::LossNetworkModel loadCompatibleLossNetwork(const std::filesystem::path& file, const FeatureOptions& options) {
+  nn::LossNetworkModel model = nn::loadLossNetwork(file);
   nn::checkCompatible(model.metadata.representation, currentRepresentation(options), file.string());
   return model;
 }

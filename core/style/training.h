@@ -1,7 +1,7 @@
 #pragma once
-// The training API shared by the CLI (train-ae, train-style) and the GUI's worker thread.
+// The training API shared by the CLI (train-loss-network, train-style) and the GUI's worker thread.
 //
-//   trainAutoencoder:  the loss network L (eq. 1-3) on windows of a motion database.
+//   trainLossNetwork:  the loss network L (eq. 1-3) on windows of a motion database.
 //   trainStyleNetwork: one transformation network T per style (eq. 4-10) against a trained L.
 //
 // Both run on the calling thread (the GUI calls them from a worker) and use the nn compute pool for
@@ -48,7 +48,7 @@ namespace motionstyle::style {
 
 
 struct NamedLoss {
-  std::string name;  // "mse", "sparsity" (autoencoder); "content", "style", "foot", "bone", "trajectory"
+  std::string name;  // "mse", "sparsity" (loss network); "content", "style", "foot", "bone", "trajectory"
   double value = 0;  // UNWEIGHTED term
 };
 
@@ -78,7 +78,7 @@ struct TrainingCallbacks {
   std::function<void(const std::string&)> log;            // notes and warnings (skipped files, pairing)
   const std::atomic<bool>* cancel = nullptr;               // set to true from any thread to stop
   // After every epoch's checkpoint, a copy of the model so far (the GUI's live preview). May be empty.
-  std::function<void(const nn::AutoencoderModel&)> autoencoder_snapshot;
+  std::function<void(const nn::LossNetworkModel&)> loss_network_snapshot;
   std::function<void(const nn::StyleModel&)> style_snapshot;
 };
 
@@ -142,18 +142,18 @@ struct TrainingResult {
 
 // ---- Loss network -------------------------------------------------------------------------------
 
-struct AutoencoderTrainingConfig {
+struct LossNetworkTrainingConfig {
   TrainingSettings settings;
   // Folders and/or files (ignored when `clips` is not empty), featurised without rig canonicalisation:
   // the loss network learns motion as captured (features/rig_canonicalisation.h).
   std::vector<std::filesystem::path> data;
   std::vector<MotionClip> clips;            // preloaded clips (the GUI's library)
-  nn::AutoencoderShape shape;
+  nn::LossNetworkShape shape;
   double sparsity = nn::kDefaultSparsity;       // alpha of eq. 3 (mean |w|)
   double dropout = nn::kDefaultInputDropout;    // input dropout rate in [0, 1)
   double foot_weight = 0.0;  // eq. 7 on the reconstruction (nn::ReconstructionFootTerm), per cm^2
   // Warm start from a model in memory (wins over settings.init): its weights and normalisation.
-  std::optional<nn::AutoencoderModel> init_model;
+  std::optional<nn::LossNetworkModel> init_model;
   // false: only the decoder (eq. 2's W~0) learns; the encoder (W0, b0), and with it every content and
   // style target computed through it, stays as it was (adaptation.h).
   bool train_encoder = true;
@@ -161,21 +161,21 @@ struct AutoencoderTrainingConfig {
   void validate() const;
 };
 
-struct AutoencoderTrainingResult : TrainingResult {
+struct LossNetworkTrainingResult : TrainingResult {
   // The trained network with its normalisation (computed over the training clips) and metadata; when
   // cancelled, the weights after the last completed step (the checkpoint file holds the last epoch's).
-  nn::AutoencoderModel model;
+  nn::LossNetworkModel model;
 };
 
-AutoencoderTrainingResult trainAutoencoder(const AutoencoderTrainingConfig& config,
+LossNetworkTrainingResult trainLossNetwork(const LossNetworkTrainingConfig& config,
                                            const TrainingCallbacks& callbacks = {});
 
 // ---- Transformation network ---------------------------------------------------------------------
 
 struct StyleTrainingConfig {
   TrainingSettings settings;
-  std::filesystem::path autoencoder;        // the loss network file (with its normalisation)
-  std::optional<nn::AutoencoderModel> autoencoder_model;  // preloaded loss network (wins over the path)
+  std::filesystem::path loss_network;        // the loss network file (with its normalisation)
+  std::optional<nn::LossNetworkModel> loss_network_model;  // preloaded loss network (wins over the path)
   std::vector<std::filesystem::path> content;  // content folders/files (ignored when content_clips set)
   std::vector<MotionClip> content_clips;       // preloaded content
   std::vector<StyleSource> styles;             // style clips and their pairing (style_pairing.h)
@@ -201,7 +201,7 @@ nn::RepresentationInfo currentRepresentation(const FeatureOptions& options = {})
 
 // Loads a network file and checks it was made for currentRepresentation(options): InputError naming the
 // file otherwise (a network for a different representation).
-nn::AutoencoderModel loadCompatibleAutoencoder(const std::filesystem::path& file, const FeatureOptions& options = {});
+nn::LossNetworkModel loadCompatibleLossNetwork(const std::filesystem::path& file, const FeatureOptions& options = {});
 nn::StyleModel loadCompatibleStyleModel(const std::filesystem::path& file, const FeatureOptions& options = {});
 
 

@@ -1,5 +1,5 @@
 #pragma once
-// The epoch/step loop shared by trainAutoencoder and trainStyleNetwork (internal to core/style):
+// The epoch/step loop shared by trainLossNetwork and trainStyleNetwork (internal to core/style):
 // shuffling, batches split into micro-batches, gradient averaging, the optimiser step, divergence and
 // cancellation checks, progress, and the end-of-epoch hook (checkpoint).
 
@@ -84,10 +84,10 @@ void runTrainingLoop(const LoopSetup& setup, std::vector<EpochRecord>& history, 
 //   WARM START (warm_start set): warm_start() takes an earlier network's weights;
 //   FRESH      otherwise: fresh() initialises.
 // Its file: set_metadata(history so far), serialise() for checkpoints, save(settings.output) at the end,
-// snapshot() after each epoch (optional). One shape, so that the autoencoder and the style network
+// snapshot() after each epoch (optional). One shape, so that the loss network and the style network
 // start, checkpoint and finish the same way.
 struct TrainedNetwork {
-  nn::NetworkKind kind = nn::NetworkKind::Autoencoder;
+  nn::NetworkKind kind = nn::NetworkKind::LossNetwork;
   std::function<void(const std::string& network_bytes, const std::filesystem::path& checkpoint)> resume;
   std::function<void()> warm_start;  // empty: no earlier network to start from
   std::function<void()> fresh;

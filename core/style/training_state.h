@@ -8,7 +8,7 @@
 //
 // The state is a ".state" sidecar beside the checkpoint network file (the network file format has no
 // room for optimiser state). Binary, little-endian (nn/binary_io.h):
-//   "MSTRAINSTATE\0\0\0\0" (16 bytes), u32 version = 1, u32 network kind (1 autoencoder, 2 style),
+//   "MSTRAINSTATE\0\0\0\0" (16 bytes), u32 version = 1, u32 network kind (1 loss network, 2 style),
 //   u32 epochs completed, u64 Adam steps, u64 data fingerprint, u64 FNV-1a of the network file's bytes
 //   (not a CRC: a network file ends with its own CRC-32, so the CRC of any valid one is the same constant),
 //   u32 tensor count n, then n first moments and n second moments (nn::ByteWriter::tensor), u32 epochs,
@@ -28,7 +28,7 @@
 namespace motionstyle::style {
 
 struct TrainingState {
-  nn::NetworkKind kind = nn::NetworkKind::Autoencoder;
+  nn::NetworkKind kind = nn::NetworkKind::LossNetwork;
   int epochs_completed = 0;
   long adam_steps = 0;
   std::uint64_t data_fingerprint = 0;

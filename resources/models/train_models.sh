@@ -4,7 +4,7 @@
 #
 #   bash resources/models/train_models.sh [STEP...]
 #
-# STEP: ae, a style name (elderly exhausted angry proud youthful feminine masculine sad happy), pack,
+# STEP: loss_network (formerly ae), a style name (elderly exhausted angry proud youthful feminine masculine sad happy), pack,
 # eval, or nothing for all of them in that order. Environment:
 #   DATA  the dataset root holding dataset-1/ and dataset-2/ (default: ../shared/data/bandai)
 #   CLI   motionstyle-cli (default: build/release/app/cli/motionstyle-cli)
@@ -13,7 +13,7 @@
 #   OUT   where the shipped (half-precision) files go (default: resources/models)
 # Every command is deterministic for its seed and thread count (--threads 2 here), so the same
 # commands on the same data rebuild bit-identical files. Times per step land in $WORK/times.txt.
-# Everything not given below is the CLI's default (motionstyle-cli train-ae --help, train-style --help).
+# Everything not given below is the CLI's default (motionstyle-cli train-loss-network --help, train-style --help).
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 root="$(cd "$here/../.." && pwd)"
@@ -25,7 +25,7 @@ OUT="${OUT:-$here}"
 D1="$DATA/dataset-1/data"
 D2="$DATA/dataset-2/data"
 THREADS=2
-AE_EPOCHS=40
+LOSS_NETWORK_EPOCHS=40
 STYLE_EPOCHS=100
 
 [[ -d "$D1" && -d "$D2" ]] || { echo "error: the Bandai dataset is not at $DATA (set DATA)" >&2; exit 2; }
@@ -62,17 +62,17 @@ style_args() {
   esac
 }
 
-train_ae() {
+train_loss_network() {
   # Every clip of both parts (locomotion, hand raising and waving, bows, punches, dances...), every
   # 10th held out for evaluation; the defaults augment the rigs (girdle 75, offsets 20, mirroring).
-  timed ae "$CLI" train-ae --data "$D1" "$D2" --out "$WORK/autoencoder.net" --epochs $AE_EPOCHS \
+  timed loss_network "$CLI" train-loss-network --data "$D1" "$D2" --out "$WORK/loss_network.net" --epochs $LOSS_NETWORK_EPOCHS \
     --seed 1 --threads $THREADS --holdout 10
 }
 
 train_style() {
   local s=$1
   # shellcheck disable=SC2046
-  timed "$s" "$CLI" train-style --ae "$WORK/autoencoder.net" --content "$WORK/content" \
+  timed "$s" "$CLI" train-style --loss-network "$WORK/loss_network.net" --content "$WORK/content" \
     $(style_args "$s") --out "$WORK/$s.net" --epochs $STYLE_EPOCHS --seed 1 --threads $THREADS --holdout 5
 }
 
@@ -80,7 +80,7 @@ train_style() {
 # and changes the stylized output by far less than a millimetre (see README.md).
 pack() {
   local name
-  for name in autoencoder $ALL_STYLES; do
+  for name in loss_network $ALL_STYLES; do
     [[ -f "$WORK/$name.net" ]] || continue
     "$CLI" pack "$WORK/$name.net" --out "$OUT/$name.net" --precision f16
   done
@@ -100,10 +100,10 @@ evaluate() {
 
 ALL_STYLES="elderly exhausted angry proud youthful feminine masculine sad happy"
 steps=("$@")
-[[ ${#steps[@]} -gt 0 ]] || steps=(ae $ALL_STYLES pack eval)
+[[ ${#steps[@]} -gt 0 ]] || steps=(loss_network $ALL_STYLES pack eval)
 for step in "${steps[@]}"; do
   case $step in
-    ae) train_ae ;;
+    loss_network | ae) train_loss_network ;;  # ae: its former name
     pack) pack ;;
     eval) evaluate ;;
     *) train_style "$step" ;;

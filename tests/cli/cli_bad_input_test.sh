@@ -6,7 +6,7 @@
 set -u
 source "$(dirname "${BASH_SOURCE[0]}")/cli_test_lib.sh"  # cli, data, work, failures, expect, fail
 
-# The shipped networks (stylize --net elderly, --ae autoencoder) from the source tree's resources.
+# The shipped networks (stylize --net elderly, --loss-network loss_network) from the source tree's resources.
 MOTIONSTYLE_RESOURCES="$(cd "$data/../.." && pwd)/resources"
 export MOTIONSTYLE_RESOURCES
 
@@ -56,17 +56,17 @@ tiny="--epochs 1 --hidden 8 --threads 1"
 quick="--iterations 2 --constraint-iterations 1"
 expect 2 "\-\-lr must be in" timeout 60 "$cli" transfer --ae autoencoder --style "$zombie" "$zombie" --out "$work/out.bvh" \
   $quick --lr 1e308
-expect 2 "\-\-style-weight must be in" timeout 60 "$cli" transfer --ae autoencoder --style "$zombie" "$zombie" \
+expect 2 "\-\-style-weight must be in" timeout 60 "$cli" transfer --loss-network loss_network --style "$zombie" "$zombie" \
   --out "$work/out.bvh" $quick --style-weight 1e308
-expect 2 "\-\-lr must be in" timeout 60 "$cli" train-ae --data "$zombie" --out "$work/ae.net" $tiny --lr 1e308
-expect 2 "\-\-sparsity must be in" timeout 60 "$cli" train-ae --data "$zombie" --out "$work/ae.net" $tiny --sparsity 1e308
-expect 2 "\-\-clip must be in" timeout 60 "$cli" train-ae --data "$zombie" --out "$work/ae.net" $tiny --clip 1e308
-expect 2 "\-\-foot must be in" timeout 60 "$cli" train-ae --data "$zombie" --out "$work/ae.net" $tiny --foot 1e308
-expect 2 "\-\-epochs must be in" timeout 60 "$cli" train-ae --data "$zombie" --out "$work/ae.net" --hidden 8 --threads 1 \
+expect 2 "\-\-lr must be in" timeout 60 "$cli" train-loss-network --data "$zombie" --out "$work/ae.net" $tiny --lr 1e308
+expect 2 "\-\-sparsity must be in" timeout 60 "$cli" train-loss-network --data "$zombie" --out "$work/ae.net" $tiny --sparsity 1e308
+expect 2 "\-\-clip must be in" timeout 60 "$cli" train-loss-network --data "$zombie" --out "$work/ae.net" $tiny --clip 1e308
+expect 2 "\-\-foot must be in" timeout 60 "$cli" train-loss-network --data "$zombie" --out "$work/ae.net" $tiny --foot 1e308
+expect 2 "\-\-epochs must be in" timeout 60 "$cli" train-loss-network --data "$zombie" --out "$work/ae.net" --hidden 8 --threads 1 \
   --epochs 2000000000
-expect 2 "\-\-weights" timeout 60 "$cli" train-style --ae autoencoder --content "$zombie" --style "$zombie" \
+expect 2 "\-\-weights" timeout 60 "$cli" train-style --loss-network loss_network --content "$zombie" --style "$zombie" \
   --out "$work/style.net" $tiny --weights style=1e308
-expect 2 "\-\-lr must be in" timeout 60 "$cli" adapt --ae autoencoder --data "$zombie" --out "$work/a.net" --epochs 1 \
+expect 2 "\-\-lr must be in" timeout 60 "$cli" adapt --loss-network loss_network --data "$zombie" --out "$work/a.net" --epochs 1 \
   --threads 1 --lr 1e308
 
 # 6. A mapping file the user names must exist (as for cleanup).

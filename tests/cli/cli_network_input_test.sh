@@ -31,8 +31,8 @@ fix_crc() {
 }
 u32_at() { od -An -tu4 -j "$2" -N4 "$1" | tr -d ' '; }
 
-# A valid autoencoder, trained here in a second.
-expect 0 "wrote" "$cli" train-ae --data "$data/zombie.bvh" --out "$work/ae.net" --epochs 1 --hidden 8 --threads 1
+# A valid loss network, trained here in a second.
+expect 0 "wrote" "$cli" train-loss-network --data "$data/zombie.bvh" --out "$work/ae.net" --epochs 1 --hidden 8 --threads 1
 joint_set_length=$(u32_at "$work/ae.net" 32)
 mean=$((24 + 8 + 4 + joint_set_length + 8 + 4 + 4))  # header, fps, joint set, height, feature count, count
 std=$((mean + 66 * 8 + 4))
@@ -49,16 +49,16 @@ crafted tiny_std "$std" '\xe1\xf5\x93\x35\xe6\x24\x71\x01'              # 1e-301
 crafted denormal_std $((std + 8 * 64)) '\x01\x00\x00\x00\x00\x00\x00\x00'  # 5e-324
 for name in huge_mean negative_huge_mean; do
   expect 2 "$name.net: .*normalisation mean" "$cli" info "$work/$name.net"
-  expect 2 "$name.net: .*normalisation mean" "$cli" info "$data/zombie.bvh" --ae "$work/$name.net"
+  expect 2 "$name.net: .*normalisation mean" "$cli" info "$data/zombie.bvh" --loss-network "$work/$name.net"
 done
 for name in tiny_std denormal_std; do
   expect 2 "$name.net: .*normalisation std" "$cli" info --json "$work/$name.net"
-  expect 2 "$name.net: .*normalisation std" "$cli" info "$data/cmu_131_01.bvh" --ae "$work/$name.net"
+  expect 2 "$name.net: .*normalisation std" "$cli" info "$data/cmu_131_01.bvh" --loss-network "$work/$name.net"
 done
 
 # The finding itself: stylizing with such a style network was exit 1 ("contacts: positions hold a
 # non-finite value").
-expect 0 "wrote" "$cli" train-style --ae "$work/ae.net" --content "$data/zombie.bvh" --style "$data/cmu_131_01.bvh" \
+expect 0 "wrote" "$cli" train-style --loss-network "$work/ae.net" --content "$data/zombie.bvh" --style "$data/cmu_131_01.bvh" \
   --out "$work/style.net" --epochs 1 --hidden 1 --threads 1
 cp "$work/style.net" "$work/huge_mean_style.net"
 put_bytes "$work/huge_mean_style.net" "$mean" '\xa0\xc8\xeb\x85\xf3\xcc\xe1\x7f'
@@ -67,7 +67,7 @@ expect 2 "huge_mean_style.net: .*normalisation mean\[0\]" "$cli" stylize --net "
   "$data/zombie.bvh" --out "$work/styled.bvh"
 
 # 2. Unsafe metadata strings: refused on load (exit 2), and nothing raw reaches the terminal.
-tool_value="motionstyle core/style training"  # a property value train-ae writes (31 bytes)
+tool_value="motionstyle core/style training"  # a property value train-loss-network writes (31 bytes)
 tool_at=$(LC_ALL=C grep -obUa "$tool_value" "$work/ae.net" | head -n 1 | cut -d: -f1)
 cp "$work/ae.net" "$work/escape.net"
 put_bytes "$work/escape.net" "$tool_at" '\x1b]0;title\x07xxxxxxxxxxxxxxxxxxxx'
@@ -80,12 +80,12 @@ no_control_characters
 expect 2 "escape.net: .*control character" "$cli" info --json "$work/escape.net"
 no_control_characters
 expect 2 "invalid_utf8.net: .*invalid UTF-8" "$cli" info --json "$work/invalid_utf8.net"
-expect 2 "invalid_utf8.net: .*invalid UTF-8" "$cli" info "$data/zombie.bvh" --ae "$work/invalid_utf8.net"
+expect 2 "invalid_utf8.net: .*invalid UTF-8" "$cli" info "$data/zombie.bvh" --loss-network "$work/invalid_utf8.net"
 
 # models: the broken files are listed as unreadable (exit 2), the JSON stays valid, nothing raw leaks.
 mkdir -p "$work/res/models" "$work/res/samples"
 cp "$work/escape.net" "$work/invalid_utf8.net" "$work/huge_mean.net" "$work/res/models/"
-cp "$work/ae.net" "$work/res/models/autoencoder.net"
+cp "$work/ae.net" "$work/res/models/loss_network.net"
 expect 2 "escape.*UNREADABLE.*control character" env MOTIONSTYLE_RESOURCES="$work/res" "$cli" models
 no_control_characters
 expect 2 '"error"' env MOTIONSTYLE_RESOURCES="$work/res" "$cli" models --json
@@ -99,23 +99,23 @@ evil="$work/evil"$'\x1b]0;title\x07'
 latin1="$work/caf"$'\xe9'
 for folder in "$evil" "$latin1"; do
   mkdir -p "$folder/models" "$folder/samples"
-  cp "$work/ae.net" "$folder/models/autoencoder.net"
+  cp "$work/ae.net" "$folder/models/loss_network.net"
   printf 'junk' >"$folder/models/broken.net"
 done
-expect 2 "autoencoder  *autoencoder" env MOTIONSTYLE_RESOURCES="$evil" "$cli" models
+expect 2 "loss_network  *loss_network" env MOTIONSTYLE_RESOURCES="$evil" "$cli" models
 no_control_characters
 expect 2 '"networks"' env MOTIONSTYLE_RESOURCES="$latin1" "$cli" models --json
 no_control_characters
 valid_utf8_output
 expect 2 "broken.net" env MOTIONSTYLE_RESOURCES="$evil" "$cli" info broken
 no_control_characters
-expect 0 "autoencoder (loss network)" "$cli" info "$evil/models/autoencoder.net"
+expect 0 "loss network" "$cli" info "$evil/models/loss_network.net"
 no_control_characters
-expect 0 '"network"' "$cli" info --json "$latin1/models/autoencoder.net"
+expect 0 '"network"' "$cli" info --json "$latin1/models/loss_network.net"
 valid_utf8_output
 
 # The valid file itself is untouched by all this.
-expect 0 "autoencoder (loss network)" "$cli" info "$work/ae.net"
+expect 0 "loss network" "$cli" info "$work/ae.net"
 
 if [ "$failures" -ne 0 ]; then echo "$failures network-input check(s) failed"; exit 1; fi
 echo "all network-input checks passed"

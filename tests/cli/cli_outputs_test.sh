@@ -16,8 +16,8 @@ cp "$data/zombie.bvh" "$work/in.orig"
 cp "$data/cmu_131_01.bvh" "$work/style.bvh"
 cp "$data/cmu_131_01.bvh" "$work/style.orig"
 tiny="--epochs 1 --hidden 8 --threads 1"
-expect 0 "wrote" "$cli" train-ae --data "$work/in.bvh" --out "$work/ae.net" $tiny
-expect 0 "wrote" "$cli" train-style --ae "$work/ae.net" --content "$work/in.bvh" --style "$work/style.bvh" \
+expect 0 "wrote" "$cli" train-loss-network --data "$work/in.bvh" --out "$work/ae.net" $tiny
+expect 0 "wrote" "$cli" train-style --loss-network "$work/ae.net" --content "$work/in.bvh" --style "$work/style.bvh" \
   --out "$work/net.net" $tiny
 
 # An output that is an input: refused, the input untouched.
@@ -28,17 +28,17 @@ expect 2 "--out is the input clip" "$cli" stylize --net "$work/net.net" "$work/i
 expect 2 "--metrics is the input clip" "$cli" stylize --net "$work/net.net" "$work/in.bvh" --out "$work/s.bvh" \
   --metrics "$work/in.bvh"
 expect 2 "--out is --net" "$cli" stylize --net "$work/net.net" "$work/in.bvh" --out "$work/net.net"
-expect 2 "--out is the input clip" "$cli" transfer --ae "$work/ae.net" --style "$work/style.bvh" "$work/in.bvh" \
+expect 2 "--out is the input clip" "$cli" transfer --loss-network "$work/ae.net" --style "$work/style.bvh" "$work/in.bvh" \
   --out "$work/in.bvh" --iterations 1 --constraint-iterations 0
-expect 2 "--out is --style" "$cli" transfer --ae "$work/ae.net" --style "$work/style.bvh" "$work/in.bvh" \
+expect 2 "--out is --style" "$cli" transfer --loss-network "$work/ae.net" --style "$work/style.bvh" "$work/in.bvh" \
   --out "$work/style.bvh" --iterations 1 --constraint-iterations 0
-expect 2 "--json is an evaluated clip" "$cli" eval --ae "$work/ae.net" --net "$work/net.net" --style "$work/style.bvh" \
+expect 2 "--json is an evaluated clip" "$cli" eval --loss-network "$work/ae.net" --net "$work/net.net" --style "$work/style.bvh" \
   "$work/in.bvh" --json "$work/in.bvh"
-expect 2 "--out is --style" "$cli" train-style --ae "$work/ae.net" --content "$work/in.bvh" --style "$work/style.bvh" \
+expect 2 "--out is --style" "$cli" train-style --loss-network "$work/ae.net" --content "$work/in.bvh" --style "$work/style.bvh" \
   --out "$work/style.bvh" $tiny
-expect 2 "--out is --data" "$cli" train-ae --data "$work/in.bvh" --out "$work/in.bvh" $tiny
-expect 2 "--out is a clip inside --data" "$cli" train-ae --data "$work" --out "$work/in.bvh" $tiny
-expect 2 "--out is --ae" "$cli" adapt --ae "$work/ae.net" --data "$work/style.bvh" --out "$work/ae.net" --epochs 1
+expect 2 "--out is --data" "$cli" train-loss-network --data "$work/in.bvh" --out "$work/in.bvh" $tiny
+expect 2 "--out is a clip inside --data" "$cli" train-loss-network --data "$work" --out "$work/in.bvh" $tiny
+expect 2 "--out is --loss-network" "$cli" adapt --loss-network "$work/ae.net" --data "$work/style.bvh" --out "$work/ae.net" --epochs 1
 expect 2 "OUT is IN" "$cli" convert "$work/in.bvh" "$work/in.bvh"
 ln -s "$work/in.bvh" "$work/link.bvh"
 ln "$work/in.bvh" "$work/hard.bvh"
@@ -58,11 +58,11 @@ expect 2 "cannot create a file" "$cli" cleanup "$work/in.bvh" --out "$work/c.bvh
 expect 2 "cannot create a file" "$cli" stylize --net "$work/net.net" "$work/in.bvh" --out "$work/s.bvh" \
   --metrics /proc/motionstyle.json
 [ -e "$work/s.bvh" ] && fail "stylize wrote its clip although --metrics could not be written"
-expect 2 "does not exist" "$cli" eval --ae "$work/ae.net" --net "$work/net.net" --style "$work/style.bvh" \
+expect 2 "does not exist" "$cli" eval --loss-network "$work/ae.net" --net "$work/net.net" --style "$work/style.bvh" \
   "$work/in.bvh" --json "$work/no-such-folder/eval.json"
-expect 2 "is a folder" "$cli" train-style --ae "$work/ae.net" --content "$work/in.bvh" --style "$work/style.bvh" \
+expect 2 "is a folder" "$cli" train-style --loss-network "$work/ae.net" --content "$work/in.bvh" --style "$work/style.bvh" \
   --out "$work/dir" $tiny
-expect 2 "cannot create a file" "$cli" train-ae --data "$work/in.bvh" --out /proc/motionstyle.net $tiny
+expect 2 "cannot create a file" "$cli" train-loss-network --data "$work/in.bvh" --out /proc/motionstyle.net $tiny
 [ -n "$(ls -A "$work/dir")" ] && fail "a refused training left files in $work/dir"
 ls "$work" | grep -q "^dir.checkpoint" && fail "a refused training left a checkpoint"
 
@@ -88,14 +88,14 @@ expect 0 "wrote" "$cli" cleanup "$work/in.bvh" --out "$work/c.bvh"
 rm -f "$work/.c.bvh.tmp-$$-4567"
 
 # A completed training removes its checkpoint unless --keep-checkpoints.
-expect 0 "wrote" "$cli" train-ae --data "$work/in.bvh" --out "$work/gone.net" $tiny
-ls "$work"/gone.net.checkpoint* >/dev/null 2>&1 && fail "train-ae left its checkpoint"
-expect 0 "wrote" "$cli" train-ae --data "$work/in.bvh" --out "$work/kept.net" $tiny --keep-checkpoints
+expect 0 "wrote" "$cli" train-loss-network --data "$work/in.bvh" --out "$work/gone.net" $tiny
+ls "$work"/gone.net.checkpoint* >/dev/null 2>&1 && fail "train-loss-network left its checkpoint"
+expect 0 "wrote" "$cli" train-loss-network --data "$work/in.bvh" --out "$work/kept.net" $tiny --keep-checkpoints
 [ -f "$work/kept.net.checkpoint" ] && [ -f "$work/kept.net.checkpoint.state" ] || fail "--keep-checkpoints removed them"
-expect 0 "wrote" "$cli" train-style --ae "$work/ae.net" --content "$work/in.bvh" --style "$work/style.bvh" \
+expect 0 "wrote" "$cli" train-style --loss-network "$work/ae.net" --content "$work/in.bvh" --style "$work/style.bvh" \
   --out "$work/gone_style.net" $tiny
 ls "$work"/gone_style.net.checkpoint* >/dev/null 2>&1 && fail "train-style left its checkpoint"
-expect 0 "before -> after" "$cli" adapt --ae "$work/ae.net" --data "$work/style.bvh" --out "$work/adapted.net" \
+expect 0 "before -> after" "$cli" adapt --loss-network "$work/ae.net" --data "$work/style.bvh" --out "$work/adapted.net" \
   --epochs 1 --threads 1
 ls "$work"/adapted.net.checkpoint* >/dev/null 2>&1 && fail "adapt left its checkpoint"
 ls -A "$work" | grep -q '\.tmp-' && fail "temporaries left: $(ls -A "$work" | grep '\.tmp-')"

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The commands that make and use networks, end to end on tiny data (issue 14: train-ae, train-style,
+# The commands that make and use networks, end to end on tiny data (issue 14: train-loss-network, train-style,
 # transfer, eval and pack were only run with --help): what each writes reads back and says what was
 # asked (kind, epochs, loss weights, precision), eval's JSON holds every clip, and the --weights
 # parser accepts what it documents and refuses the rest with exit 2, writing nothing.
@@ -12,27 +12,27 @@ style="$data/cmu_131_01.bvh"
 tiny="--epochs 1 --hidden 8 --threads 1"
 
 # The loss network.
-expect 0 "wrote $work/ae.net: 1 epochs" "$cli" train-ae --data "$content" --out "$work/ae.net" $tiny
-expect 0 "autoencoder (loss network)" "$cli" info "$work/ae.net"
+expect 0 "wrote $work/ae.net: 1 epochs" "$cli" train-loss-network --data "$content" --out "$work/ae.net" $tiny
+expect 0 "loss network" "$cli" info "$work/ae.net"
 expect 0 "8 hidden units" "$cli" info "$work/ae.net"
-[ -e "$work/ae.net.checkpoint" ] && fail "train-ae left its checkpoint"
+[ -e "$work/ae.net.checkpoint" ] && fail "train-loss-network left its checkpoint"
 
 # --weights: what the help documents, and nothing else.
 for bad in "style=" "bogus=1" "style=1," "" "style=-1" "style=abc" "content=1,,style=2"; do
-  expect 2 "--weights" "$cli" train-style --ae "$work/ae.net" --content "$content" --style "$style" \
+  expect 2 "--weights" "$cli" train-style --loss-network "$work/ae.net" --content "$content" --style "$style" \
     --out "$work/refused.net" $tiny --weights "$bad"
 done
 [ -e "$work/refused.net" ] && fail "a refused --weights still wrote a network"
 
 # The style network, with the weights it was given recorded in it.
-expect 0 "wrote $work/style.net: 1 epochs" "$cli" train-style --ae "$work/ae.net" --content "$content" \
+expect 0 "wrote $work/style.net: 1 epochs" "$cli" train-style --loss-network "$work/ae.net" --content "$content" \
   --style "$style" --out "$work/style.net" $tiny --weights content=1,style=50,foot=0.5,traj=0.25
 expect 0 "loss weights: content 1, style 50, foot 0.5, bone 0.03, trajectory 0.25" "$cli" info "$work/style.net"
 expect 0 "wrote $work/out.bvh: 300 frames" "$cli" stylize --net "$work/style.net" "$content" --out "$work/out.bvh"
 expect 0 "frames       300 at 30 fps" "$cli" info "$work/out.bvh"
 
 # eval: one entry per clip in the JSON.
-expect 0 "evaluated 1 clip" "$cli" eval --ae "$work/ae.net" --net "$work/style.net" --style "$style" "$content" \
+expect 0 "evaluated 1 clip" "$cli" eval --loss-network "$work/ae.net" --net "$work/style.net" --style "$style" "$content" \
   --json "$work/eval.json"
 python3 - "$work/eval.json" <<'PY' || fail "eval's JSON"
 import json, sys
@@ -51,7 +51,7 @@ expect 0 "wrote" "$cli" stylize --net "$work/style16.net" "$content" --out "$wor
 expect 0 "f32" "$cli" pack "$work/style16.net" --out "$work/style32.net" --precision f32
 
 # transfer (the optimisation method): a clip on the input's skeleton.
-expect 0 "wrote $work/transfer.bvh: 300 frames" "$cli" transfer --ae "$work/ae.net" --style "$style" "$content" \
+expect 0 "wrote $work/transfer.bvh: 300 frames" "$cli" transfer --loss-network "$work/ae.net" --style "$style" "$content" \
   --out "$work/transfer.bvh" --iterations 5
 expect 0 "frames       300 at 30 fps" "$cli" info "$work/transfer.bvh"
 

@@ -26,6 +26,12 @@ for command in $("$cli" --help | awk '/^commands:/{on=1; next} on && /^  [a-z]/{
   expect 0 "usage: motionstyle-cli $command" "$cli" "$command" --help
 done
 
+# Former names still work (one name per idea: the loss network was the autoencoder).
+expect 0 "usage: motionstyle-cli train-loss-network" "$cli" train-ae --help
+expect 0 "loss network" "$cli" info "$data/zombie.bvh" --ae autoencoder
+expect 2 "option --loss-network given more than once" "$cli" info "$data/zombie.bvh" --ae autoencoder \
+  --loss-network loss_network
+
 # Working commands.
 expect 0 "up axis      +Z" "$cli" info "$data/zombie.bvh"
 expect 0 '"unit"' "$cli" info --json "$data/cmu_131_01.bvh"
@@ -60,37 +66,37 @@ expect 2 "no-such.net" env MOTIONSTYLE_RESOURCES="$work/res" "$cli" stylize --ne
 # Other studios' clips (issue 12), on networks trained here in a second: familiarity, keeping the path,
 # adapting the loss network and retraining a style from its stored targets. Bad input first.
 tiny="--epochs 1 --hidden 8 --threads 1"
-expect 2 "--augment" "$cli" train-ae --data "$data/zombie.bvh" --out "$work/ae.net" --augment bogus $tiny
-expect 2 "girdle_offset_degrees" "$cli" train-ae --data "$data/zombie.bvh" --out "$work/ae.net" --augment girdle=100 $tiny
-expect 0 "wrote" "$cli" train-ae --data "$data/zombie.bvh" --out "$work/ae.net" --augment on --dropout 0 $tiny
+expect 2 "--augment" "$cli" train-loss-network --data "$data/zombie.bvh" --out "$work/ae.net" --augment bogus $tiny
+expect 2 "girdle_offset_degrees" "$cli" train-loss-network --data "$data/zombie.bvh" --out "$work/ae.net" --augment girdle=100 $tiny
+expect 0 "wrote" "$cli" train-loss-network --data "$data/zombie.bvh" --out "$work/ae.net" --augment on --dropout 0 $tiny
 for bad in "" "style=1," "style=" "=1" "style=1x" "bogus=1" "style=-1"; do
-  expect 2 "--weights" "$cli" train-style --ae "$work/ae.net" --content "$data/zombie.bvh" --style "$data/cmu_131_01.bvh" \
+  expect 2 "--weights" "$cli" train-style --loss-network "$work/ae.net" --content "$data/zombie.bvh" --style "$data/cmu_131_01.bvh" \
     --out "$work/style.net" --weights "$bad" $tiny
 done
-expect 0 "wrote" "$cli" train-style --ae "$work/ae.net" --content "$data/zombie.bvh" --style "$data/cmu_131_01.bvh" \
+expect 0 "wrote" "$cli" train-style --loss-network "$work/ae.net" --content "$data/zombie.bvh" --style "$data/cmu_131_01.bvh" \
   --out "$work/style.net" $tiny
 expect 0 "style targets: cmu, (default)" "$cli" info "$work/style.net"
-expect 0 "familiarity  " "$cli" info "$data/cmu_131_01.bvh" --ae "$work/ae.net"
-expect 0 '"level"' "$cli" info --json "$data/cmu_131_01.bvh" --ae "$work/ae.net"
+expect 0 "familiarity  " "$cli" info "$data/cmu_131_01.bvh" --loss-network "$work/ae.net"
+expect 0 '"level"' "$cli" info --json "$data/cmu_131_01.bvh" --loss-network "$work/ae.net"
 expect 2 "--path" "$cli" stylize --net "$work/style.net" "$data/zombie.bvh" --out "$work/kept.bvh" --path sideways
 expect 0 "path: content" "$cli" stylize --net "$work/style.net" "$data/zombie.bvh" --out "$work/kept.bvh" \
   --metrics "$work/kept.json"
 grep -q '"familiarity"' "$work/kept.json" || { echo "FAIL: no familiarity in the metrics"; failures=$((failures + 1)); }
 expect 0 "path: style" "$cli" stylize --net "$work/style.net" "$data/zombie.bvh" --out "$work/free.bvh" --path style
-expect 0 "network's own path" "$cli" eval --ae "$work/ae.net" --net "$work/style.net" --style "$data/cmu_131_01.bvh" \
+expect 0 "network's own path" "$cli" eval --loss-network "$work/ae.net" --net "$work/style.net" --style "$data/cmu_131_01.bvh" \
   "$data/zombie.bvh" --json "$work/eval.json"
 grep -q '"network_path"' "$work/eval.json" || { echo "FAIL: no network_path in eval"; failures=$((failures + 1)); }
-expect 0 "style distance" "$cli" transfer --ae "$work/ae.net" --style "$data/cmu_131_01.bvh" "$data/zombie.bvh" \
+expect 0 "style distance" "$cli" transfer --loss-network "$work/ae.net" --style "$data/cmu_131_01.bvh" "$data/zombie.bvh" \
   --out "$work/transfer.bvh" --iterations 2 --constraint-iterations 1 --metrics "$work/transfer.json"
 grep -q '"style_distance"' "$work/transfer.json" || { echo "FAIL: no style distance in transfer's metrics"; failures=$((failures + 1)); }
-expect 2 "no-such" "$cli" adapt --ae "$work/ae.net" --data "$work/no-such" --out "$work/adapted.net" --threads 1
-expect 2 "--out" "$cli" adapt --ae "$work/ae.net" --data "$data/cmu_131_01.bvh"
-expect 0 "before -> after" "$cli" adapt --ae "$work/ae.net" --data "$data/cmu_131_01.bvh" --out "$work/adapted.net" \
+expect 2 "no-such" "$cli" adapt --loss-network "$work/ae.net" --data "$work/no-such" --out "$work/adapted.net" --threads 1
+expect 2 "--out" "$cli" adapt --loss-network "$work/ae.net" --data "$data/cmu_131_01.bvh"
+expect 0 "before -> after" "$cli" adapt --loss-network "$work/ae.net" --data "$data/cmu_131_01.bvh" --out "$work/adapted.net" \
   --epochs 2 --threads 1
 expect 0 "adapted_on: cmu_131_01.bvh" "$cli" info "$work/adapted.net"
-expect 2 "stores no style targets\|--style" "$cli" train-style --ae "$work/adapted.net" --content "$data/cmu_131_01.bvh" \
+expect 2 "stores no style targets\|--style" "$cli" train-style --loss-network "$work/adapted.net" --content "$data/cmu_131_01.bvh" \
   --out "$work/retrained.net" $tiny
-expect 0 "wrote" "$cli" train-style --ae "$work/adapted.net" --init "$work/style.net" --content "$data/cmu_131_01.bvh" \
+expect 0 "wrote" "$cli" train-style --loss-network "$work/adapted.net" --init "$work/style.net" --content "$data/cmu_131_01.bvh" \
   --out "$work/retrained.net" $tiny
 expect 0 "style_targets_from" "$cli" info "$work/retrained.net"
 

@@ -167,8 +167,8 @@ def main():
         shutil.copyfile(clip, os.path.join(work, "old.bvh"))
         tiny = ["--epochs", "1", "--hidden", "8", "--threads", "1"]
         ae, net = os.path.join(work, "ae.net"), os.path.join(work, "net.net")
-        for args in (["train-ae", "--data", clip, "--out", ae] + tiny,
-                     ["train-style", "--ae", ae, "--content", clip, "--style", clip, "--out", net] + tiny):
+        for args in (["train-loss-network", "--data", clip, "--out", ae] + tiny,
+                     ["train-style", "--loss-network", ae, "--content", clip, "--style", clip, "--out", net] + tiny):
             setup = subprocess.run([options.cli] + args, capture_output=True)
             if setup.returncode != 0:
                 print("setup failed:", " ".join(args), setup.stderr.decode(errors="replace"))
@@ -180,7 +180,7 @@ def main():
         for n, mutant in enumerate(bvh_mutants(seed_text, rng, options.bvh)):
             with open(mutant_file, "wb") as f:
                 f.write(mutant)
-            runner.run("bvh %d info" % n, ["info", mutant_file, "--ae", ae], mutant)
+            runner.run("bvh %d info" % n, ["info", mutant_file, "--loss-network", ae], mutant)
             runner.run("bvh %d convert" % n, ["convert", mutant_file, out], mutant, out)
             runner.run("bvh %d cleanup" % n, ["cleanup", mutant_file, "--out", out, "--metrics", metrics], mutant, out)
             runner.run("bvh %d stylize" % n, ["stylize", "--net", net, mutant_file, "--out", out], mutant, out)

@@ -73,13 +73,13 @@ void checkAccepted(std::string_view bytes, const NetworkFileInfo& info) {
         model.style_targets != reloaded.style_targets || model.transformation.shape().residual != reloaded.transformation.shape().residual)
       finding("style network: save -> load changed the model");
   } else {
-    const AutoencoderModel model = parseAutoencoder(bytes, kSource);
+    const LossNetworkModel model = parseLossNetwork(bytes, kSource);
     requireSafe(describe(model), "describe()");
-    again = serialiseAutoencoder(model, info.precision);
-    const AutoencoderModel reloaded = parseAutoencoder(again, "rewritten.net");
+    again = serialiseLossNetwork(model, info.precision);
+    const LossNetworkModel reloaded = parseLossNetwork(again, "rewritten.net");
     if (!sameParameters(model.network, reloaded.network) ||
         !sameCommon(model.normalisation, reloaded.normalisation, model.metadata, reloaded.metadata))
-      finding("autoencoder: save -> load changed the model");
+      finding("loss network: save -> load changed the model");
   }
   if (info.format_version == kNetworkFormatVersion && again != bytes) finding("a format-3 file is not rewritten byte for byte");
 }

@@ -13,8 +13,8 @@ mkdir -p "$out"
 rm -f "$out"/*
 
 tiny=(--epochs 1 --hidden 1 --threads 1)
-"$cli" train-ae --data "$data/zombie.bvh" --out "$out/valid_ae_f32.net" "${tiny[@]}" >/dev/null
-"$cli" train-style --ae "$out/valid_ae_f32.net" --content "$data/zombie.bvh" --style "$data/cmu_131_01.bvh" \
+"$cli" train-loss-network --data "$data/zombie.bvh" --out "$out/valid_ae_f32.net" "${tiny[@]}" >/dev/null
+"$cli" train-style --loss-network "$out/valid_ae_f32.net" --content "$data/zombie.bvh" --style "$data/cmu_131_01.bvh" \
   --out "$out/valid_style_f32.net" "${tiny[@]}" >/dev/null
 "$cli" pack "$out/valid_ae_f32.net" --out "$out/valid_ae_f16.net" --precision f16 >/dev/null
 "$cli" pack "$out/valid_style_f32.net" --out "$out/valid_style_f16.net" --precision f16 >/dev/null

@@ -141,8 +141,8 @@ class FamiliarityTest : public QObject {
     window.show();
     QVERIFY(QTest::qWaitForWindowExposed(&window));
     NetworkPanel* networks = window.networkPanel();
-    QVERIFY(networks->loadNetworkFile(QString::fromStdString(network_.string())));
-    const int listed = networks->networkCount();
+    QVERIFY(networks->networkList()->loadNetworkFile(QString::fromStdString(network_.string())));
+    const int listed = networks->networkList()->networkCount();
     AdaptTab* tab = networks->adaptTab();
     auto* adapt = tab->findChild<QPushButton*>(QStringLiteral("AdaptButton"));
     QVERIFY(adapt != nullptr);
@@ -172,9 +172,9 @@ class FamiliarityTest : public QObject {
     const QTableWidget* table = tab->familiarityTable();
     QCOMPARE(table->rowCount(), 3);
     QVERIFY2(tab->statusText().contains(QStringLiteral("Adapted")), qPrintable(tab->statusText()));
-    QCOMPARE(networks->networkCount(), listed + 1);
-    QVERIFY(!networks->isNetworkSaved(networks->networkCount() - 1));
-    QVERIFY(networks->currentNetworkName().startsWith(QStringLiteral("tiny_style adapted")));
+    QCOMPARE(networks->networkList()->networkCount(), listed + 1);
+    QVERIFY(!networks->networkList()->isNetworkSaved(networks->networkList()->networkCount() - 1));
+    QVERIFY(networks->networkList()->currentNetworkName().startsWith(QStringLiteral("tiny_style adapted")));
     QVERIFY(test::saveScreenshot(window.grab().toImage(), QStringLiteral("adapt_tab")).size() > 0);
 
     // Cancel stops a run within a second and changes nothing.
@@ -186,7 +186,7 @@ class FamiliarityTest : public QObject {
     tab->cancel();
     QVERIFY(QTest::qWaitFor([&] { return !tab->isBusy(); }, 5000));
     qInfo("adaptation stopped %lld ms after Cancel", static_cast<long long>(timer.elapsed()));
-    QCOMPARE(networks->networkCount(), listed + 1);
+    QCOMPARE(networks->networkList()->networkCount(), listed + 1);
   }
 };
 

@@ -3,7 +3,7 @@
 // issue's bound with a loadable checkpoint, save (never overwriting silently), Retrain as a warm start,
 // the optimisation method, and closing the window during training.
 //
-// The loss network is a tiny autoencoder trained here on the two fixtures (a fraction of a second); the
+// The loss network is a tiny loss network trained here on the two fixtures (a fraction of a second); the
 // style networks have 8 hidden units, so each epoch takes milliseconds.
 #include <QCloseEvent>
 #include <QComboBox>
@@ -85,7 +85,7 @@ class TrainingTest : public QObject {
   Q_OBJECT
 
   QTemporaryDir scratch_;
-  QString autoencoder_;
+  QString loss_network_;
   std::vector<Report> reports_;
 
   QString scratchFile(const QString& name) const { return scratch_.filePath(name); }
@@ -115,7 +115,7 @@ class TrainingTest : public QObject {
   void initTestCase() {
     QVERIFY(scratch_.isValid());
     // The loss network: 16 hidden units, width 5, one epoch on the fixtures.
-    style::AutoencoderTrainingConfig config;
+    style::LossNetworkTrainingConfig config;
     config.data = {test::fixture(QStringLiteral("cmu_131_01.bvh")).toStdString(),
                    test::fixture(QStringLiteral("zombie.bvh")).toStdString()};
     config.shape = {kFeatureCount, 16, 5};
@@ -123,11 +123,11 @@ class TrainingTest : public QObject {
     config.settings.batch_size = 8;
     config.settings.seed = 3;
     config.settings.windows = {60, 30};
-    autoencoder_ = scratchFile(QStringLiteral("tiny_ae.net"));
-    config.settings.output = autoencoder_.toStdString();
-    const auto result = style::trainAutoencoder(config);
+    loss_network_ = scratchFile(QStringLiteral("tiny_ae.net"));
+    config.settings.output = loss_network_.toStdString();
+    const auto result = style::trainLossNetwork(config);
     QCOMPARE(result.status, style::TrainingStatus::Completed);
-    QVERIFY(QFile::exists(autoencoder_));
+    QVERIFY(QFile::exists(loss_network_));
   }
 
   void init() { reports_.clear(); }
@@ -170,7 +170,7 @@ class TrainingTest : public QObject {
     // The job on the runner's thread: a first run leaves a good checkpoint, a run with an absurd learning
     // rate diverges (the weights overflow) and reports it instead of finishing; the checkpoint is intact.
     style::StyleTrainingJob job;
-    job.config.autoencoder = autoencoder_.toStdString();
+    job.config.loss_network = loss_network_.toStdString();
     job.config.content = {test::fixture(QStringLiteral("cmu_131_01.bvh")).toStdString()};
     job.config.styles = {{std::nullopt, test::fixture(QStringLiteral("zombie.bvh")).toStdString()}};
     job.config.shape.hidden = 8;
@@ -233,7 +233,7 @@ class TrainingTest : public QObject {
     QVERIFY(panel != nullptr);
     // A fresh panel offers the shipped loss network when there is one (there is in this repository).
     const auto resources = resourceDirectory();
-    const auto shipped = resources ? shippedNetworkFile(*resources, kShippedAutoencoderName) : std::nullopt;
+    const auto shipped = resources ? shippedNetworkFile(*resources, kShippedLossNetworkName) : std::nullopt;
     QCOMPARE(panel->lossNetworkFile(), shipped ? QString::fromStdString(shipped->string()) : QString());
 
     // No training set yet.
@@ -253,16 +253,16 @@ class TrainingTest : public QObject {
     // A corrupt and a truncated network file: an error dialog naming the file, not a crash.
     const QString garbage = scratchFile(QStringLiteral("garbage.net"));
     QVERIFY(writeAll(garbage, QByteArray("MSNETxxxx this is not a network\x01\x02\x03", 36)));
-    QVERIFY(!panel->loadNetworkFile(garbage));
+    QVERIFY(!panel->networkList()->loadNetworkFile(garbage));
     QVERIFY2(reports_.back().message.contains(QStringLiteral("garbage.net")), qPrintable(reports_.back().message));
-    const QByteArray ae_bytes = readAll(autoencoder_);
+    const QByteArray loss_network_bytes = readAll(loss_network_);
     const QString truncated = scratchFile(QStringLiteral("truncated.net"));
-    QVERIFY(writeAll(truncated, ae_bytes.left(ae_bytes.size() / 2)));
+    QVERIFY(writeAll(truncated, loss_network_bytes.left(loss_network_bytes.size() / 2)));
     const std::size_t before = reports_.size();
-    QVERIFY(!panel->loadNetworkFile(truncated));
+    QVERIFY(!panel->networkList()->loadNetworkFile(truncated));
     QCOMPARE(reports_.size(), before + 1);
     QVERIFY(reports_.back().message.contains(QStringLiteral("truncated.net")));
-    QCOMPARE(panel->networkCount(), 0);
+    QCOMPARE(panel->networkList()->networkCount(), 0);
 
     // A loss network whose file is corrupt: the worker's error comes back as a dialog, and the panel is
     // idle and usable again.
@@ -273,12 +273,12 @@ class TrainingTest : public QObject {
     QVERIFY(finished.wait(kJobTimeoutMs));
     QVERIFY(!panel->isBusy());
     QVERIFY2(reports_.back().message.contains(QStringLiteral("garbage.net")), qPrintable(reports_.back().message));
-    QCOMPARE(panel->networkCount(), 0);
+    QCOMPARE(panel->networkList()->networkCount(), 0);
 
-    // An autoencoder file loaded in the panel becomes the loss network (it is not a style network).
-    QVERIFY(panel->loadNetworkFile(autoencoder_));
-    QCOMPARE(panel->lossNetworkFile(), QFileInfo(autoencoder_).absoluteFilePath());
-    QCOMPARE(panel->networkCount(), 0);
+    // A loss network file loaded in the panel becomes the loss network (it is not a style network).
+    QVERIFY(panel->networkList()->loadNetworkFile(loss_network_));
+    QCOMPARE(panel->lossNetworkFile(), QFileInfo(loss_network_).absoluteFilePath());
+    QCOMPARE(panel->networkList()->networkCount(), 0);
   }
 
   void trainCancelSaveAndRetrain() {
@@ -287,13 +287,13 @@ class TrainingTest : public QObject {
     NetworkPanel* panel = window->networkPanel();
     window->setTrainingClip(0, true);
     window->setTrainingClip(1, true);
-    panel->setLossNetworkFile(autoencoder_);
+    panel->setLossNetworkFile(loss_network_);
     setTinyForm(panel, 100000);  // far more than the test waits for: it ends by Cancel
 
     QSignalSpy progress(panel, &NetworkPanel::trainingProgress);
     QSignalSpy preview(panel, &NetworkPanel::previewReady);
     QSignalSpy finished(panel, &NetworkPanel::jobFinished);
-    QSignalSpy current(panel, &NetworkPanel::currentNetworkChanged);
+    QSignalSpy current(panel->networkList(), &NetworkList::currentNetworkChanged);
     QVERIFY(panel->startTraining(false));
     QVERIFY(panel->isBusy());
     QVERIFY(!panel->startTraining(false));  // one job at a time
@@ -344,23 +344,23 @@ class TrainingTest : public QObject {
 
     // The last completed epoch is kept: in the list (unsaved, current, announced) and as a loadable
     // checkpoint holding the same epoch count.
-    QCOMPARE(panel->networkCount(), 1);
-    QVERIFY(!panel->isNetworkSaved(0));
-    QVERIFY(panel->currentNetwork() != nullptr);
+    QCOMPARE(panel->networkList()->networkCount(), 1);
+    QVERIFY(!panel->networkList()->isNetworkSaved(0));
+    QVERIFY(panel->networkList()->currentNetwork() != nullptr);
     QVERIFY(current.count() >= 1);
     const nn::StyleModel checkpoint = nn::loadStyleModel(panel->lastCheckpointFile().toStdString());
     QVERIFY(checkpoint.metadata.training.epochs >= 1);
     QCOMPARE(checkpoint.transformation.shape().hidden, 8);
-    QVERIFY(panel->currentNetwork()->metadata.training.epochs >= checkpoint.metadata.training.epochs);
+    QVERIFY(panel->networkList()->currentNetwork()->metadata.training.epochs >= checkpoint.metadata.training.epochs);
 
     // The network list shows the metadata, and the result panel got the network to stylize with.
     auto* list = panel->findChild<QTreeWidget*>(QStringLiteral("NetworkList"));
     QVERIFY(list != nullptr && list->topLevelItemCount() == 1);
     QCOMPARE(list->topLevelItem(0)->text(1), QStringLiteral("zombie.bvh"));
-    QCOMPARE(list->topLevelItem(0)->text(2), QString::number(panel->currentNetwork()->metadata.training.epochs));
+    QCOMPARE(list->topLevelItem(0)->text(2), QString::number(panel->networkList()->currentNetwork()->metadata.training.epochs));
     QVERIFY(!list->topLevelItem(0)->text(3).isEmpty());  // created
     QVERIFY(window->resultPanel()->hasNetwork());
-    QCOMPARE(window->resultPanel()->networkName(), panel->currentNetworkName());
+    QCOMPARE(window->resultPanel()->networkName(), panel->networkList()->currentNetworkName());
 
     // Save: atomic, and an existing file is never replaced without a Yes.
     const QString saved = scratchFile(QStringLiteral("trained.net"));
@@ -370,17 +370,17 @@ class TrainingTest : public QObject {
       ++questions;
       return answer;
     });
-    QVERIFY(panel->saveNetwork(0, saved));
+    QVERIFY(panel->networkList()->saveNetwork(0, saved));
     QCOMPARE(questions, 0);
-    QVERIFY(panel->isNetworkSaved(0));
+    QVERIFY(panel->networkList()->isNetworkSaved(0));
     const QByteArray saved_bytes = readAll(saved);
     const nn::StyleModel reloaded = nn::loadStyleModel(saved.toStdString());
-    QCOMPARE(maxAbsDifference(reloaded, *panel->currentNetwork()), 0.0f);
-    QVERIFY(!panel->saveNetwork(0, saved));  // exists, answer No
+    QCOMPARE(maxAbsDifference(reloaded, *panel->networkList()->currentNetwork()), 0.0f);
+    QVERIFY(!panel->networkList()->saveNetwork(0, saved));  // exists, answer No
     QCOMPARE(questions, 1);
     QCOMPARE(readAll(saved), saved_bytes);
     answer = QMessageBox::Yes;
-    QVERIFY(panel->saveNetwork(0, saved));
+    QVERIFY(panel->networkList()->saveNetwork(0, saved));
     QCOMPARE(questions, 2);
     const QByteArray resaved = readAll(saved);
     QVERIFY(!resaved.isEmpty());
@@ -394,13 +394,13 @@ class TrainingTest : public QObject {
     form.learning_rate = 1e-6;
     form.hidden_units = 16;
     panel->setTrainingForm(form);
-    panel->setCurrentIndex(0);
+    panel->networkList()->setCurrentIndex(0);
     QVERIFY(panel->startTraining(true));
     QVERIFY(finished.wait(kJobTimeoutMs));
     QVERIFY2(reports_.empty(), reports_.empty() ? "" : qPrintable(reports_.front().message));
-    QCOMPARE(panel->networkCount(), 2);
-    const auto retrained = panel->network(1);
-    QCOMPARE(panel->currentIndex(), 1);
+    QCOMPARE(panel->networkList()->networkCount(), 2);
+    const auto retrained = panel->networkList()->network(1);
+    QCOMPARE(panel->networkList()->currentIndex(), 1);
     QCOMPARE(retrained->metadata.training.epochs, 2);
     QCOMPARE(retrained->metadata.training.weights.style, 7.0);
     QCOMPARE(retrained->transformation.shape().hidden, 8);
@@ -410,26 +410,26 @@ class TrainingTest : public QObject {
 
     // Dropping the unsaved retrained network asks first; "Cancel" keeps it.
     answer = QMessageBox::Cancel;
-    QVERIFY(!panel->removeNetwork(1));
-    QCOMPARE(panel->networkCount(), 2);
+    QVERIFY(!panel->networkList()->removeNetwork(1));
+    QCOMPARE(panel->networkList()->networkCount(), 2);
     answer = QMessageBox::Discard;
-    QSignalSpy announced(panel, &NetworkPanel::currentNetworkChanged);
-    QVERIFY(panel->removeNetwork(1));
-    QCOMPARE(panel->networkCount(), 1);
+    QSignalSpy announced(panel->networkList(), &NetworkList::currentNetworkChanged);
+    QVERIFY(panel->networkList()->removeNetwork(1));
+    QCOMPARE(panel->networkList()->networkCount(), 1);
     QCOMPARE(announced.count(), 1);  // the result panel hears that the saved network is current again
-    QCOMPARE(announced.back().at(0).value<std::shared_ptr<const nn::StyleModel>>(), panel->network(0));
-    QCOMPARE(window->resultPanel()->networkName(), panel->currentNetworkName());
+    QCOMPARE(announced.back().at(0).value<std::shared_ptr<const nn::StyleModel>>(), panel->networkList()->network(0));
+    QCOMPARE(window->resultPanel()->networkName(), panel->networkList()->currentNetworkName());
 
     // A saved network goes without a question; loaded again, its loss history is drawn per epoch.
     const int asked_before = questions;
-    QVERIFY(panel->removeNetwork(0));
+    QVERIFY(panel->networkList()->removeNetwork(0));
     QCOMPARE(questions, asked_before);
-    QCOMPARE(panel->networkCount(), 0);
-    QVERIFY(panel->loadNetworkFile(saved));
-    QCOMPARE(panel->networkCount(), 1);
-    QVERIFY(panel->isNetworkSaved(0));
-    QCOMPARE(panel->networkFile(0), QFileInfo(saved).absoluteFilePath());
-    const auto epochs = static_cast<int>(panel->currentNetwork()->metadata.loss_history.epochs.size());
+    QCOMPARE(panel->networkList()->networkCount(), 0);
+    QVERIFY(panel->networkList()->loadNetworkFile(saved));
+    QCOMPARE(panel->networkList()->networkCount(), 1);
+    QVERIFY(panel->networkList()->isNetworkSaved(0));
+    QCOMPARE(panel->networkList()->networkFile(0), QFileInfo(saved).absoluteFilePath());
+    const auto epochs = static_cast<int>(panel->networkList()->currentNetwork()->metadata.loss_history.epochs.size());
     QVERIFY(epochs >= 1);
     QCOMPARE(panel->lossCurve()->pointCount(QStringLiteral("content")), epochs);
     QCOMPARE(panel->lossCurve()->pointCount(QStringLiteral("total")), epochs);
@@ -441,7 +441,7 @@ class TrainingTest : public QObject {
     QVERIFY(window);
     NetworkPanel* panel = window->networkPanel();
     window->setTrainingClip(0, true);
-    panel->setLossNetworkFile(autoencoder_);
+    panel->setLossNetworkFile(loss_network_);
     setTinyForm(panel, 100000);
     auto* resume = panel->findChild<QPushButton*>(QStringLiteral("ResumeButton"));
     auto* cancel = panel->findChild<QPushButton*>(QStringLiteral("CancelButton"));
@@ -462,9 +462,9 @@ class TrainingTest : public QObject {
     QTRY_VERIFY_WITH_TIMEOUT(epochs_closed() >= 2, kJobTimeoutMs);
     QTest::mouseClick(cancel, Qt::LeftButton);
     QVERIFY(finished.wait(kJobTimeoutMs));
-    QCOMPARE(panel->networkCount(), 1);
-    const int kept = panel->network(0)->metadata.training.epochs;
-    const QString run_name = panel->currentNetworkName().section(QStringLiteral(" (epoch"), 0, 0);
+    QCOMPARE(panel->networkList()->networkCount(), 1);
+    const int kept = panel->networkList()->network(0)->metadata.training.epochs;
+    const QString run_name = panel->networkList()->currentNetworkName().section(QStringLiteral(" (epoch"), 0, 0);
     QVERIFY(kept >= 2);
     QVERIFY(resume->isEnabled());
 
@@ -486,9 +486,9 @@ class TrainingTest : public QObject {
     QTest::mouseClick(cancel, Qt::LeftButton);
     QVERIFY(finished.wait(kJobTimeoutMs));
     QVERIFY2(reports_.empty(), reports_.empty() ? "" : qPrintable(reports_.front().message));
-    QCOMPARE(panel->networkCount(), 2);
-    QVERIFY(panel->network(1)->metadata.training.epochs >= kept + 2);
-    QCOMPARE(panel->currentNetworkName().section(QStringLiteral(" (epoch"), 0, 0), run_name);
+    QCOMPARE(panel->networkList()->networkCount(), 2);
+    QVERIFY(panel->networkList()->network(1)->metadata.training.epochs >= kept + 2);
+    QCOMPARE(panel->networkList()->currentNetworkName().section(QStringLiteral(" (epoch"), 0, 0), run_name);
   }
 
   void networksAreRenamedInTheListAndTheNewNameIsShownEverywhere() {
@@ -501,17 +501,17 @@ class TrainingTest : public QObject {
     QVERIFY(QTest::qWaitForWindowExposed(window.get()));
     NetworkPanel* panel = window->networkPanel();
     window->setTrainingClip(0, true);
-    panel->setLossNetworkFile(autoencoder_);
+    panel->setLossNetworkFile(loss_network_);
     setTinyForm(panel, 1);
     QSignalSpy finished(panel, &NetworkPanel::jobFinished);
     for (int run = 0; run < 2; ++run) {
       QVERIFY(panel->startTraining(false));
       QVERIFY(finished.wait(kJobTimeoutMs));
     }
-    QCOMPARE(panel->networkCount(), 2);
-    panel->setCurrentIndex(0);
-    const QString first_name = panel->currentNetworkName();
-    panel->setCurrentIndex(1);
+    QCOMPARE(panel->networkList()->networkCount(), 2);
+    panel->networkList()->setCurrentIndex(0);
+    const QString first_name = panel->networkList()->currentNetworkName();
+    panel->networkList()->setCurrentIndex(1);
     auto* list = panel->findChild<QTreeWidget*>(QStringLiteral("NetworkList"));
     QVERIFY(list != nullptr);
     auto* dock = window->findChild<QDockWidget*>(QStringLiteral("NetworksDock"));
@@ -528,7 +528,7 @@ class TrainingTest : public QObject {
     editor->selectAll();
     QTest::keyClicks(editor, QStringLiteral("walk fast"));
     QTest::keyClick(editor, Qt::Key_Return);
-    QTRY_COMPARE(panel->currentNetworkName(), QStringLiteral("walk fast"));
+    QTRY_COMPARE(panel->networkList()->currentNetworkName(), QStringLiteral("walk fast"));
     QCOMPARE(window->resultPanel()->networkName(), QStringLiteral("walk fast"));
     QVERIFY(window->resultPanel()->networkChoice()->findText(QStringLiteral("walk fast")) >= 0);
     QCOMPARE(window->resultPanel()->networkChoice()->currentText(), QStringLiteral("walk fast"));
@@ -536,10 +536,10 @@ class TrainingTest : public QObject {
 
     // A taken or empty name is refused with a reason, and the old name stays.
     reports_.clear();
-    QVERIFY(!panel->renameNetwork(1, first_name));
-    QVERIFY(!panel->renameNetwork(1, QStringLiteral("   ")));
+    QVERIFY(!panel->networkList()->renameNetwork(1, first_name));
+    QVERIFY(!panel->networkList()->renameNetwork(1, QStringLiteral("   ")));
     QCOMPARE(reports_.size(), std::size_t{2});
-    QCOMPARE(panel->currentNetworkName(), QStringLiteral("walk fast"));
+    QCOMPARE(panel->networkList()->currentNetworkName(), QStringLiteral("walk fast"));
 
     // The close prompt lists the new name.
     QStringList asked;
@@ -551,6 +551,17 @@ class TrainingTest : public QObject {
     QCOMPARE(asked.size(), 1);
     QVERIFY2(asked[0].contains(QStringLiteral("walk fast")), qPrintable(asked[0]));
     panel->setConfirmer([](const QString&, const QString&, QMessageBox::StandardButtons) { return QMessageBox::Discard; });
+
+    // Saved under a file name, the network is named after the file, everywhere; a name another
+    // network has gets a counter. (The Result panel kept the old name, and two networks could share one.)
+    QTemporaryDir saved;
+    QVERIFY(panel->networkList()->saveNetwork(1, saved.filePath(QStringLiteral("brisk.net"))));
+    QCOMPARE(panel->networkList()->currentNetworkName(), QStringLiteral("brisk"));
+    QCOMPARE(window->resultPanel()->networkName(), QStringLiteral("brisk"));
+    QVERIFY(panel->networkList()->saveNetwork(1, saved.filePath(first_name + QStringLiteral(".net"))));
+    QCOMPARE(panel->networkList()->currentNetworkName(), first_name + QStringLiteral(" (2)"));
+    QCOMPARE(window->resultPanel()->networkName(), first_name + QStringLiteral(" (2)"));
+    QVERIFY(window->resultPanel()->networkChoice()->findText(first_name + QStringLiteral(" (2)")) >= 0);
   }
 
   void aFolderAsTrainingDatabaseTrainsToCompletion() {
@@ -571,17 +582,17 @@ class TrainingTest : public QObject {
     panel->addTrainingFolder(folder);  // listed once
     QCOMPARE(panel->trainingFolders(), QStringList{QDir(folder).absolutePath()});
     QVERIFY(window->trainingClipPaths().isEmpty());
-    panel->setLossNetworkFile(autoencoder_);
+    panel->setLossNetworkFile(loss_network_);
     setTinyForm(panel, 3);
     QSignalSpy finished(panel, &NetworkPanel::jobFinished);
     reports_.clear();
     QVERIFY(panel->startTraining(false));
     QVERIFY(finished.wait(kJobTimeoutMs));
     QVERIFY2(reports_.empty(), reports_.empty() ? "" : qPrintable(reports_.front().message));
-    QCOMPARE(panel->networkCount(), 1);
-    QVERIFY(!panel->isNetworkSaved(0));
-    QCOMPARE(panel->network(0)->metadata.training.epochs, 3);
-    QCOMPARE(panel->network(0)->metadata.loss_history.epochs.size(), std::size_t{3});
+    QCOMPARE(panel->networkList()->networkCount(), 1);
+    QVERIFY(!panel->networkList()->isNetworkSaved(0));
+    QCOMPARE(panel->networkList()->network(0)->metadata.training.epochs, 3);
+    QCOMPARE(panel->networkList()->network(0)->metadata.loss_history.epochs.size(), std::size_t{3});
     QVERIFY2(panel->statusText().startsWith(QStringLiteral("Trained")), qPrintable(panel->statusText()));
     QCOMPARE(panel->progressBar()->value(), panel->progressBar()->maximum());
 
@@ -589,11 +600,11 @@ class TrainingTest : public QObject {
     setTinyForm(panel, 1);
     QVERIFY(panel->startTraining(false));
     QVERIFY(finished.wait(kJobTimeoutMs));
-    QCOMPARE(panel->networkCount(), 2);
-    panel->setCurrentIndex(0);
-    const QString first = panel->currentNetworkName();
-    panel->setCurrentIndex(1);
-    const QString second = panel->currentNetworkName();
+    QCOMPARE(panel->networkList()->networkCount(), 2);
+    panel->networkList()->setCurrentIndex(0);
+    const QString first = panel->networkList()->currentNetworkName();
+    panel->networkList()->setCurrentIndex(1);
+    const QString second = panel->networkList()->currentNetworkName();
     QVERIFY2(first != second, qPrintable(first));
     const QComboBox* choice = window->resultPanel()->networkChoice();
     QVERIFY(choice->findText(first) >= 0);
@@ -607,10 +618,10 @@ class TrainingTest : public QObject {
     });
     const QString saved_folder = scratchFile(QStringLiteral("saved_networks"));
     QVERIFY(QDir().mkpath(saved_folder));
-    panel->setFolderChooser([&](const QString&) { return saved_folder; });
+    panel->networkList()->setFolderChooser([&](const QString&) { return saved_folder; });
     QVERIFY(panel->prepareToClose());
     QCOMPARE(asked.size(), 1);
-    QVERIFY(panel->isNetworkSaved(0) && panel->isNetworkSaved(1));
+    QVERIFY(panel->networkList()->isNetworkSaved(0) && panel->networkList()->isNetworkSaved(1));
     QCOMPARE(QDir(saved_folder).entryList({QStringLiteral("*.net")}, QDir::Files).size(), 2);
     QVERIFY(panel->prepareToClose());  // nothing unsaved any more: no question
     QCOMPARE(asked.size(), 1);
@@ -620,7 +631,7 @@ class TrainingTest : public QObject {
     auto window = makeWindow();
     QVERIFY(window);
     NetworkPanel* panel = window->networkPanel();
-    panel->setLossNetworkFile(autoencoder_);
+    panel->setLossNetworkFile(loss_network_);
     QSignalSpy ready(panel, &NetworkPanel::stylizedClipReady);
     QSignalSpy finished(panel, &NetworkPanel::jobFinished);
     panel->lossCurve()->addPoint(QStringLiteral("total"), 0.0, 1.0);  // as a previous training leaves it
@@ -674,7 +685,7 @@ class TrainingTest : public QObject {
     QVERIFY(window);
     NetworkPanel* panel = window->networkPanel();
     window->setTrainingClip(0, true);
-    panel->setLossNetworkFile(autoencoder_);
+    panel->setLossNetworkFile(loss_network_);
     setTinyForm(panel, 100000);
     QStringList asked;
     QMessageBox::StandardButton stop_answer = QMessageBox::No;
@@ -723,7 +734,7 @@ class TrainingTest : public QObject {
     QVERIFY2(close_ms < kCancelBoundMs, qPrintable(QStringLiteral("closing took %1 ms").arg(close_ms)));
     QVERIFY(!panel->isBusy());
     QCOMPARE(asked.size(), 3);  // stop?, then save the cancelled run's network?
-    QCOMPARE(panel->networkCount(), 1);
+    QCOMPARE(panel->networkList()->networkCount(), 1);
     const nn::StyleModel checkpoint = nn::loadStyleModel(panel->lastCheckpointFile().toStdString());
     QVERIFY(checkpoint.metadata.training.epochs >= 1);
     QVERIFY2(reports_.empty(), reports_.empty() ? "" : qPrintable(reports_.front().message));

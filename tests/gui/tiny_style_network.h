@@ -22,7 +22,7 @@ inline nn::StyleModel tinyStyleModel(unsigned seed = 5) {
   for (const char* clip : {"cmu_131_01.bvh", "zombie.bvh"})
     values.push_back(style::loadMotionClip(fixture(QString::fromLatin1(clip)).toStdString()).features.values);
   nn::StyleModel model{nn::TransformationNetwork<float>({kFeatureCount, 8, 5, true}),
-                       nn::Autoencoder<float>({kFeatureCount, 16, 5}), computeFeatureStatistics(values), {}, {}};
+                       nn::LossNetwork<float>({kFeatureCount, 16, 5}), computeFeatureStatistics(values), {}, {}};
   model.transformation.initialise(seed);
   model.loss_network.initialise(3);
   model.metadata.representation = style::currentRepresentation();

@@ -57,7 +57,7 @@ def median_ms(fn, warmup, runs):
 def build_networks(torch):
     nn = torch.nn
 
-    class Autoencoder(nn.Module):
+    class LossNetwork(nn.Module):
         def __init__(self):
             super().__init__()
             self.encoder = nn.Conv1d(FEATURES, AE_HIDDEN, WIDTH, padding=WIDTH // 2)
@@ -70,7 +70,7 @@ def build_networks(torch):
             h = h.repeat_interleave(2, dim=2) - self.encoder.bias.view(1, -1, 1)
             return self.decoder(h)
 
-    class Transformer(nn.Module):
+    class TransformationNetwork(nn.Module):
         def __init__(self):
             super().__init__()
             self.conv1 = nn.Conv1d(FEATURES, T_HIDDEN, WIDTH, padding=WIDTH // 2)
@@ -82,7 +82,7 @@ def build_networks(torch):
             y = torch.relu(self.conv2(y))
             return x + self.conv3(y)
 
-    return Autoencoder(), Transformer()
+    return LossNetwork(), TransformationNetwork()
 
 
 def pytorch_figures(args):

@@ -1,7 +1,7 @@
 // bench_nn: figures for the neural core (README: "bench_nn" and "bench_nn --residual-experiment").
 //   stylize 240 / 960 / 14,400 frames with the float32 fast path (ms and frames/s, median of runs)
 //   one transformation-network training step (forward + backward, full eq. 10 loss), batch 16 x 240
-//   one autoencoder training step (eq. 3, dropout on), batch 16 x 240
+//   one loss network training step (eq. 3, dropout on), batch 16 x 240
 // By default on 1 and then 2 threads (each in a forked child: the compute pool's size is fixed at its
 // first use); --threads N runs N only. Lines start with "[threads=N]" (tests/peer/pytorch_peer.py
 // parses them).
@@ -175,19 +175,19 @@ void contentTargets(StyleBatch<float>& batch, const FeatureStatistics& norm) {
   }
 }
 
-StyleBatch<float> syntheticBatch(const Autoencoder<float>& ae, const FeatureStatistics& norm, int windows, int frames,
+StyleBatch<float> syntheticBatch(const LossNetwork<float>& loss_network, const FeatureStatistics& norm, int windows, int frames,
                                  std::mt19937& rng) {
   StyleBatch<float> batch;
   batch.frames = frames;
   batch.content = syntheticClip<float>(static_cast<Eigen::Index>(windows) * frames, rng);
   contentTargets(batch, norm);
-  batch.content_hidden = contentHidden(ae, batch.content, frames);
+  batch.content_hidden = contentHidden(loss_network, batch.content, frames);
   // The "style": the content with a faster, larger oscillation added.
   // The "style": another synthetic clip with a fast tremor on every joint.
   Mat<float> style = syntheticClip<float>(480, rng);
   for (Eigen::Index t = 0; t < style.cols(); ++t)
     style.col(t).head(3 * kCanonicalJointCount).array() += 0.5f * static_cast<float>(std::sin(0.6 * static_cast<double>(t)));
-  batch.style_grams.push_back(styleGram(ae, style));
+  batch.style_grams.push_back(styleGram(loss_network, style));
   return batch;
 }
 
@@ -197,10 +197,10 @@ void speedBench() {
               loadAverage());
   std::mt19937 rng(1);
   TransformationNetwork<float> t;
-  Autoencoder<float> ae;
+  LossNetwork<float> loss_network;
   t.initialise(1);
-  ae.initialise(2);
-  FastStylizer fast(t, ae);
+  loss_network.initialise(2);
+  FastStylizer fast(t, loss_network);
   for (int frames : {240, 960, 14400}) {
     const Mat<float> x = randomMatrix<float>(kFeatureCount, frames, rng);
     Mat<float> out;
@@ -217,45 +217,45 @@ void speedBench() {
                 ms.wall_ms, 14400 / ms.wall_ms * 1000.0, ms.cpu_ms);
   }
   const FeatureStatistics norm = syntheticNormalisation();
-  const StyleBatch<float> batch = syntheticBatch(ae, norm, 16, 240, rng);
+  const StyleBatch<float> batch = syntheticBatch(loss_network, norm, 16, 240, rng);
   const Timing t_ms = medianMs(1, 7, [&] {
     t.zeroGrad();
-    accumulateObjective(t, ae, batch, norm, LossWeights{});
+    accumulateObjective(t, loss_network, batch, norm, LossWeights{});
   });
   std::printf("[threads=%d] T training step (fwd+bwd, eq. 10), batch 16 x 240: wall %8.1f ms | cpu %8.1f ms\n",
               threads, t_ms.wall_ms, t_ms.cpu_ms);
   std::mt19937 dropout_rng(3);
-  const Timing ae_ms = medianMs(1, 7, [&] {
-    ae.zeroGrad();
-    ae.accumulateReconstruction(batch.content, 240, static_cast<float>(kDefaultSparsity),
+  const Timing loss_network_ms = medianMs(1, 7, [&] {
+    loss_network.zeroGrad();
+    loss_network.accumulateReconstruction(batch.content, 240, static_cast<float>(kDefaultSparsity),
                                 static_cast<float>(kDefaultInputDropout), &dropout_rng);
   });
   std::printf("[threads=%d] AE training step (fwd+bwd, eq. 3, dropout), batch 16 x 240: wall %8.1f ms | cpu %8.1f ms\n",
-              threads, ae_ms.wall_ms, ae_ms.cpu_ms);
+              threads, loss_network_ms.wall_ms, loss_network_ms.cpu_ms);
 }
 
 // Trains T on synthetic data with and without the residual connection, same seeds and budget, and
 // prints the loss curve. Behind TransformationShape::residual's default.
 void residualExperiment(int steps, double style_weight) {
   std::mt19937 data_rng(7);
-  Autoencoder<float> ae;
-  ae.initialise(5);
+  LossNetwork<float> loss_network;
+  loss_network.initialise(5);
   // A briefly trained loss network, so hidden units mean something for the synthetic signal.
   {
-    Adam<float> adam(ae.parameters(), AdamOptions{1e-3});
+    Adam<float> adam(loss_network.parameters(), AdamOptions{1e-3});
     std::mt19937 rng(9);
     for (int step = 0; step < 150; ++step) {
       const Mat<float> x = syntheticClip<float>(8 * 240, data_rng);
       adam.zeroGrad();
-      const auto terms = ae.accumulateReconstruction(x, 240, static_cast<float>(kDefaultSparsity), 0.25f, &rng);
+      const auto terms = loss_network.accumulateReconstruction(x, 240, static_cast<float>(kDefaultSparsity), 0.25f, &rng);
       adam.step();
       if (step % 50 == 0 || step == 149) std::printf("  AE step %3d  mse %.4f\n", step, terms.mse);
     }
   }
   const FeatureStatistics norm = syntheticNormalisation();
   std::vector<StyleBatch<float>> batches;
-  for (int i = 0; i < 4; ++i) batches.push_back(syntheticBatch(ae, norm, 8, 240, data_rng));
-  const StyleBatch<float> validation = syntheticBatch(ae, norm, 8, 240, data_rng);
+  for (int i = 0; i < 4; ++i) batches.push_back(syntheticBatch(loss_network, norm, 8, 240, data_rng));
+  const StyleBatch<float> validation = syntheticBatch(loss_network, norm, 8, 240, data_rng);
   LossWeights weights;
   weights.style = style_weight;
   std::printf("loss weights: content %g style %g foot %g bone %g trajectory %g\n", weights.content, weights.style,
@@ -267,13 +267,13 @@ void residualExperiment(int steps, double style_weight) {
     std::printf("%s:\n", residual ? "residual (output = input + T(input))" : "plain (paper)");
     for (int step = 0; step <= steps; ++step) {
       if (step % (steps / 5) == 0) {
-        const ObjectiveTerms v = evaluateObjective(t, ae, validation, norm, weights);
+        const ObjectiveTerms v = evaluateObjective(t, loss_network, validation, norm, weights);
         std::printf("  step %4d  total %9.4f  content %8.4f  style %9.4f  foot %9.3f  bone %9.3f  traj %8.4f\n",
                     step, v.total, v.content, v.style, v.foot, v.bone, v.trajectory);
       }
       if (step == steps) break;
       adam.zeroGrad();
-      accumulateObjective(t, ae, batches[static_cast<std::size_t>(step) % batches.size()], norm, weights);
+      accumulateObjective(t, loss_network, batches[static_cast<std::size_t>(step) % batches.size()], norm, weights);
       adam.step();
     }
   }

@@ -117,7 +117,7 @@ int fullTrainingBench(int epochs, bool synthetic_only) {
 
   std::vector<Eigen::MatrixXd> values;
   for (const style::MotionClip& clip : data.content) values.push_back(clip.features.values);
-  nn::AutoencoderModel loss{nn::Autoencoder<float>(), computeFeatureStatistics(values), {}};
+  nn::LossNetworkModel loss{nn::LossNetwork<float>(), computeFeatureStatistics(values), {}};
   loss.network.initialise(1);
   loss.metadata.representation = style::currentRepresentation();
 
@@ -128,7 +128,7 @@ int fullTrainingBench(int epochs, bool synthetic_only) {
   config.settings.epochs = epochs;
   config.settings.seed = 1;
   config.settings.output = dir / "bench.net";
-  config.autoencoder_model = loss;
+  config.loss_network_model = loss;
   config.content_clips = data.content;
   config.styles = {style::StyleSource{std::nullopt, data.style_clip}};
   style::TrainingCallbacks callbacks;

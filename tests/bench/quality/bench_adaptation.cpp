@@ -59,9 +59,9 @@ std::vector<style::MotionClip> newStudioClips(const fs::path& fixtures) {
   return clips;
 }
 
-double meanFamiliarity(const nn::AutoencoderModel& ae, const std::vector<style::MotionClip>& clips) {
+double meanFamiliarity(const nn::LossNetworkModel& loss_network, const std::vector<style::MotionClip>& clips) {
   double sum = 0.0;
-  for (const style::MotionClip& clip : clips) sum += style::measureFamiliarity(ae, clip.features.values).mean_cm;
+  for (const style::MotionClip& clip : clips) sum += style::measureFamiliarity(loss_network, clip.features.values).mean_cm;
   return clips.empty() ? 0.0 : sum / static_cast<double>(clips.size());
 }
 

@@ -2,12 +2,12 @@
 // and rigs they never trained on, against the same figures on held-out Bandai clips (issue 12's
 // goals). Prints tables; --json FILE writes every figure.
 //
-//   eval_generalisation [--models DIR] [--ae FILE] [--styles elderly,sad,...] [--data BANDAI_ROOT]
+//   eval_generalisation [--models DIR] [--loss-network FILE] [--styles elderly,sad,...] [--data BANDAI_ROOT]
 //                       [--fixtures SHARED_FIXTURES] [--samples DIR] [--no-cleanup] [--per-joint]
 //                       [--path content|style] [--probes] [--json FILE]
 //
 // Clip sets:
-//   bandai-ae-heldout     every 10th file of dataset-1 then dataset-2 (train_models.sh's train-ae split)
+//   bandai-ae-heldout     every 10th file of dataset-1 then dataset-2 (train_models.sh's train-loss-network split)
 //   bandai-style-heldout  every 5th dataset-2 normal-style walk, run or turn (train_models.sh's train-style split)
 //   other-studios         the two samples (CMU 131_01 trimmed, the zombie) and ../shared/fixtures/
 //                         cmu_walks/*.bvh without their rest-pose frame 0 (their README)
@@ -77,10 +77,10 @@ std::vector<ClipSet> loadClipSets(const fs::path& data, const fs::path& fixtures
   std::vector<ClipSet> sets;
   const fs::path d1 = data / "dataset-1" / "data", d2 = data / "dataset-2" / "data";
   if (fs::is_directory(d1) && fs::is_directory(d2)) {
-    ClipSet ae{"bandai-ae-heldout", {}};
+    ClipSet loss_network{"bandai-ae-heldout", {}};
     for (const fs::path& f : style::splitHoldout(style::findBvhFiles({d1, d2}), 10).held_out)
-      ae.clips.push_back(loadClip(f, false, ""));
-    sets.push_back(std::move(ae));
+      loss_network.clips.push_back(loadClip(f, false, ""));
+    sets.push_back(std::move(loss_network));
     // train_models.sh's style content: the dataset-2 normal-style locomotion clips, every 5th held out.
     std::vector<fs::path> normal;
     for (const fs::path& f : style::findBvhFiles({d2})) {
@@ -110,7 +110,7 @@ std::vector<ClipSet> loadClipSets(const fs::path& data, const fs::path& fixtures
 }
 
 // Per-joint and per-clip reconstruction of the loss network.
-nlohmann::json evaluateLossNetwork(const nn::AutoencoderModel& ae, const std::vector<ClipSet>& sets, bool per_joint) {
+nlohmann::json evaluateLossNetwork(const nn::LossNetworkModel& loss_network, const std::vector<ClipSet>& sets, bool per_joint) {
   nlohmann::json out = nlohmann::json::object();
   std::printf("\nloss network: reconstruction (mean joint error, reference cm) and familiarity\n");
   for (const ClipSet& set : sets) {
@@ -121,10 +121,10 @@ nlohmann::json evaluateLossNetwork(const nn::AutoencoderModel& ae, const std::ve
     std::map<std::string, int> levels;
     for (const EvalClip& e : set.clips) {
       const Eigen::MatrixXd& x = e.clip.features.values;
-      const Eigen::MatrixXd y = style::projectFeatures(ae, x);
+      const Eigen::MatrixXd y = style::projectFeatures(loss_network, x);
       for (int c = 0; c < kCanonicalJointCount; ++c)
         joint_sum[c] += (y.middleRows<3>(3 * c) - x.middleRows<3>(3 * c)).colwise().norm().sum();
-      const style::Familiarity fam = style::measureFamiliarity(ae, x);
+      const style::Familiarity fam = style::measureFamiliarity(loss_network, x);
       // Foot skate (cm/s, by the content's contacts) of the projection and of the content itself.
       skate += style::footSkate(y, e.clip.features.contacts, e.clip.features.anchor) * static_cast<double>(x.cols());
       skate_content += style::footSkate(x, e.clip.features.contacts, e.clip.features.anchor) * static_cast<double>(x.cols());
@@ -167,7 +167,7 @@ nlohmann::json evaluateLossNetwork(const nn::AutoencoderModel& ae, const std::ve
 
 // Familiarity of other studios' clips and of variations that take them further from the training
 // motion (played backwards, twice as fast, half as fast): what the thresholds are read against.
-void printFamiliarityProbes(const nn::AutoencoderModel& ae, const ClipSet& other) {
+void printFamiliarityProbes(const nn::LossNetworkModel& loss_network, const ClipSet& other) {
   std::printf("\nfamiliarity probes (mean reconstruction error cm: as captured / backwards / x2 speed / x0.5 speed)\n");
   for (const EvalClip& e : other.clips) {
     std::vector<double> figures;
@@ -177,7 +177,7 @@ void printFamiliarityProbes(const nn::AutoencoderModel& ae, const ClipSet& other
       if (variant == 2) motion.frame_time = e.motion.frame_time / 2.0;
       if (variant == 3) motion.frame_time = e.motion.frame_time * 2.0;
       const MotionFeatures features = extractFeatures(motion, e.mapping);
-      figures.push_back(style::measureFamiliarity(ae, features.values).mean_cm);
+      figures.push_back(style::measureFamiliarity(loss_network, features.values).mean_cm);
     }
     std::printf("  %-22s %5.2f %5.2f %5.2f %5.2f\n", e.clip.file.filename().string().c_str(), figures[0], figures[1],
                 figures[2], figures[3]);
@@ -198,7 +198,7 @@ struct NetworkFigures {
   int clips = 0;
 };
 
-nlohmann::json evaluateNetwork(const nn::StyleModel& model, const nn::AutoencoderModel& ae, const ClipSet& set,
+nlohmann::json evaluateNetwork(const nn::StyleModel& model, const nn::LossNetworkModel& loss_network, const ClipSet& set,
                                const fs::path& data, bool cleanup, style::PathMode path, const CleanupOptions& cleanup_options,
                                NetworkFigures& figures) {
   // Style clips by label from the network's own metadata ("style_for_walk" -> file name).
@@ -225,7 +225,7 @@ nlohmann::json evaluateNetwork(const nn::StyleModel& model, const nn::Autoencode
   }
   nlohmann::json out = nlohmann::json::object();
   if (clips.empty()) return out;
-  const style::EvaluationReport report = style::evaluateStyleNetwork(ae, model, clips, styles, pairing, path);
+  const style::EvaluationReport report = style::evaluateStyleNetwork(loss_network, model, clips, styles, pairing, path);
   const style::Stylizer stylizer(model);
   nlohmann::json per_clip = nlohmann::json::array();
   for (std::size_t i = 0; i < clips.size(); ++i) {
@@ -288,7 +288,7 @@ void printFigures(const std::string& network, const std::string& set, const Netw
 int main(int argc, char** argv) {
   const fs::path resources = resourceDirectory().value_or(fs::path("resources"));
   fs::path models = resources / "models";
-  fs::path ae_file, json_file;
+  fs::path loss_network_file, json_file;
   fs::path data = fs::path(MOTIONSTYLE_SHARED_DATA_DIR) / "bandai";
   fs::path fixtures = fs::path(MOTIONSTYLE_SHARED_DATA_DIR).parent_path() / "fixtures";
   fs::path samples = resources / "samples";
@@ -304,7 +304,7 @@ int main(int argc, char** argv) {
       return argv[++i];
     };
     if (a == "--models") models = next();
-    else if (a == "--ae") ae_file = next();
+    else if (a == "--loss-network") loss_network_file = next();
     else if (a == "--data") data = next();
     else if (a == "--fixtures") fixtures = next();
     else if (a == "--samples") samples = next();
@@ -326,14 +326,14 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  if (ae_file.empty()) ae_file = models / "autoencoder.net";
+  if (loss_network_file.empty()) loss_network_file = models / "loss_network.net";
   try {
     const std::vector<ClipSet> sets = loadClipSets(data, fixtures, samples);
-    const nn::AutoencoderModel ae = style::loadCompatibleAutoencoder(ae_file);
+    const nn::LossNetworkModel loss_network = style::loadCompatibleLossNetwork(loss_network_file);
     nlohmann::json json;
-    json["loss_network"] = ae_file.string();
-    json["reconstruction"] = evaluateLossNetwork(ae, sets, per_joint);
-    if (probes) printFamiliarityProbes(ae, sets.back());
+    json["loss_network"] = loss_network_file.string();
+    json["reconstruction"] = evaluateLossNetwork(loss_network, sets, per_joint);
+    if (probes) printFamiliarityProbes(loss_network, sets.back());
     if (!styles.empty()) std::printf("\nstyle networks (means over clips; clean-up: mean residual, worst residual cm, worst skate cm/s)\n");
     for (const std::string& name : styles) {
       const fs::path file = fs::exists(name) ? fs::path(name) : models / (name + ".net");
@@ -341,7 +341,7 @@ int main(int argc, char** argv) {
       for (const ClipSet& set : sets) {
         if (set.name == "bandai-ae-heldout") continue;
         NetworkFigures figures;
-        json["networks"][name][set.name] = evaluateNetwork(model, ae, set, data, cleanup, path, cleanup_options, figures);
+        json["networks"][name][set.name] = evaluateNetwork(model, loss_network, set, data, cleanup, path, cleanup_options, figures);
         printFigures(name, set.name, figures);
       }
     }

@@ -123,12 +123,12 @@ TEST_F(ResourcePathsTest, TheInstallPrefixIsFoundBesideTheExecutablesFolder) {
 
 TEST_F(ResourcePathsTest, ShippedNetworksAreListedByNameInOrder) {
   makeResources(root_ / "res");
-  for (const char* name : {"sad.net", "autoencoder.net", "elderly.net", "NOTICE", "notes.txt", "bad name.net"})
+  for (const char* name : {"sad.net", "loss_network.net", "elderly.net", "NOTICE", "notes.txt", "bad name.net"})
     touch(root_ / "res" / "models" / name);
   const std::vector<fs::path> files = shippedNetworkFiles(root_ / "res");
   ASSERT_EQ(files.size(), 3u);
-  EXPECT_EQ(files[0].filename(), "autoencoder.net");
-  EXPECT_EQ(files[1].filename(), "elderly.net");
+  EXPECT_EQ(files[0].filename(), "elderly.net");
+  EXPECT_EQ(files[1].filename(), "loss_network.net");
   EXPECT_EQ(files[2].filename(), "sad.net");
   EXPECT_EQ(shippedNetworkFile(root_ / "res", "elderly"), root_ / "res" / "models" / "elderly.net");
 }

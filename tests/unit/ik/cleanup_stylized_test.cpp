@@ -4,7 +4,7 @@
 // manifold projection included) then style::cleanUpStylizedClip (the content's contacts and those
 // detected on the output locked, the Ceres clean-up on the content's own skeleton, the metrics before
 // and after).
-//   - Loss network: a hand-set autoencoder whose projection is a low-pass filter, the kind of loss a
+//   - Loss network: a hand-set loss network whose projection is a low-pass filter, the kind of loss a
 //     trained one has. Hidden unit pairs carry +x + B and -x + B (B keeps the ReLU linear and is taken
 //     off again by the decoder's "- b0"), so after max-pooling their difference is the mean of each
 //     pair of frames; the decoder's taps (1/4, 1/2, 1/4) over the depooled frames then interpolate
@@ -35,9 +35,9 @@ namespace {
 constexpr float kDamage = 1.4f;
 constexpr float kHiddenBias = 50.0f;  // normalised units: far above any feature, so ReLU stays linear
 
-nn::Autoencoder<float> lowPassAutoencoder() {
+nn::LossNetwork<float> lowPassLossNetwork() {
   constexpr int width = 25, centre = width / 2;
-  nn::Autoencoder<float> network(nn::AutoencoderShape{kFeatureCount, 2 * kFeatureCount, width});
+  nn::LossNetwork<float> network(nn::LossNetworkShape{kFeatureCount, 2 * kFeatureCount, width});
   Eigen::MatrixXf& encoder = network.encoder.weight.value;  // hidden x (features * width), tap-major
   Eigen::MatrixXf& decoder = network.decoder.weight.value;  // features x (hidden * width)
   encoder.setZero();
@@ -58,7 +58,7 @@ nn::Autoencoder<float> lowPassAutoencoder() {
 // output_scale multiplies the transformation's (already 0.1-scaled) output layer.
 nn::StyleModel networkLikeModel(const MotionFeatures& content, std::uint32_t seed, float output_scale) {
   nn::StyleModel model{nn::TransformationNetwork<float>(nn::TransformationShape{kFeatureCount, 32, 25, true}),
-                       lowPassAutoencoder(), computeFeatureStatistics({content.values}), {}, {}};
+                       lowPassLossNetwork(), computeFeatureStatistics({content.values}), {}, {}};
   model.transformation.initialise(seed);
   model.transformation.conv3.weight.value *= output_scale;
   model.metadata.representation = style::currentRepresentation();

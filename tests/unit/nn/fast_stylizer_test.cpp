@@ -21,21 +21,21 @@ void copyWeights(Conv1d<To>& to, const Conv1d<From>& from) {
 
 struct Networks {
   TransformationNetwork<float> t;
-  Autoencoder<float> ae;
+  LossNetwork<float> loss_network;
   TransformationNetwork<double> t_ref;
-  Autoencoder<double> ae_ref;
+  LossNetwork<double> loss_network_ref;
   explicit Networks(bool residual)
       : t({kFeatureCount, 128, 25, residual}), t_ref({kFeatureCount, 128, 25, residual}) {
     t.initialise(1);
-    ae.initialise(2);
+    loss_network.initialise(2);
     std::mt19937 rng(3);
-    ae.encoder.bias.value = test::randomMatrix(256, 1, rng, 0.1).cast<float>();
+    loss_network.encoder.bias.value = test::randomMatrix(256, 1, rng, 0.1).cast<float>();
     for (Conv1d<float>* c : {&t.conv1, &t.conv2, &t.conv3}) c->bias.value = test::randomMatrix(c->outChannels(), 1, rng, 0.1).cast<float>();
     copyWeights(t_ref.conv1, t.conv1);
     copyWeights(t_ref.conv2, t.conv2);
     copyWeights(t_ref.conv3, t.conv3);
-    copyWeights(ae_ref.encoder, ae.encoder);
-    copyWeights(ae_ref.decoder, ae.decoder);
+    copyWeights(loss_network_ref.encoder, loss_network.encoder);
+    copyWeights(loss_network_ref.decoder, loss_network.decoder);
   }
 };
 
@@ -44,23 +44,23 @@ double relativeMaxError(const MatD& actual, const MatD& expected) {
 }
 
 TEST(FastStylizerInvalid, RejectsBadClipsAndMissingTransformationNetwork) {
-  Autoencoder<float> ae;
-  FastStylizer projection_only(ae);
+  LossNetwork<float> loss_network;
+  FastStylizer projection_only(loss_network);
   EXPECT_THROW(projection_only.stylize(Mat<float>::Zero(kFeatureCount, 10)), std::invalid_argument);
   EXPECT_THROW(projection_only.project(Mat<float>::Zero(kFeatureCount - 1, 10)), std::invalid_argument);
   EXPECT_THROW(projection_only.project(Mat<float>::Zero(kFeatureCount, 0)), std::invalid_argument);
   TransformationNetwork<float> small({12, 8, 5, false});
-  EXPECT_THROW(FastStylizer(small, ae), std::invalid_argument);
+  EXPECT_THROW(FastStylizer(small, loss_network), std::invalid_argument);
 }
 
 TEST(FastStylizer, MatchesTheDoubleReferenceForAnyLength) {
   for (bool residual : {true, false}) {
     Networks n(residual);
-    FastStylizer fast(n.t, n.ae);
+    FastStylizer fast(n.t, n.loss_network);
     std::mt19937 rng(4);
     for (int frames : {1, 2, 3, 24, 25, 240, 241, 1001}) {
       const MatD x = test::randomMatrix(kFeatureCount, frames, rng);
-      const MatD expected = n.ae_ref.project(n.t_ref.apply(x, frames), frames);
+      const MatD expected = n.loss_network_ref.project(n.t_ref.apply(x, frames), frames);
       const MatD actual = fast.stylize(x.cast<float>()).cast<double>();
       ASSERT_EQ(actual.cols(), frames);
       EXPECT_LT(relativeMaxError(actual, expected), 1e-4) << frames << (residual ? " residual" : "");
@@ -70,13 +70,13 @@ TEST(FastStylizer, MatchesTheDoubleReferenceForAnyLength) {
 
 TEST(FastStylizer, PolyphaseDecoderEqualsThePlainDecoder) {
   Networks n(true);
-  FastStylizer fast(n.ae);
+  FastStylizer fast(n.loss_network);
   ASSERT_EQ(fast.polyphaseKernel().cols(), 256 * 13);  // 13 taps per phase instead of 25
   std::mt19937 rng(5);
   for (int frames : {1, 6, 7, 100, 481}) {
     const MatD x = test::randomMatrix(kFeatureCount, frames, rng);
-    const MatD plain = n.ae.project(x.cast<float>(), frames).cast<double>();
-    const MatD reference = n.ae_ref.project(x, frames);
+    const MatD plain = n.loss_network.project(x.cast<float>(), frames).cast<double>();
+    const MatD reference = n.loss_network_ref.project(x, frames);
     const MatD polyphase = fast.project(x.cast<float>()).cast<double>();
     EXPECT_LT(relativeMaxError(polyphase, reference), 1e-5) << frames;
     EXPECT_LT(relativeMaxError(plain, reference), 1e-5) << frames;
@@ -85,7 +85,7 @@ TEST(FastStylizer, PolyphaseDecoderEqualsThePlainDecoder) {
 
 TEST(FastStylizer, ReusedBuffersGiveTheSameResultAcrossLengths) {
   Networks n(true);
-  FastStylizer fast(n.t, n.ae);
+  FastStylizer fast(n.t, n.loss_network);
   std::mt19937 rng(6);
   const Mat<float> a = test::randomMatrix(kFeatureCount, 241, rng).cast<float>();
   const Mat<float> b = test::randomMatrix(kFeatureCount, 60, rng).cast<float>();

@@ -33,7 +33,7 @@ const std::string kPropertyValue = "PROPVALPROPV";
 
 StyleModel smallStyleModel() {
   std::mt19937 rng(21);
-  StyleModel model{TransformationNetwork<float>({kFeatureCount, 3, 3, true}), Autoencoder<float>({kFeatureCount, 4, 3}),
+  StyleModel model{TransformationNetwork<float>({kFeatureCount, 3, 3, true}), LossNetwork<float>({kFeatureCount, 4, 3}),
                    test::randomNormalisation(rng), {}, {}};
   model.transformation.initialise(22);
   model.loss_network.initialise(23);
@@ -45,7 +45,7 @@ StyleModel smallStyleModel() {
   return model;
 }
 
-AutoencoderModel smallAutoencoder() {
+LossNetworkModel smallLossNetwork() {
   const StyleModel style = smallStyleModel();
   return {style.loss_network, style.normalisation, style.metadata};
 }
@@ -106,7 +106,7 @@ void expectRefused(const std::string& bytes, const std::string& needle, bool sty
     if (style)
       parseStyleModel(bytes, "net.msn");
     else
-      parseAutoencoder(bytes, "net.msn");
+      parseLossNetwork(bytes, "net.msn");
     ADD_FAILURE() << "no InputError (expected one mentioning '" << needle << "')";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
@@ -118,7 +118,7 @@ void expectRefused(const std::string& bytes, const std::string& needle, bool sty
 template <typename Patch>
 void expectBothKindsRefuse(Patch&& patch, const std::string& needle) {
   for (bool style : {false, true}) {
-    std::string bytes = style ? serialiseStyleModel(smallStyleModel()) : serialiseAutoencoder(smallAutoencoder());
+    std::string bytes = style ? serialiseStyleModel(smallStyleModel()) : serialiseLossNetwork(smallLossNetwork());
     patch(bytes, offsetsOf(bytes));
     fixCrc(bytes);
     expectRefused(bytes, needle, style);
@@ -193,7 +193,7 @@ TEST(NetworkFileHostile, HugeWeightsAndStyleTargetsAreRefused) {
 
 // Replaces the placeholder (same length as the payload's padded form) in the serialised bytes.
 std::string withString(const std::string& placeholder, const std::string& payload, bool style) {
-  std::string bytes = style ? serialiseStyleModel(smallStyleModel()) : serialiseAutoencoder(smallAutoencoder());
+  std::string bytes = style ? serialiseStyleModel(smallStyleModel()) : serialiseLossNetwork(smallLossNetwork());
   std::string padded = payload;
   padded.resize(placeholder.size(), 'x');
   const std::size_t at = offsetOf(bytes, placeholder);

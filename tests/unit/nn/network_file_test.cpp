@@ -36,7 +36,7 @@ NetworkMetadata sampleMetadata() {
 
 StyleModel smallStyleModel() {
   std::mt19937 rng(1);
-  StyleModel model{TransformationNetwork<float>({kFeatureCount, 3, 3, true}), Autoencoder<float>({kFeatureCount, 4, 3}),
+  StyleModel model{TransformationNetwork<float>({kFeatureCount, 3, 3, true}), LossNetwork<float>({kFeatureCount, 4, 3}),
                    test::randomNormalisation(rng), sampleMetadata(), {}};
   model.transformation.initialise(2);
   model.loss_network.initialise(3);
@@ -44,9 +44,9 @@ StyleModel smallStyleModel() {
   return model;
 }
 
-AutoencoderModel smallAutoencoder() {
+LossNetworkModel smallLossNetwork() {
   std::mt19937 rng(4);
-  AutoencoderModel model{Autoencoder<float>({kFeatureCount, 4, 3}), test::randomNormalisation(rng), sampleMetadata()};
+  LossNetworkModel model{LossNetwork<float>({kFeatureCount, 4, 3}), test::randomNormalisation(rng), sampleMetadata()};
   model.network.initialise(5);
   return model;
 }
@@ -72,9 +72,9 @@ TEST(NetworkFileInvalid, TruncatedAtEveryByteBoundary) {
   ASSERT_LT(bytes.size(), 20000u);  // small enough to try every length
   for (std::size_t length = 0; length < bytes.size(); ++length)
     EXPECT_THROW(parseStyleModel(std::string_view(bytes).substr(0, length), "net.msn"), InputError) << length;
-  const std::string ae = serialiseAutoencoder(smallAutoencoder());
-  for (std::size_t length = 0; length < ae.size(); ++length)
-    EXPECT_THROW(parseAutoencoder(std::string_view(ae).substr(0, length), "net.msn"), InputError) << length;
+  const std::string loss_network = serialiseLossNetwork(smallLossNetwork());
+  for (std::size_t length = 0; length < loss_network.size(); ++length)
+    EXPECT_THROW(parseLossNetwork(std::string_view(loss_network).substr(0, length), "net.msn"), InputError) << length;
 }
 
 TEST(NetworkFileInvalid, EveryFlippedByteIsDetected) {
@@ -99,8 +99,8 @@ TEST(NetworkFileInvalid, WrongMagicFutureVersionWrongKindTrailingBytes) {
   putU32(future, 8, kNetworkFormatVersion + 1);
   fixCrc(future);
   expectInputError([&] { parseStyleModel(future, "net.msn"); }, "newer");
-  expectInputError([&] { parseAutoencoder(bytes, "net.msn"); }, "not the expected autoencoder");
-  expectInputError([&] { parseStyleModel(serialiseAutoencoder(smallAutoencoder()), "net.msn"); }, "not the expected style");
+  expectInputError([&] { parseLossNetwork(bytes, "net.msn"); }, "not the expected loss network");
+  expectInputError([&] { parseStyleModel(serialiseLossNetwork(smallLossNetwork()), "net.msn"); }, "not the expected style");
   expectInputError([&] { parseStyleModel(bytes + "extra", "net.msn"); }, "trailing");
 }
 
@@ -134,7 +134,7 @@ TEST(NetworkFileInvalid, MismatchedRepresentationAndShapes) {
 }
 
 TEST(NetworkFileInvalid, HugeDeclaredSizesAreRejectedBeforeAllocating) {
-  // The autoencoder's hidden count sits after the metadata: find it as the second u32 after the
+  // The loss network's hidden count sits after the metadata: find it as the second u32 after the
   // properties by re-serialising with a marker-free approach: patch every u32 equal to the hidden count
   // (4) that is followed by the width (3) and precedes the transformation dimensions.
   const std::string bytes = serialiseStyleModel(smallStyleModel());
@@ -143,7 +143,7 @@ TEST(NetworkFileInvalid, HugeDeclaredSizesAreRejectedBeforeAllocating) {
     std::string candidate = bytes;
     ByteReader probe(std::string_view(bytes).substr(i, 12), "probe");
     if (probe.u32("a") == kFeatureCount && probe.u32("b") == 4 && probe.u32("c") == 3) {
-      putU32(candidate, i + 4, 4096);  // a 4096-unit autoencoder would need ~54 MB of weights
+      putU32(candidate, i + 4, 4096);  // a 4096-unit loss network would need ~54 MB of weights
       fixCrc(candidate);
       expectInputError([&] { parseStyleModel(candidate, "net.msn"); }, "architecture needs");
       patched = true;
@@ -183,20 +183,20 @@ TEST(NetworkFile, StyleModelRoundTripsExactly) {
 TEST(NetworkFile, SavesAtomicallyLoadsAndDescribes) {
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("nn_file_test_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
-  const AutoencoderModel ae = smallAutoencoder();
+  const LossNetworkModel loss_network = smallLossNetwork();
   const StyleModel style = smallStyleModel();
-  saveAutoencoder(ae, dir / "loss.msn");
+  saveLossNetwork(loss_network, dir / "loss.msn");
   saveStyleModel(style, dir / "angry.msn");
-  EXPECT_EQ(networkFileKind(dir / "loss.msn"), NetworkKind::Autoencoder);
+  EXPECT_EQ(networkFileKind(dir / "loss.msn"), NetworkKind::LossNetwork);
   EXPECT_EQ(networkFileKind(dir / "angry.msn"), NetworkKind::Style);
-  const AutoencoderModel loaded = loadAutoencoder(dir / "loss.msn");
-  EXPECT_EQ(loaded.network.decoder.weight.value, ae.network.decoder.weight.value);
-  EXPECT_EQ(loaded.metadata, ae.metadata);
+  const LossNetworkModel loaded = loadLossNetwork(dir / "loss.msn");
+  EXPECT_EQ(loaded.network.decoder.weight.value, loss_network.network.decoder.weight.value);
+  EXPECT_EQ(loaded.metadata, loss_network.metadata);
   const std::string text = describeNetworkFile(dir / "angry.msn");
   for (const char* needle : {"style (transformation network)", "66 -> 3 -> 3 -> 66", "residual", "angry_walk.bvh",
                              "fnv1a64:", "3 epochs", "tool_version: 0.1.0", "canonical-21", "seed 1234567890123"})
     EXPECT_NE(text.find(needle), std::string::npos) << needle << "\n" << text;
-  EXPECT_NE(describeNetworkFile(dir / "loss.msn").find("autoencoder"), std::string::npos);
+  EXPECT_NE(describeNetworkFile(dir / "loss.msn").find("MotionStyle network: loss network"), std::string::npos);
   std::size_t leftovers = 0;
   for (const auto& entry : std::filesystem::directory_iterator(dir)) leftovers += entry.path().filename().string()[0] == '.';
   EXPECT_EQ(leftovers, 0u);  // no temporary files left behind

@@ -23,7 +23,7 @@ constexpr std::size_t kHeaderBytes = 24;
 
 StyleModel smallStyleModel() {
   std::mt19937 rng(11);
-  StyleModel model{TransformationNetwork<float>({kFeatureCount, 3, 3, true}), Autoencoder<float>({kFeatureCount, 4, 3}),
+  StyleModel model{TransformationNetwork<float>({kFeatureCount, 3, 3, true}), LossNetwork<float>({kFeatureCount, 4, 3}),
                    test::randomNormalisation(rng), {}, {}};
   model.transformation.initialise(12);
   model.loss_network.initialise(13);
@@ -34,7 +34,7 @@ StyleModel smallStyleModel() {
   return model;
 }
 
-AutoencoderModel smallAutoencoder() {
+LossNetworkModel smallLossNetwork() {
   const StyleModel style = smallStyleModel();
   return {style.loss_network, style.normalisation, style.metadata};
 }
@@ -52,7 +52,7 @@ void fixCrc(std::string& bytes) {
   putU32(bytes, bytes.size() - 4, crc32(std::string_view(bytes).substr(0, bytes.size() - 4)));
 }
 
-// Offset of the weight-encoding field in a format-2 file: it is the u32 just before the autoencoder's
+// Offset of the weight-encoding field in a format-2 file: it is the u32 just before the loss network's
 // architecture (features 66, hidden 4, width 3), found by scanning for that triple.
 std::size_t weightEncodingOffset(const std::string& bytes) {
   for (std::size_t i = kHeaderBytes; i + 16 <= bytes.size(); ++i)
@@ -117,12 +117,12 @@ TEST(NetworkFileV2Invalid, UnknownOrMislabelledWeightEncoding) {
 }
 
 TEST(NetworkFileV2Invalid, NonFiniteHalfWeightIsRejected) {
-  std::string bytes = serialiseAutoencoder(smallAutoencoder(), WeightPrecision::F16);
+  std::string bytes = serialiseLossNetwork(smallLossNetwork(), WeightPrecision::F16);
   // The last tensor is decoder.weight: its last two bytes are one f16 weight. Make it infinity.
   bytes[bytes.size() - 6] = 0x00;
   bytes[bytes.size() - 5] = static_cast<char>(0x7C);
   fixCrc(bytes);
-  expectInputError([&] { parseAutoencoder(bytes, "net.msn"); }, "non-finite");
+  expectInputError([&] { parseLossNetwork(bytes, "net.msn"); }, "non-finite");
 }
 
 TEST(NetworkFileV2Invalid, WeightsOutsideTheHalfRangeAreNotWrittenAsF16) {
@@ -182,10 +182,10 @@ TEST(NetworkFileV2, F16RoundTripRoundsEachWeightOnceAndIsStable) {
   EXPECT_EQ(f32.size() - bytes.size(), 2 * weight_count);
 }
 
-TEST(NetworkFileV2, AutoencoderRoundTripsInBothPrecisions) {
-  const AutoencoderModel model = smallAutoencoder();
+TEST(NetworkFileV2, LossNetworkRoundTripsInBothPrecisions) {
+  const LossNetworkModel model = smallLossNetwork();
   for (WeightPrecision precision : {WeightPrecision::F32, WeightPrecision::F16}) {
-    const AutoencoderModel loaded = parseAutoencoder(serialiseAutoencoder(model, precision), "net.msn");
+    const LossNetworkModel loaded = parseLossNetwork(serialiseLossNetwork(model, precision), "net.msn");
     const auto a = weightsOf(model.network);
     const auto b = weightsOf(loaded.network);
     for (std::size_t i = 0; i < a.size(); ++i) {
@@ -198,12 +198,12 @@ TEST(NetworkFileV2, AutoencoderRoundTripsInBothPrecisions) {
 }
 
 TEST(NetworkFileV2, Format1FilesStillLoad) {
-  const AutoencoderModel ae = smallAutoencoder();
-  const std::string by_hand = downgradeToFormat1(serialiseAutoencoder(ae));
-  EXPECT_EQ(serialiseAutoencoderFormat1(ae), by_hand);  // the writer's format-1 path matches the spec
-  const AutoencoderModel loaded = parseAutoencoder(by_hand, "net.msn");
-  EXPECT_EQ(weightsOf(loaded.network), weightsOf(ae.network));
-  EXPECT_EQ(loaded.metadata, ae.metadata);
+  const LossNetworkModel loss_network = smallLossNetwork();
+  const std::string by_hand = downgradeToFormat1(serialiseLossNetwork(loss_network));
+  EXPECT_EQ(serialiseLossNetworkFormat1(loss_network), by_hand);  // the writer's format-1 path matches the spec
+  const LossNetworkModel loaded = parseLossNetwork(by_hand, "net.msn");
+  EXPECT_EQ(weightsOf(loaded.network), weightsOf(loss_network.network));
+  EXPECT_EQ(loaded.metadata, loss_network.metadata);
   const NetworkFileInfo info = networkFileInfo(by_hand, "net.msn");
   EXPECT_EQ(info.format_version, 1u);
   EXPECT_EQ(info.precision, WeightPrecision::F32);
@@ -220,7 +220,7 @@ TEST(NetworkFileV2, SavedFilesDescribeTheirPrecision) {
       std::filesystem::temp_directory_path() / ("nn_file_v2_test_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   saveStyleModel(smallStyleModel(), dir / "half.msn", WeightPrecision::F16);
-  saveAutoencoder(smallAutoencoder(), dir / "full.msn");
+  saveLossNetwork(smallLossNetwork(), dir / "full.msn");
   EXPECT_EQ(networkFileInfo(dir / "half.msn").precision, WeightPrecision::F16);
   EXPECT_EQ(networkFileInfo(dir / "full.msn").precision, WeightPrecision::F32);
   const std::string half = describeNetworkFile(dir / "half.msn");

@@ -8,7 +8,7 @@
 #include "gradient_check.h"
 #include "loss_fixtures.h"
 #include "nn/adam.h"
-#include "nn/autoencoder.h"
+#include "nn/loss_network.h"
 #include "nn/transformation_objective.h"
 #include "nn/transformation_network.h"
 
@@ -20,17 +20,17 @@ using test::kGradientTolerance;
 using test::MatD;
 using test::randomMatrix;
 
-StyleBatch<double> randomStyleBatch(const Autoencoder<double>& ae, int windows, int frames, std::mt19937& rng,
+StyleBatch<double> randomStyleBatch(const LossNetwork<double>& loss_network, int windows, int frames, std::mt19937& rng,
                                     bool per_window_style) {
   StyleBatch<double> batch;
   batch.frames = frames;
-  batch.content = randomMatrix(ae.shape().features, static_cast<Eigen::Index>(windows) * frames, rng);
+  batch.content = randomMatrix(loss_network.shape().features, static_cast<Eigen::Index>(windows) * frames, rng);
   batch.contacts = test::randomContacts(batch.content.cols(), rng);
   batch.bone_lengths = test::randomBoneLengths(windows, rng);
-  batch.content_hidden = contentHidden(ae, batch.content, frames);
+  batch.content_hidden = contentHidden(loss_network, batch.content, frames);
   const int styles = per_window_style ? windows : 1;
   for (int s = 0; s < styles; ++s)
-    batch.style_grams.push_back(styleGram(ae, randomMatrix(ae.shape().features, 13 + s, rng)));
+    batch.style_grams.push_back(styleGram(loss_network, randomMatrix(loss_network.shape().features, 13 + s, rng)));
   return batch;
 }
 
@@ -45,16 +45,16 @@ LossWeights testWeights() {
 }
 
 TEST(NetworksInvalid, MismatchedShapesThrow) {
-  Autoencoder<double> ae({6, 8, 3});
-  EXPECT_THROW(ae.encode(MatD::Zero(5, 8), 4), std::invalid_argument);
-  EXPECT_THROW(ae.decode(MatD::Zero(7, 4), 2), std::invalid_argument);
-  EXPECT_THROW(ae.encodeBackward(MatD::Zero(8, 2)), std::logic_error);
+  LossNetwork<double> loss_network({6, 8, 3});
+  EXPECT_THROW(loss_network.encode(MatD::Zero(5, 8), 4), std::invalid_argument);
+  EXPECT_THROW(loss_network.decode(MatD::Zero(7, 4), 2), std::invalid_argument);
+  EXPECT_THROW(loss_network.encodeBackward(MatD::Zero(8, 2)), std::logic_error);
   std::mt19937 rng(1);
-  EXPECT_THROW(ae.accumulateReconstruction(MatD::Zero(6, 8), 4, 0.1, 0.25, nullptr), std::invalid_argument);
+  EXPECT_THROW(loss_network.accumulateReconstruction(MatD::Zero(6, 8), 4, 0.1, 0.25, nullptr), std::invalid_argument);
   TransformationNetwork<double> t({6, 5, 3, false});
   EXPECT_THROW(t.apply(MatD::Zero(7, 8), 4), std::invalid_argument);
 
-  Autoencoder<double> loss_net({kFeatureCount, 8, 3});
+  LossNetwork<double> loss_net({kFeatureCount, 8, 3});
   loss_net.initialise(1);
   TransformationNetwork<double> tt({kFeatureCount, 5, 3, true});
   const FeatureStatistics norm = test::randomNormalisation(rng);
@@ -82,55 +82,55 @@ TEST(NetworksInvalid, MismatchedShapesThrow) {
   EXPECT_THROW(Adam<double>(none, bad), std::invalid_argument);
 }
 
-TEST(Autoencoder, OutputHasTheInputLengthForOddAndEvenWindows) {
-  Autoencoder<double> ae({5, 7, 5});
-  ae.initialise(3);
+TEST(LossNetwork, OutputHasTheInputLengthForOddAndEvenWindows) {
+  LossNetwork<double> loss_network({5, 7, 5});
+  loss_network.initialise(3);
   std::mt19937 rng(2);
   for (int frames : {1, 2, 3, 8, 9, 30, 31}) {
     const MatD x = randomMatrix(5, 2 * frames, rng);
-    EXPECT_EQ(ae.encode(x, frames).cols(), 2 * evenFrames(frames) / 2);
-    const MatD y = ae.project(x, frames);
+    EXPECT_EQ(loss_network.encode(x, frames).cols(), 2 * evenFrames(frames) / 2);
+    const MatD y = loss_network.project(x, frames);
     EXPECT_EQ(y.rows(), 5);
     EXPECT_EQ(y.cols(), 2 * frames);
   }
 }
 
-TEST(Autoencoder, OddWindowEqualsTheEvenWindowWithItsLastFrameRepeated) {
-  Autoencoder<double> ae({4, 6, 5});
-  ae.initialise(4);
+TEST(LossNetwork, OddWindowEqualsTheEvenWindowWithItsLastFrameRepeated) {
+  LossNetwork<double> loss_network({4, 6, 5});
+  loss_network.initialise(4);
   std::mt19937 rng(3);
   const MatD x = randomMatrix(4, 7, rng);
   MatD padded(4, 8);
   padded << x, x.col(6);
-  EXPECT_LT((ae.project(x, 7) - ae.project(padded, 8).leftCols(7)).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_LT((loss_network.project(x, 7) - loss_network.project(padded, 8).leftCols(7)).cwiseAbs().maxCoeff(), 1e-12);
 }
 
-TEST(AutoencoderGradient, ReconstructionLossWrtW0b0AndDecoderWeights) {
+TEST(LossNetworkGradient, ReconstructionLossWrtW0b0AndDecoderWeights) {
   std::mt19937 rng(4);
   struct Case {
-    AutoencoderShape shape;
+    LossNetworkShape shape;
     int windows, frames, samples;
     double dropout;
   };
   for (const Case& c : {Case{{5, 6, 3}, 2, 6, 0, 0.0}, Case{{4, 7, 5}, 3, 5, 0, 0.25},
                         Case{{kFeatureCount, 256, 25}, 2, 9, 15, 0.25}}) {  // 15 random entries per
                                                                               // parameter: ~1 min under ASan
-    Autoencoder<double> ae(c.shape);
-    ae.initialise(5);
-    ae.encoder.bias.value = randomMatrix(c.shape.hidden, 1, rng, 0.1);
+    LossNetwork<double> loss_network(c.shape);
+    loss_network.initialise(5);
+    loss_network.encoder.bias.value = randomMatrix(c.shape.hidden, 1, rng, 0.1);
     const MatD x = randomMatrix(c.shape.features, static_cast<Eigen::Index>(c.windows) * c.frames, rng);
     const double alpha = 0.1;
-    auto run = [&](Autoencoder<double>& net) {
+    auto run = [&](LossNetwork<double>& net) {
       std::mt19937 mask(77);  // the same dropout mask for the analytic and every numeric evaluation
       return net.accumulateReconstruction(x, c.frames, alpha, c.dropout, &mask).total;
     };
-    ae.zeroGrad();
-    run(ae);
+    loss_network.zeroGrad();
+    run(loss_network);
     auto loss = [&] {
-      Autoencoder<double> probe = ae;
+      LossNetwork<double> probe = loss_network;
       return run(probe);
     };
-    for (Parameter<double>* p : ae.parameters()) {
+    for (Parameter<double>* p : loss_network.parameters()) {
       const MatD analytic = p->grad;
       const auto result = checkGradient(p->value, analytic, loss, c.samples, rng);
       EXPECT_LT(result.max_error, kGradientTolerance) << p->name << " hidden " << c.shape.hidden;
@@ -139,29 +139,29 @@ TEST(AutoencoderGradient, ReconstructionLossWrtW0b0AndDecoderWeights) {
   }
 }
 
-TEST(AutoencoderGradient, FrozenEncoderGradientWrtInput) {
+TEST(LossNetworkGradient, FrozenEncoderGradientWrtInput) {
   std::mt19937 rng(5);
-  Autoencoder<double> ae({kFeatureCount, 256, 25});
-  ae.initialise(6);
-  ae.encoder.bias.value = randomMatrix(256, 1, rng, 0.1);
+  LossNetwork<double> loss_network({kFeatureCount, 256, 25});
+  loss_network.initialise(6);
+  loss_network.encoder.bias.value = randomMatrix(256, 1, rng, 0.1);
   for (int frames : {8, 7}) {
     MatD x = randomMatrix(kFeatureCount, 2 * frames, rng);
     const MatD r = randomMatrix(256, 2 * evenFrames(frames) / 2, rng);
-    ae.zeroGrad();
-    const MatD h = ae.encodeForward(x, frames);
-    EXPECT_LT((h - ae.encode(x, frames)).cwiseAbs().maxCoeff(), 1e-12);
-    const MatD dx = ae.encodeBackward(r);
-    EXPECT_EQ(ae.encoder.weight.grad.cwiseAbs().maxCoeff(), 0.0);  // frozen: no parameter gradient
-    auto loss = [&] { return ae.encode(x, frames).cwiseProduct(r).sum(); };
+    loss_network.zeroGrad();
+    const MatD h = loss_network.encodeForward(x, frames);
+    EXPECT_LT((h - loss_network.encode(x, frames)).cwiseAbs().maxCoeff(), 1e-12);
+    const MatD dx = loss_network.encodeBackward(r);
+    EXPECT_EQ(loss_network.encoder.weight.grad.cwiseAbs().maxCoeff(), 0.0);  // frozen: no parameter gradient
+    auto loss = [&] { return loss_network.encode(x, frames).cwiseProduct(r).sum(); };
     EXPECT_LT(checkGradient(x, dx, loss, 60, rng).max_error, kGradientTolerance) << frames;
   }
 }
 
 TEST(TransformerGradient, TotalStyleLossWrtEveryParameter) {
   std::mt19937 rng(7);
-  Autoencoder<double> ae({kFeatureCount, 256, 25});
-  ae.initialise(8);
-  ae.encoder.bias.value = randomMatrix(256, 1, rng, 0.05);
+  LossNetwork<double> loss_network({kFeatureCount, 256, 25});
+  loss_network.initialise(8);
+  loss_network.encoder.bias.value = randomMatrix(256, 1, rng, 0.05);
   const FeatureStatistics norm = test::randomNormalisation(rng);
   const LossWeights weights = testWeights();
   for (bool residual : {true, false}) {
@@ -169,15 +169,15 @@ TEST(TransformerGradient, TotalStyleLossWrtEveryParameter) {
     t.initialise(9);
     for (Parameter<double>* p : t.parameters())
       if (p->value.cols() == 1) p->value = randomMatrix(p->value.rows(), 1, rng, 0.05);
-    const StyleBatch<double> batch = randomStyleBatch(ae, 2, 8, rng, !residual);
+    const StyleBatch<double> batch = randomStyleBatch(loss_network, 2, 8, rng, !residual);
     t.zeroGrad();
-    const ObjectiveTerms terms = accumulateObjective(t, ae, batch, norm, weights);
-    const ObjectiveTerms evaluated = evaluateObjective(t, ae, batch, norm, weights);
+    const ObjectiveTerms terms = accumulateObjective(t, loss_network, batch, norm, weights);
+    const ObjectiveTerms evaluated = evaluateObjective(t, loss_network, batch, norm, weights);
     EXPECT_NEAR(terms.total, evaluated.total, 1e-10 * std::abs(evaluated.total));
     for (double term : {terms.content, terms.style, terms.foot, terms.bone, terms.trajectory})
       EXPECT_GT(term, 0.0);
-    EXPECT_EQ(ae.encoder.weight.grad.cwiseAbs().maxCoeff(), 0.0);  // the loss network stays frozen
-    auto loss = [&] { return evaluateObjective(t, ae, batch, norm, weights).total; };
+    EXPECT_EQ(loss_network.encoder.weight.grad.cwiseAbs().maxCoeff(), 0.0);  // the loss network stays frozen
+    auto loss = [&] { return evaluateObjective(t, loss_network, batch, norm, weights).total; };
     for (Parameter<double>* p : t.parameters()) {
       const MatD analytic = p->grad;
       const auto result = checkGradient(p->value, analytic, loss, 10, rng);  // 10 random entries each
@@ -200,8 +200,8 @@ TEST(TransformationNetwork, OutputHasTheInputLengthAndResidualStartsNearIdentity
 }
 
 TEST(Determinism, SameSeedSameWeightsOtherSeedOtherWeights) {
-  Autoencoder<float> a;
-  Autoencoder<float> b;
+  LossNetwork<float> a;
+  LossNetwork<float> b;
   a.initialise(42);
   b.initialise(42);
   EXPECT_EQ(a.encoder.weight.value, b.encoder.weight.value);
@@ -216,17 +216,17 @@ TEST(Determinism, SameSeedSameWeightsOtherSeedOtherWeights) {
   EXPECT_EQ(ta.conv3.weight.value, tb.conv3.weight.value);
 }
 
-TEST(Autoencoder, SameWeightsNeedsTheShapeAndEveryParameterToMatch) {
-  Autoencoder<float> a({kFeatureCount, 4, 3});
+TEST(LossNetwork, SameWeightsNeedsTheShapeAndEveryParameterToMatch) {
+  LossNetwork<float> a({kFeatureCount, 4, 3});
   a.initialise(7);
-  Autoencoder<float> b = a;
+  LossNetwork<float> b = a;
   EXPECT_TRUE(sameWeights(a, b));
   b.encoder.bias.value(1, 0) += 1e-3f;  // b0 alone: eq. 2 subtracts it too
   EXPECT_FALSE(sameWeights(a, b));
   b = a;
   b.decoder.weight.value(0, 0) += 1e-3f;
   EXPECT_FALSE(sameWeights(a, b));
-  Autoencoder<float> wider({kFeatureCount, 5, 3});
+  LossNetwork<float> wider({kFeatureCount, 5, 3});
   EXPECT_FALSE(sameWeights(a, wider));
 }
 
@@ -258,19 +258,19 @@ TEST(Adam, ConvergesOnAQuadraticAndUsesBiasCorrection) {
 
 TEST(Training, AFewAdamStepsReduceBothLosses) {
   std::mt19937 rng(9);
-  // A smooth synthetic signal: the autoencoder can learn it and the loss must fall.
+  // A smooth synthetic signal: the loss network can learn it and the loss must fall.
   const int frames = 32;
   MatD x(kFeatureCount, 2 * frames);
   for (Eigen::Index t = 0; t < x.cols(); ++t)
     for (int f = 0; f < kFeatureCount; ++f) x(f, t) = std::sin(0.2 * static_cast<double>(t) + f);
-  Autoencoder<double> ae({kFeatureCount, 32, 9});
-  ae.initialise(11);
-  Adam<double> adam(ae.parameters(), AdamOptions{3e-3});
+  LossNetwork<double> loss_network({kFeatureCount, 32, 9});
+  loss_network.initialise(11);
+  Adam<double> adam(loss_network.parameters(), AdamOptions{3e-3});
   double first = 0;
   double last = 0;
   for (int step = 0; step < 40; ++step) {
     adam.zeroGrad();
-    const double loss = ae.accumulateReconstruction(x, frames, 0.01).total;
+    const double loss = loss_network.accumulateReconstruction(x, frames, 0.01).total;
     if (step == 0) first = loss;
     last = loss;
     adam.step();

@@ -29,7 +29,7 @@
 #include <string>
 #include <vector>
 
-#include "nn/autoencoder.h"
+#include "nn/loss_network.h"
 #include "nn/transformation_objective.h"
 #include "nn/transformation_network.h"
 #include "test_paths.h"
@@ -161,7 +161,7 @@ class PyTorchReference : public ::testing::TestWithParam<ConvAlgorithm> {
   void loadNetworks() {
     const int width = config("width");
     transformer_ = TransformationNetwork<double>({config("features"), config("t_hidden"), width, config("residual") != 0});
-    loss_network_ = Autoencoder<double>({config("features"), config("ae_hidden"), width});
+    loss_network_ = LossNetwork<double>({config("features"), config("ae_hidden"), width});
     for (const auto& [layer, conv] : transformerLayers()) {
       const std::string prefix = std::string("transformer.") + layer;
       loadConv(*conv, tensor(prefix + ".weight", {conv->outChannels(), conv->inChannels(), width}),
@@ -242,7 +242,7 @@ class PyTorchReference : public ::testing::TestWithParam<ConvAlgorithm> {
   static inline const std::map<std::string, ReferenceTensor>* file_ = nullptr;
   static inline std::string load_error_;
   TransformationNetwork<double> transformer_;
-  Autoencoder<double> loss_network_;
+  LossNetwork<double> loss_network_;
   FeatureStatistics normalisation_;
   LossWeights weights_;
   StyleBatch<double> batch_;

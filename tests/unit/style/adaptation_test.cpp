@@ -15,7 +15,7 @@ using test::TempDir;
 
 style::AdaptationJob tinyJob(const TempDir& dir) {
   style::AdaptationJob job;
-  job.loss_network = test::tinyAutoencoderModel();
+  job.loss_network = test::tinyLossNetworkModel();
   job.loss_network_name = "tiny.net";
   job.clips = {test::fixtureClips()[1]};  // the zombie
   job.settings.epochs = 6;
@@ -57,7 +57,7 @@ TEST(AdaptationTest, KeepsTheEncoderLearnsTheClipsAndRecordsThem) {
   EXPECT_NE(result.model.network.decoder.weight.value, job.loss_network.network.decoder.weight.value);
   ASSERT_EQ(result.clips.size(), 1u);
   EXPECT_LT(result.mean_after_cm, result.mean_before_cm);
-  const nn::AutoencoderModel saved = style::loadCompatibleAutoencoder(dir / "adapted.net");
+  const nn::LossNetworkModel saved = style::loadCompatibleLossNetwork(dir / "adapted.net");
   std::map<std::string, std::string> properties(saved.metadata.properties.begin(), saved.metadata.properties.end());
   EXPECT_EQ(properties["adapted_from"], "tiny.net");
   EXPECT_EQ(properties["adapted_on"], "zombie.bvh");
@@ -91,21 +91,21 @@ TEST(StylePairingTest, StoredTargetsPairByLabelThenTheDefault) {
   EXPECT_THROW(style::pairTargets({"walk", "jump"}, {"walk"}, "n"), InputError);
 }
 
-style::StyleTrainingConfig styleConfig(const TempDir& dir, const std::filesystem::path& ae, int epochs) {
+style::StyleTrainingConfig styleConfig(const TempDir& dir, const std::filesystem::path& loss_network, int epochs) {
   style::StyleTrainingConfig config;
   config.settings = test::tinySettings(dir / "style.net", epochs);
   config.settings.learning_rate = 1e-3;
-  config.autoencoder = ae;
+  config.loss_network = loss_network;
   config.content_clips = test::fixtureClips();
   config.styles = {{std::nullopt, test::fixture("zombie.bvh")}};
-  config.shape = test::tinyTransformerShape();
+  config.shape = test::tinyTransformationShape();
   config.weights.style = 1.0;
   return config;
 }
 
 TEST(StyleTargetsTest, ANetworkRetrainsFromItsStoredTargetsAgainstAnAdaptedLossNetwork) {
   TempDir dir;
-  nn::saveAutoencoder(test::tinyAutoencoderModel(), dir / "ae.net");
+  nn::saveLossNetwork(test::tinyLossNetworkModel(), dir / "ae.net");
   const auto original = style::trainStyleNetwork(styleConfig(dir, dir / "ae.net", 2));
   ASSERT_EQ(original.model.style_targets.size(), 2u);  // the clip's own label "zombie", and the default
   const nn::StyleModel saved = style::loadCompatibleStyleModel(dir / "style.net");
@@ -114,7 +114,7 @@ TEST(StyleTargetsTest, ANetworkRetrainsFromItsStoredTargetsAgainstAnAdaptedLossN
   EXPECT_EQ(saved.style_targets[1].label, "");
 
   // A loss network with another encoder cannot use those targets.
-  nn::saveAutoencoder(test::tinyAutoencoderModel(11), dir / "other.net");
+  nn::saveLossNetwork(test::tinyLossNetworkModel(11), dir / "other.net");
   style::StyleTrainingConfig wrong = styleConfig(dir, dir / "other.net", 1);
   wrong.styles.clear();
   wrong.settings.init = dir / "style.net";
@@ -135,26 +135,26 @@ TEST(StyleTargetsTest, ANetworkRetrainsFromItsStoredTargetsAgainstAnAdaptedLossN
   const nn::StyleModel loaded = style::loadCompatibleStyleModel(dir / "retrained.net");
   EXPECT_EQ(loaded.style_targets, saved.style_targets);
   EXPECT_EQ(loaded.metadata.style_clips, saved.metadata.style_clips);
-  EXPECT_EQ(loaded.loss_network.decoder.weight.value, style::loadCompatibleAutoencoder(dir / "adapted.net").network.decoder.weight.value);
+  EXPECT_EQ(loaded.loss_network.decoder.weight.value, style::loadCompatibleLossNetwork(dir / "adapted.net").network.decoder.weight.value);
 }
 
 TEST(AugmentedTrainingTest, IsDeterministicAndResumable) {
   TempDir dir;
   style::DatasetOptions keep;
   keep.keep_motion = true;
-  auto config = test::tinyAutoencoderConfig(dir / "ae.net", 3);
+  auto config = test::tinyLossNetworkConfig(dir / "ae.net", 3);
   config.clips = {style::loadMotionClip(test::fixture("cmu_131_01.bvh"), keep),
                   style::loadMotionClip(test::fixture("zombie.bvh"), keep)};
   config.settings.augmentation = style::defaultAugmentation();
-  const auto first = style::trainAutoencoder(config);
+  const auto first = style::trainLossNetwork(config);
   config.settings.output = dir / "split.net";
-  ASSERT_EQ(style::trainAutoencoder(config, test::cancelAtEndOfEpoch(1)).status, style::TrainingStatus::Cancelled);
+  ASSERT_EQ(style::trainLossNetwork(config, test::cancelAtEndOfEpoch(1)).status, style::TrainingStatus::Cancelled);
   config.settings.resume = true;
-  const auto resumed = style::trainAutoencoder(config);
+  const auto resumed = style::trainLossNetwork(config);
   EXPECT_EQ(test::weightsOf(first.model.network), test::weightsOf(resumed.model.network));
   // And it differs from training on the clips as they are.
-  auto plain = test::tinyAutoencoderConfig(dir / "plain.net", 3);
-  EXPECT_NE(test::weightsOf(style::trainAutoencoder(plain).model.network), test::weightsOf(first.model.network));
+  auto plain = test::tinyLossNetworkConfig(dir / "plain.net", 3);
+  EXPECT_NE(test::weightsOf(style::trainLossNetwork(plain).model.network), test::weightsOf(first.model.network));
   std::map<std::string, std::string> properties(first.model.metadata.properties.begin(), first.model.metadata.properties.end());
   EXPECT_EQ(properties["augmentation"], style::describe(style::defaultAugmentation()));
 }

@@ -209,11 +209,11 @@ TEST(FamiliarityTest, ReadsTheReconstructionErrorPerFrameAndPerClip) {
   EXPECT_EQ(style::familiarityLevel(style::kFamiliarMaxCm), style::FamiliarityLevel::Familiar);
   EXPECT_EQ(style::familiarityLevel(style::kFamiliarMaxCm + 0.01), style::FamiliarityLevel::Unusual);
   EXPECT_EQ(style::familiarityLevel(style::kUnusualMaxCm + 0.01), style::FamiliarityLevel::Far);
-  const nn::AutoencoderModel ae = test::tinyAutoencoderModel();
-  EXPECT_THROW(style::measureFamiliarity(ae, Eigen::MatrixXd::Zero(65, 10)), std::invalid_argument);
-  EXPECT_THROW(style::measureFamiliarity(ae, Eigen::MatrixXd::Zero(66, 0)), std::invalid_argument);
+  const nn::LossNetworkModel loss_network = test::tinyLossNetworkModel();
+  EXPECT_THROW(style::measureFamiliarity(loss_network, Eigen::MatrixXd::Zero(65, 10)), std::invalid_argument);
+  EXPECT_THROW(style::measureFamiliarity(loss_network, Eigen::MatrixXd::Zero(66, 0)), std::invalid_argument);
   const style::MotionClip& clip = test::fixtureClips()[1];
-  const style::Familiarity f = style::measureFamiliarity(ae, clip.features.values);
+  const style::Familiarity f = style::measureFamiliarity(loss_network, clip.features.values);
   ASSERT_EQ(f.per_frame_cm.size(), static_cast<std::size_t>(clip.frameCount()));
   double sum = 0.0;
   for (double e : f.per_frame_cm) {
@@ -227,7 +227,7 @@ TEST(FamiliarityTest, ReadsTheReconstructionErrorPerFrameAndPerClip) {
   // A clip far from anything the network saw (poses scaled up 3x) reads as less familiar.
   Eigen::MatrixXd strange = clip.features.values;
   strange.topRows(63) *= 3.0;
-  EXPECT_GT(style::measureFamiliarity(ae, strange).mean_cm, f.mean_cm);
+  EXPECT_GT(style::measureFamiliarity(loss_network, strange).mean_cm, f.mean_cm);
 }
 
 }  // namespace

@@ -85,7 +85,7 @@ TEST(Windows, ShortSlicesArePaddedWithFirstAndLastFramesAtZeroVelocity) {
 
 TEST(Windows, WindowSetCountsAndNormalisesTheClips) {
   const auto& clips = test::fixtureClips();
-  const nn::AutoencoderModel model = test::tinyAutoencoderModel();
+  const nn::LossNetworkModel model = test::tinyLossNetworkModel();
   const FeatureStatistics& statistics = model.normalisation;
   const style::WindowSet set = style::makeWindows(clips, statistics, {60, 30});
   std::size_t expected = 0;

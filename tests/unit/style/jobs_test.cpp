@@ -4,10 +4,13 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cmath>
 #include <stdexcept>
 
 #include "common/errors.h"
 #include "mapping/joint_mapping.h"
+#include "style/evaluation_job.h"
+#include "style/loss_network_training_job.h"
 #include "style/optimization_transfer_job.h"
 #include "style/style_training_job.h"
 #include "style/stylize_cleanup_job.h"
@@ -61,7 +64,7 @@ TEST(StylizeCleanupJob, ASetCancelFlagStopsIt) {
 TEST(OptimizationTransferJob, RefusesMissingFilesAndBadOptions) {
   TempDir dir;
   style::OptimizationTransferJob job;
-  job.loss_network = test::tinyAutoencoderModel();
+  job.loss_network = test::tinyLossNetworkModel();
   EXPECT_THROW(job.validate(), std::invalid_argument);  // no clips named
   job.content = test::fixture("cmu_131_01.bvh");
   job.style = dir / "missing.bvh";
@@ -85,7 +88,7 @@ TEST(OptimizationOptions, OneIterationKnobKeepsTheDefaultsShareForTheConstraints
 TEST(EmbeddedLossNetwork, IsTheStyleNetworksOwn) {
   nn::StyleModel model = test::tinyStyleModel();
   model.metadata.training.sparsity = 0.25;
-  const nn::AutoencoderModel loss = nn::embeddedLossNetwork(model);
+  const nn::LossNetworkModel loss = nn::embeddedLossNetwork(model);
   EXPECT_TRUE(nn::sameWeights(loss.network, model.loss_network));
   EXPECT_EQ(loss.normalisation.mean, model.normalisation.mean);
   EXPECT_EQ(loss.metadata.representation, model.metadata.representation);
@@ -94,7 +97,7 @@ TEST(EmbeddedLossNetwork, IsTheStyleNetworksOwn) {
 
 TEST(OptimizationTransferJob, CancelledBeforeItStartsGivesNoClip) {
   style::OptimizationTransferJob job;
-  job.loss_network = test::tinyAutoencoderModel();
+  job.loss_network = test::tinyLossNetworkModel();
   job.content = test::fixture("cmu_131_01.bvh");
   job.style = test::fixture("zombie.bvh");
   const std::atomic<bool> cancel{true};
@@ -106,14 +109,14 @@ TEST(OptimizationTransferJob, CancelledBeforeItStartsGivesNoClip) {
 }
 
 style::StyleTrainingJob tinyTrainingJob(const TempDir& dir, int epochs) {
-  nn::saveAutoencoder(test::tinyAutoencoderModel(), dir / "ae.net");
+  nn::saveLossNetwork(test::tinyLossNetworkModel(), dir / "ae.net");
   style::StyleTrainingJob job;
   job.config.settings = test::tinySettings({}, epochs);
   job.config.settings.checkpoint = dir / "run.checkpoint";
-  job.config.autoencoder = dir / "ae.net";
+  job.config.loss_network = dir / "ae.net";
   job.config.content_clips = test::fixtureClips();
   job.config.styles = {{std::nullopt, test::fixture("zombie.bvh")}};
-  job.config.shape = test::tinyTransformerShape();
+  job.config.shape = test::tinyTransformationShape();
   job.config.weights.style = 1.0;
   job.preview_content = test::fixture("cmu_131_01.bvh");
   job.preview_interval_seconds = 0.0;
@@ -145,6 +148,80 @@ TEST(StyleTrainingJob, PreviewsEachEpochAndACancelledRunKeepsItsLastEpoch) {
   EXPECT_TRUE(std::filesystem::exists(result.checkpoint));
   // The kept network is the checkpoint's.
   EXPECT_EQ(test::weightsOf(result.model->transformation), test::weightsOf(nn::loadStyleModel(result.checkpoint).transformation));
+}
+
+TEST(LossNetworkTrainingJob, RefusesAnInvalidConfig) {
+  TempDir dir;
+  style::LossNetworkTrainingJob job{test::tinyLossNetworkConfig(dir / "loss.net", 2)};
+  job.config.settings.epochs = 0;
+  EXPECT_THROW(job.run(), std::invalid_argument);
+  job.config = test::tinyLossNetworkConfig(dir / "loss.net", 2);
+  job.config.shape.width = 4;  // filter widths are odd
+  EXPECT_THROW(job.validate(), std::invalid_argument);
+  EXPECT_FALSE(std::filesystem::exists(dir / "loss.net"));
+}
+
+TEST(LossNetworkTrainingJob, ItsModelIsTheFileItWrote) {
+  TempDir dir;
+  const style::LossNetworkTrainingJob job{test::tinyLossNetworkConfig(dir / "loss.net", 2)};
+  const auto result = job.run();
+  EXPECT_EQ(result.status, style::TrainingStatus::Completed);
+  EXPECT_EQ(result.epochs_completed, 2);
+  EXPECT_EQ(result.history.size(), 2u);
+  ASSERT_NE(result.model, nullptr);
+  EXPECT_TRUE(nn::sameWeights(result.model->network, nn::loadLossNetwork(dir / "loss.net").network));
+}
+
+TEST(LossNetworkTrainingJob, ACancelledRunKeepsItsCheckpoint) {
+  TempDir dir;
+  const style::LossNetworkTrainingJob job{test::tinyLossNetworkConfig(dir / "loss.net", 4)};
+  const auto result = job.run(test::cancelAtEndOfEpoch(1));
+  EXPECT_EQ(result.status, style::TrainingStatus::Cancelled);
+  EXPECT_EQ(result.epochs_completed, 1);
+  EXPECT_TRUE(std::filesystem::exists(result.checkpoint));
+  EXPECT_FALSE(std::filesystem::exists(dir / "loss.net"));
+}
+
+style::EvaluationJob evaluationJobOnFixtures() {
+  style::EvaluationJob job;
+  job.loss_network = test::tinyLossNetworkModel();
+  job.network = test::tinyStyleModel();
+  job.clips = {test::fixture("cmu_131_01.bvh"), test::fixture("zombie.bvh")};
+  job.styles = {{std::nullopt, test::fixture("zombie.bvh")}};
+  return job;
+}
+
+TEST(EvaluationJob, RefusesNoClipsOrNoStyleClip) {
+  style::EvaluationJob job = evaluationJobOnFixtures();
+  job.clips.clear();
+  EXPECT_THROW(job.run(), std::invalid_argument);
+  job = evaluationJobOnFixtures();
+  job.styles.clear();
+  EXPECT_THROW(job.validate(), std::invalid_argument);
+  job = evaluationJobOnFixtures();
+  job.clips.push_back("/nonexistent/clip.bvh");
+  EXPECT_THROW(job.run(), InputError);
+}
+
+TEST(EvaluationJob, ReportsEveryClipAgainstItsStyleClip) {
+  const style::EvaluationJob job = evaluationJobOnFixtures();
+  const style::EvaluationReport report = job.run();
+  ASSERT_EQ(report.clips.size(), 2u);
+  int frames = 0;
+  for (const style::ClipEvaluation& clip : report.clips) {
+    EXPECT_NE(clip.style_clip.find("zombie.bvh"), std::string::npos);
+    EXPECT_GT(clip.frames, 0);
+    EXPECT_TRUE(std::isfinite(clip.style_distance_after) && std::isfinite(clip.content_distance_after));
+    frames += clip.frames;
+  }
+  EXPECT_EQ(report.mean.frames, frames);
+  EXPECT_GT(report.stylize_frames_per_second, 0.0);
+}
+
+TEST(EvaluationJob, ASetCancelFlagStopsIt) {
+  const style::EvaluationJob job = evaluationJobOnFixtures();
+  const std::atomic<bool> cancel{true};
+  EXPECT_THROW(job.run(&cancel), OperationCancelled);
 }
 
 }  // namespace

@@ -14,7 +14,7 @@ namespace {
 // Full-size networks (66 -> 256 width 25, T 128 width 25) with their initial weights and the
 // fixtures' statistics: the shipped architecture, without depending on a trained file.
 nn::StyleModel fullSizeStyleModel() {
-  nn::StyleModel model{nn::TransformationNetwork<float>(), nn::Autoencoder<float>(), test::tinyAutoencoderModel().normalisation, {}, {}};
+  nn::StyleModel model{nn::TransformationNetwork<float>(), nn::LossNetwork<float>(), test::tinyLossNetworkModel().normalisation, {}, {}};
   model.transformation.initialise(21);
   model.loss_network.initialise(22);
   model.metadata.representation = style::currentRepresentation();

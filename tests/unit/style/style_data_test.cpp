@@ -24,16 +24,16 @@ TEST(StyleData, SmallNetworksTrainOnBandaiClipsAndEvaluate) {
   for (const auto& file : content_files) ASSERT_TRUE(std::filesystem::exists(file)) << file;
 
   // Loss network: 64 hidden units, the paper's width 25, 2 epochs; the 5th clip is held out.
-  style::AutoencoderTrainingConfig ae_config;
-  ae_config.settings = test::tinySettings(dir / "ae.net", 2);
-  ae_config.settings.windows = {};  // 240 / 120
-  ae_config.settings.holdout_every = 5;
-  ae_config.data = content_files;
-  ae_config.shape = {kFeatureCount, 64, 25};
-  const auto ae = style::trainAutoencoder(ae_config);
-  ASSERT_EQ(ae.status, style::TrainingStatus::Completed);
-  ASSERT_EQ(ae.held_out_files.size(), 1u);
-  EXPECT_LT(ae.history.back().total, ae.history.front().total);
+  style::LossNetworkTrainingConfig loss_network_config;
+  loss_network_config.settings = test::tinySettings(dir / "ae.net", 2);
+  loss_network_config.settings.windows = {};  // 240 / 120
+  loss_network_config.settings.holdout_every = 5;
+  loss_network_config.data = content_files;
+  loss_network_config.shape = {kFeatureCount, 64, 25};
+  const auto loss_network = style::trainLossNetwork(loss_network_config);
+  ASSERT_EQ(loss_network.status, style::TrainingStatus::Completed);
+  ASSERT_EQ(loss_network.held_out_files.size(), 1u);
+  EXPECT_LT(loss_network.history.back().total, loss_network.history.front().total);
 
   // Style network: walk content with the elderly walk, run content with the elderly run.
   style::StyleTrainingConfig config;
@@ -41,7 +41,7 @@ TEST(StyleData, SmallNetworksTrainOnBandaiClipsAndEvaluate) {
   config.settings.windows = {};
   config.settings.holdout_every = 5;
   config.settings.learning_rate = 1e-3;
-  config.autoencoder = dir / "ae.net";
+  config.loss_network = dir / "ae.net";
   config.content = content_files;
   config.styles = {{std::nullopt, bandaiClip(bandai, "dataset-2_walk_elderly_001.bvh")},
                    {std::nullopt, bandaiClip(bandai, "dataset-2_run_elderly_001.bvh")}};
@@ -51,12 +51,12 @@ TEST(StyleData, SmallNetworksTrainOnBandaiClipsAndEvaluate) {
   EXPECT_EQ(style_result.pairing, (std::vector<int>{0, 0, 1, 1}));
   EXPECT_LT(style_result.history.back().total, style_result.history.front().total);
 
-  const auto held_out = style::loadMotionClip(ae.held_out_files[0]);
+  const auto held_out = style::loadMotionClip(loss_network.held_out_files[0]);
   EXPECT_EQ(held_out.labels, (style::ClipLabels{"walk", "normal"}));
   const auto style_clip = style::loadMotionClip(config.styles[0].file);
-  const auto report = style::evaluateStyleNetwork(ae.model, style_result.model, {held_out}, {style_clip}, {0});
+  const auto report = style::evaluateStyleNetwork(loss_network.model, style_result.model, {held_out}, {style_clip}, {0});
   ASSERT_EQ(report.clips.size(), 1u);
-  EXPECT_TRUE(report.autoencoder_matches_network);
+  EXPECT_TRUE(report.loss_network_matches_network);
   EXPECT_EQ(report.clips[0].frames, held_out.frameCount());
   EXPECT_TRUE(std::isfinite(report.clips[0].style_distance_after));
   RecordProperty("reconstruction_joint_error_cm", std::to_string(report.clips[0].reconstruction_joint_error_cm));

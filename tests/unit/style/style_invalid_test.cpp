@@ -39,10 +39,10 @@ TEST(StyleInvalid, EmptyFolderIsAnInputErrorNamingTheFolder) {
   EXPECT_NE(messageOf([&] { style::findBvhFiles({dir / "empty"}); }).find("empty"), std::string::npos);
   EXPECT_NE(messageOf([&] { style::findBvhFiles({dir / "empty"}); }).find("no .bvh"), std::string::npos);
 
-  style::AutoencoderTrainingConfig config;
+  style::LossNetworkTrainingConfig config;
   config.settings = test::tinySettings(dir / "ae.net", 1);
   config.data = {dir / "empty"};
-  EXPECT_THROW(style::trainAutoencoder(config), InputError);
+  EXPECT_THROW(style::trainLossNetwork(config), InputError);
   EXPECT_FALSE(std::filesystem::exists(dir / "ae.net"));
 }
 
@@ -96,9 +96,9 @@ TEST(StyleInvalid, NaNInTheInputIsRejectedWithTheFileName) {
   EXPECT_NE(message.find("walk_nan.bvh"), std::string::npos) << message;
 
   // Features that are not finite in a preloaded clip (the GUI's library) are rejected too.
-  style::AutoencoderTrainingConfig config = test::tinyAutoencoderConfig(dir / "ae.net", 1);
+  style::LossNetworkTrainingConfig config = test::tinyLossNetworkConfig(dir / "ae.net", 1);
   config.clips[0].features.values(5, 7) = std::numeric_limits<double>::quiet_NaN();
-  const std::string preloaded = messageOf([&] { style::trainAutoencoder(config); });
+  const std::string preloaded = messageOf([&] { style::trainLossNetwork(config); });
   EXPECT_NE(preloaded.find("cmu_131_01.bvh"), std::string::npos) << preloaded;
   EXPECT_FALSE(std::filesystem::exists(dir / "ae.net"));
 }
@@ -106,18 +106,18 @@ TEST(StyleInvalid, NaNInTheInputIsRejectedWithTheFileName) {
 TEST(StyleInvalid, StyleClipShorterThanTheFilterWidthNamesTheClip) {
   TempDir dir;
   test::writeTrimmedFixture("zombie.bvh", 10, dir / "zombie_short.bvh");  // 10 frames at 30 fps -> ~19 at 60
-  nn::saveAutoencoder(test::tinyAutoencoderModel(), dir / "ae.net");  // width 5: too lenient for this test
-  nn::AutoencoderModel wide = test::tinyAutoencoderModel();
-  wide.network = nn::Autoencoder<float>({kFeatureCount, 8, 25});
+  nn::saveLossNetwork(test::tinyLossNetworkModel(), dir / "ae.net");  // width 5: too lenient for this test
+  nn::LossNetworkModel wide = test::tinyLossNetworkModel();
+  wide.network = nn::LossNetwork<float>({kFeatureCount, 8, 25});
   wide.network.initialise(1);
-  nn::saveAutoencoder(wide, dir / "wide.net");
+  nn::saveLossNetwork(wide, dir / "wide.net");
 
   style::StyleTrainingConfig config;
   config.settings = test::tinySettings(dir / "style.net", 1);
-  config.autoencoder = dir / "wide.net";
+  config.loss_network = dir / "wide.net";
   config.content_clips = test::fixtureClips();
   config.styles = {{std::nullopt, dir / "zombie_short.bvh"}};
-  config.shape = test::tinyTransformerShape();
+  config.shape = test::tinyTransformationShape();
   const std::string message = messageOf([&] { style::trainStyleNetwork(config); });
   EXPECT_NE(message.find("zombie_short.bvh"), std::string::npos) << message;
   EXPECT_NE(message.find("too short"), std::string::npos) << message;
@@ -134,10 +134,10 @@ TEST(StyleInvalid, StyleClipShorterThanTheFilterWidthNamesTheClip) {
 
 TEST(StyleInvalid, NetworkForADifferentRepresentationIsRejected) {
   TempDir dir;
-  nn::AutoencoderModel model = test::tinyAutoencoderModel();
+  nn::LossNetworkModel model = test::tinyLossNetworkModel();
   model.metadata.representation.fps = 30.0;
-  nn::saveAutoencoder(model, dir / "ae30.net");
-  const std::string message = messageOf([&] { style::loadCompatibleAutoencoder(dir / "ae30.net"); });
+  nn::saveLossNetwork(model, dir / "ae30.net");
+  const std::string message = messageOf([&] { style::loadCompatibleLossNetwork(dir / "ae30.net"); });
   EXPECT_NE(message.find("ae30.net"), std::string::npos) << message;
   EXPECT_NE(message.find("representation"), std::string::npos) << message;
 
@@ -149,17 +149,17 @@ TEST(StyleInvalid, NetworkForADifferentRepresentationIsRejected) {
 
 TEST(StyleInvalid, CorruptOrTruncatedNetworkIsAnInputError) {
   TempDir dir;
-  const std::string bytes = nn::serialiseAutoencoder(test::tinyAutoencoderModel());
+  const std::string bytes = nn::serialiseLossNetwork(test::tinyLossNetworkModel());
   std::string corrupt = bytes;
   corrupt[corrupt.size() / 2] = static_cast<char>(corrupt[corrupt.size() / 2] ^ 0x5a);
   test::writeText(dir / "corrupt.net", corrupt);
   test::writeText(dir / "truncated.net", bytes.substr(0, bytes.size() / 3));
-  EXPECT_THROW(style::loadCompatibleAutoencoder(dir / "corrupt.net"), InputError);
-  EXPECT_THROW(style::loadCompatibleAutoencoder(dir / "truncated.net"), InputError);
+  EXPECT_THROW(style::loadCompatibleLossNetwork(dir / "corrupt.net"), InputError);
+  EXPECT_THROW(style::loadCompatibleLossNetwork(dir / "truncated.net"), InputError);
 
   style::StyleTrainingConfig config;
   config.settings = test::tinySettings(dir / "style.net", 1);
-  config.autoencoder = dir / "corrupt.net";
+  config.loss_network = dir / "corrupt.net";
   config.content_clips = test::fixtureClips();
   config.styles = {{std::nullopt, test::fixture("zombie.bvh")}};
   EXPECT_THROW(style::trainStyleNetwork(config), InputError);
@@ -169,29 +169,29 @@ TEST(StyleInvalid, CorruptOrTruncatedNetworkIsAnInputError) {
 
 TEST(StyleInvalid, CheckpointInAMissingFolderFailsAndKeepsTheEarlierNetwork) {
   TempDir dir;
-  const nn::AutoencoderModel good = test::tinyAutoencoderModel(11);
-  nn::saveAutoencoder(good, dir / "ae.net");
+  const nn::LossNetworkModel good = test::tinyLossNetworkModel(11);
+  nn::saveLossNetwork(good, dir / "ae.net");
   const std::string before = test::readBytes(dir / "ae.net");
 
-  style::AutoencoderTrainingConfig config = test::tinyAutoencoderConfig(dir / "ae.net", 2);
+  style::LossNetworkTrainingConfig config = test::tinyLossNetworkConfig(dir / "ae.net", 2);
   config.settings.checkpoint = dir / "no-such-folder/ae.checkpoint";
-  EXPECT_THROW(style::trainAutoencoder(config), WriteError);
+  EXPECT_THROW(style::trainLossNetwork(config), WriteError);
   EXPECT_EQ(test::readBytes(dir / "ae.net"), before);
-  EXPECT_NO_THROW(style::loadCompatibleAutoencoder(dir / "ae.net"));
+  EXPECT_NO_THROW(style::loadCompatibleLossNetwork(dir / "ae.net"));
 }
 
 // Runs in the death test's child: trains again (other seed, so an overwrite would show) with writes
 // limited to 4 KiB; exits 3 on the expected WriteError.
-[[noreturn]] void trainUnderAFileSizeLimit(const style::AutoencoderTrainingConfig& config) {
+[[noreturn]] void trainUnderAFileSizeLimit(const style::LossNetworkTrainingConfig& config) {
   ::signal(SIGXFSZ, SIG_IGN);
   rlimit limit{};
   limit.rlim_cur = 4096;
   limit.rlim_max = 4096;
   ::setrlimit(RLIMIT_FSIZE, &limit);
-  style::AutoencoderTrainingConfig again = config;
+  style::LossNetworkTrainingConfig again = config;
   again.settings.seed = 99;
   try {
-    style::trainAutoencoder(again);
+    style::trainLossNetwork(again);
   } catch (const WriteError&) {
     std::_Exit(3);
   } catch (...) {
@@ -216,12 +216,12 @@ TEST(StyleInvalidDeathTest, DiskFullDuringACheckpointKeepsTheEarlierCheckpoint) 
     own.emplace();
     dir = own->path();
   }
-  style::AutoencoderTrainingConfig config = test::tinyAutoencoderConfig(dir / "ae.net", 1);
+  style::LossNetworkTrainingConfig config = test::tinyLossNetworkConfig(dir / "ae.net", 1);
   config.settings.keep_checkpoint = true;
   const std::filesystem::path checkpoint = config.settings.checkpointPath();
   std::string network_before, state_before, output_before;
   if (!inherited) {
-    ASSERT_EQ(style::trainAutoencoder(config).status, style::TrainingStatus::Completed);
+    ASSERT_EQ(style::trainLossNetwork(config).status, style::TrainingStatus::Completed);
     network_before = test::readBytes(checkpoint);
     state_before = test::readBytes(style::statePath(checkpoint));
     output_before = test::readBytes(dir / "ae.net");
@@ -239,25 +239,25 @@ TEST(StyleInvalidDeathTest, DiskFullDuringACheckpointKeepsTheEarlierCheckpoint) 
 
 TEST(StyleInvalid, ResumeWithoutACheckpointOrWithOtherDataIsAnInputError) {
   TempDir dir;
-  style::AutoencoderTrainingConfig config = test::tinyAutoencoderConfig(dir / "ae.net", 2);
+  style::LossNetworkTrainingConfig config = test::tinyLossNetworkConfig(dir / "ae.net", 2);
   config.settings.resume = true;
-  EXPECT_THROW(style::trainAutoencoder(config), InputError);
+  EXPECT_THROW(style::trainLossNetwork(config), InputError);
 
   config.settings.resume = false;
   config.settings.epochs = 1;
   config.settings.keep_checkpoint = true;
-  ASSERT_EQ(style::trainAutoencoder(config).status, style::TrainingStatus::Completed);
+  ASSERT_EQ(style::trainLossNetwork(config).status, style::TrainingStatus::Completed);
   config.settings.resume = true;
   config.settings.epochs = 2;
   config.clips.pop_back();  // other data
-  const std::string message = messageOf([&] { style::trainAutoencoder(config); });
+  const std::string message = messageOf([&] { style::trainLossNetwork(config); });
   EXPECT_NE(message.find("other data"), std::string::npos) << message;
 }
 
 TEST(StyleInvalid, CorruptOrMismatchedTrainingStateIsAnInputError) {
   TempDir dir;
-  style::AutoencoderTrainingConfig config = test::tinyAutoencoderConfig(dir / "ae.net", 1);
-  ASSERT_EQ(style::trainAutoencoder(config).status, style::TrainingStatus::Completed);
+  style::LossNetworkTrainingConfig config = test::tinyLossNetworkConfig(dir / "ae.net", 1);
+  ASSERT_EQ(style::trainLossNetwork(config).status, style::TrainingStatus::Completed);
   const std::filesystem::path checkpoint = config.settings.checkpointPath();
   std::string state = test::readBytes(style::statePath(checkpoint));
   EXPECT_THROW(style::parseTrainingState(state.substr(0, state.size() - 9), "cut.state"), InputError);
@@ -266,7 +266,7 @@ TEST(StyleInvalid, CorruptOrMismatchedTrainingStateIsAnInputError) {
   EXPECT_THROW(style::parseTrainingState(state, "flipped.state"), InputError);
 
   // A checkpoint network that is not the one the state was written with.
-  nn::saveAutoencoder(test::tinyAutoencoderModel(12), checkpoint);
+  nn::saveLossNetwork(test::tinyLossNetworkModel(12), checkpoint);
   EXPECT_THROW(style::readCheckpoint(checkpoint), InputError);
 }
 
@@ -281,22 +281,22 @@ TEST(StyleInvalid, ContentLabelsWithoutAStyleClipAreListed) {
 
 TEST(StyleInvalid, BadSettingsAreRejectedBeforeAnyWork) {
   TempDir dir;
-  style::AutoencoderTrainingConfig config = test::tinyAutoencoderConfig(dir / "ae.net", 1);
+  style::LossNetworkTrainingConfig config = test::tinyLossNetworkConfig(dir / "ae.net", 1);
   config.settings.epochs = 0;
-  EXPECT_THROW(style::trainAutoencoder(config), std::invalid_argument);
-  config = test::tinyAutoencoderConfig(dir / "ae.net", 1);
+  EXPECT_THROW(style::trainLossNetwork(config), std::invalid_argument);
+  config = test::tinyLossNetworkConfig(dir / "ae.net", 1);
   config.settings.learning_rate = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_THROW(style::trainAutoencoder(config), std::invalid_argument);
-  config = test::tinyAutoencoderConfig(dir / "ae.net", 1);
+  EXPECT_THROW(style::trainLossNetwork(config), std::invalid_argument);
+  config = test::tinyLossNetworkConfig(dir / "ae.net", 1);
   config.settings.resume = true;
   config.settings.init = dir / "x.net";
-  EXPECT_THROW(style::trainAutoencoder(config), std::invalid_argument);
-  config = test::tinyAutoencoderConfig(dir / "ae.net", 1);
+  EXPECT_THROW(style::trainLossNetwork(config), std::invalid_argument);
+  config = test::tinyLossNetworkConfig(dir / "ae.net", 1);
   config.settings.threads = 97;
-  EXPECT_THROW(style::trainAutoencoder(config), std::invalid_argument);
-  config = test::tinyAutoencoderConfig(dir / "ae.net", 1);
+  EXPECT_THROW(style::trainLossNetwork(config), std::invalid_argument);
+  config = test::tinyLossNetworkConfig(dir / "ae.net", 1);
   config.settings.windows.frames = 61;
-  EXPECT_THROW(style::trainAutoencoder(config), std::invalid_argument);
+  EXPECT_THROW(style::trainLossNetwork(config), std::invalid_argument);
   EXPECT_THROW(style::splitHoldout({"a.bvh"}, 1), std::invalid_argument);
 }
 

@@ -67,8 +67,8 @@ inline const std::vector<style::MotionClip>& fixtureClips() {
 }
 
 // Small shapes: 16 hidden units, width 5; windows of 60 frames with a step of 30.
-inline nn::AutoencoderShape tinyAutoencoderShape() { return {kFeatureCount, 16, 5}; }
-inline nn::TransformationShape tinyTransformerShape() { return {kFeatureCount, 8, 5, true}; }
+inline nn::LossNetworkShape tinyLossNetworkShape() { return {kFeatureCount, 16, 5}; }
+inline nn::TransformationShape tinyTransformationShape() { return {kFeatureCount, 8, 5, true}; }
 
 inline style::TrainingSettings tinySettings(const std::filesystem::path& output, int epochs) {
   style::TrainingSettings settings;
@@ -81,11 +81,11 @@ inline style::TrainingSettings tinySettings(const std::filesystem::path& output,
   return settings;
 }
 
-inline style::AutoencoderTrainingConfig tinyAutoencoderConfig(const std::filesystem::path& output, int epochs) {
-  style::AutoencoderTrainingConfig config;
+inline style::LossNetworkTrainingConfig tinyLossNetworkConfig(const std::filesystem::path& output, int epochs) {
+  style::LossNetworkTrainingConfig config;
   config.settings = tinySettings(output, epochs);
   config.clips = fixtureClips();
-  config.shape = tinyAutoencoderShape();
+  config.shape = tinyLossNetworkShape();
   return config;
 }
 
@@ -102,8 +102,8 @@ inline style::TrainingCallbacks cancelAtEndOfEpoch(int epoch) {
   return callbacks;
 }
 
-inline nn::AutoencoderModel tinyAutoencoderModel(std::uint32_t seed = 3) {
-  nn::AutoencoderModel model{nn::Autoencoder<float>(tinyAutoencoderShape()), {}, {}};
+inline nn::LossNetworkModel tinyLossNetworkModel(std::uint32_t seed = 3) {
+  nn::LossNetworkModel model{nn::LossNetwork<float>(tinyLossNetworkShape()), {}, {}};
   model.network.initialise(seed);
   std::vector<Eigen::MatrixXd> values;
   for (const auto& clip : fixtureClips()) values.push_back(clip.features.values);
@@ -113,8 +113,8 @@ inline nn::AutoencoderModel tinyAutoencoderModel(std::uint32_t seed = 3) {
 }
 
 inline nn::StyleModel tinyStyleModel(std::uint32_t seed = 5) {
-  const nn::AutoencoderModel loss = tinyAutoencoderModel();
-  nn::StyleModel model{nn::TransformationNetwork<float>(tinyTransformerShape()), loss.network, loss.normalisation, {}, {}};
+  const nn::LossNetworkModel loss = tinyLossNetworkModel();
+  nn::StyleModel model{nn::TransformationNetwork<float>(tinyTransformationShape()), loss.network, loss.normalisation, {}, {}};
   model.transformation.initialise(seed);
   model.metadata.representation = style::currentRepresentation();
   return model;

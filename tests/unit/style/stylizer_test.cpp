@@ -81,9 +81,9 @@ TEST(Stylizer, OutputHasTheInputLengthForOddAndLongClips) {
 
 // Fully convolutional: stylizing a long clip or its two halves differs only within the receptive field
 // of the cut. With the full-size networks (width 25) the field is T's 3 x 12 frames plus the
-// autoencoder's ~3 x 12 (encode, pool, decode): 120 frames of margin is ample.
+// loss network's ~3 x 12 (encode, pool, decode): 120 frames of margin is ample.
 TEST(Stylizer, NoSeamsAwayFromACut) {
-  nn::StyleModel model{nn::TransformationNetwork<float>(), nn::Autoencoder<float>(), test::tinyAutoencoderModel().normalisation, {}, {}};
+  nn::StyleModel model{nn::TransformationNetwork<float>(), nn::LossNetwork<float>(), test::tinyLossNetworkModel().normalisation, {}, {}};
   model.transformation.initialise(21);
   model.loss_network.initialise(22);
   model.metadata.representation = style::currentRepresentation();
@@ -100,7 +100,7 @@ TEST(Stylizer, NoSeamsAwayFromACut) {
 }
 
 TEST(OptimizationTransfer, ReducesTheStyleDistanceAndKeepsTheLength) {
-  const nn::AutoencoderModel ae = test::tinyAutoencoderModel();
+  const nn::LossNetworkModel loss_network = test::tinyLossNetworkModel();
   const auto& content = test::fixtureClips()[0];
   const auto& style_clip = test::fixtureClips()[1];
   style::OptimizationOptions options;
@@ -111,7 +111,7 @@ TEST(OptimizationTransfer, ReducesTheStyleDistanceAndKeepsTheLength) {
   style::OptimizationCallbacks callbacks;
   callbacks.progress = [&](const style::OptimizationProgress&) { ++calls; };
   const style::OptimizationResult result =
-      style::optimizeStyleTransfer(ae, content.features, style_clip.features, "zombie.bvh", options, callbacks);
+      style::optimizeStyleTransfer(loss_network, content.features, style_clip.features, "zombie.bvh", options, callbacks);
   ASSERT_FALSE(result.cancelled);
   EXPECT_EQ(calls, 120);
   ASSERT_EQ(result.clip.frameCount(), content.frameCount());
@@ -119,34 +119,34 @@ TEST(OptimizationTransfer, ReducesTheStyleDistanceAndKeepsTheLength) {
 
   const auto gramDistance = [&](const Eigen::MatrixXd& features) {
     const auto normalise = [&](const Eigen::MatrixXd& x) {
-      return nn::Mat<float>(((x.colwise() - ae.normalisation.mean).array().colwise() / ae.normalisation.std.array())
+      return nn::Mat<float>(((x.colwise() - loss_network.normalisation.mean).array().colwise() / loss_network.normalisation.std.array())
                                 .matrix()
                                 .cast<float>());
     };
-    const nn::Mat<float> h = ae.network.encode(normalise(features), static_cast<int>(features.cols()));
-    const nn::Mat<float> target = nn::styleGram(ae.network, normalise(style_clip.features.values));
+    const nn::Mat<float> h = loss_network.network.encode(normalise(features), static_cast<int>(features.cols()));
+    const nn::Mat<float> target = nn::styleGram(loss_network.network, normalise(style_clip.features.values));
     return static_cast<double>(nn::styleLoss<float>(h, static_cast<int>(h.cols()), {target}, 0.0f, nullptr));
   };
   EXPECT_LT(gramDistance(result.clip.features), gramDistance(content.features.values));
 }
 
 TEST(OptimizationTransfer, ZeroIterationsGiveTheProjectionAndCancellationStops) {
-  const nn::AutoencoderModel ae = test::tinyAutoencoderModel();
+  const nn::LossNetworkModel loss_network = test::tinyLossNetworkModel();
   const auto& content = test::fixtureClips()[0].features;
   style::OptimizationOptions none;
   none.iterations = 0;
   none.constraint_iterations = 0;
   none.path = style::PathMode::Style;
-  const auto projected = style::optimizeStyleTransfer(ae, content, test::fixtureClips()[1].features, "z", none);
+  const auto projected = style::optimizeStyleTransfer(loss_network, content, test::fixtureClips()[1].features, "z", none);
   // The projection (its root velocities: the joints then get their bone lengths), away from the clip's
   // edges, where the projection pads and the optimisation's bare convolution does not.
-  const Eigen::MatrixXd reference = style::projectFeatures(ae, content.values);
+  const Eigen::MatrixXd reference = style::projectFeatures(loss_network, content.values);
   const Eigen::Index inner = content.values.cols() - 2 * 80;
   ASSERT_GT(inner, 100);
   EXPECT_TRUE(projected.clip.features.block(kSidewaysVelocity, 80, 3, inner)
                   .isApprox(reference.block(kSidewaysVelocity, 80, 3, inner), 1e-4));
   none.path = style::PathMode::Content;  // the default: the projection's poses on the content's path
-  const auto on_path = style::optimizeStyleTransfer(ae, content, test::fixtureClips()[1].features, "z", none);
+  const auto on_path = style::optimizeStyleTransfer(loss_network, content, test::fixtureClips()[1].features, "z", none);
   EXPECT_EQ(on_path.clip.features.middleRows<3>(kSidewaysVelocity), content.values.middleRows<3>(kSidewaysVelocity));
   EXPECT_TRUE(on_path.clip.features.topRows(63).isApprox(projected.clip.features.topRows(63), 1e-6));
 
@@ -158,7 +158,7 @@ TEST(OptimizationTransfer, ZeroIterationsGiveTheProjectionAndCancellationStops) 
     if (++calls == 5) cancel = true;
   };
   const auto cancelled =
-      style::optimizeStyleTransfer(ae, content, test::fixtureClips()[1].features, "z", {}, callbacks);
+      style::optimizeStyleTransfer(loss_network, content, test::fixtureClips()[1].features, "z", {}, callbacks);
   EXPECT_TRUE(cancelled.cancelled);
   EXPECT_EQ(calls, 5);
   EXPECT_EQ(cancelled.clip.frameCount(), 0);
@@ -178,11 +178,11 @@ TEST(Evaluation, FootSkateAndBoneErrorMeasureKnownMotion) {
 
 TEST(Evaluation, ReportHasEveryFigure) {
   const nn::StyleModel network = test::tinyStyleModel();
-  const nn::AutoencoderModel ae{network.loss_network, network.normalisation, network.metadata};
+  const nn::LossNetworkModel loss_network{network.loss_network, network.normalisation, network.metadata};
   const auto& clips = test::fixtureClips();
-  const style::EvaluationReport report = style::evaluateStyleNetwork(ae, network, {clips[0]}, {clips[1]}, {0});
+  const style::EvaluationReport report = style::evaluateStyleNetwork(loss_network, network, {clips[0]}, {clips[1]}, {0});
   ASSERT_EQ(report.clips.size(), 1u);
-  EXPECT_TRUE(report.autoencoder_matches_network);
+  EXPECT_TRUE(report.loss_network_matches_network);
   const style::ClipEvaluation& e = report.clips[0];
   EXPECT_EQ(e.frames, clips[0].frameCount());
   EXPECT_GT(e.reconstruction_mse, 0.0);

@@ -59,19 +59,19 @@ TEST(LearningRateSchedule, CosineWarmsUpThenDecaysToOnePercentAndConstantStays) 
     EXPECT_DOUBLE_EQ(scheduledLearningRate(LearningRateSchedule::Constant, 1e-3, step, 100), 1e-3);
 }
 
-TEST(TrainAutoencoder, LossDecreasesAndTheOutputLoads) {
+TEST(TrainLossNetwork, LossDecreasesAndTheOutputLoads) {
   TempDir dir;
   std::vector<style::TrainingProgress> calls;
   style::TrainingCallbacks callbacks;
   callbacks.progress = [&](const style::TrainingProgress& p) { calls.push_back(p); };
-  const auto result = style::trainAutoencoder(test::tinyAutoencoderConfig(dir / "ae.net", 4), callbacks);
+  const auto result = style::trainLossNetwork(test::tinyLossNetworkConfig(dir / "ae.net", 4), callbacks);
   ASSERT_EQ(result.status, style::TrainingStatus::Completed);
   ASSERT_EQ(result.history.size(), 4u);
   EXPECT_LT(result.history.back().total, 0.8 * result.history.front().total);
   ASSERT_EQ(result.history.front().terms.size(), 2u);
   EXPECT_EQ(result.history.front().terms[0].name, "mse");
 
-  const nn::AutoencoderModel loaded = style::loadCompatibleAutoencoder(dir / "ae.net");
+  const nn::LossNetworkModel loaded = style::loadCompatibleLossNetwork(dir / "ae.net");
   EXPECT_EQ(loaded.network.encoder.weight.value, result.model.network.encoder.weight.value);
   EXPECT_EQ(loaded.metadata.loss_history.epochs.size(), 4u);
   EXPECT_EQ(loaded.metadata.training.epochs, 4);
@@ -91,47 +91,47 @@ TEST(TrainAutoencoder, LossDecreasesAndTheOutputLoads) {
   EXPECT_EQ(steps, 4 * calls.back().steps_per_epoch);
 }
 
-TEST(TrainAutoencoder, TheScheduleIsAppliedAndRecorded) {
+TEST(TrainLossNetwork, TheScheduleIsAppliedAndRecorded) {
   TempDir dir;
-  style::AutoencoderTrainingConfig cosine = test::tinyAutoencoderConfig(dir / "cosine.net", 2);
-  style::AutoencoderTrainingConfig constant = test::tinyAutoencoderConfig(dir / "constant.net", 2);
+  style::LossNetworkTrainingConfig cosine = test::tinyLossNetworkConfig(dir / "cosine.net", 2);
+  style::LossNetworkTrainingConfig constant = test::tinyLossNetworkConfig(dir / "constant.net", 2);
   constant.settings.schedule = style::LearningRateSchedule::Constant;
-  const auto a = style::trainAutoencoder(cosine, {});
-  const auto b = style::trainAutoencoder(constant, {});
+  const auto a = style::trainLossNetwork(cosine, {});
+  const auto b = style::trainLossNetwork(constant, {});
   EXPECT_NE(a.model.network.encoder.weight.value, b.model.network.encoder.weight.value);
   auto property = [](const nn::NetworkMetadata& m, const std::string& key) {
     for (const auto& [k, v] : m.properties)
       if (k == key) return v;
     return std::string("(missing)");
   };
-  EXPECT_EQ(property(style::loadCompatibleAutoencoder(dir / "cosine.net").metadata, "lr_schedule"), "cosine");
-  EXPECT_EQ(property(style::loadCompatibleAutoencoder(dir / "constant.net").metadata, "lr_schedule"), "constant");
+  EXPECT_EQ(property(style::loadCompatibleLossNetwork(dir / "cosine.net").metadata, "lr_schedule"), "cosine");
+  EXPECT_EQ(property(style::loadCompatibleLossNetwork(dir / "constant.net").metadata, "lr_schedule"), "constant");
 }
 
-TEST(TrainAutoencoder, SameSeedGivesIdenticalWeightsAndAnotherSeedDoesNot) {
+TEST(TrainLossNetwork, SameSeedGivesIdenticalWeightsAndAnotherSeedDoesNot) {
   TempDir dir;
-  auto config = test::tinyAutoencoderConfig(dir / "a.net", 2);
-  auto first = style::trainAutoencoder(config);
+  auto config = test::tinyLossNetworkConfig(dir / "a.net", 2);
+  auto first = style::trainLossNetwork(config);
   config.settings.output = dir / "b.net";
-  auto second = style::trainAutoencoder(config);
+  auto second = style::trainLossNetwork(config);
   EXPECT_EQ(test::weightsOf(first.model.network), test::weightsOf(second.model.network));
   config.settings.seed = 8;
   config.settings.output = dir / "c.net";
-  auto third = style::trainAutoencoder(config);
+  auto third = style::trainLossNetwork(config);
   EXPECT_NE(test::weightsOf(first.model.network), test::weightsOf(third.model.network));
 }
 
-TEST(TrainAutoencoder, ResumeAfterAnEpochOrACancelledStepEqualsUninterruptedTraining) {
+TEST(TrainLossNetwork, ResumeAfterAnEpochOrACancelledStepEqualsUninterruptedTraining) {
   TempDir dir;
-  auto config = test::tinyAutoencoderConfig(dir / "straight.net", 3);
-  const auto straight = style::trainAutoencoder(config);
+  auto config = test::tinyLossNetworkConfig(dir / "straight.net", 3);
+  const auto straight = style::trainLossNetwork(config);
 
   // Stopped at an epoch boundary (cancelled as epoch 1 ends: the run keeps its 3-epoch schedule),
   // resumed.
   config.settings.output = dir / "split.net";
-  ASSERT_EQ(style::trainAutoencoder(config, test::cancelAtEndOfEpoch(1)).status, style::TrainingStatus::Cancelled);
+  ASSERT_EQ(style::trainLossNetwork(config, test::cancelAtEndOfEpoch(1)).status, style::TrainingStatus::Cancelled);
   config.settings.resume = true;
-  const auto resumed = style::trainAutoencoder(config);
+  const auto resumed = style::trainLossNetwork(config);
   EXPECT_EQ(test::weightsOf(straight.model.network), test::weightsOf(resumed.model.network));
   EXPECT_EQ(resumed.history.size(), 3u);
   EXPECT_EQ(resumed.history[0].total, straight.history[0].total);
@@ -145,41 +145,41 @@ TEST(TrainAutoencoder, ResumeAfterAnEpochOrACancelledStepEqualsUninterruptedTrai
   callbacks.progress = [&](const style::TrainingProgress& p) {
     if (p.phase == style::TrainingProgress::Phase::Training && p.epoch == 2 && p.step == 2) cancel = true;
   };
-  const auto cancelled = style::trainAutoencoder(config, callbacks);
+  const auto cancelled = style::trainLossNetwork(config, callbacks);
   EXPECT_EQ(cancelled.status, style::TrainingStatus::Cancelled);
   EXPECT_EQ(cancelled.epochs_completed, 1);
   EXPECT_FALSE(std::filesystem::exists(dir / "cancelled.net"));
   config.settings.resume = true;
-  const auto finished = style::trainAutoencoder(config);
+  const auto finished = style::trainLossNetwork(config);
   EXPECT_EQ(test::weightsOf(straight.model.network), test::weightsOf(finished.model.network));
 }
 
 // A completed run's checkpoint (network + state, megabytes) goes once the output is written, unless
 // it is asked for; a cancelled run's stays, to resume from.
-TEST(TrainAutoencoder, ACompletedRunRemovesItsCheckpointUnlessKept) {
+TEST(TrainLossNetwork, ACompletedRunRemovesItsCheckpointUnlessKept) {
   TempDir dir;
-  auto config = test::tinyAutoencoderConfig(dir / "ae.net", 2);
+  auto config = test::tinyLossNetworkConfig(dir / "ae.net", 2);
   const std::filesystem::path checkpoint = config.settings.checkpointPath();
-  ASSERT_EQ(style::trainAutoencoder(config, test::cancelAtEndOfEpoch(1)).status, style::TrainingStatus::Cancelled);
+  ASSERT_EQ(style::trainLossNetwork(config, test::cancelAtEndOfEpoch(1)).status, style::TrainingStatus::Cancelled);
   EXPECT_TRUE(std::filesystem::exists(checkpoint));
   EXPECT_TRUE(std::filesystem::exists(style::statePath(checkpoint)));
   config.settings.resume = true;
-  ASSERT_EQ(style::trainAutoencoder(config).status, style::TrainingStatus::Completed);
+  ASSERT_EQ(style::trainLossNetwork(config).status, style::TrainingStatus::Completed);
   EXPECT_TRUE(std::filesystem::exists(dir / "ae.net"));
   EXPECT_FALSE(std::filesystem::exists(checkpoint));
   EXPECT_FALSE(std::filesystem::exists(style::statePath(checkpoint)));
 
   config.settings.resume = false;
   config.settings.keep_checkpoint = true;
-  ASSERT_EQ(style::trainAutoencoder(config).status, style::TrainingStatus::Completed);
+  ASSERT_EQ(style::trainLossNetwork(config).status, style::TrainingStatus::Completed);
   EXPECT_TRUE(std::filesystem::exists(checkpoint));
   EXPECT_TRUE(std::filesystem::exists(style::statePath(checkpoint)));
 }
 
-TEST(TrainAutoencoder, CancellationTakesEffectWithinOneSecond) {
+TEST(TrainLossNetwork, CancellationTakesEffectWithinOneSecond) {
   TempDir dir;
   // Full-size networks and windows (256 hidden units, width 25, 240 frames): the slowest steps there are.
-  style::AutoencoderTrainingConfig config;
+  style::LossNetworkTrainingConfig config;
   config.settings = test::tinySettings(dir / "ae.net", 1000);
   config.settings.windows = {};
   config.settings.batch_size = 16;
@@ -192,9 +192,9 @@ TEST(TrainAutoencoder, CancellationTakesEffectWithinOneSecond) {
     if (p.phase == style::TrainingProgress::Phase::Training) ++steps;
   };
   std::chrono::steady_clock::time_point returned;
-  style::AutoencoderTrainingResult result;
+  style::LossNetworkTrainingResult result;
   std::thread worker([&] {
-    result = style::trainAutoencoder(config, callbacks);
+    result = style::trainLossNetwork(config, callbacks);
     returned = std::chrono::steady_clock::now();
   });
   while (steps.load() < 1) std::this_thread::sleep_for(std::chrono::milliseconds(5));
@@ -209,43 +209,43 @@ TEST(TrainAutoencoder, CancellationTakesEffectWithinOneSecond) {
   EXPECT_FALSE(std::filesystem::exists(dir / "ae.net"));
 }
 
-TEST(TrainAutoencoder, DivergenceStopsWithAnErrorAndKeepsTheLastGoodCheckpoint) {
+TEST(TrainLossNetwork, DivergenceStopsWithAnErrorAndKeepsTheLastGoodCheckpoint) {
   TempDir dir;
-  auto config = test::tinyAutoencoderConfig(dir / "ae.net", 1);
+  auto config = test::tinyLossNetworkConfig(dir / "ae.net", 1);
   config.settings.checkpoint = dir / "shared.checkpoint";
-  ASSERT_EQ(style::trainAutoencoder(config).status, style::TrainingStatus::Completed);
+  ASSERT_EQ(style::trainLossNetwork(config).status, style::TrainingStatus::Completed);
   const std::string checkpoint = test::readBytes(config.settings.checkpointPath());
   config.settings.learning_rate = 1e35;  // the first step sends weights to ~1e35: the next loss is infinite
   config.settings.output = dir / "diverged.net";
-  EXPECT_THROW(style::trainAutoencoder(config), TrainingDiverged);
+  EXPECT_THROW(style::trainLossNetwork(config), TrainingDiverged);
   EXPECT_EQ(test::readBytes(config.settings.checkpointPath()), checkpoint);
   EXPECT_FALSE(std::filesystem::exists(dir / "diverged.net"));
 }
 
-TEST(TrainAutoencoder, HoldoutKeepsFilesOutOfTraining) {
+TEST(TrainLossNetwork, HoldoutKeepsFilesOutOfTraining) {
   TempDir dir;
-  auto config = test::tinyAutoencoderConfig(dir / "ae.net", 1);
+  auto config = test::tinyLossNetworkConfig(dir / "ae.net", 1);
   config.clips.clear();
   std::filesystem::create_directories(dir / "data");
   std::filesystem::copy_file(test::fixture("cmu_131_01.bvh"), dir / "data/a_walk.bvh");
   std::filesystem::copy_file(test::fixture("zombie.bvh"), dir / "data/b_zombie.bvh");
   config.data = {dir / "data"};
   config.settings.holdout_every = 2;
-  const auto result = style::trainAutoencoder(config);
+  const auto result = style::trainLossNetwork(config);
   ASSERT_EQ(result.training_files.size(), 1u);
   ASSERT_EQ(result.held_out_files.size(), 1u);
   EXPECT_EQ(result.held_out_files[0].filename(), "b_zombie.bvh");
 }
 
 style::StyleTrainingConfig tinyStyleConfig(const TempDir& dir, int epochs) {
-  nn::saveAutoencoder(test::tinyAutoencoderModel(), dir / "ae.net");
+  nn::saveLossNetwork(test::tinyLossNetworkModel(), dir / "ae.net");
   style::StyleTrainingConfig config;
   config.settings = test::tinySettings(dir / "style.net", epochs);
   config.settings.learning_rate = 1e-3;
-  config.autoencoder = dir / "ae.net";
+  config.loss_network = dir / "ae.net";
   config.content_clips = test::fixtureClips();
   config.styles = {{std::nullopt, test::fixture("zombie.bvh")}};
-  config.shape = test::tinyTransformerShape();
+  config.shape = test::tinyTransformationShape();
   config.weights.style = 1.0;  // the tiny untrained loss network has small Gram matrices
   return config;
 }
@@ -263,7 +263,7 @@ TEST(TrainStyleNetwork, LossDecreasesAndTheFileRecordsTheStyle) {
   ASSERT_EQ(loaded.metadata.style_clips.size(), 1u);
   EXPECT_EQ(loaded.metadata.style_clips[0].name, "zombie.bvh");
   EXPECT_EQ(loaded.metadata.loss_history.terms.size(), 6u);  // total + 5 terms
-  EXPECT_EQ(loaded.loss_network.encoder.weight.value, test::tinyAutoencoderModel().network.encoder.weight.value);
+  EXPECT_EQ(loaded.loss_network.encoder.weight.value, test::tinyLossNetworkModel().network.encoder.weight.value);
   bool pairing_logged = false;
   for (const auto& line : log) pairing_logged = pairing_logged || line.find("pairing: zombie") != std::string::npos;
   EXPECT_TRUE(pairing_logged);

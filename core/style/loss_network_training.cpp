@@ -1,4 +1,4 @@
-// trainAutoencoder: the loss network L (eq. 1-3) on 240-frame windows of a motion database.
+// trainLossNetwork: the loss network L (eq. 1-3) on 240-frame windows of a motion database.
 #include <chrono>
 #include <string>
 
@@ -11,8 +11,8 @@
 namespace motionstyle::style {
 namespace {
 
-std::vector<std::string> settingsParts(const AutoencoderTrainingConfig& config) {
-  return {"autoencoder", "hidden=" + std::to_string(config.shape.hidden), "width=" + std::to_string(config.shape.width),
+std::vector<std::string> settingsParts(const LossNetworkTrainingConfig& config) {
+  return {"loss_network", "hidden=" + std::to_string(config.shape.hidden), "width=" + std::to_string(config.shape.width),
           "sparsity=" + std::to_string(config.sparsity), "dropout=" + std::to_string(config.dropout),
           "foot=" + std::to_string(config.foot_weight),
           config.train_encoder ? "encoder=trained" : "encoder=frozen"};
@@ -20,7 +20,7 @@ std::vector<std::string> settingsParts(const AutoencoderTrainingConfig& config) 
 
 }  // namespace
 
-AutoencoderTrainingResult trainAutoencoder(const AutoencoderTrainingConfig& config, const TrainingCallbacks& callbacks) {
+LossNetworkTrainingResult trainLossNetwork(const LossNetworkTrainingConfig& config, const TrainingCallbacks& callbacks) {
   config.validate();
   const TrainingSettings& settings = config.settings;
   // The loss network learns motion as captured: its files without rig canonicalisation (the styles'
@@ -28,34 +28,34 @@ AutoencoderTrainingResult trainAutoencoder(const AutoencoderTrainingConfig& conf
   TrainingSettings loading = settings;
   loading.dataset.features.canonical_rig = false;
   const auto started = std::chrono::steady_clock::now();
-  AutoencoderTrainingResult result;
-  result.model.network = nn::Autoencoder<float>(config.shape);
+  LossNetworkTrainingResult result;
+  result.model.network = nn::LossNetwork<float>(config.shape);
 
   std::optional<TrainingClips> loaded =
       loadTrainingClips(config.data, config.clips, loading, callbacks, "training", started, result);
   if (!loaded) return result;
   const TrainingClips& data = *loaded;
 
-  nn::AutoencoderModel& model = result.model;
+  nn::LossNetworkModel& model = result.model;
   std::vector<EpochRecord> history;
   nn::Adam<float> optimiser(model.network.parameters(), settings.adamOptions());
   const std::uint64_t fingerprint = dataFingerprint(data, settings, settingsParts(config));
   TrainedNetwork network;
-  network.kind = nn::NetworkKind::Autoencoder;
+  network.kind = nn::NetworkKind::LossNetwork;
   network.resume = [&](const std::string& network_bytes, const std::filesystem::path& checkpoint) {
-    nn::AutoencoderModel resumed = nn::parseAutoencoder(network_bytes, checkpoint.string());
+    nn::LossNetworkModel resumed = nn::parseLossNetwork(network_bytes, checkpoint.string());
     if (!(resumed.network.shape() == config.shape))
-      throw InputError(checkpoint.string(), 0, "the checkpoint's autoencoder has another shape");
+      throw InputError(checkpoint.string(), 0, "the checkpoint's loss network has another shape");
     model = std::move(resumed);
   };
   if (config.init_model || !settings.init.empty())
     network.warm_start = [&] {
       // The earlier network's weights AND its normalisation (the weights only make sense on inputs
       // normalised the way they were trained).
-      nn::AutoencoderModel initial =
-          config.init_model ? *config.init_model : loadCompatibleAutoencoder(settings.init, settings.dataset.features);
+      nn::LossNetworkModel initial =
+          config.init_model ? *config.init_model : loadCompatibleLossNetwork(settings.init, settings.dataset.features);
       if (!(initial.network.shape() == config.shape))
-        throw InputError(settings.init.string(), 0, "the --init autoencoder has another shape than requested");
+        throw InputError(settings.init.string(), 0, "the --init loss network has another shape than requested");
       model.network = std::move(initial.network);
       model.normalisation = initial.normalisation;
     };
@@ -70,9 +70,9 @@ AutoencoderTrainingResult trainAutoencoder(const AutoencoderTrainingConfig& conf
     return config.train_encoder ? model.network.parameters()
                                 : std::vector<nn::Parameter<float>*>{&model.network.decoder.weight};
   };
-  network.serialise = [&] { return nn::serialiseAutoencoder(model); };
-  network.save = [&](const std::filesystem::path& file) { nn::saveAutoencoder(model, file); };
-  if (callbacks.autoencoder_snapshot) network.snapshot = [&] { callbacks.autoencoder_snapshot(model); };
+  network.serialise = [&] { return nn::serialiseLossNetwork(model); };
+  network.save = [&](const std::filesystem::path& file) { nn::saveLossNetwork(model, file); };
+  if (callbacks.loss_network_snapshot) network.snapshot = [&] { callbacks.loss_network_snapshot(model); };
   LoopSetup setup = startTraining(network, settings, fingerprint, optimiser, history, callbacks, started);
   const FeatureStatistics& statistics = model.normalisation;
   WindowSet windows = makeWindows(data.clips, statistics, settings.windows);

@@ -1,5 +1,8 @@
 #pragma once
-// The loss network L: the paper's one-layer convolutional autoencoder (Holden et al. 2016).
+// The loss network L: the paper's one-layer convolutional autoencoder of motion (Holden et al. 2016).
+// Its encoder gives the features the content and style losses compare (eq. 4-6); its decoder maps
+// hidden units back to motion (the projection of eq. 10). "Loss network" is the one name used for it
+// in code, flags and docs; "autoencoder" only describes how it is trained (eq. 3).
 //
 //   encode (eq. 1):  H  = ReLU(MaxPool2(Conv(X; W0, b0)))          W0: hidden x (features*width)
 //   decode (eq. 2):  X~ = Conv(AverageDepool2(H) - b0; W~0)         W~0: features x (hidden*width),
@@ -25,11 +28,11 @@
 
 namespace motionstyle::nn {
 
-struct AutoencoderShape {
+struct LossNetworkShape {
   int features = kFeatureCount;
   int hidden = 256;
   int width = 25;
-  bool operator==(const AutoencoderShape&) const = default;
+  bool operator==(const LossNetworkShape&) const = default;
 };
 
 // alpha for eq. 3 on the MEAN |w|, and the input dropout rate: both 0. The 2016 code's dropout 0.25
@@ -57,13 +60,13 @@ struct ReconstructionFootTerm {
 };
 
 template <typename S>
-class Autoencoder {
+class LossNetwork {
  public:
-  explicit Autoencoder(const AutoencoderShape& shape = {});
+  explicit LossNetwork(const LossNetworkShape& shape = {});
 
   // He-uniform W0 (ReLU follows), Glorot-uniform W~0, b0 = 0; deterministic in `seed`.
   void initialise(std::uint32_t seed);
-  const AutoencoderShape& shape() const { return shape_; }
+  const LossNetworkShape& shape() const { return shape_; }
 
   // Inference, no caches. encode: features x (B*frames) -> hidden x (B*evenFrames(frames)/2).
   Mat<S> encode(const Mat<S>& x, int frames) const;
@@ -90,7 +93,7 @@ class Autoencoder {
   Conv1d<S> decoder;  // W~0 (no bias)
 
  private:
-  AutoencoderShape shape_;
+  LossNetworkShape shape_;
   // Caches of encodeForward / accumulateReconstruction.
   MaxPool2<S> pool_;
   Relu<S> relu_;
@@ -101,6 +104,6 @@ class Autoencoder {
 // The same loss network: equal shapes and bit-identical W0, b0 and W~0 (a style network embeds the
 // loss network it was trained against; a stylize with another one's projection would be wrong).
 template <typename S>
-bool sameWeights(const Autoencoder<S>& a, const Autoencoder<S>& b);
+bool sameWeights(const LossNetwork<S>& a, const LossNetwork<S>& b);
 
 }  // namespace motionstyle::nn
