@@ -12,6 +12,7 @@
 #include "motion/kinematics.h"
 #include "motion/resample.h"
 #include "style/position_clip.h"
+#include "style/stylize_cleanup_job.h"
 #include "style/stylized_cleanup.h"
 
 namespace motionstyle::cli {
@@ -84,19 +85,22 @@ void writeStylizedOutput(const std::filesystem::path& content_file, const style:
         << " fps (raw positions of the 21 canonical joints; no clean-up)\n";
     return;
   }
-  const Motion content = readBvh(content_file, /*minimum_frames=*/1);
+  style::StylizeCleanupJob job;  // the clean-up the app and the filmstrip run
+  job.content = readBvh(content_file, /*minimum_frames=*/1);
+  const Motion& content = job.content;
   if (options.fps > 0.0) requireResampleableTo(content, options.fps);
-  const JointMapping mapping = mapJoints(content.skeleton, content_file.string());
-  CleanupOptions cleanup_options;
-  cleanup_options.max_total_seconds = options.time_limit_seconds;
-  const style::StylizedCleanup cleaned = style::cleanUpStylizedClip(content, mapping, stylized, cleanup_options, options.fps);
+  job.mapping = mapJoints(content.skeleton, content_file.string());
+  job.stylized = stylized;
+  job.options.max_total_seconds = options.time_limit_seconds;
+  job.output_fps = options.fps;
+  const style::StylizeCleanupResult cleaned = job.run();
   AtomicFileBatch outputs;  // the clip and its metrics: both or neither
-  outputs.stage(output, formatBvh(cleaned.motion));
+  outputs.stage(output, formatBvh(cleaned.cleaned));
   if (options.metrics) {
     nlohmann::ordered_json json;
-    json["raw"] = nlohmann::json::parse(metricsToJson(cleaned.raw));
-    json["cleaned"] = nlohmann::json::parse(metricsToJson(cleaned.cleaned));
-    const RootPathComparison path = compareClipPaths(content, cleaned.motion, mapping, stylized.anchor.convention);
+    json["raw"] = nlohmann::json::parse(metricsToJson(cleaned.raw_metrics));
+    json["cleaned"] = nlohmann::json::parse(metricsToJson(cleaned.cleaned_metrics));
+    const RootPathComparison path = compareClipPaths(content, cleaned.cleaned, job.mapping, stylized.anchor.convention);
     json["path"] = {{"mode", style::pathModeName(stylized.path)},
                     {"distance_ratio", path.distance_ratio},
                     {"end_error_fraction", path.end_error_fraction}};
@@ -112,9 +116,10 @@ void writeStylizedOutput(const std::filesystem::path& content_file, const style:
   char figures[256];
   std::snprintf(figures, sizeof figures,
                 "foot skate %.2f -> %.2f cm/s, floor penetration %.2f -> %.2f cm, bone error %.3f -> %.1e cm",
-                cleaned.raw.foot_skate_cm_s, cleaned.cleaned.foot_skate_cm_s, cleaned.raw.penetration_max_cm,
-                cleaned.cleaned.penetration_max_cm, cleaned.raw.bone_error_mean_cm, cleaned.cleaned.bone_error_max_cm);
-  log << "wrote " << output.string() << ": " << cleaned.motion.frameCount() << " frames at " << cleaned.motion.fps()
+                cleaned.raw_metrics.foot_skate_cm_s, cleaned.cleaned_metrics.foot_skate_cm_s,
+                cleaned.raw_metrics.penetration_max_cm, cleaned.cleaned_metrics.penetration_max_cm,
+                cleaned.raw_metrics.bone_error_mean_cm, cleaned.cleaned_metrics.bone_error_max_cm);
+  log << "wrote " << output.string() << ": " << cleaned.cleaned.frameCount() << " frames at " << cleaned.cleaned.fps()
       << " fps on the input's skeleton (" << content.skeleton.jointCount() << " joints), cleaned in "
       << cleaned.report.seconds << " s\n  " << figures << "\n";
 }

@@ -96,27 +96,22 @@ NetworkPanel::NetworkPanel(ClipRoles roles, QWidget* parent, bool persist_settin
   bottom_layout->setContentsMargins(0, 0, 0, 0);
   // Train, Retrain, Cancel and Resume stay in view under the (scrolling) form, next to the progress
   // they start.
-  train_button_ = new QPushButton(tr("&Train"), this);
-  train_button_->setObjectName(QStringLiteral("TrainButton"));
-  train_button_->setToolTip(tr("Train a new network on the training set"));
-  retrain_button_ = new QPushButton(tr("&Retrain"), this);
-  retrain_button_->setObjectName(QStringLiteral("RetrainButton"));
-  retrain_button_->setToolTip(tr("Warm start from the selected network with these weights"));
-  cancel_button_ = new QPushButton(tr("Cancel"), this);
-  cancel_button_->setObjectName(QStringLiteral("CancelButton"));
-  cancel_button_->setToolTip(tr("Stop; the last completed epoch is kept"));
-  resume_button_ = new QPushButton(tr("Res&ume"), this);
-  resume_button_->setObjectName(QStringLiteral("ResumeButton"));
-  resume_button_->setToolTip(tr("Continue the cancelled training from its last completed epoch"));
-  connect(train_button_, &QPushButton::clicked, this, [this] { startTraining(false); });
-  connect(retrain_button_, &QPushButton::clicked, this, [this] { startTraining(true); });
-  connect(cancel_button_, &QPushButton::clicked, this, &NetworkPanel::cancelJob);
-  connect(resume_button_, &QPushButton::clicked, this, [this] { resumeTraining(); });
   auto* run_buttons = new QHBoxLayout;
-  run_buttons->addWidget(train_button_);
-  run_buttons->addWidget(retrain_button_);
-  run_buttons->addWidget(cancel_button_);
-  run_buttons->addWidget(resume_button_);
+  const auto button = [&](const QString& text, const char* name, const QString& tip, auto on_click) {
+    auto* made = new QPushButton(text, this);
+    made->setObjectName(QString::fromLatin1(name));
+    made->setToolTip(tip);
+    connect(made, &QPushButton::clicked, this, on_click);
+    run_buttons->addWidget(made);
+    return made;
+  };
+  train_button_ = button(tr("&Train"), "TrainButton", tr("Train a new network on the training set"),
+                         [this] { startTraining(false); });
+  retrain_button_ = button(tr("&Retrain"), "RetrainButton", tr("Warm start from the selected network with these weights"),
+                           [this] { startTraining(true); });
+  cancel_button_ = button(tr("Cancel"), "CancelButton", tr("Stop; the last completed epoch is kept"), [this] { cancelJob(); });
+  resume_button_ = button(tr("Res&ume"), "ResumeButton", tr("Continue the cancelled training from its last completed epoch"),
+                          [this] { resumeTraining(); });
   bottom_layout->addLayout(run_buttons);
   bottom_layout->addWidget(progress_bar_);
   bottom_layout->addWidget(status_label_);

@@ -12,6 +12,7 @@ namespace motionstyle::style {
 void StylizeCleanupJob::validate() const {
   if (!stylized && !stylizer) throw std::invalid_argument("no style network and no stylized clip to clean up");
   if (!(strength >= 0.0 && strength <= 1.0)) throw std::invalid_argument("the strength must be in [0, 1]");
+  if (!(output_fps >= 0.0)) throw std::invalid_argument("the output rate must be 0 (the content's) or positive");
   if (contact_overrides.size() > 0 &&
       (contact_overrides.rows() != content.frameCount() || contact_overrides.cols() != kContactCount))
     throw std::invalid_argument("the contact overrides must be content frames x 4");
@@ -29,7 +30,7 @@ StylizeCleanupResult StylizeCleanupJob::run(const std::atomic<bool>* cancel) con
     result.stylized = stylizer->stylize(features, strength, path);
   }
   throwIfCancelled(cancel);
-  StylizedCleanup cleanup = cleanUpStylizedClip(content, mapping, result.stylized, options, 0.0, contact_overrides);
+  StylizedCleanup cleanup = cleanUpStylizedClip(content, mapping, result.stylized, options, output_fps, contact_overrides);
   throwIfCancelled(cancel);
   result.cleaned = std::move(cleanup.motion);
   result.report = std::move(cleanup.report);

@@ -1,8 +1,8 @@
 #pragma once
 // StylizeCleanupJob: a content clip through a style network (or an already stylized clip, the
 // optimisation method's output) and the IK clean-up onto the content's own skeleton, with the quality
-// metrics before and after: what the app's Result panel and motionstyle-filmstrip show. The chain is
-// cleanUpStylizedClip's (stylized_cleanup.h), the same as motionstyle-cli stylize.
+// metrics before and after: what the app's Result panel, motionstyle-filmstrip and motionstyle-cli's
+// stylize and transfer write (cleanUpStylizedClip's chain, stylized_cleanup.h).
 //
 // The job shape of every long operation (ozz-animation's jobs): plain inputs copied in, validate(),
 // run() with a cancel flag, a typed Result apart from the inputs.
@@ -25,6 +25,7 @@ namespace motionstyle::style {
 struct StylizeCleanupResult {
   StylizedClip stylized;         // raw network output: 21 canonical joints, file space, 60 fps
   Motion cleaned;                // on the content's skeleton, at the content's rate and frame count
+                                 // (or at output_fps)
   CleanupReport report;
   ClipMetrics raw_metrics;       // the raw output, judged by the content's contacts (60 fps)
   ClipMetrics cleaned_metrics;   // the cleaned clip, judged by the contacts the clean-up locked
@@ -43,6 +44,7 @@ struct StylizeCleanupJob {
   // User contact overrides at the CONTENT's rate (frames x 4, -1 auto / 0 off / 1 on); empty: none.
   Eigen::MatrixXi contact_overrides;
   CleanupOptions options;
+  double output_fps = 0.0;  // the cleaned clip's rate (resampled): 0 = the content's own
 
   // std::invalid_argument: neither a network nor a stylized clip, a strength outside [0, 1], overrides
   // whose shape is not content frames x 4.

@@ -42,6 +42,17 @@ TEST(StylizeCleanupJob, RefusesMissingOrInconsistentInputs) {
   EXPECT_THROW(job.validate(), std::invalid_argument);
   job.contact_overrides = Eigen::MatrixXi::Constant(90, 4, -1);
   EXPECT_NO_THROW(job.validate());
+  job.output_fps = -30.0;
+  EXPECT_THROW(job.validate(), std::invalid_argument);
+}
+
+TEST(StylizeCleanupJob, AnOutputRateResamplesTheCleanedClip) {
+  style::StylizeCleanupJob job = cleanupJobOnFixture(120);  // one second at 120 fps
+  job.output_fps = 30.0;
+  const style::StylizeCleanupResult result = job.run();
+  EXPECT_DOUBLE_EQ(result.cleaned.fps(), 30.0);
+  EXPECT_NEAR(result.cleaned.frameCount(), 30, 1);
+  EXPECT_EQ(result.cleaned.skeleton.channelCount(), job.content.skeleton.channelCount());
 }
 
 TEST(StylizeCleanupJob, TheCleanedClipIsTheContentsRigAndLength) {
