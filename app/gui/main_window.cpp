@@ -203,10 +203,21 @@ void MainWindow::createMenus() {
   help->addAction(tr("&About MotionStyle"), this, &MainWindow::showAbout);
 }
 
-int MainWindow::openFiles(const QStringList& paths) {
+int MainWindow::openFiles(const QStringList& paths) { return loadClips(paths, nullptr); }
+
+int MainWindow::loadClips(const QStringList& paths, QProgressDialog* progress) {
   QStringList failures;
   QStringList loaded;
-  for (const QString& path : paths) {
+  bool cancelled = false;
+  for (qsizetype i = 0; i < paths.size(); ++i) {
+    if (progress) {
+      if (progress->wasCanceled()) {
+        cancelled = true;
+        break;
+      }
+      progress->setValue(static_cast<int>(i));
+    }
+    const QString& path = paths[i];
     try {
       clips_.push_back(loadClip(std::filesystem::path(path.toStdString())));
       loaded << clips_.back().path;
@@ -216,14 +227,16 @@ int MainWindow::openFiles(const QStringList& paths) {
       failures << errorText(std::current_exception(), path);
     }
   }
+  if (progress) progress->setValue(progress->maximum());
   if (!loaded.isEmpty()) {
     rememberRecent(loaded);
     setLastFolder(QFileInfo(loaded.back()).absolutePath());
     refreshClipList();
     rebuildFigures();
   }
-  status_label_->setText(tr("Loaded %n clip(s)", nullptr, static_cast<int>(loaded.size())) +
-                         (failures.isEmpty() ? QString() : tr(", %n failed", nullptr, static_cast<int>(failures.size()))));
+  status_label_->setText((loaded.size() == 1 ? tr("Loaded 1 clip") : tr("Loaded %1 clips").arg(loaded.size())) +
+                         (failures.isEmpty() ? QString() : tr(", %1 failed").arg(failures.size())) +
+                         (cancelled ? tr("; cancelled") : QString()));
   if (!failures.isEmpty())
     report(failures.size() == 1 ? tr("Could not open the clip") : tr("Could not open %1 clips").arg(failures.size()),
            failures.join(QStringLiteral("\n\n")));
@@ -245,17 +258,11 @@ int MainWindow::openFolder(const QString& folder) {
     report(tr("No clips found"), tr("%1 holds no .bvh files.").arg(dir.absolutePath()));
     return 0;
   }
-  // A large folder takes a while: load in batches behind a cancellable progress dialog.
+  // A large folder takes a while: a cancellable progress dialog; one refresh and one report at the end.
   QProgressDialog progress(tr("Loading clips..."), tr("Cancel"), 0, static_cast<int>(files.size()), this);
   progress.setWindowModality(Qt::WindowModal);
   progress.setMinimumDuration(500);
-  int loaded = 0;
-  for (qsizetype i = 0; i < files.size() && !progress.wasCanceled(); ++i) {
-    progress.setValue(static_cast<int>(i));
-    loaded += openFiles({files[i]});
-  }
-  progress.setValue(static_cast<int>(files.size()));
-  return loaded;
+  return loadClips(files, &progress);
 }
 
 void MainWindow::setContentClip(int index) {

@@ -22,6 +22,7 @@ class QAction;
 class QActionGroup;
 class QLabel;
 class QMenu;
+class QProgressDialog;
 class QTreeWidget;
 
 namespace motionstyle {
@@ -102,6 +103,9 @@ class MainWindow : public QMainWindow {
   void createDocks();
   void createMenus();
   void rebuildFigures();
+  // openFiles and openFolder: loads in order (stopping when `progress` is cancelled), then one list
+  // refresh, one status line for all of them and one report of every failure.
+  int loadClips(const QStringList& paths, QProgressDialog* progress);
   void refreshClipList();
   void rememberRecent(const QStringList& files);
   void rebuildRecentMenu();

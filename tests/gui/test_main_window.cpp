@@ -4,10 +4,12 @@
 #include <QDockWidget>
 #include <QDoubleSpinBox>
 #include <QDropEvent>
+#include <QLabel>
 #include <QMessageBox>
 #include <QMimeData>
 #include <QPushButton>
 #include <QSettings>
+#include <QStatusBar>
 #include <QTabWidget>
 #include <QTemporaryDir>
 #include <QTimer>
@@ -186,6 +188,29 @@ class MainWindowTest : public QObject {
     QVERIFY(reports.empty());
     QCOMPARE(window.openFolder(folder.filePath(QStringLiteral("nope"))), 0);
     QCOMPARE(reports.size(), size_t{1});
+  }
+
+  // A folder with broken clips: one report naming all of them (not a dialog per file), and the status
+  // line counts the whole folder (it said "Loaded 1 clip(s)", the last file's count).
+  void openFolderReportsItsFailuresOnceAndCountsTheFolder() {
+    QTemporaryDir folder;
+    QFile::copy(test::fixture(QStringLiteral("zombie.bvh")), folder.filePath(QStringLiteral("a.bvh")));
+    QFile::copy(test::fixture(QStringLiteral("cmu_131_01.bvh")), folder.filePath(QStringLiteral("b.bvh")));
+    QFile::copy(test::fixture(QStringLiteral("zombie.bvh")), folder.filePath(QStringLiteral("c.bvh")));
+    writeFile(folder, QStringLiteral("d_broken.bvh"), "HIERARCHY\nnonsense\n");
+    writeFile(folder, QStringLiteral("e_empty.bvh"), "");
+    MainWindow window(/*persist_settings=*/false);
+    std::vector<Report> reports;
+    window.setErrorReporter([&](const QString& title, const QString& message) { reports.push_back({title, message}); });
+    QCOMPARE(window.openFolder(folder.path()), 3);
+    QCOMPARE(window.clipCount(), 3);
+    QCOMPARE(reports.size(), size_t{1});
+    QVERIFY2(reports[0].message.contains(QStringLiteral("d_broken.bvh")) && reports[0].message.contains(QStringLiteral("e_empty.bvh")),
+             qPrintable(reports[0].message));
+    auto* status = window.statusBar()->findChild<QLabel*>();
+    QVERIFY(status != nullptr);
+    QVERIFY2(status->text().contains(QStringLiteral("3 clips")) && status->text().contains(QStringLiteral("2 failed")),
+             qPrintable(status->text()));
   }
 
   // Issue 14: scrolling the training form must not change the value under the pointer.
