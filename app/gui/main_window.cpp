@@ -230,7 +230,7 @@ int MainWindow::loadClips(const QStringList& paths, QProgressDialog* progress) {
   if (progress) progress->setValue(progress->maximum());
   if (!loaded.isEmpty()) {
     rememberRecent(loaded);
-    setLastFolder(QFileInfo(loaded.back()).absolutePath());
+    clipFolder().remember(QFileInfo(loaded.back()).absolutePath());
     refreshClipList();
     rebuildFigures();
   }
@@ -253,7 +253,7 @@ int MainWindow::openFolder(const QString& folder) {
   for (const QFileInfo& info : dir.entryInfoList({QStringLiteral("*.bvh"), QStringLiteral("*.BVH")}, QDir::Files, QDir::Name))
     files << info.absoluteFilePath();
   files.removeDuplicates();
-  setLastFolder(dir.absolutePath());
+  clipFolder().remember(dir.absolutePath());
   if (files.isEmpty()) {
     report(tr("No clips found"), tr("%1 holds no .bvh files.").arg(dir.absolutePath()));
     return 0;

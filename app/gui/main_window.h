@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "clip_loader.h"
+#include "remembered_folder.h"
 
 class QAction;
 class QActionGroup;
@@ -120,8 +121,7 @@ class MainWindow : public QMainWindow {
   void showAbout();
   void showShortcuts();
   void report(const QString& title, const QString& message);
-  QString lastFolder() const;
-  void setLastFolder(const QString& folder);
+  RememberedFolder clipFolder() const { return {kClipFolderKey, persist_settings_}; }
 
   bool persist_settings_;
   ErrorReporter reporter_;

@@ -13,7 +13,6 @@ namespace motionstyle {
 namespace {
 
 const char* const kRecentFilesKey = "recentFiles";
-const char* const kLastFolderKey = "lastFolder";
 
 }  // namespace
 
@@ -53,35 +52,26 @@ void MainWindow::rebuildRecentMenu() {
   clear->setEnabled(!recent.isEmpty());
 }
 
-QString MainWindow::lastFolder() const {
-  const QString folder = persist_settings_ ? QSettings().value(kLastFolderKey).toString() : QString();
-  return QDir(folder).exists() && !folder.isEmpty() ? folder : QDir::homePath();
-}
-
-void MainWindow::setLastFolder(const QString& folder) {
-  if (persist_settings_) QSettings().setValue(kLastFolderKey, folder);
-}
-
 void MainWindow::browseFiles() {
-  const QStringList files = QFileDialog::getOpenFileNames(this, tr("Open BVH clips"), lastFolder(),
+  const QStringList files = QFileDialog::getOpenFileNames(this, tr("Open BVH clips"), clipFolder().folder(),
                                                           tr("BVH motion (*.bvh *.BVH);;All files (*)"));
   if (!files.isEmpty()) openFiles(files);
 }
 
 void MainWindow::browseFolder() {
-  const QString folder = QFileDialog::getExistingDirectory(this, tr("Open a folder of BVH clips"), lastFolder());
+  const QString folder = QFileDialog::getExistingDirectory(this, tr("Open a folder of BVH clips"), clipFolder().folder());
   if (!folder.isEmpty()) openFolder(folder);
 }
 
 void MainWindow::browseScreenshot() {
   const QString file = QFileDialog::getSaveFileName(this, tr("Save screenshot"),
-                                                    QDir(lastFolder()).filePath(QStringLiteral("motionstyle.png")),
+                                                    QDir(clipFolder().folder()).filePath(QStringLiteral("motionstyle.png")),
                                                     tr("PNG image (*.png)"));
   if (!file.isEmpty()) saveScreenshot(file);
 }
 
 void MainWindow::browseMappingFile(int index) {
-  const QString file = QFileDialog::getOpenFileName(this, tr("Load a joint mapping file"), lastFolder(),
+  const QString file = QFileDialog::getOpenFileName(this, tr("Load a joint mapping file"), clipFolder().folder(),
                                                     tr("Joint mapping (*.json);;All files (*)"));
   if (!file.isEmpty()) loadMappingFile(index, file);
 }

@@ -9,7 +9,6 @@
 #include <QLabel>
 #include <QLineEdit>
 #include <QPushButton>
-#include <QSettings>
 #include <QStyledItemDelegate>
 #include <QTreeWidget>
 #include <QVBoxLayout>
@@ -19,12 +18,11 @@
 #include <filesystem>
 
 #include "error_text.h"
+#include "remembered_folder.h"
 #include "style/training.h"
 
 namespace motionstyle {
 namespace {
-
-const char* const kNetworkFolderKey = "networks/lastFolder";
 
 enum Column { kName, kStyles, kEpochs, kCreated, kColumnCount };
 
@@ -379,13 +377,8 @@ QMessageBox::StandardButton NetworkList::ask(const QString& title, const QString
   return confirmer_ ? confirmer_(title, text, buttons) : QMessageBox::Cancel;
 }
 
-QString NetworkList::networksFolder() const {
-  const QString folder = persist_settings_ ? QSettings().value(kNetworkFolderKey).toString() : QString();
-  return !folder.isEmpty() && QDir(folder).exists() ? folder : QDir::homePath();
-}
+QString NetworkList::networksFolder() const { return RememberedFolder(kNetworkFolderKey, persist_settings_).folder(); }
 
-void NetworkList::rememberFolder(const QString& path) {
-  if (persist_settings_) QSettings().setValue(kNetworkFolderKey, path);
-}
+void NetworkList::rememberFolder(const QString& path) { RememberedFolder(kNetworkFolderKey, persist_settings_).remember(path); }
 
 }  // namespace motionstyle

@@ -25,7 +25,6 @@ namespace motionstyle {
 namespace {
 
 const char* const kLossNetworkKey = "networks/lossNetwork";
-const char* const kClipFolderKey = "networks/lastClipFolder";
 
 // <resources>/models/loss_network.net when installed (resource_paths.h), else empty.
 QString shippedLossNetworkFile() {
@@ -59,9 +58,9 @@ NetworkPanel::NetworkPanel(ClipRoles roles, QWidget* parent, bool persist_settin
   tabs_->addTab(network_list_, tr("Networks"));
   // The training form is tall: it scrolls rather than squeezing its fields on a small screen.
   train_tab_ = new TrainTab(roles_, this);
-  train_tab_->setFolders([this] { return lastClipFolder(); }, [this] { return network_list_->networksFolder(); });
+  train_tab_->setFolders([this] { return clipFolder().folder(); }, [this] { return network_list_->networksFolder(); });
   connect(train_tab_, &TrainTab::errorOccurred, this, &NetworkPanel::report);
-  connect(train_tab_, &TrainTab::clipFolderChosen, this, &NetworkPanel::rememberClipFolder);
+  connect(train_tab_, &TrainTab::clipFolderChosen, this, [this](const QString& folder) { clipFolder().remember(folder); });
   connect(train_tab_, &TrainTab::lossNetworkChanged, this, [this](const QString& file) {
     if (persist_settings_ && !file.isEmpty()) QSettings().setValue(kLossNetworkKey, file);
   });
@@ -209,15 +208,6 @@ void NetworkPanel::report(const QString& title, const QString& message) {
 
 QMessageBox::StandardButton NetworkPanel::ask(const QString& title, const QString& text, QMessageBox::StandardButtons buttons) {
   return confirmer_ ? confirmer_(title, text, buttons) : QMessageBox::Cancel;
-}
-
-QString NetworkPanel::lastClipFolder() const {
-  const QString folder = persist_settings_ ? QSettings().value(kClipFolderKey).toString() : QString();
-  return !folder.isEmpty() && QDir(folder).exists() ? folder : QDir::homePath();
-}
-
-void NetworkPanel::rememberClipFolder(const QString& path) {
-  if (persist_settings_) QSettings().setValue(kClipFolderKey, path);
 }
 
 }  // namespace motionstyle

@@ -35,6 +35,7 @@
 #include "clip_roles.h"
 #include "display_space.h"
 #include "network_list.h"
+#include "remembered_folder.h"
 #include "optimise_tab.h"
 #include "train_tab.h"
 #include "figure_data.h"
@@ -138,8 +139,7 @@ class NetworkPanel : public QWidget {
   QMessageBox::StandardButton ask(const QString& title, const QString& text, QMessageBox::StandardButtons buttons);
   // Where clips and training folders were last chosen (apart from the networks folder: saving a
   // network never starts among the clips).
-  QString lastClipFolder() const;
-  void rememberClipFolder(const QString& path);
+  RememberedFolder clipFolder() const { return {kClipFolderKey, persist_settings_}; }
 
   // Jobs (network_panel_jobs.cpp).
   bool runTraining(style::StyleTrainingJob job, const QString& status);
