@@ -1,4 +1,5 @@
-// motionstyle-cli cleanup IN.bvh --out OUT.bvh: the IK clean-up on a clip as it is (its own canonical
+// motionstyle-cli cleanup IN.bvh --out OUT.bvh (or several clips and folders --out FOLDER, batch.h):
+// the IK clean-up on a clip as it is (its own canonical
 // joint positions are the targets): feet locked during contact, bone lengths exact, feet on the floor.
 // Contacts come from --contacts FILE, else from the tracks saved beside the clip
 // (IN.bvh.contacts.json, e.g. edited in the app), else are detected from height and speed.
@@ -9,9 +10,12 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <optional>
+#include <sstream>
 #include <nlohmann/json.hpp>
 
 #include "bvh/bvh_reader.h"
+#include "batch.h"
 #include "bvh/bvh_writer.h"
 #include "cli_args.h"
 #include "commands.h"
@@ -57,28 +61,28 @@ ClipMetrics measureInput(const Motion& motion, const JointMapping& mapping, cons
   return metrics.finish();
 }
 
-}  // namespace
+// One clip's clean-up: what the command reads and writes (all checked by the caller before).
+struct CleanupRequest {
+  std::filesystem::path input;
+  std::filesystem::path output;
+  std::optional<std::filesystem::path> metrics;
+  std::optional<std::filesystem::path> contacts;  // --contacts, else IN.bvh.contacts.json when present
+  std::optional<std::filesystem::path> mapping;
+  std::optional<std::string> unit;
+  double output_fps = 0.0;  // 0: IN's own rate
+  double time_limit_seconds = 0.0;
+};
 
-int runCleanup(const Args& args) {
-  const ParsedArgs parsed = parseArgs(args, {{"out"}, {"contacts"}, {"metrics"}, {"unit"}, {"mapping"}, {"fps"}, {"time-limit"}});
-  if (parsed.positional.size() != 1) throw UsageError("cleanup needs exactly one input clip IN.bvh");
-  const std::filesystem::path input_file = parsed.positional[0];
-  const std::filesystem::path output = parsed.required("out");
-  const double output_fps = parsed.number("fps", 0.0, kOutputFpsRange);  // 0: IN's own rate
-  const std::optional<std::string> unit = lengthUnit(parsed);
-
-  std::vector<NamedPath> inputs = {{input_file, "the input clip"}, {contactTracksPath(input_file), "the clip's contact tracks"}};
-  if (auto contacts = parsed.value("contacts")) inputs.push_back({*contacts, "--contacts"});
-  if (auto mapping = parsed.value("mapping")) inputs.push_back({*mapping, "--mapping"});
-  std::vector<NamedPath> outputs = {{output, "--out"}};
-  if (auto metrics = parsed.value("metrics")) outputs.push_back({*metrics, "--metrics"});
-  checkOutputPaths(inputs, outputs);
-
+// Cleans up one clip and writes it (and its metrics) atomically; returns the report lines.
+std::string cleanUpFile(const CleanupRequest& request) {
+  const std::filesystem::path& input_file = request.input;
+  const std::filesystem::path& output = request.output;
+  const double output_fps = request.output_fps;
+  const std::optional<std::string>& unit = request.unit;
+  std::ostringstream log;
   const Motion motion = readBvh(input_file, /*minimum_frames=*/1);
   if (output_fps > 0.0) requireResampleableTo(motion, output_fps);
-  const JointMapping mapping = mapJoints(motion.skeleton, input_file.string(),
-                                         parsed.value("mapping") ? std::optional<std::filesystem::path>(*parsed.value("mapping"))
-                                                                 : std::nullopt);
+  const JointMapping mapping = mapJoints(motion.skeleton, input_file.string(), request.mapping);
   requireMeasurableRestPose(motion, mapping);
   // The clip's own canonical joints are the targets, and all the planning needs (up axis, floor,
   // contacts): the world positions of every joint are only ever computed a block at a time.
@@ -89,9 +93,8 @@ int runCleanup(const Args& args) {
   const double floor = ground.floor_height;
 
   Eigen::MatrixXi contacts = std::move(ground.contacts);
-  std::optional<std::filesystem::path> tracks_file;
-  if (auto given = parsed.value("contacts")) tracks_file = *given;
-  else if (std::filesystem::exists(contactTracksPath(input_file))) tracks_file = contactTracksPath(input_file);
+  std::optional<std::filesystem::path> tracks_file = request.contacts;
+  if (!tracks_file && std::filesystem::exists(contactTracksPath(input_file))) tracks_file = contactTracksPath(input_file);
   if (tracks_file) {
     const ContactTracks tracks = loadContactTracks(*tracks_file);
     if (tracks.labels.rows() != motion.frameCount())
@@ -99,14 +102,14 @@ int runCleanup(const Args& args) {
                        "contact tracks have " + std::to_string(tracks.labels.rows()) + " frames, the clip " +
                            std::to_string(motion.frameCount()));
     contacts = tracks.labels;
-    std::cout << "contacts from " << tracks_file->string() << "\n";
+    log << "contacts from " << tracks_file->string() << "\n";
   }
   const ClipMetrics before = measureInput(motion, mapping, contacts, convention, floor);
 
   CleanupReport report;
   const CleanupInput input(motion, mapping, std::move(targets), contacts, up, floor, convention.cm_per_unit);
   CleanupOptions options;
-  options.max_total_seconds = timeLimitOption(parsed);
+  options.max_total_seconds = request.time_limit_seconds;
   const bool resample = output_fps > 0.0 && !sameFrameRate(motion.fps(), output_fps);
   const std::vector<BoneReference> bones = skeletonBones(motion.skeleton);
   MetricsAccumulator after(/*keep_tracks=*/false);
@@ -140,7 +143,7 @@ int runCleanup(const Args& args) {
     });
   }
   const ClipMetrics cleaned_metrics = after.finish();
-  if (auto metrics_file = parsed.value("metrics")) {
+  if (const auto& metrics_file = request.metrics) {
     nlohmann::ordered_json json;
     json["input"] = nlohmann::json::parse(metricsToJson(before));
     json["cleaned"] = nlohmann::json::parse(metricsToJson(cleaned_metrics));
@@ -148,12 +151,59 @@ int runCleanup(const Args& args) {
     files.stage(*metrics_file, json.dump(2) + "\n");
   }
   files.commit();
-  for (const std::string& warning : report.warnings) std::cout << "warning: " << warning << "\n";
-  std::printf("wrote %s: %d frames at %.4g fps in %.2f s\n  foot skate %.2f -> %.2f cm/s, floor penetration %.2f -> %.2f cm, "
-              "residual %.2f cm, bone error %.1e cm\n",
-              output.c_str(), exported_frames, exported_fps, report.seconds, before.foot_skate_cm_s,
-              cleaned_metrics.foot_skate_cm_s, before.penetration_max_cm, cleaned_metrics.penetration_max_cm,
-              cleaned_metrics.residual_mean_cm, cleaned_metrics.bone_error_max_cm);
+  for (const std::string& warning : report.warnings) log << "warning: " << warning << "\n";
+  char figures[512];
+  std::snprintf(figures, sizeof figures,
+                "wrote %s: %d frames at %.4g fps in %.2f s\n  foot skate %.2f -> %.2f cm/s, floor penetration %.2f -> "
+                "%.2f cm, residual %.2f cm, bone error %.1e cm",
+                output.c_str(), exported_frames, exported_fps, report.seconds, before.foot_skate_cm_s,
+                cleaned_metrics.foot_skate_cm_s, before.penetration_max_cm, cleaned_metrics.penetration_max_cm,
+                cleaned_metrics.residual_mean_cm, cleaned_metrics.bone_error_max_cm);
+  log << figures;
+  return log.str();
+}
+
+}  // namespace
+
+int runCleanup(const Args& args) {
+  const ParsedArgs parsed =
+      parseArgs(args, {{"out"}, {"contacts"}, {"metrics"}, {"unit"}, {"mapping"}, {"fps"}, {"time-limit"}, {"jobs"}});
+  if (parsed.positional.empty()) throw UsageError("cleanup needs an input clip IN.bvh (or several, or folders)");
+  CleanupRequest request;
+  request.output_fps = parsed.number("fps", 0.0, kOutputFpsRange);
+  request.unit = lengthUnit(parsed);
+  request.time_limit_seconds = timeLimitOption(parsed);
+  if (auto mapping = parsed.value("mapping")) request.mapping = std::filesystem::path(*mapping);
+  if (auto contacts = parsed.value("contacts")) request.contacts = std::filesystem::path(*contacts);
+  const std::filesystem::path out = parsed.required("out");
+  std::optional<std::filesystem::path> metrics;
+  if (auto value = parsed.value("metrics")) metrics = std::filesystem::path(*value);
+
+  if (isBatch(parsed.positional)) {
+    if (request.contacts) throw UsageError("--contacts names one clip's tracks: not with several clips");
+    const std::vector<BatchItem> items = batchItems(parsed.positional, out, metrics);
+    std::vector<NamedPath> extra;
+    if (request.mapping) extra.push_back({*request.mapping, "--mapping"});
+    for (const BatchItem& item : items) extra.push_back({contactTracksPath(item.input), "the clip's contact tracks"});
+    checkBatchOutputs(items, extra);
+    return runBatch(items, jobsOption(parsed), [&](const BatchItem& item) {
+      CleanupRequest one = request;
+      one.input = item.input;
+      one.output = item.output;
+      one.metrics = item.metrics;
+      return cleanUpFile(one);
+    }, std::cout);
+  }
+  request.input = parsed.positional[0];
+  request.output = out;
+  request.metrics = metrics;
+  std::vector<NamedPath> inputs = {{request.input, "the input clip"}, {contactTracksPath(request.input), "the clip's contact tracks"}};
+  if (request.contacts) inputs.push_back({*request.contacts, "--contacts"});
+  if (request.mapping) inputs.push_back({*request.mapping, "--mapping"});
+  std::vector<NamedPath> outputs = {{out, "--out"}};
+  if (metrics) outputs.push_back({*metrics, "--metrics"});
+  checkOutputPaths(inputs, outputs);
+  std::cout << cleanUpFile(request) << "\n";
   return 0;
 }
 

@@ -2,13 +2,17 @@
 // projection), written as BVH.
 //
 // Two steps:
-//   1. stylizedTargets(): the clip's canonical joints in the style, in the clip's file space, with the
-//      content's foot contacts, at the representation's 60 fps;
+//   1. the clip's canonical joints in the style, in the clip's file space, with the content's foot
+//      contacts, at the representation's 60 fps (the network loaded once for every clip);
 //   2. writeStylizedOutput() (stylized_output.h): the IK clean-up onto the input's own skeleton, or
 //      with --no-cleanup the raw canonical positions.
+// Several clips or folders: batch mode (batch.h).
 #include <chrono>
 #include <iostream>
+#include <memory>
+#include <sstream>
 
+#include "batch.h"
 #include "bvh/bvh_writer.h"
 #include "cli_args.h"
 #include "commands.h"
@@ -27,13 +31,13 @@ namespace {
 struct StylizeRequest {
   std::filesystem::path network;
   std::optional<std::filesystem::path> loss_network;  // checked against the network's own loss network
-  std::filesystem::path input;
   double strength = 1.0;
-  style::PathMode path = style::PathMode::Content;
   style::DatasetOptions dataset;
+  OutputOptions output;  // --path, --no-cleanup, --fps, --time-limit; --metrics per clip
 };
 
-style::StylizedClip stylizedTargets(const StylizeRequest& request, double& seconds, style::Familiarity& familiarity) {
+// The style network, loaded and checked once for every clip.
+std::shared_ptr<const style::Stylizer> loadStylizer(const StylizeRequest& request) {
   nn::StyleModel model = style::loadCompatibleStyleModel(request.network, request.dataset.features);
   if (request.loss_network) {
     const nn::LossNetworkModel loss_network = style::loadCompatibleLossNetwork(*request.loss_network, request.dataset.features);
@@ -42,41 +46,60 @@ style::StylizedClip stylizedTargets(const StylizeRequest& request, double& secon
                        "this style network was trained against another loss network than " +
                            request.loss_network->string() + " (it embeds its own; omit --loss-network to use it)");
   }
-  const style::MotionClip clip = style::loadMotionClip(request.input, request.dataset);
-  familiarity = style::measureFamiliarity(model, clip.features.values);
-  const style::Stylizer stylizer(std::move(model), request.network.string());
+  return std::make_shared<const style::Stylizer>(std::move(model), request.network.string());
+}
+
+// One clip: its familiarity, the stylized targets (60 fps), then the clean-up and OUT
+// (writeStylizedOutput). Returns the report lines.
+std::string stylizeFile(const style::Stylizer& stylizer, const StylizeRequest& request, const std::filesystem::path& input,
+                        const std::filesystem::path& output, const std::optional<std::filesystem::path>& metrics) {
+  const style::MotionClip clip = style::loadMotionClip(input, request.dataset);
+  const style::Familiarity familiarity = style::measureFamiliarity(stylizer, clip.features.values);
   const auto start = std::chrono::steady_clock::now();
-  style::StylizedClip result = stylizer.stylize(clip.features, request.strength, request.path);
-  seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return result;
+  const style::StylizedClip stylized = stylizer.stylize(clip.features, request.strength, request.output.path);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::ostringstream log;
+  log << "stylized " << stylized.frameCount() << " frames (60 fps) at strength " << request.strength << " in "
+      << seconds * 1000.0 << " ms (path: " << style::pathModeName(request.output.path) << ")\n";
+  OutputOptions options = request.output;
+  options.metrics = metrics;
+  writeStylizedOutput(input, stylized, options, output, log, &familiarity);
+  std::string text = log.str();
+  while (!text.empty() && text.back() == '\n') text.pop_back();
+  return text;
 }
 
 }  // namespace
 
 int runStylize(const Args& args) {
-  std::vector<OptionSpec> specs = {{"loss-network"}, {"net"}, {"out"}, {"strength"}, {"unit"}};
+  std::vector<OptionSpec> specs = {{"loss-network"}, {"net"}, {"out"}, {"strength"}, {"unit"}, {"jobs"}};
   for (const OptionSpec& spec : outputOptionSpecs()) specs.push_back(spec);
   const ParsedArgs parsed = parseArgs(args, specs);
-  const OutputOptions output_options = outputOptions(parsed);
-  if (parsed.positional.size() != 1) throw UsageError("stylize needs exactly one input clip IN.bvh");
+  if (parsed.positional.empty()) throw UsageError("stylize needs an input clip IN.bvh (or several, or folders)");
   StylizeRequest request;
+  request.output = outputOptions(parsed);
   request.network = resolveNetworkArgument(parsed.required("net"));
   if (auto loss_network = parsed.value("loss-network")) request.loss_network = resolveNetworkArgument(*loss_network);
-  request.input = parsed.positional[0];
   request.strength = parsed.number("strength", 1.0, {0.0, 1.0});
-  request.path = output_options.path;
   request.dataset.features.unit = lengthUnit(parsed);
-  const std::filesystem::path output = parsed.required("out");
-  std::vector<NamedPath> inputs = {{request.input, "the input clip"}, {request.network, "--net"}};
-  if (request.loss_network) inputs.push_back({*request.loss_network, "--loss-network"});
-  checkOutputPaths(inputs, outputPaths(output_options, output));
+  const std::filesystem::path out = parsed.required("out");
+  std::vector<NamedPath> networks = {{request.network, "--net"}};
+  if (request.loss_network) networks.push_back({*request.loss_network, "--loss-network"});
 
-  double seconds = 0;
-  style::Familiarity familiarity;
-  const style::StylizedClip clip = stylizedTargets(request, seconds, familiarity);
-  std::cout << "stylized " << clip.frameCount() << " frames (60 fps) at strength " << request.strength << " in "
-            << seconds * 1000.0 << " ms (path: " << style::pathModeName(request.path) << ")\n";
-  writeStylizedOutput(request.input, clip, output_options, output, std::cout, &familiarity);
+  if (isBatch(parsed.positional)) {
+    const std::vector<BatchItem> items = batchItems(parsed.positional, out, request.output.metrics);
+    checkBatchOutputs(items, networks);
+    const std::shared_ptr<const style::Stylizer> stylizer = loadStylizer(request);
+    return runBatch(items, jobsOption(parsed), [&](const BatchItem& item) {
+      return stylizeFile(*stylizer, request, item.input, item.output, item.metrics);
+    }, std::cout);
+  }
+  const std::filesystem::path input = parsed.positional[0];
+  std::vector<NamedPath> inputs = networks;
+  inputs.insert(inputs.begin(), {input, "the input clip"});
+  checkOutputPaths(inputs, outputPaths(request.output, out));
+  const std::shared_ptr<const style::Stylizer> stylizer = loadStylizer(request);
+  std::cout << stylizeFile(*stylizer, request, input, out, request.output.metrics) << "\n";
   return 0;
 }
 

@@ -1,5 +1,6 @@
 #include "commands.h"
 
+#include "batch.h"
 #include "stylized_output.h"
 
 namespace motionstyle::cli {
@@ -118,7 +119,8 @@ const std::vector<Command>& commands() {
        runAdapt},
       {"stylize", "apply a trained style network to a clip",
        "usage: motionstyle-cli stylize --net NET [--loss-network LOSS] IN.bvh --out OUT.bvh [--strength S]\n"
-       "                              [--no-cleanup] [--metrics FILE.json] [--fps N]\n\n"
+       "                              [--no-cleanup] [--metrics FILE.json] [--fps N]\n"
+       "       motionstyle-cli stylize --net NET CLIPS... --out FOLDER [--metrics FOLDER] [--jobs N] [...]\n\n"
        "Runs the style network on the whole clip (any length, no seams), projects the result onto the\n"
        "loss network's motion manifold (decode(encode(.))), cleans it up with IK onto IN's own skeleton\n"
        "and writes OUT atomically.\n\n"
@@ -126,7 +128,7 @@ const std::vector<Command>& commands() {
        "  --loss-network LOSS\n"
        "                  optional: checked to be the loss network NET was trained against\n"
        "  --strength S    0 = the content unchanged, 1 = fully styled (default 1), blended in feature space\n"
-       "  --unit UNIT     IN's length unit (default: guessed)\n" MOTIONSTYLE_OUTPUT_OPTIONS_HELP,
+       "  --unit UNIT     IN's length unit (default: guessed)\n" MOTIONSTYLE_OUTPUT_OPTIONS_HELP MOTIONSTYLE_BATCH_HELP,
        runStylize},
       {"transfer", "style transfer by optimisation (Holden et al. 2016), no style network needed",
        "usage: motionstyle-cli transfer --loss-network LOSS --style CLIP.bvh IN.bvh --out OUT.bvh [--iterations N]\n\n"
@@ -147,7 +149,8 @@ const std::vector<Command>& commands() {
        runTransfer},
       {"cleanup", "IK clean-up of a clip on its own skeleton: feet locked, bones exact, on the floor",
        "usage: motionstyle-cli cleanup IN.bvh --out OUT.bvh [--contacts FILE] [--metrics FILE.json]\n"
-       "                              [--unit UNIT] [--mapping MAP.json] [--fps N] [--time-limit S]\n\n"
+       "                              [--unit UNIT] [--mapping MAP.json] [--fps N] [--time-limit S]\n"
+       "       motionstyle-cli cleanup CLIPS... --out FOLDER [--metrics FOLDER] [--jobs N] [...]\n\n"
        "Solves every frame's joint rotations and root position with Ceres so that the clip's canonical\n"
        "joints stay where they are, while heels and toes stay locked during contact, no foot goes below\n"
        "the floor and bone lengths stay exactly the skeleton's. OUT keeps IN's hierarchy, joint names,\n"
@@ -159,7 +162,7 @@ const std::vector<Command>& commands() {
        "  --unit UNIT       the file's length unit (default: guessed; see info)\n"
        "  --mapping FILE    joint-mapping JSON for a rig the automatic mapping cannot read\n"
        "  --fps N           output frame rate (default: IN's own); the solve and metrics use IN's rate\n"
-       MOTIONSTYLE_TIME_LIMIT_HELP,
+       MOTIONSTYLE_TIME_LIMIT_HELP MOTIONSTYLE_BATCH_HELP,
        runCleanup},
       {"eval", "evaluate a style network on held-out clips (JSON report)",
        "usage: motionstyle-cli eval --loss-network LOSS --net NET --style CLIP.bvh [--style LABEL=CLIP.bvh ...] CLIPS...\n"

@@ -54,6 +54,11 @@ Familiarity measureFamiliarity(const nn::StyleModel& network, const Eigen::Matri
   return familiarityFromReconstruction(features, projectFeatures({network.loss_network, network.normalisation, {}}, features));
 }
 
+Familiarity measureFamiliarity(const Stylizer& stylizer, const Eigen::MatrixXd& features) {
+  requireFeatures(features);
+  return familiarityFromReconstruction(features, stylizer.projectFeatures(features));
+}
+
 FamiliarityLevel familiarityLevel(double mean_cm) {
   if (mean_cm <= kFamiliarMaxCm) return FamiliarityLevel::Familiar;
   if (mean_cm <= kUnusualMaxCm) return FamiliarityLevel::Unusual;

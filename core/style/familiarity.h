@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "nn/network_file.h"
+#include "style/stylizer.h"
 
 namespace motionstyle::style {
 
@@ -37,6 +38,8 @@ struct Familiarity {
 Familiarity measureFamiliarity(const nn::LossNetworkModel& loss_network, const Eigen::MatrixXd& features);
 // The same through a style network's own loss network.
 Familiarity measureFamiliarity(const nn::StyleModel& network, const Eigen::MatrixXd& features);
+// The same through a Stylizer's prepared network (cheaper when one network reads many clips).
+Familiarity measureFamiliarity(const Stylizer& stylizer, const Eigen::MatrixXd& features);
 // The reading from a reconstruction already computed: reconstructed = L(features), both 66 x frames
 // (for callers that need L(C) for more than this, e.g. evaluation.h).
 Familiarity familiarityFromReconstruction(const Eigen::MatrixXd& features, const Eigen::MatrixXd& reconstructed);

@@ -73,6 +73,16 @@ StylizedClip Stylizer::stylize(const MotionFeatures& content, double strength, P
   return clip;
 }
 
+Eigen::MatrixXd Stylizer::projectFeatures(const Eigen::MatrixXd& features) const {
+  requireFeatures(features, "Stylizer::projectFeatures");
+  nn::Mat<float> projected;
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    projected = fast_->project(model_.normalisation.normalized(padEdges(features)));
+  }
+  return cropEdges(model_.normalisation.denormalized(projected));
+}
+
 Eigen::MatrixXd projectFeatures(const nn::LossNetworkModel& loss_network, const Eigen::MatrixXd& features) {
   requireFeatures(features, "projectFeatures");
   nn::FastStylizer fast(loss_network.network);

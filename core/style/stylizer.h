@@ -60,6 +60,11 @@ class Stylizer {
   // The whole clip: features, contacts and world positions in the clip's file space.
   StylizedClip stylize(const MotionFeatures& content, double strength, PathMode path = PathMode::Content) const;
 
+  // L(x) = decode(encode(x)) through this network's own loss network (the projection alone), with the
+  // kernels prepared once (a fresh projectFeatures() prepares them on every call: 0.1 s, more than a
+  // short clip's whole stylize). What measureFamiliarity(const Stylizer&, ...) reads. Thread-safe.
+  Eigen::MatrixXd projectFeatures(const Eigen::MatrixXd& features) const;
+
  private:
   nn::StyleModel model_;
   std::string source_name_;

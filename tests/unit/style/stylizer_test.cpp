@@ -7,6 +7,7 @@
 #include "common/errors.h"
 #include "style/evaluation.h"
 #include "style/optimization_transfer.h"
+#include "style/familiarity.h"
 #include "style/stylizer.h"
 #include "style_test_support.h"
 
@@ -97,6 +98,22 @@ TEST(Stylizer, NoSeamsAwayFromACut) {
   EXPECT_LT((whole.rightCols(380) - second.rightCols(380)).cwiseAbs().maxCoeff(), 1e-4 * scale);
   // ... and near the cut the halves do differ (the test can fail).
   EXPECT_GT((whole.middleCols(495, 5) - first.rightCols(5)).cwiseAbs().maxCoeff(), 1e-4 * scale);
+}
+
+TEST(Stylizer, ItsPreparedProjectionIsTheLossNetworksAndReadsTheSameFamiliarity) {
+  const nn::StyleModel model = test::tinyStyleModel();
+  const style::Stylizer stylizer(model);
+  EXPECT_THROW(stylizer.projectFeatures(Eigen::MatrixXd::Zero(65, 10)), std::invalid_argument);
+  for (const style::MotionClip& clip : test::fixtureClips()) {
+    const Eigen::MatrixXd fresh = style::projectFeatures({model.loss_network, model.normalisation, {}}, clip.features.values);
+    const Eigen::MatrixXd prepared = stylizer.projectFeatures(clip.features.values);
+    ASSERT_EQ(prepared.cols(), clip.features.values.cols());
+    EXPECT_LE((prepared - fresh).cwiseAbs().maxCoeff(), 1e-9);
+    // Twice through the same prepared kernels: the same answer (nothing left over from a call).
+    EXPECT_EQ(stylizer.projectFeatures(clip.features.values), prepared);
+    EXPECT_NEAR(style::measureFamiliarity(stylizer, clip.features.values).mean_cm,
+                style::measureFamiliarity(model, clip.features.values).mean_cm, 1e-9);
+  }
 }
 
 TEST(OptimizationTransfer, ReducesTheStyleDistanceAndKeepsTheLength) {
