@@ -35,11 +35,15 @@ int runTrainStyle(const Args& args) {
   specs.push_back({"content", true, true});
   specs.push_back({"style", true, true});
   specs.push_back({"weights"});
+  specs.push_back({"quick", false});
   const ParsedArgs parsed = parseArgs(args, specs);
+  const bool quick = parsed.has("quick");
+  if (quick && parsed.has("epochs")) throw UsageError("--quick is a number of epochs: give --quick or --epochs, not both");
 
   style::StyleTrainingJob job;
   style::StyleTrainingConfig& config = job.config;
-  config.settings = trainingSettings(parsed, {1e-3, 100, style::defaultContentAugmentation()});
+  config.settings = trainingSettings(
+      parsed, {1e-3, quick ? style::kQuickStyleEpochs : style::kFullStyleEpochs, style::defaultContentAugmentation()});
   config.loss_network = resolveNetworkArgument(parsed.required("loss-network"));
   for (const std::string& content : parsed.values("content")) config.content.emplace_back(content);
   for (const std::string& content : parsed.positional) config.content.emplace_back(content);  // --content A B

@@ -15,6 +15,8 @@
 #include <QTreeWidget>
 #include <QVBoxLayout>
 
+#include <tuple>
+
 #include "network_list.h"
 #include "nn/transformation_network.h"
 
@@ -120,7 +122,19 @@ TrainTab::TrainTab(ClipRoles roles, QWidget* parent)
   epochs_spin_ = new QSpinBox(this);
   epochs_spin_->setObjectName(QStringLiteral("Epochs"));
   epochs_spin_->setRange(1, 100000);
-  epochs_spin_->setValue(100);
+  epochs_spin_->setValue(style::kQuickStyleEpochs);
+  epochs_spin_->setToolTip(tr("Passes over the training set. %1 (Quick): a usable style in seconds; %2 (Full): the "
+                              "shipped networks' training").arg(style::kQuickStyleEpochs).arg(style::kFullStyleEpochs));
+  auto* epochs_row = new QHBoxLayout;
+  epochs_row->addWidget(epochs_spin_, 1);
+  for (const auto& [text, name, epochs] : {std::tuple{tr("Quick"), "QuickEpochs", style::kQuickStyleEpochs},
+                                           std::tuple{tr("Full"), "FullEpochs", style::kFullStyleEpochs}}) {
+    auto* preset = new QPushButton(text, this);
+    preset->setObjectName(QString::fromLatin1(name));
+    preset->setToolTip(tr("%1 epochs").arg(epochs));
+    connect(preset, &QPushButton::clicked, epochs_spin_, [spin = epochs_spin_, count = epochs] { spin->setValue(count); });
+    epochs_row->addWidget(preset);
+  }
   learning_rate_spin_ = new QDoubleSpinBox(this);
   learning_rate_spin_->setObjectName(QStringLiteral("LearningRate"));
   learning_rate_spin_->setDecimals(6);
@@ -142,7 +156,7 @@ TrainTab::TrainTab(ClipRoles roles, QWidget* parent)
   form->addRow(tr("Foot weight"), foot_weight_);
   form->addRow(tr("Bone weight"), bone_weight_);
   form->addRow(tr("Trajectory weight"), trajectory_weight_);
-  form->addRow(tr("Epochs"), epochs_spin_);
+  form->addRow(tr("Epochs"), epochs_row);
   form->addRow(tr("Learning rate (start)"), learning_rate_spin_);
   form->addRow(tr("Hidden units"), hidden_spin_);
 

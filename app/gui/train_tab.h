@@ -16,6 +16,7 @@
 #include "clip_roles.h"
 #include "nn/transformation_objective.h"
 #include "style/style_pairing.h"
+#include "style/training.h"
 
 class QDoubleSpinBox;
 class QLabel;
@@ -32,7 +33,7 @@ class TrainTab : public QWidget {
  public:
   struct Form {
     nn::LossWeights weights;  // unweighted terms are multiplied by these (eq. 10)
-    int epochs = 100;
+    int epochs = style::kQuickStyleEpochs;
     double learning_rate = 1e-3;  // Adam
     int hidden_units = 128;       // of the transformation network (new networks only)
   };

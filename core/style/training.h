@@ -172,6 +172,12 @@ LossNetworkTrainingResult trainLossNetwork(const LossNetworkTrainingConfig& conf
 
 // ---- Transformation network ---------------------------------------------------------------------
 
+// A style network's epochs. Full: the shipped networks' training. Quick: a usable style in seconds
+// (the same held-out style ratio within a few hundredths, a tenth of the time; fewer than 5 epochs end
+// inside the learning-rate warm-up and barely style; figures in docs/decisions.md).
+constexpr int kFullStyleEpochs = 100;
+constexpr int kQuickStyleEpochs = 6;
+
 struct StyleTrainingConfig {
   TrainingSettings settings;
   std::filesystem::path loss_network;        // the loss network file (with its normalisation)

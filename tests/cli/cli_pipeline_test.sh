@@ -28,6 +28,12 @@ done
 expect 0 "wrote $work/style.net: 1 epochs" "$cli" train-style --loss-network "$work/ae.net" --content "$content" \
   --style "$style" --out "$work/style.net" $tiny --weights content=1,style=50,foot=0.5,traj=0.25
 expect 0 "loss weights: content 1, style 50, foot 0.5, bone 0.03, trajectory 0.25" "$cli" info "$work/style.net"
+# --quick: the quick schedule's epochs (a usable style in seconds); it is a number of epochs, so not
+# with --epochs.
+expect 0 "wrote $work/quick.net: 6 epochs" "$cli" train-style --loss-network "$work/ae.net" --content "$content" \
+  --style "$style" --out "$work/quick.net" --quick --hidden 8 --threads 1
+expect 2 "not both" "$cli" train-style --loss-network "$work/ae.net" --content "$content" --style "$style" \
+  --out "$work/quick2.net" --quick --epochs 3
 expect 0 "wrote $work/out.bvh: 300 frames" "$cli" stylize --net "$work/style.net" "$content" --out "$work/out.bvh"
 expect 0 "frames       300 at 30 fps" "$cli" info "$work/out.bvh"
 

@@ -9,6 +9,7 @@
 #include <QMimeData>
 #include <QPushButton>
 #include <QSettings>
+#include <QSpinBox>
 #include <QStatusBar>
 #include <QTabWidget>
 #include <QTemporaryDir>
@@ -21,6 +22,7 @@
 #include "gui_test_support.h"
 #include "main_window.h"
 #include "network_panel.h"
+#include "style/training.h"
 #include "timeline_widget.h"
 
 using namespace motionstyle;
@@ -211,6 +213,23 @@ class MainWindowTest : public QObject {
     QVERIFY(status != nullptr);
     QVERIFY2(status->text().contains(QStringLiteral("3 clips")) && status->text().contains(QStringLiteral("2 failed")),
              qPrintable(status->text()));
+  }
+
+  // Issue 15: a new style in seconds. The Train tab starts on the quick schedule; Full and Quick set the
+  // epochs a click away.
+  void theTrainTabStartsQuickAndOffersTheFullTraining() {
+    MainWindow window(/*persist_settings=*/false);
+    auto* epochs = window.findChild<QSpinBox*>(QStringLiteral("Epochs"));
+    auto* full = window.findChild<QPushButton*>(QStringLiteral("FullEpochs"));
+    auto* quick = window.findChild<QPushButton*>(QStringLiteral("QuickEpochs"));
+    QVERIFY(epochs != nullptr && full != nullptr && quick != nullptr);
+    QCOMPARE(epochs->value(), style::kQuickStyleEpochs);
+    QCOMPARE(window.networkPanel()->trainingForm().epochs, style::kQuickStyleEpochs);
+    QTest::mouseClick(full, Qt::LeftButton);
+    QCOMPARE(epochs->value(), style::kFullStyleEpochs);
+    QCOMPARE(window.networkPanel()->trainingForm().epochs, style::kFullStyleEpochs);
+    QTest::mouseClick(quick, Qt::LeftButton);
+    QCOMPARE(epochs->value(), style::kQuickStyleEpochs);
   }
 
   // Issue 14: scrolling the training form must not change the value under the pointer.
