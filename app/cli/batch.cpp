@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <chrono>
 #include <exception>
 #include <iostream>
@@ -56,15 +57,10 @@ bool isBatch(const std::vector<std::string>& inputs) {
 
 std::vector<BatchItem> batchItems(const std::vector<std::string>& inputs, const fs::path& out_folder,
                                   const std::optional<fs::path>& metrics_folder) {
-  requireFolder(out_folder, "--out");
-  if (metrics_folder) requireFolder(*metrics_folder, "--metrics");
   std::vector<BatchItem> items;
   const auto add = [&](const fs::path& input, const fs::path& relative) {
     BatchItem item{input, out_folder / relative, std::nullopt};
     if (metrics_folder) item.metrics = *metrics_folder / fs::path(relative.string() + ".json");
-    std::error_code error;
-    fs::create_directories(item.output.parent_path(), error);
-    if (item.metrics) fs::create_directories(item.metrics->parent_path(), error);
     items.push_back(std::move(item));
   };
   for (const std::string& given : inputs) {
@@ -79,6 +75,13 @@ std::vector<BatchItem> batchItems(const std::vector<std::string>& inputs, const 
     } else {
       throw InputError(given, 0, "no such file or folder");
     }
+  }
+  // Only once every input is found: no folder is left behind by a command that never starts.
+  requireFolder(out_folder, "--out");
+  if (metrics_folder) requireFolder(*metrics_folder, "--metrics");
+  for (const BatchItem& item : items) {
+    requireFolder(item.output.parent_path(), "--out");
+    if (item.metrics) requireFolder(item.metrics->parent_path(), "--metrics");
   }
   return items;
 }

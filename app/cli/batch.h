@@ -39,9 +39,9 @@ struct BatchItem {
 // True when the command's clips ask for batch mode: more than one, or a folder.
 bool isBatch(const std::vector<std::string>& inputs);
 
-// The clips of `inputs` and where each goes (see the top of this file); the output folders are
-// created. UsageError when no clip is found, or --out (or --metrics) names an existing file;
-// InputError naming an input that does not exist.
+// The clips of `inputs` and where each goes (see the top of this file); once all are found, the
+// output folders are created. InputError naming an input that does not exist or a folder without
+// clips; UsageError when --out (or --metrics) names an existing file.
 std::vector<BatchItem> batchItems(const std::vector<std::string>& inputs, const std::filesystem::path& out_folder,
                                   const std::optional<std::filesystem::path>& metrics_folder);
 

@@ -49,7 +49,8 @@ expect 2 "\-\-contacts" "$cli" cleanup "$work/in/a.bvh" "$work/in/sub/b.bvh" --o
 expect 2 "\-\-jobs must be in" "$cli" cleanup "$work/in" --out "$work/o" --jobs 0
 mkdir -p "$work/empty"
 expect 2 "holds no .bvh" "$cli" stylize --net elderly "$work/empty" --out "$work/o"
-expect 2 "no-such.bvh" "$cli" cleanup "$work/in/a.bvh" "$work/no-such.bvh" --out "$work/o"
+expect 2 "no-such.bvh" "$cli" cleanup "$work/in/a.bvh" "$work/no-such.bvh" --out "$work/never"
+[ -e "$work/never" ] && fail "a command that never started left its output folder"
 
 if [ "$failures" -ne 0 ]; then echo "$failures batch check(s) failed"; exit 1; fi
 echo "all batch checks passed"
