@@ -4,11 +4,11 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cerrno>
 #include <cstring>
 
 #include "common/atomic_file.h"
+#include "common/clip_files.h"
 #include "common/errors.h"
 
 namespace motionstyle {
@@ -19,13 +19,6 @@ std::filesystem::path comparable(const std::filesystem::path& path) {
   std::filesystem::path resolved = std::filesystem::weakly_canonical(followSymlinks(path), error);
   if (error) resolved = std::filesystem::absolute(path, error).lexically_normal();
   return resolved;
-}
-
-bool isClip(const std::filesystem::path& path) {
-  std::string extension = path.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return extension == ".bvh";
 }
 
 // True if `file` (existing) lies anywhere under `folder`.
@@ -92,7 +85,7 @@ void checkOutputPaths(const std::vector<NamedPath>& inputs, const std::vector<Na
       if (sameFile(output.path, input.path))
         throw WriteError(output.path.string(), output.role + " is " + input.role + " (" + input.path.string() +
                                                    "): refusing to overwrite an input");
-      if (std::filesystem::is_directory(input.path, error) && isClip(output.path) &&
+      if (std::filesystem::is_directory(input.path, error) && isClipFile(output.path) &&
           std::filesystem::exists(output.path, error) && isInside(output.path, input.path))
         throw WriteError(output.path.string(), output.role + " is a clip inside " + input.role + " (" +
                                                    input.path.string() + "): refusing to overwrite an input");

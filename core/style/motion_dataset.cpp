@@ -1,10 +1,10 @@
 #include "style/motion_dataset.h"
 
 #include <algorithm>
-#include <cctype>
 #include <stdexcept>
 
 #include "bvh/bvh_reader.h"
+#include "common/clip_files.h"
 #include "common/errors.h"
 #include "mapping/joint_mapping.h"
 #include "nn/losses.h"
@@ -14,12 +14,6 @@ namespace motionstyle::style {
 namespace {
 
 namespace fs = std::filesystem;
-
-bool hasBvhExtension(const fs::path& file) {
-  std::string extension = file.extension().string();
-  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return extension == ".bvh";
-}
 
 struct FoundFile {
   fs::path path;
@@ -34,7 +28,7 @@ std::vector<FoundFile> findFiles(const std::vector<fs::path>& inputs) {
       std::vector<fs::path> in_folder;
       for (fs::recursive_directory_iterator it(input, fs::directory_options::skip_permission_denied, error), end;
            !error && it != end; it.increment(error))
-        if (it->is_regular_file(error) && hasBvhExtension(it->path())) in_folder.push_back(it->path());
+        if (it->is_regular_file(error) && isClipFile(it->path())) in_folder.push_back(it->path());
       if (error) throw InputError(input.string(), 0, "cannot list the folder: " + error.message());
       if (in_folder.empty()) throw InputError(input.string(), 0, "the folder holds no .bvh file (searched recursively)");
       std::sort(in_folder.begin(), in_folder.end());
