@@ -2,38 +2,22 @@
 
 #include <algorithm>
 #include <atomic>
-#include <cctype>
 #include <chrono>
 #include <exception>
-#include <iostream>
 #include <map>
 #include <mutex>
 #include <thread>
 
 #include "common/errors.h"
 #include "common/text_safety.h"
+#include "failure_report.h"
 #include "progress_bar.h"
+#include "style/motion_dataset.h"
 
 namespace motionstyle::cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-bool isBvhFile(const fs::path& path) {
-  std::string extension = path.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
-  return extension == ".bvh";
-}
-
-// The .bvh files below `folder`, sorted, each with its path relative to the folder.
-std::vector<std::pair<fs::path, fs::path>> clipsBelow(const fs::path& folder) {
-  std::vector<std::pair<fs::path, fs::path>> clips;
-  for (const fs::directory_entry& entry : fs::recursive_directory_iterator(folder, fs::directory_options::skip_permission_denied))
-    if (entry.is_regular_file() && isBvhFile(entry.path()))
-      clips.emplace_back(entry.path(), entry.path().lexically_relative(folder));
-  std::sort(clips.begin(), clips.end());
-  return clips;
-}
 
 void requireFolder(const fs::path& folder, const std::string& option) {
   std::error_code error;
@@ -42,11 +26,6 @@ void requireFolder(const fs::path& folder, const std::string& option) {
   fs::create_directories(folder, error);
   if (error) throw WriteError(folder.string(), "cannot create the folder: " + error.message());
 }
-
-struct Failure {
-  std::string message;
-  bool input_or_output = true;  // an Error (InputError, WriteError): exit 2; anything else: 1
-};
 
 }  // namespace
 
@@ -64,17 +43,12 @@ std::vector<BatchItem> batchItems(const std::vector<std::string>& inputs, const 
     items.push_back(std::move(item));
   };
   for (const std::string& given : inputs) {
-    std::error_code error;
+    // The dataset's listing: a folder's clips below it, sorted; InputError for a missing input or a
+    // folder without clips.
     const fs::path path(given);
-    if (fs::is_directory(path, error)) {
-      const auto clips = clipsBelow(path);
-      if (clips.empty()) throw InputError(given, 0, "the folder holds no .bvh file");
-      for (const auto& [file, relative] : clips) add(file, relative);
-    } else if (fs::exists(path, error)) {
-      add(path, path.filename());
-    } else {
-      throw InputError(given, 0, "no such file or folder");
-    }
+    std::error_code error;
+    const bool folder = fs::is_directory(path, error);
+    for (const fs::path& file : style::findBvhFiles({path})) add(file, folder ? file.lexically_relative(path) : file.filename());
   }
   // Only once every input is found: no folder is left behind by a command that never starts.
   requireFolder(out_folder, "--out");
@@ -102,30 +76,29 @@ int jobsOption(const ParsedArgs& parsed) {
   return parsed.integer("jobs", hardware, 1, 64);
 }
 
-int runBatch(const std::vector<BatchItem>& items, int jobs, const BatchWork& work, std::ostream& out) {
+int runBatch(const std::vector<BatchItem>& items, int jobs, const BatchWork& work, const std::string& command,
+             std::ostream& out) {
   InterruptGuard guard;
   ProgressBar bar(out, ProgressBar::stdoutIsTerminal());
   std::mutex mutex;  // the bar, the failures and the counts
-  std::map<std::size_t, Failure> failures;
+  std::map<std::size_t, std::exception_ptr> failures;  // reported in clip order at the end
   std::atomic<std::size_t> next{0};
   std::size_t finished = 0;
   const auto start = std::chrono::steady_clock::now();
   const auto worker = [&] {
     for (std::size_t i = next++; i < items.size() && !guard.interrupted(); i = next++) {
       std::string summary;
-      std::optional<Failure> failure;
+      std::exception_ptr failure;
       try {
         summary = work(items[i]);
-      } catch (const Error& error) {
-        failure = Failure{error.what(), true};
-      } catch (const std::exception& error) {
-        failure = Failure{std::string("internal error: ") + error.what(), false};
+      } catch (...) {
+        failure = std::current_exception();
       }
       const std::lock_guard<std::mutex> lock(mutex);
       ++finished;
       if (failure) {
         bar.line("failed: " + safeLines(items[i].input.string()));
-        failures.emplace(i, std::move(*failure));
+        failures.emplace(i, failure);
       } else {
         bar.line(safeLines(summary));
       }
@@ -149,11 +122,8 @@ int runBatch(const std::vector<BatchItem>& items, int jobs, const BatchWork& wor
       << " job(s))";
   if (guard.interrupted()) out << "; interrupted: " << items.size() - finished << " not started";
   out << "\n";
-  bool internal = false;
-  for (const auto& [index, failure] : failures) {
-    std::cerr << "error: " << safeLines(failure.message) << "\n";
-    internal = internal || !failure.input_or_output;
-  }
+  bool internal = false;  // any failure that is not the user's input or output (exit 1, not 2)
+  for (const auto& [index, failure] : failures) internal = reportFailure(failure, command) == 1 || internal;
   if (guard.interrupted()) return kInterruptedExitCode;
   if (failures.empty()) return 0;
   return internal ? 1 : 2;

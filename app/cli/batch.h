@@ -59,6 +59,8 @@ using BatchWork = std::function<std::string(const BatchItem& item)>;
 // Runs `work` for every item on `jobs` threads (at most one per item), prints each clip's summary as
 // it finishes above a progress bar with ETA on `out`, then every failure on stderr. Returns the exit
 // code above.
-int runBatch(const std::vector<BatchItem>& items, int jobs, const BatchWork& work, std::ostream& out);
+// `command` names the command in those messages (failure_report.h, the CLI's one translation).
+int runBatch(const std::vector<BatchItem>& items, int jobs, const BatchWork& work, const std::string& command,
+             std::ostream& out);
 
 }  // namespace motionstyle::cli

@@ -192,7 +192,7 @@ int runCleanup(const Args& args) {
       one.output = item.output;
       one.metrics = item.metrics;
       return cleanUpFile(one);
-    }, std::cout);
+    }, "cleanup", std::cout);
   }
   request.input = parsed.positional[0];
   request.output = out;

@@ -92,7 +92,7 @@ int runStylize(const Args& args) {
     const std::shared_ptr<const style::Stylizer> stylizer = loadStylizer(request);
     return runBatch(items, jobsOption(parsed), [&](const BatchItem& item) {
       return stylizeFile(*stylizer, request, item.input, item.output, item.metrics);
-    }, std::cout);
+    }, "stylize", std::cout);
   }
   const std::filesystem::path input = parsed.positional[0];
   std::vector<NamedPath> inputs = networks;

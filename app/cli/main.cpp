@@ -2,13 +2,11 @@
 #include <algorithm>
 #include <exception>
 #include <iostream>
-#include <new>
 
 #include "cli_args.h"
 #include "commands.h"
 #include "common/allocator_tuning.h"
-#include "common/errors.h"
-#include "common/text_safety.h"
+#include "failure_report.h"
 
 namespace {
 
@@ -25,37 +23,6 @@ void printUsage(std::ostream& out) {
          "must not be written (an input, a folder, a read-only place: checked before any work starts),\n"
          "1 internal error,\n"
          "130 interrupted (Ctrl-C; a training run keeps its last checkpoint).\n";
-}
-
-// The one translation of a failure into a message on stderr and an exit code (README "Exit codes").
-// Messages name the user's files: safeLines keeps a file name from driving the terminal.
-int reportFailure(const std::exception_ptr& failure, const std::string& command) {
-  using namespace motionstyle;
-  try {
-    std::rethrow_exception(failure);
-  } catch (const cli::UsageError& error) {
-    std::cerr << "motionstyle-cli " << command << ": " << safeLines(error.what()) << "\n(see 'motionstyle-cli "
-              << command << " --help')\n";
-    return 2;
-  } catch (const OperationCancelled&) {
-    std::cerr << "interrupted\n";
-    return 130;
-  } catch (const TrainingDiverged& error) {  // the settings, not the data: no exit 2
-    std::cerr << "error: " << safeLines(error.what()) << "\n";
-    return 1;
-  } catch (const Error& error) {  // InputError, WriteError: the user's file, path or disk
-    std::cerr << "error: " << safeLines(error.what()) << "\n";
-    return 2;
-  } catch (const std::bad_alloc&) {
-    std::cerr << "internal error: out of memory\n";
-    return 1;
-  } catch (const std::exception& error) {
-    std::cerr << "internal error: " << safeLines(error.what()) << "\n";
-    return 1;
-  } catch (...) {
-    std::cerr << "internal error\n";
-    return 1;
-  }
 }
 
 }  // namespace
@@ -89,6 +56,6 @@ int main(int argc, char** argv) {
   try {
     return command->run(args);
   } catch (...) {
-    return reportFailure(std::current_exception(), command->name);
+    return cli::reportFailure(std::current_exception(), command->name);
   }
 }
