@@ -147,15 +147,19 @@ bool NetworkList::nameTaken(const QString& name, const Entry* except) const {
                      [&](const Entry& other) { return &other != except && other.name == name; });
 }
 
+QString NetworkList::uniqueName(const QString& base, const Entry* except) const {
+  QString name = base;
+  for (int counter = 2; nameTaken(name, except); ++counter) name = QStringLiteral("%1 (%2)").arg(base).arg(counter);
+  return name;
+}
+
 void NetworkList::addNetwork(std::shared_ptr<const nn::StyleModel> model, const QString& name) {
   addEntry({std::move(model), name, QString(), false});
 }
 
 void NetworkList::addEntry(Entry entry) {
   // Names tell networks apart everywhere (this list, the Result panel's Style choice, the close prompt).
-  const QString base = entry.name;
-  for (int counter = 2; nameTaken(entry.name, nullptr); ++counter)
-    entry.name = QStringLiteral("%1 (%2)").arg(base).arg(counter);
+  entry.name = uniqueName(entry.name, nullptr);
   networks_.push_back(std::move(entry));
   refresh();
   setCurrentIndex(networkCount() - 1);
@@ -209,9 +213,7 @@ bool NetworkList::saveNetwork(int index, const QString& file, bool overwrite_con
   }
   // The list shows the file's name from now on (unique: "name (2)" when another network has it).
   const QString old_name = entry.name;
-  const QString base = QFileInfo(absolute).completeBaseName();
-  entry.name = base;
-  for (int counter = 2; nameTaken(entry.name, &entry); ++counter) entry.name = QStringLiteral("%1 (%2)").arg(base).arg(counter);
+  entry.name = uniqueName(QFileInfo(absolute).completeBaseName(), &entry);
   entry.file = absolute;
   entry.saved = true;
   rememberFolder(QFileInfo(absolute).absolutePath());

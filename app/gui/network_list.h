@@ -93,7 +93,9 @@ class NetworkList : public QWidget {
   };
 
   void addEntry(Entry entry);
-  bool nameTaken(const QString& name, const Entry* except) const;
+  bool nameTaken(const QString& name, const Entry* except) const;  // by a network other than `except`
+  // `base`, or "base (2)", "base (3)", ...: the first no network other than `except` has.
+  QString uniqueName(const QString& base, const Entry* except) const;
   void refresh();
   void showDetails();
   void updateButtons();
