@@ -28,7 +28,7 @@ if [ "${MOTIONSTYLE_SKIP_SANITIZERS:-0}" != "1" ]; then
   # this Eigen-heavy code (7.7 vs 13.7 min on 2 cores) for ~30 s more test time.
   cmake -S "$root" -B "$build_root/sanitize" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMOTIONSTYLE_SANITIZE=ON \
         -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g1" \
-        -DMOTIONSTYLE_BUILD_GUI=OFF -DMOTIONSTYLE_BUILD_BENCH=OFF -DMOTIONSTYLE_ARCH=portable
+        -DMOTIONSTYLE_BUILD_CLI=OFF -DMOTIONSTYLE_BUILD_GUI=OFF -DMOTIONSTYLE_BUILD_BENCH=OFF -DMOTIONSTYLE_ARCH=portable
   cmake --build "$build_root/sanitize" -j"$jobs"
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --test-dir "$build_root/sanitize" -L unit --output-on-failure -j"$jobs"

@@ -71,6 +71,7 @@ struct CleanupRequest {
   std::optional<std::string> unit;
   double output_fps = 0.0;  // 0: IN's own rate
   double time_limit_seconds = 0.0;
+  int cleanup_threads = 0;  // CleanupOptions::threads (0: every hardware thread)
 };
 
 // Cleans up one clip and writes it (and its metrics) atomically; returns the report lines.
@@ -110,6 +111,7 @@ std::string cleanUpFile(const CleanupRequest& request) {
   const CleanupInput input(motion, mapping, std::move(targets), contacts, up, floor, convention.cm_per_unit);
   CleanupOptions options;
   options.max_total_seconds = request.time_limit_seconds;
+  options.threads = request.cleanup_threads;
   const bool resample = output_fps > 0.0 && !sameFrameRate(motion.fps(), output_fps);
   const std::vector<BoneReference> bones = skeletonBones(motion.skeleton);
   MetricsAccumulator after(/*keep_tracks=*/false);
@@ -186,7 +188,9 @@ int runCleanup(const Args& args) {
     if (request.mapping) extra.push_back({*request.mapping, "--mapping"});
     for (const BatchItem& item : items) extra.push_back({contactTracksPath(item.input), "the clip's contact tracks"});
     checkBatchOutputs(items, extra);
-    return runBatch(items, jobsOption(parsed), [&](const BatchItem& item) {
+    const int jobs = jobsOption(parsed);
+    if (jobs > 1) request.cleanup_threads = 1;  // the clips share the cores
+    return runBatch(items, jobs, [&](const BatchItem& item) {
       CleanupRequest one = request;
       one.input = item.input;
       one.output = item.output;

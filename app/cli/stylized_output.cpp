@@ -92,6 +92,7 @@ void writeStylizedOutput(const std::filesystem::path& content_file, const style:
   job.mapping = mapJoints(content.skeleton, content_file.string());
   job.stylized = stylized;
   job.options.max_total_seconds = options.time_limit_seconds;
+  job.options.threads = options.cleanup_threads;
   job.output_fps = options.fps;
   const style::StylizeCleanupResult cleaned = job.run();
   AtomicFileBatch outputs;  // the clip and its metrics: both or neither

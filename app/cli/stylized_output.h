@@ -42,6 +42,9 @@ struct OutputOptions {
   double fps = 0.0;                              // output frame rate; 0 = the content's own
   // --time-limit: the clean-up's wall-clock budget (CleanupOptions::max_total_seconds); none by default.
   double time_limit_seconds = std::numeric_limits<double>::infinity();
+  // Threads of the clean-up (CleanupOptions::threads; 0: every hardware thread). Batch mode gives
+  // each clip one when it runs several clips at once.
+  int cleanup_threads = 0;
   nlohmann::ordered_json extra_metrics = nlohmann::ordered_json::object();  // added to --metrics
 };
 

@@ -1,4 +1,4 @@
-// Clean-up orchestration: validation, contact locks and rest heights, the Ceres solve
+// Clean-up orchestration: validation, contact locks and rest heights, the solve
 // (cleanup_solver.cpp), the output Motion and the report's warnings.
 
 #include "ik/cleanup.h"
@@ -8,7 +8,6 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
-#include <span>
 #include <utility>
 
 #include "features/foot_contacts.h"
@@ -184,10 +183,14 @@ void CleanupOptions::validate() const {
   if (window_frames < 1) throw std::invalid_argument("cleanup options: window_frames must be >= 1");
   if (window_overlap < 0 || window_overlap >= window_frames)
     throw std::invalid_argument("cleanup options: window_overlap must lie in [0, window_frames)");
+  if (solver == CleanupSolver::KinematicTree && window_frames != 1)
+    throw std::invalid_argument("cleanup options: the kinematic tree solver solves one frame at a time (window_frames 1)");
+  if (chunk_frames < 1) throw std::invalid_argument("cleanup options: chunk_frames must be >= 1");
+  if (chunk_lead_in < 0) throw std::invalid_argument("cleanup options: chunk_lead_in must be >= 0");
   if (max_iterations < 1) throw std::invalid_argument("cleanup options: max_iterations must be >= 1");
   if (!(max_total_seconds > 0.0))  // +infinity: no budget
     throw std::invalid_argument("cleanup options: max_total_seconds must be positive");
-  if (threads < 1) throw std::invalid_argument("cleanup options: threads must be >= 1");
+  if (threads < 0) throw std::invalid_argument("cleanup options: threads must be >= 0 (0: every hardware thread)");
   if (block_frames < 1) throw std::invalid_argument("cleanup options: block_frames must be >= 1");
 }
 
@@ -243,9 +246,6 @@ void cleanupMotionInBlocks(const CleanupInput& input, const CleanupOptions& opti
     rest = contactRestHeights(input, feet_world);
     locks = contactLocks(input, options, rest, feet_world);
   }
-  const int hips = input.mapping[CanonicalJoint::Hips];
-  const Eigen::Vector3d hips_at_frame0 =
-      worldPositions(content.skeleton, localPoses(content, 0, 1), std::span<const int>(&hips, 1)).row(0).transpose();
 
   // Final frames gather into blocks of options.block_frames: the content's local poses of the block with
   // the solved rotations and root put in, then channel values (continuing the previous block's Euler
@@ -282,7 +282,7 @@ void cleanupMotionInBlocks(const CleanupInput& input, const CleanupOptions& opti
     if (static_cast<int>(block_roots.size()) == options.block_frames || frame == frames - 1) flushBlock();
   };
 
-  const ik_detail::SolverInput solver_input{model, content, hips_at_frame0, input.targets, locks.positions,
+  const ik_detail::SolverInput solver_input{model, content, input.mapping[CanonicalJoint::Hips], input.targets, locks.positions,
                                             locks.weights, {input.cm_per_unit, input.up, input.floor_height},
                                             options.max_total_seconds};
   const ik_detail::SolverOutput solved = ik_detail::solveCleanup(solver_input, options, onFinalFrame);

@@ -27,6 +27,8 @@
 
 namespace motionstyle {
 
+enum class CleanupSolver { KinematicTree, Ceres };
+
 struct CleanupOptions {
   // --- Cost weights. Each residual is (weight x error), errors in cm or radians, so the weights do not
   // depend on the file's unit. Ceres minimises the sum of squared residuals.
@@ -52,20 +54,30 @@ struct CleanupOptions {
   bool keep_above_floor = true;
 
   // --- Strategy and bounds.
-  // window_frames = 1 (default): each frame solved alone, warm-started from the previous frame's
-  // solution, whose two predecessors enter the smoothness terms as constants. window_frames > 1:
-  // overlapping windows of that many frames solved jointly, advancing by window_frames - window_overlap.
-  // Per frame is the default because windows gave the same skate and residual several times slower
-  // (docs/decisions.md, "Clean-up: per frame or windows").
-  int window_frames = 1;
+  // KinematicTree (default): each frame solved alone by a Levenberg-Marquardt that follows the joint
+  // tree (analytic Jacobians, no fill-in), warm-started from the previous frame's solution, whose two
+  // predecessors enter the smoothness terms as constants. Ceres: the same cost solved by Ceres with
+  // automatic differentiation, alone or in windows of window_frames frames advancing by
+  // window_frames - window_overlap; the reference the tree solver is tested against, several times
+  // slower (docs/decisions.md, "Clean-up speed").
+  CleanupSolver solver = CleanupSolver::KinematicTree;
+  int window_frames = 1;         // > 1 only with CleanupSolver::Ceres
   int window_overlap = 0;
   int max_iterations = 25;       // Levenberg-Marquardt iterations per solve (frame or window), >= 1
+  // The clip is solved in chunks of chunk_frames frames (a clip shorter than two chunks: in two halves,
+  // if each is at least three lead-ins long), each starting chunk_lead_in frames early from the
+  // content's pose (those frames are solved and dropped), so that chunks are independent and run on
+  // `threads` cores at once. The result depends on the chunk size, never on the thread count. 40
+  // frames of lead-in leave a chunk within 0.5 mm of one sweep over the whole clip (the smoothness
+  // terms' memory of a different start decays per frame, whatever the frame rate).
+  int chunk_frames = 480;
+  int chunk_lead_in = 40;
+  int threads = 0;               // chunks solved at once; 0: one per hardware thread
   // Wall-clock budget for the whole clip. Infinite (the default): every frame is solved, however long
   // the clip. A finite budget is the caller's explicit choice (the CLI's --time-limit): the frames past
   // it are left at their warm start, counted in frames_unsolved and named in a warning. Why: a result
   // that was not produced must never pass for one.
   double max_total_seconds = std::numeric_limits<double>::infinity();
-  int threads = 1;               // Ceres threads per solve (per-frame problems are small: 1 is fastest)
   // Frames per block: the content's local poses are computed, and the result handed out
   // (cleanupMotionInBlocks), this many frames at a time. Memory depends on it; the result only in
   // the last bits (the vectorised sines and cosines round by a value's place in its block).
@@ -76,8 +88,8 @@ struct CleanupOptions {
   double residual_warning_cm = 10.0;    // a mapped joint left further than this from its target
 
   // Throws std::invalid_argument for a negative or non-finite weight, an empty window, an overlap not
-  // smaller than the window, max_iterations < 1, a non-positive budget, threads < 1 or
-  // block_frames < 1.
+  // smaller than the window, a window over 1 frame for the tree solver, max_iterations < 1, a
+  // non-positive budget, chunk_frames < 1, chunk_lead_in < 0, threads < 0 or block_frames < 1.
   void validate() const;
 };
 
@@ -117,7 +129,7 @@ struct CleanupTermCosts {  // 0.5 x sum of squared residuals over all frames (Ce
 struct CleanupReport {
   CleanupTermCosts final_costs;
   int frames = 0;
-  int solves = 0;                  // Ceres solves (frames or windows)
+  int solves = 0;                  // solves (frames or windows), lead-in frames included
   int total_iterations = 0;        // summed over solves
   int solves_at_iteration_cap = 0;  // solves that stopped at max_iterations
   int frames_unsolved = 0;         // frames left at their warm start because the time budget ran out

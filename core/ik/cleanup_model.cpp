@@ -46,6 +46,16 @@ CleanupModel buildCleanupModel(const Skeleton& skeleton, const std::array<int, k
     model.unknown_is_canonical.push_back(is_canonical[j]);
   }
 
+  model.unknown_parent.assign(model.unknown_joints.size(), -1);
+  for (size_t u = 0; u < model.unknown_joints.size(); ++u)
+    for (int j = skeleton.joints[static_cast<size_t>(model.unknown_joints[u])].parent; j >= 0;
+         j = skeleton.joints[static_cast<size_t>(j)].parent)
+      if (model.unknown_index_of_joint[static_cast<size_t>(j)] >= 0) {
+        model.unknown_parent[u] = model.unknown_index_of_joint[static_cast<size_t>(j)];
+        break;
+      }
+
+  std::vector<bool> on_tree(joint_count, false);
   for (size_t c = 0; c < mapped.size(); ++c) {
     ChainSpec& chain = model.chains[c];
     chain.tip_joint = mapped[c];
@@ -54,42 +64,48 @@ CleanupModel buildCleanupModel(const Skeleton& skeleton, const std::array<int, k
       const int unknown = model.unknown_index_of_joint[static_cast<size_t>(chain.path[k])];
       if (unknown >= 0) chain.pivots.push_back(unknown);
     }
+    for (int j : chain.path) on_tree[static_cast<size_t>(j)] = true;
   }
+  for (size_t j = 0; j < joint_count; ++j)
+    if (on_tree[j]) model.tree_joints.push_back(static_cast<int>(j));
   return model;
 }
 
-void chainSegmentsAt(const CleanupModel& model, const ChainSpec& chain, const LocalPoses& content, int frame,
-                     std::vector<ChainSegment>& segments) {
-  segments.resize(chain.pivots.size() + 1);
-  size_t segment = 0;
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d fixed = Eigen::Matrix3d::Identity();
-  bool has_fixed = false;
-  for (size_t k = 0; k < chain.path.size(); ++k) {
-    const int joint = chain.path[k];
-    // The root's translation is the parameter P, not part of s_0.
-    if (k > 0) position += has_fixed ? Eigen::Vector3d(fixed * content.translation(frame, joint))
-                                     : content.translation(frame, joint);
-    if (k + 1 == chain.path.size()) break;  // the tip's own rotation moves nothing mapped
-    if (model.unknown_index_of_joint[static_cast<size_t>(joint)] >= 0) {
-      segments[segment].translation = position;
-      segments[segment].fixed_rotation = fixed;
-      segments[segment].has_fixed_rotation = has_fixed;
-      ++segment;
-      position.setZero();
-      fixed.setIdentity();
-      has_fixed = false;
+// One pass over the tree's joints, parents first. For joint j with anchor node a (the nearest unknown
+// strict ancestor, or the origin), joints[j] holds its position in a's rotated frame (translation) and
+// the rotation from that frame to j's parent frame (fixed_rotation): for the root, 0 and I (its
+// position is P); below an unknown parent p, t_j and I; below a fixed parent p,
+//   t_j^a = t_p^a + F_p R_p t_j,   F_j = F_p R_p.
+void treeSegmentsAt(const CleanupModel& model, const Skeleton& skeleton, const LocalPoses& content, int frame,
+                    TreeSegments& segments) {
+  segments.nodes.resize(model.unknown_joints.size());
+  segments.joints.resize(skeleton.joints.size());
+  for (int joint : model.tree_joints) {
+    ChainSegment& here = segments.joints[static_cast<size_t>(joint)];
+    const int parent = skeleton.joints[static_cast<size_t>(joint)].parent;
+    if (parent < 0) {
+      here = ChainSegment{};
+    } else if (model.unknown_index_of_joint[static_cast<size_t>(parent)] >= 0) {
+      here.translation = content.translation(frame, joint);
+      here.fixed_rotation.setIdentity();
+      here.has_fixed_rotation = false;
     } else {
-      const Eigen::Quaterniond& rotation = content.rotation(frame, joint);
+      const ChainSegment& above = segments.joints[static_cast<size_t>(parent)];
+      const Eigen::Quaterniond& rotation = content.rotation(frame, parent);
+      here = above;
       if (std::abs(std::abs(rotation.w()) - 1.0) > 1e-15) {
-        fixed = fixed * rotation.toRotationMatrix();
-        has_fixed = true;
+        here.fixed_rotation = above.has_fixed_rotation ? Eigen::Matrix3d(above.fixed_rotation * rotation.toRotationMatrix())
+                                                       : rotation.toRotationMatrix();
+        here.has_fixed_rotation = true;
       }
+      here.translation += here.has_fixed_rotation ? Eigen::Vector3d(here.fixed_rotation * content.translation(frame, joint))
+                                                  : content.translation(frame, joint);
     }
   }
-  segments[segment].translation = position;
-  segments[segment].fixed_rotation.setIdentity();
-  segments[segment].has_fixed_rotation = false;
+  for (size_t u = 0; u < model.unknown_joints.size(); ++u)
+    segments.nodes[u] = segments.joints[static_cast<size_t>(model.unknown_joints[u])];
+  for (size_t c = 0; c < kCanonicalJointCount; ++c)
+    segments.tips[c] = segments.joints[static_cast<size_t>(model.chains[c].tip_joint)].translation;
 }
 
 }  // namespace motionstyle::ik_detail

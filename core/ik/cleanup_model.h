@@ -1,15 +1,18 @@
 #pragma once
-// Private to core/ik: the clean-up problem's structure (which joints are unknowns, the kinematic chain
-// of every canonical joint) and the per-frame data the cost functors read. Plain Eigen, no Ceres, so
-// that cleanup.cpp (orchestration) and cleanup_solver.cpp (Ceres) share it.
+// Private to core/ik: the clean-up problem's structure (which joints are unknowns, the kinematic tree
+// they form) and the per-frame data both solvers read (cleanup_frame_solver.h, cleanup_ceres_window.h).
+// Plain Eigen, no Ceres.
 //
-// Forward kinematics of a chain, root first (BVH: world_j = world_parent * T(t_j) * R_j):
-//   p_tip = P + s_0 + M_0 R_0 (s_1 + M_1 R_1 (s_2 + ... + M_{n-1} R_{n-1} s_n))
-// where P is the root translation (an unknown when the root has position channels), R_k the unknown
-// local rotation of the k-th solved ancestor ("pivot"), s_k the translation from pivot k-1 (or the
-// root position) to pivot k (or the tip), and M_k the product of the FIXED rotations met between them
-// (joints whose rotation is not solved; identity on ordinary rigs). s_k and M_k come from the content's
-// per-frame local translations and rotations, so every bone keeps its length exactly.
+// The unknowns form a tree: node 0 is the root position P (the "origin"), node u + 1 the local
+// rotation R_u of unknown joint u, whose parent node is its nearest unknown strict ancestor (or the
+// origin). Between a node and its parent lie only joints whose rotation is NOT solved, so per frame
+//   o_n = o_p + W_p s_n,   W_n = W_p M_n R_n        (o_0 = P, W_0 = I)
+// gives the world position o_n and world rotation W_n of every node, with s_n the translation from the
+// parent node's joint to node n's joint in the parent's rotated frame and M_n the product of the FIXED
+// rotations met between them (identity on ordinary rigs). A canonical joint c hangs off its anchor
+// node a_c (its nearest unknown strict ancestor): p_c = o_a + W_a t_c. s, M and t come from the
+// content's per-frame local translations and rotations, so every bone keeps its length exactly.
+// (BVH: world_j = world_parent * T(t_j) * R_j.)
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -23,9 +26,9 @@
 namespace motionstyle::ik_detail {
 
 struct ChainSegment {
-  Eigen::Vector3d translation = Eigen::Vector3d::Zero();  // s_k, file units, in pivot k-1's frame
-  Eigen::Matrix3d fixed_rotation = Eigen::Matrix3d::Identity();  // M_k
-  bool has_fixed_rotation = false;                        // M_k != I (skip the product when false)
+  Eigen::Vector3d translation = Eigen::Vector3d::Zero();  // s_n, file units, in the parent node's frame
+  Eigen::Matrix3d fixed_rotation = Eigen::Matrix3d::Identity();  // M_n
+  bool has_fixed_rotation = false;                        // M_n != I (skip the product when false)
 };
 
 struct ChainSpec {
@@ -37,9 +40,11 @@ struct ChainSpec {
 struct CleanupModel {
   std::vector<int> unknown_joints;          // skeleton joints whose rotation is solved, parents first
   std::vector<int> unknown_index_of_joint;  // skeleton joint -> index into unknown_joints, or -1
+  std::vector<int> unknown_parent;          // nearest unknown strict ancestor (index into unknown_joints), or -1
   std::vector<bool> unknown_is_canonical;   // the unknown joint is itself one of the 21 canonical joints
+  std::vector<int> tree_joints;             // every joint on a path root .. mapped joint, parents first
   bool root_translation_free = false;       // the root has all three position channels
-  std::array<ChainSpec, kCanonicalJointCount> chains;
+  std::array<ChainSpec, kCanonicalJointCount> chains;  // pivots.back() is the tip's anchor (none: the origin)
 
   int unknownCount() const { return static_cast<int>(unknown_joints.size()); }
 };
@@ -48,15 +53,21 @@ struct CleanupModel {
 // channels become unknowns; all others keep the content's rotation.
 CleanupModel buildCleanupModel(const Skeleton& skeleton, const std::array<int, kCanonicalJointCount>& mapped);
 
-// s_k and M_k of `chain` at `frame`, from the content's local poses. `segments` is resized to
-// chain.pivots.size() + 1.
-void chainSegmentsAt(const CleanupModel& model, const ChainSpec& chain, const LocalPoses& content, int frame,
-                     std::vector<ChainSegment>& segments);
+// One frame's tree: s_n and M_n of every unknown (unknown_joints order) and t_c of every canonical joint.
+struct TreeSegments {
+  std::vector<ChainSegment> nodes;                          // per unknown joint
+  std::array<Eigen::Vector3d, kCanonicalJointCount> tips;   // t_c, in the anchor node's frame
+  std::vector<ChainSegment> joints;  // workspace: every skeleton joint relative to its anchor node
+};
+
+// The tree's segments at row `frame` of `content` (the content's local poses). Resizes segments.nodes.
+void treeSegmentsAt(const CleanupModel& model, const Skeleton& skeleton, const LocalPoses& content, int frame,
+                    TreeSegments& segments);
 
 // Everything the cost functors of one frame read. Functors hold a pointer to their frame's FrameData,
 // which is refilled (never reallocated) before each solve.
 struct FrameData {
-  std::array<std::vector<ChainSegment>, kCanonicalJointCount> segments;
+  TreeSegments tree;
   std::array<Eigen::Vector3d, kCanonicalJointCount> targets;        // file units
   std::array<Eigen::Vector3d, kContactCount> lock_positions;        // file units
   std::array<double, kContactCount> lock_weights{};                 // contact_weight x blend, 0 = off

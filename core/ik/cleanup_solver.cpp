@@ -1,51 +1,31 @@
-// The Ceres side of the clean-up: one problem for a window of frames (a single frame by default),
-// built once and re-solved as the window slides over the clip.
+// The sweep: chunks of the clip solved independently (in parallel), each frame by frame or window by
+// window with a WindowSolver (cleanup_window_solver.h).
 //
-// Slots: the problem holds window + 2 frame slots. Slots 0 and 1 are the two frames before the window
-// (already solved, held constant: they anchor the smoothness terms); slots 2 .. window + 1 are solved.
-// Functors point at their slot's FrameData, which is refilled before every solve, so the problem's
-// structure never changes and nothing is reallocated per frame.
+// A chunk covers frames [begin, end). Its sweep starts chunk_lead_in frames earlier (at the clip's
+// start for the first chunk) from the content's pose moved so that its hips meet the target hips,
+// exactly as the clip's frame 0 does; the lead-in frames are solved to settle the smoothness terms'
+// history and then dropped. Frames are warm-started in order from the previous frame's solution,
+// moved by the targets' hips step.
 
 #include "ik/cleanup_solver.h"
 
-#include <ceres/ceres.h>
-#include <glog/logging.h>
-
 #include <algorithm>
 #include <chrono>
+#include <condition_variable>
+#include <exception>
+#include <map>
 #include <memory>
 #include <mutex>
+#include <span>
+#include <thread>
+#include <utility>
 
-#include "ik/cost_functors.h"
+#include "ik/cleanup_window_solver.h"
 
 namespace motionstyle::ik_detail {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-// Jet width of the dynamic chain functors: a chain of up to 8 pivots (35 parameters) needs 5 passes.
-constexpr int kChainStride = 8;
-
-enum Term : size_t { kPositionTerm, kContactTerm, kFloorTerm, kSmoothnessTerm, kPriorTerm, kTermCount };
-
-// Ceres 2.1 reports evaluation trouble (a residual or Jacobian that is not finite, a failed line search)
-// through glog's LOG(WARNING) and LOG(ERROR) whatever Solver::Options::logging_type says: one hostile
-// clip then writes megabytes to stderr. The clean-up reports what the user needs itself (CleanupReport,
-// cleanup_warnings.h), so glog keeps only FATAL messages. Process-wide and once, not around each solve:
-// MotionStyle logs nothing through glog, and solves may run on several threads at a time.
-void keepCeresLogOffStderr() {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    FLAGS_minloglevel = google::GLOG_FATAL;
-    FLAGS_stderrthreshold = google::GLOG_FATAL;
-  });
-}
-
-ceres::Problem::Options problemOptions() {
-  ceres::Problem::Options options;
-  options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;  // one manifold shared by all rotations
-  return options;
-}
 
 // The content's local poses of one block of frames, recomputed when a window needs frames outside it:
 // a long clip's poses (56 bytes per joint and frame) are never all held.
@@ -53,11 +33,12 @@ class ContentPoseBlock {
  public:
   ContentPoseBlock(const Motion& content, int block_frames) : content_(content), block_frames_(block_frames) {}
 
-  // Makes frames first .. first + count - 1 available.
-  void cover(int first, int count) {
-    if (first >= first_ && first + count <= first_ + poses_.frames) return;
+  // Makes frames first .. first + count - 1 available, and up to a block's worth after them but not
+  // at or past `end` (the chunk's end: its neighbour's frames are its neighbour's work).
+  void cover(int first, int count, int end) {
+    if (poses_.frames > 0 && first >= first_ && first + count <= first_ + poses_.frames) return;
     first_ = first;
-    poses_ = localPoses(content_, first, std::min(std::max(block_frames_, count), content_.frameCount() - first));
+    poses_ = localPoses(content_, first, std::min(std::max(block_frames_, count), end - first));
   }
   const LocalPoses& poses() const { return poses_; }
   int row(int frame) const { return frame - first_; }  // the frame's row in poses()
@@ -71,265 +52,235 @@ class ContentPoseBlock {
   LocalPoses poses_;
 };
 
-class WindowProblem {
- public:
-  WindowProblem(const SolverInput& input, const CleanupOptions& options, int window)
-      : input_(input), window_(window), unknowns_(input.model.unknownCount()),
-        roots_(static_cast<size_t>(3 * slotCount())), rotations_(static_cast<size_t>(4 * unknowns_ * slotCount())),
-        frames_(static_cast<size_t>(slotCount())), problem_(problemOptions()) {
-    constants_ = input.constants;
-    for (int s = 0; s < slotCount(); ++s) {
-      problem_.AddParameterBlock(root(s), 3);
-      if (s < 2 || !input.model.root_translation_free) problem_.SetParameterBlockConstant(root(s));
-      for (int u = 0; u < unknowns_; ++u) {
-        problem_.AddParameterBlock(rotation(s, u), 4, &manifold_);
-        if (s < 2) problem_.SetParameterBlockConstant(rotation(s, u));
-      }
-      frames_[static_cast<size_t>(s)].prior_rotations.resize(static_cast<size_t>(unknowns_));
-    }
-    blocks_.resize(static_cast<size_t>(slotCount()));
-    for (int s = 2; s < slotCount(); ++s) addSlotTerms(s, options);
+Eigen::Vector3d targetOf(const Eigen::MatrixXd& targets, int frame, CanonicalJoint joint) {
+  return targets.block<1, 3>(frame, 3 * index(joint)).transpose();
+}
 
-    solver_options_.max_num_iterations = options.max_iterations;
-    solver_options_.num_threads = options.threads;
-    // Measured on the CMU fixture (75 tangent parameters, ~250 residuals per frame): sparse normal
-    // Cholesky 1950 frames/s of CPU, dense normal Cholesky 1150, dense QR 500 (the LM-augmented QR
-    // dominates). Without SuiteSparse, Eigen's sparse Cholesky performs about the same.
-    solver_options_.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
-    if (ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::SUITE_SPARSE))
-      solver_options_.sparse_linear_algebra_library_type = ceres::SUITE_SPARSE;
-    else if (ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::EIGEN_SPARSE))
-      solver_options_.sparse_linear_algebra_library_type = ceres::EIGEN_SPARSE;
-    else
-      solver_options_.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
-    solver_options_.logging_type = ceres::SILENT;
-    solver_options_.minimizer_progress_to_stdout = false;
-    keepCeresLogOffStderr();
+// One chunk's result: the solutions of frames [begin, end) and its share of the report.
+struct ChunkResult {
+  int index = 0;
+  int begin = 0, end = 0;
+  std::vector<Eigen::Vector3d> roots;
+  std::vector<Eigen::Quaterniond> rotations;  // (end - begin) x unknowns
+  SolverOutput output;
+  std::exception_ptr error;
+};
+
+class ChunkSweep {
+ public:
+  ChunkSweep(const SolverInput& input, const CleanupOptions& options, Clock::time_point deadline)
+      : input_(input), options_(options), deadline_(deadline), unknowns_(input.model.unknownCount()),
+        content_(input.content, options.block_frames),
+        solver_(makeWindowSolver(input.model, options, input.constants,
+                                 std::min(options.window_frames, input.content.frameCount()))) {}
+
+  void run(ChunkResult& chunk) {
+    const int start = std::max(0, chunk.begin - options_.chunk_lead_in);
+    const int frames = chunk.end - start;
+    const int window = std::min(solver_->window(), frames);
+    const int step = std::max(1, window - std::min(options_.window_overlap, window - 1));
+    roots_.assign(static_cast<size_t>(frames), Eigen::Vector3d::Zero());
+    rotations_.assign(static_cast<size_t>(frames * unknowns_), Eigen::Quaterniond::Identity());
+    start_ = start;
+    warmed_ = 0;
+
+    int next_final = start;  // the first frame not yet final
+    for (int first = start; first < chunk.end;) {
+      first = std::min(first, chunk.end - window);
+      loadWindow(first, window, chunk.end);
+      const double remaining = std::chrono::duration<double>(deadline_ - Clock::now()).count();
+      if (remaining > 0.0) {
+        const WindowSolveStats stats = solver_->solve(remaining);
+        ++chunk.output.solves;
+        chunk.output.total_iterations += stats.iterations;
+        if (stats.at_iteration_cap) ++chunk.output.solves_at_iteration_cap;
+        for (int i = 0; i < window; ++i) solver_->solution(i, root(first + i), rotations(first + i));
+      } else {
+        chunk.output.frames_unsolved += std::max(0, first + window - std::max(next_final, chunk.begin));
+      }
+      const int next_first = first + window >= chunk.end ? chunk.end : std::min(first + step, chunk.end - window);
+      for (; next_final < next_first; ++next_final)  // final: no later window changes these frames
+        if (next_final >= chunk.begin && remaining > 0.0) solver_->addCosts(next_final - first, chunk.output.costs);
+      first = first + window >= chunk.end ? chunk.end : first + step;
+    }
+    chunk.roots.assign(roots_.begin() + (chunk.begin - start), roots_.end());
+    chunk.rotations.assign(rotations_.begin() + static_cast<std::ptrdiff_t>((chunk.begin - start) * unknowns_),
+                           rotations_.end());
   }
 
-  int slotCount() const { return window_ + 2; }
-  double* root(int slot) { return &roots_[static_cast<size_t>(3 * slot)]; }
-  double* rotation(int slot, int unknown) { return &rotations_[static_cast<size_t>(4 * (slot * unknowns_ + unknown))]; }
+ private:
+  Eigen::Vector3d& root(int frame) { return roots_[static_cast<size_t>(frame - start_)]; }
+  Eigen::Quaterniond* rotations(int frame) {
+    return &rotations_[static_cast<size_t>(frame - start_) * static_cast<size_t>(unknowns_)];
+  }
 
-  // Loads the content data and targets of `frame` into the slot's FrameData (`content` covers the frame).
-  void loadFrameData(int slot, int frame, const ContentPoseBlock& content) {
-    FrameData& data = frames_[static_cast<size_t>(slot)];
-    for (size_t c = 0; c < kCanonicalJointCount; ++c) {
-      chainSegmentsAt(input_.model, input_.model.chains[c], content.poses(), content.row(frame), data.segments[c]);
-      data.targets[c] = input_.targets.block<1, 3>(frame, static_cast<Eigen::Index>(3 * c)).transpose();
+  // The next frame's warm start (frames are warmed once each, in order).
+  void warmStartNext() {
+    const int frame = start_ + warmed_++;
+    const int hips = input_.hips_joint;
+    if (frame == start_) {
+      const Eigen::Vector3d content_hips =
+          worldPositions(input_.content.skeleton, localPoses(input_.content, frame, 1), std::span<const int>(&hips, 1))
+              .row(0).transpose();
+      root(frame) = content_.translation(frame, 0) + (targetOf(input_.targets, frame, CanonicalJoint::Hips) - content_hips);
+      for (int u = 0; u < unknowns_; ++u)
+        rotations(frame)[u] = content_.rotation(frame, input_.model.unknown_joints[static_cast<size_t>(u)]);
+    } else {
+      root(frame) = root(frame - 1) + targetOf(input_.targets, frame, CanonicalJoint::Hips) -
+                    targetOf(input_.targets, frame - 1, CanonicalJoint::Hips);
+      std::copy(rotations(frame - 1), rotations(frame - 1) + unknowns_, rotations(frame));
     }
+    if (!input_.model.root_translation_free) root(frame) = content_.translation(frame, 0);
+  }
+
+  void loadFrameData(FrameData& data, int frame) {
+    treeSegmentsAt(input_.model, input_.content.skeleton, content_.poses(), content_.row(frame), data.tree);
+    for (size_t c = 0; c < kCanonicalJointCount; ++c)
+      data.targets[c] = input_.targets.block<1, 3>(frame, static_cast<Eigen::Index>(3 * c)).transpose();
     for (size_t i = 0; i < kContactCount; ++i) {
       data.lock_positions[i] = input_.lock_positions[static_cast<size_t>(frame)][i];
       data.lock_weights[i] = input_.lock_weights(frame, static_cast<Eigen::Index>(i));
     }
     for (int u = 0; u < unknowns_; ++u)
       data.prior_rotations[static_cast<size_t>(u)] =
-          content.rotation(frame, input_.model.unknown_joints[static_cast<size_t>(u)]);
-    data.smoothness_scale = frame >= 2 ? 1.0 : 0.0;
+          content_.rotation(frame, input_.model.unknown_joints[static_cast<size_t>(u)]);
+    data.smoothness_scale = frame - start_ >= 2 ? 1.0 : 0.0;
   }
 
-  void setSlot(int slot, const Eigen::Vector3d& root_position, const Eigen::Quaterniond* rotations) {
-    Eigen::Map<Eigen::Vector3d>(root(slot)) = root_position;
-    for (int u = 0; u < unknowns_; ++u) {
-      const Eigen::Quaterniond q = rotations[u].normalized();
-      double* block = rotation(slot, u);
-      block[0] = q.w(); block[1] = q.x(); block[2] = q.y(); block[3] = q.z();
+  // Frames first .. first + window - 1 into the solver, with their two predecessors (before the
+  // sweep's start: a copy of its first frame, unused as its smoothness weight is 0).
+  void loadWindow(int first, int window, int end) {
+    content_.cover(first, window, end);
+    for (int i = 0; i < window; ++i) {
+      const int frame = first + i;
+      while (start_ + warmed_ <= frame) warmStartNext();
+      solver_->setStart(i, root(frame), rotations(frame));
+      loadFrameData(solver_->frame(i), frame);
     }
-  }
-
-  void getSlot(int slot, Eigen::Vector3d& root_position, Eigen::Quaterniond* rotations) {
-    root_position = Eigen::Map<const Eigen::Vector3d>(root(slot));
-    for (int u = 0; u < unknowns_; ++u) {
-      const double* block = rotation(slot, u);
-      rotations[u] = Eigen::Quaterniond(block[0], block[1], block[2], block[3]).normalized();
-    }
-  }
-
-  ceres::Solver::Summary solve(double seconds) {
-    solver_options_.max_solver_time_in_seconds = std::clamp(seconds, 1e-3, 1e9);  // Ceres' own default cap
-    ceres::Solver::Summary summary;
-    ceres::Solve(solver_options_, &problem_, &summary);
-    return summary;
-  }
-
-  void addCosts(int slot, CleanupTermCosts& costs) const {
-    double* totals[kTermCount] = {&costs.position, &costs.contact, &costs.floor, &costs.smoothness, &costs.prior};
-    for (size_t term = 0; term < kTermCount; ++term) {
-      for (ceres::ResidualBlockId id : blocks_[static_cast<size_t>(slot)][term]) {
-        double cost = 0.0;
-        if (problem_.EvaluateResidualBlock(id, false, &cost, nullptr, nullptr)) *totals[term] += cost;
-      }
-    }
-  }
-
- private:
-  template <typename Functor>
-  void addChainTerm(int slot, Term term, Functor* functor, int canonical, int residuals) {
-    const ChainSpec& chain = input_.model.chains[static_cast<size_t>(canonical)];
-    auto* cost = new ceres::DynamicAutoDiffCostFunction<Functor, kChainStride>(functor);
-    std::vector<double*> blocks = {root(slot)};
-    cost->AddParameterBlock(3);
-    for (int pivot : chain.pivots) {
-      cost->AddParameterBlock(4);
-      blocks.push_back(rotation(slot, pivot));
-    }
-    cost->SetNumResiduals(residuals);
-    blocks_[static_cast<size_t>(slot)][term].push_back(problem_.AddResidualBlock(cost, nullptr, blocks));
-  }
-
-  void addSlotTerms(int s, const CleanupOptions& options) {
-    const FrameData* data = &frames_[static_cast<size_t>(s)];
-    for (int c = 0; c < kCanonicalJointCount; ++c) {
-      const double weight = c == index(CanonicalJoint::Hips) ? options.hips_weight : options.position_weight;
-      addChainTerm(s, kPositionTerm, new MappedPositionCost{data, &constants_, c, weight}, c, 3);
-    }
-    for (int i = 0; i < kContactCount; ++i) {
-      const int canonical = index(kContactJoint[static_cast<size_t>(i)]);
-      if (options.lock_contacts)
-        addChainTerm(s, kContactTerm, new ContactLockCost{data, &constants_, canonical, i}, canonical, 3);
-      if (options.keep_above_floor)
-        addChainTerm(s, kFloorTerm, new FloorCost{data, &constants_, canonical, options.floor_weight}, canonical, 1);
-    }
-    auto& smooth = blocks_[static_cast<size_t>(s)][kSmoothnessTerm];
-    smooth.push_back(problem_.AddResidualBlock(
-        new ceres::AutoDiffCostFunction<RootAccelerationCost, 3, 3, 3, 3>(
-            new RootAccelerationCost{data, &constants_, options.root_smoothness_weight}),
-        nullptr, root(s - 2), root(s - 1), root(s)));
-    for (int u = 0; u < unknowns_; ++u) {
-      smooth.push_back(problem_.AddResidualBlock(
-          new ceres::AutoDiffCostFunction<RotationAccelerationCost, 3, 4, 4, 4>(
-              new RotationAccelerationCost{data, options.rotation_smoothness_weight}),
-          nullptr, rotation(s - 2, u), rotation(s - 1, u), rotation(s, u)));
-      const double prior_weight = input_.model.unknown_is_canonical[static_cast<size_t>(u)]
-                                      ? options.prior_weight_mapped
-                                      : options.prior_weight_unmapped;
-      blocks_[static_cast<size_t>(s)][kPriorTerm].push_back(problem_.AddResidualBlock(
-          new ceres::AutoDiffCostFunction<RotationPriorCost, 3, 4>(new RotationPriorCost{data, u, prior_weight}),
-          nullptr, rotation(s, u)));
-    }
+    const int before_previous = std::max(first - 2, start_), previous = std::max(first - 1, start_);
+    solver_->setPrevious({&root(before_previous), rotations(before_previous)}, {&root(previous), rotations(previous)});
   }
 
   const SolverInput& input_;
-  int window_;
+  const CleanupOptions& options_;
+  Clock::time_point deadline_;
   int unknowns_;
-  ProblemConstants constants_;
-  std::vector<double> roots_;
-  std::vector<double> rotations_;
-  std::vector<FrameData> frames_;  // sized once: functors keep pointers into it
-  ceres::QuaternionManifold manifold_;
-  ceres::Problem problem_;
-  std::vector<std::array<std::vector<ceres::ResidualBlockId>, kTermCount>> blocks_;
-  ceres::Solver::Options solver_options_;
-};
-
-Eigen::Vector3d targetOf(const Eigen::MatrixXd& targets, int frame, CanonicalJoint joint) {
-  return targets.block<1, 3>(frame, 3 * index(joint)).transpose();
-}
-
-// The solutions of the frames a window may still read or change: frames first() .. end() - 1.
-class SolutionBuffer {
- public:
-  explicit SolutionBuffer(int unknowns) : unknowns_(static_cast<size_t>(unknowns)) {}
-  int first() const { return first_; }
-  int end() const { return first_ + static_cast<int>(roots_.size()); }
-  Eigen::Vector3d& root(int frame) { return roots_[offset(frame)]; }
-  Eigen::Quaterniond* rotations(int frame) { return &rotations_[offset(frame) * unknowns_]; }
-  void append() {  // frame end() becomes available (its values are set by the caller)
-    roots_.emplace_back(Eigen::Vector3d::Zero());
-    rotations_.resize(rotations_.size() + unknowns_, Eigen::Quaterniond::Identity());
-  }
-  void dropBefore(int frame) {  // frames before `frame` are no longer needed
-    const auto count = static_cast<size_t>(std::clamp(frame - first_, 0, end() - first_));
-    roots_.erase(roots_.begin(), roots_.begin() + static_cast<std::ptrdiff_t>(count));
-    rotations_.erase(rotations_.begin(), rotations_.begin() + static_cast<std::ptrdiff_t>(count * unknowns_));
-    first_ += static_cast<int>(count);
-  }
-
- private:
-  size_t offset(int frame) const { return static_cast<size_t>(frame - first_); }
-  size_t unknowns_;
-  int first_ = 0;
+  ContentPoseBlock content_;
+  std::unique_ptr<WindowSolver> solver_;
+  int start_ = 0, warmed_ = 0;
   std::vector<Eigen::Vector3d> roots_;
   std::vector<Eigen::Quaterniond> rotations_;
 };
 
+void addOutput(SolverOutput& total, const SolverOutput& part) {
+  total.costs.position += part.costs.position;
+  total.costs.contact += part.costs.contact;
+  total.costs.floor += part.costs.floor;
+  total.costs.smoothness += part.costs.smoothness;
+  total.costs.prior += part.costs.prior;
+  total.solves += part.solves;
+  total.total_iterations += part.total_iterations;
+  total.solves_at_iteration_cap += part.solves_at_iteration_cap;
+  total.frames_unsolved += part.frames_unsolved;
+}
+
+// The chunks' frame ranges: chunk_frames long; a clip shorter than two chunks is cut in two parts of
+// equal work (the second's lead-in counted) when each is at least three lead-ins long, so that short
+// clips use two cores too. Depends on the clip's length and the options only, never on the threads.
+std::vector<std::pair<int, int>> chunkRanges(int frames, const CleanupOptions& options) {
+  const int lead_in = options.chunk_lead_in;
+  if (frames < 2 * options.chunk_frames && frames >= 6 * lead_in) {
+    const int first = (frames + lead_in + 1) / 2;
+    return {{0, first}, {first, frames}};
+  }
+  std::vector<std::pair<int, int>> ranges;
+  for (int begin = 0; begin < frames; begin += options.chunk_frames)
+    ranges.emplace_back(begin, std::min(frames, begin + options.chunk_frames));
+  return ranges;
+}
+
 }  // namespace
 
+// Workers take chunks in order (at most 2 x threads ahead of the sink, which bounds the memory); the
+// calling thread hands each finished chunk's frames to the sink in order while the workers go on.
 SolverOutput solveCleanup(const SolverInput& input, const CleanupOptions& options, const FinalFrameSink& sink) {
-  const auto start_time = Clock::now();
-  const int frames = static_cast<int>(input.targets.rows());
-  const int unknowns = input.model.unknownCount();
-  const int window = std::min(options.window_frames, frames);
-  const int step = std::max(1, window - std::min(options.window_overlap, window - 1));
+  const auto budget = std::chrono::duration_cast<Clock::duration>(
+      std::chrono::duration<double>(std::min(input.time_budget_seconds, 1e9)));
+  const Clock::time_point deadline = Clock::now() + budget;
+  const auto unknowns = static_cast<size_t>(input.model.unknownCount());
+  const std::vector<std::pair<int, int>> ranges = chunkRanges(static_cast<int>(input.targets.rows()), options);
+  const int chunks = static_cast<int>(ranges.size());
+  const int hardware = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int threads = std::clamp(options.threads > 0 ? options.threads : hardware, 1, chunks);
+  const int ahead = 2 * threads;
+
+  std::mutex mutex;
+  std::condition_variable changed;
+  int next = 0, emitted = 0;
+  bool stop = false;
+  std::map<int, ChunkResult> finished;
+  auto worker = [&]() {
+    ChunkSweep sweep(input, options, deadline);
+    while (true) {
+      ChunkResult chunk;
+      {
+        std::unique_lock<std::mutex> lock(mutex);
+        changed.wait(lock, [&] { return stop || next >= chunks || next < emitted + ahead; });
+        if (stop || next >= chunks) return;
+        chunk.begin = ranges[static_cast<size_t>(next)].first;
+        chunk.end = ranges[static_cast<size_t>(next)].second;
+        chunk.index = next++;
+      }
+      try {
+        sweep.run(chunk);
+      } catch (...) {
+        chunk.error = std::current_exception();
+      }
+      {
+        const std::lock_guard<std::mutex> lock(mutex);
+        finished.emplace(chunk.index, std::move(chunk));
+      }
+      changed.notify_all();
+    }
+  };
 
   SolverOutput out;
-  SolutionBuffer solved(unknowns);
-  ContentPoseBlock content(input.content, options.block_frames);
-
-  // Frame 0 starts from the content pose moved so that its hips meet the target hips; later frames
-  // from the previous frame's solution, moved by the targets' hips step. Frames are warm-started in
-  // order, each once: frame solved.end() is the next.
-  auto warmStartNext = [&]() {
-    const int frame = solved.end();
-    solved.append();
-    if (frame == 0) {
-      solved.root(0) = content.translation(0, 0) + (targetOf(input.targets, 0, CanonicalJoint::Hips) - input.content_hips_at_frame0);
-      for (int u = 0; u < unknowns; ++u)
-        solved.rotations(0)[u] = content.rotation(0, input.model.unknown_joints[static_cast<size_t>(u)]);
-    } else {
-      solved.root(frame) = solved.root(frame - 1) + targetOf(input.targets, frame, CanonicalJoint::Hips) -
-                           targetOf(input.targets, frame - 1, CanonicalJoint::Hips);
-      std::copy(solved.rotations(frame - 1), solved.rotations(frame - 1) + unknowns, solved.rotations(frame));
+  std::vector<std::jthread> workers;
+  auto stopWorkers = [&]() {
+    {
+      const std::lock_guard<std::mutex> lock(mutex);
+      stop = true;
     }
-    if (!input.model.root_translation_free) solved.root(frame) = content.translation(frame, 0);
+    changed.notify_all();
+    workers.clear();  // joins
   };
-
-  WindowProblem problem(input, options, window);
-  // Puts frames first .. first + window - 1 into slots 2.., their two predecessors into slots 0, 1.
-  auto loadWindow = [&](int first) {
-    content.cover(first, window);
-    for (int i = 0; i < window; ++i) {
-      const int frame = first + i;
-      while (solved.end() <= frame) warmStartNext();
-      problem.setSlot(2 + i, solved.root(frame), solved.rotations(frame));
-      problem.loadFrameData(2 + i, frame, content);
+  for (int t = 0; t < threads; ++t) workers.emplace_back(worker);
+  try {
+    for (int k = 0; k < chunks; ++k) {
+      ChunkResult chunk;
+      {
+        std::unique_lock<std::mutex> lock(mutex);
+        changed.wait(lock, [&] { return finished.count(k) > 0; });
+        chunk = std::move(finished.at(k));
+        finished.erase(k);
+      }
+      if (chunk.error) std::rethrow_exception(chunk.error);
+      addOutput(out, chunk.output);
+      for (int f = chunk.begin; f < chunk.end; ++f) {
+        const auto row = static_cast<size_t>(f - chunk.begin);
+        sink(f, chunk.roots[row], &chunk.rotations[row * unknowns]);
+      }
+      {
+        const std::lock_guard<std::mutex> lock(mutex);
+        ++emitted;
+      }
+      changed.notify_all();
     }
-    for (int slot = 0; slot < 2; ++slot) {
-      // Before the clip's start: a copy of the first frame, unused (its smoothness weight is 0).
-      const int frame = first - 2 + slot >= 0 ? first - 2 + slot : first;
-      problem.setSlot(slot, solved.root(frame), solved.rotations(frame));
-    }
-  };
-
-  // A frame is final once the next window starts after it: its cost is taken from the problem as it
-  // stands (its predecessors are final too) and it goes to the sink.
-  int start = 0;
-  int next_final = 0;  // the first frame not yet handed to the sink
-  bool out_of_time = false;
-  while (start < frames) {
-    const int first = std::min(start, frames - window);
-    const double remaining = input.time_budget_seconds - std::chrono::duration<double>(Clock::now() - start_time).count();
-    if (!out_of_time && remaining <= 0.0) {
-      out_of_time = true;  // the rest keeps its warm start
-      out.frames_unsolved = frames - start;
-    }
-    loadWindow(first);
-    if (!out_of_time) {
-      const ceres::Solver::Summary summary = problem.solve(remaining);
-      ++out.solves;
-      out.total_iterations += summary.num_successful_steps + summary.num_unsuccessful_steps;
-      if (summary.termination_type == ceres::NO_CONVERGENCE) ++out.solves_at_iteration_cap;
-      for (int i = 0; i < window; ++i) problem.getSlot(2 + i, solved.root(first + i), solved.rotations(first + i));
-    }
-    const int next_start = first + window >= frames ? frames : first + step;
-    const int next_first = next_start >= frames ? frames : std::min(next_start, frames - window);
-    for (; next_final < next_first; ++next_final) {
-      problem.addCosts(2 + next_final - first, out.costs);
-      sink(next_final, solved.root(next_final), solved.rotations(next_final));
-    }
-    solved.dropBefore(next_first - 2);
-    start = next_start;
+  } catch (...) {
+    stopWorkers();
+    throw;
   }
+  stopWorkers();
   return out;
 }
 

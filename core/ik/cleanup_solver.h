@@ -1,6 +1,6 @@
 #pragma once
-// Private to core/ik: the interface between the orchestration (cleanup.cpp) and the Ceres solve
-// (cleanup_solver.cpp). No Ceres types here.
+// Private to core/ik: the interface between the orchestration (cleanup.cpp) and the sweep over the clip
+// (cleanup_solver.cpp), which runs a WindowSolver (cleanup_window_solver.h) chunk by chunk.
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -17,7 +17,7 @@ namespace motionstyle::ik_detail {
 struct SolverInput {
   const CleanupModel& model;
   const Motion& content;                 // the content clip: priors, fixed joints, segments (read a block at a time)
-  Eigen::Vector3d content_hips_at_frame0;  // content world position of the hips at frame 0 (warm start)
+  int hips_joint = 0;                    // skeleton joint of the hips (warm start)
   const Eigen::MatrixXd& targets;        // frames x 63, file units
   // Per frame and contact track: the lock position (file units) and lock weight (contact_weight x blend).
   const std::vector<std::array<Eigen::Vector3d, kContactCount>>& lock_positions;
@@ -28,7 +28,7 @@ struct SolverInput {
 
 struct SolverOutput {
   CleanupTermCosts costs;
-  int solves = 0;
+  int solves = 0;  // lead-in frames included
   int total_iterations = 0;
   int solves_at_iteration_cap = 0;
   int frames_unsolved = 0;
@@ -39,8 +39,9 @@ struct SolverOutput {
 using FinalFrameSink = std::function<void(int frame, const Eigen::Vector3d& root_position,
                                           const Eigen::Quaterniond* rotations)>;
 
-// Solves frame by frame (or window by window) and hands every frame to `sink` as soon as no later
-// window can change it. Holds the solutions of one window plus two frames and the content's local
+// Solves the clip chunk by chunk (options.chunk_frames, options.threads chunks at a time), each chunk
+// frame by frame (or window by window) from its lead-in, and hands every frame to `sink` in frame
+// order, on the calling thread. Holds, per chunk in flight, its solutions and the content's local
 // poses of one block of frames (options.block_frames), whatever the clip's length.
 SolverOutput solveCleanup(const SolverInput& input, const CleanupOptions& options, const FinalFrameSink& sink);
 

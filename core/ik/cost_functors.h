@@ -19,16 +19,19 @@
 
 namespace motionstyle::ik_detail {
 
-// World position of a chain's tip (file units):
-//   v = s_n;  v = s_k + M_k R(q_k) v  for k = n-1 .. 0;  p = P + v.
+// World position of canonical joint c (file units) for parameters [P, q_pivot0, ..., q_pivot(n-1)],
+// down its chain of pivots k_0 .. k_{n-1} (cleanup_model.h):
+//   v = t_c;  v = s_{k_i} + M_{k_i} R(q_i) v  for i = n-1 .. 0;  p = P + v.
 template <typename T>
-void chainTipPosition(const std::vector<ChainSegment>& segments, T const* const* parameters, T* position) {
-  const size_t n = segments.size() - 1;
-  T v[3] = {T(segments[n].translation.x()), T(segments[n].translation.y()), T(segments[n].translation.z())};
-  for (size_t k = n; k-- > 0;) {
+void canonicalJointPosition(const CleanupModel& model, const FrameData& frame, int canonical,
+                            T const* const* parameters, T* position) {
+  const std::vector<int>& pivots = model.chains[static_cast<size_t>(canonical)].pivots;
+  const Eigen::Vector3d& tip = frame.tree.tips[static_cast<size_t>(canonical)];
+  T v[3] = {T(tip.x()), T(tip.y()), T(tip.z())};
+  for (size_t k = pivots.size(); k-- > 0;) {
     T rotated[3];
     ceres::UnitQuaternionRotatePoint(parameters[1 + k], v, rotated);
-    const ChainSegment& segment = segments[k];
+    const ChainSegment& segment = frame.tree.nodes[static_cast<size_t>(pivots[k])];
     for (int i = 0; i < 3; ++i) {
       T value = T(segment.translation[i]);
       if (segment.has_fixed_rotation) {
@@ -42,19 +45,12 @@ void chainTipPosition(const std::vector<ChainSegment>& segments, T const* const*
   for (int i = 0; i < 3; ++i) position[i] = parameters[0][i] + v[i];
 }
 
-// The chain functors' shared preamble: the world position (file units) of canonical joint `canonical`
-// for this frame's parameters [P, q_pivot0, ...], by chainTipPosition on the frame's chain segments.
-template <typename T>
-void canonicalJointPosition(const FrameData& frame, int canonical, T const* const* parameters, T* position) {
-  chainTipPosition(frame.segments[static_cast<size_t>(canonical)], parameters, position);
-}
-
 // The residual of a joint pulled toward a point: r = scale * (p_c(P, q) - point)  [3 residuals].
 template <typename T>
-void scaledOffsetFrom(const FrameData& frame, int canonical, T const* const* parameters, const Eigen::Vector3d& point,
-                      double scale, T* residuals) {
+void scaledOffsetFrom(const CleanupModel& model, const FrameData& frame, int canonical, T const* const* parameters,
+                      const Eigen::Vector3d& point, double scale, T* residuals) {
   T p[3];
-  canonicalJointPosition(frame, canonical, parameters, p);
+  canonicalJointPosition(model, frame, canonical, parameters, p);
   for (int i = 0; i < 3; ++i) residuals[i] = scale * (p[i] - point[i]);
 }
 
@@ -72,6 +68,7 @@ void rotationDifference(const T* a, const T* b, T* out) {
 // Position of mapped joint c vs its target:
 //   r = w_pos * cm_per_unit * (p_c(P, q) - target_c)            [3 residuals, cm]
 struct MappedPositionCost {
+  const CleanupModel* model;
   const FrameData* frame;
   const ProblemConstants* constants;
   int canonical;
@@ -79,7 +76,7 @@ struct MappedPositionCost {
 
   template <typename T>
   bool operator()(T const* const* parameters, T* residuals) const {
-    scaledOffsetFrom(*frame, canonical, parameters, frame->targets[static_cast<size_t>(canonical)],
+    scaledOffsetFrom(*model, *frame, canonical, parameters, frame->targets[static_cast<size_t>(canonical)],
                      weight * constants->cm_per_unit, residuals);
     return true;
   }
@@ -89,6 +86,7 @@ struct MappedPositionCost {
 //   r = w_lock(f) * cm_per_unit * (p_c(P, q) - lock_i)          [3 residuals, cm]
 // w_lock(f) = contact_weight inside the segment, smoothstep-blended to 0 over a few frames outside it.
 struct ContactLockCost {
+  const CleanupModel* model;
   const FrameData* frame;
   const ProblemConstants* constants;
   int canonical;
@@ -101,7 +99,7 @@ struct ContactLockCost {
       for (int i = 0; i < 3; ++i) residuals[i] = T(0);
       return true;
     }
-    scaledOffsetFrom(*frame, canonical, parameters, frame->lock_positions[static_cast<size_t>(contact)],
+    scaledOffsetFrom(*model, *frame, canonical, parameters, frame->lock_positions[static_cast<size_t>(contact)],
                      weight * constants->cm_per_unit, residuals);
     return true;
   }
@@ -110,6 +108,7 @@ struct ContactLockCost {
 // Foot joint above the floor (one-sided):
 //   r = w_floor * cm_per_unit * max(0, floor - up . p_c(P, q))   [1 residual, cm of depth]
 struct FloorCost {
+  const CleanupModel* model;
   const FrameData* frame;
   const ProblemConstants* constants;
   int canonical;
@@ -118,7 +117,7 @@ struct FloorCost {
   template <typename T>
   bool operator()(T const* const* parameters, T* residuals) const {
     T p[3];
-    canonicalJointPosition(*frame, canonical, parameters, p);
+    canonicalJointPosition(*model, *frame, canonical, parameters, p);
     const Eigen::Vector3d& up = constants->up;
     const T height = up.x() * p[0] + up.y() * p[1] + up.z() * p[2];
     const T depth = T(constants->floor_height) - height;

@@ -58,7 +58,7 @@ TEST_F(CleanupBlocks, BlocksArriveInOrderAndMakeUpTheWholeResult) {
   }, &report);
   EXPECT_EQ(firsts, (std::vector<int>{0, kBlock, 2 * kBlock}));
   EXPECT_EQ(report.frames, kFrames);
-  EXPECT_EQ(report.solves, kFrames);
+  EXPECT_GE(report.solves, kFrames);  // every frame, plus the lead-ins of chunks after the first
 
   CleanupOptions one_block;
   one_block.block_frames = kFrames;
@@ -90,6 +90,7 @@ TEST(CleanupBlocksWindowed, WindowsThatStraddleABoundarySolveAsWellAsElsewhere) 
   const CleanupInput input{clip, mapping, damaged, no_contacts, Eigen::Vector3d::UnitY(), -50.0, 1.0};
   CleanupOptions windowed;
   windowed.block_frames = kBlock;
+  windowed.solver = CleanupSolver::Ceres;
   windowed.window_frames = 3;
   windowed.window_overlap = 1;  // windows start at even frames: the one at 126 spans the boundary
   CleanupReport report;

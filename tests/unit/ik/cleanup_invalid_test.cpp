@@ -84,6 +84,7 @@ TEST_F(CleanupInvalidInput, RejectsBadOptions) {
   EXPECT_NE(failure(mapping, targets, contacts, Eigen::Vector3d::UnitY(), 1.0, options).find("contact_weight"),
             std::string::npos);
   options = {};
+  options.solver = CleanupSolver::Ceres;
   options.window_frames = 4;
   options.window_overlap = 4;
   EXPECT_NE(failure(mapping, targets, contacts, Eigen::Vector3d::UnitY(), 1.0, options).find("window_overlap"),

@@ -194,6 +194,7 @@ TEST(CleanupPositionChannels, EveryJointsPerFrameTranslationIsKept) {
 TEST_F(CleanupHumanoid, WindowedSolveAgreesWithPerFrameSolve) {
   const Eigen::MatrixXd damaged = test::damageTargets(targets, no_contacts, 60.0, 1.0, Eigen::Vector3d::UnitY(), {});
   CleanupOptions windowed;
+  windowed.solver = CleanupSolver::Ceres;
   windowed.window_frames = 6;
   windowed.window_overlap = 2;
   CleanupReport report;
