@@ -227,8 +227,13 @@ void TrackView::mousePressEvent(QMouseEvent* event) {
 
 void TrackView::mouseMoveEvent(QMouseEvent* event) {
   const int frame = frameAt(event->position().x());
-  if (scrubbing_) emit scrubbed(frame);
-  else if (stroke_.track >= 0) paintStroke(frame);
+  if (scrubbing_) {
+    emit scrubbed(frame);
+  } else if (stroke_.track >= 0) {
+    const int first = stroke_.first, last = stroke_.last;
+    paintStroke(frame);
+    if (stroke_.first != first || stroke_.last != last) emit trackEdited(stroke_.track, stroke_.first, stroke_.last, stroke_.value);
+  }
 }
 
 void TrackView::paintStroke(int frame) {

@@ -65,8 +65,8 @@ class TrackView : public QWidget {
   void setPlayhead(int frame);
 
  signals:
-  // Emitted once per paint stroke (on release): frames first..last (inclusive) of `track` now hold
-  // `value`.
+  // Frames first..last (inclusive) of `track` now hold `value`: emitted while a paint stroke grows
+  // (so that the result can follow the hand) and once more on release, with the whole stroke.
   void trackEdited(int track, int first_frame, int last_frame, bool value);
   // A click or drag on the ruler asks to show `frame`.
   void scrubbed(int frame);

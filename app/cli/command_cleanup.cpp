@@ -188,9 +188,8 @@ int runCleanup(const Args& args) {
     if (request.mapping) extra.push_back({*request.mapping, "--mapping"});
     for (const BatchItem& item : items) extra.push_back({contactTracksPath(item.input), "the clip's contact tracks"});
     checkBatchOutputs(items, extra);
-    const int jobs = jobsOption(parsed);
-    if (jobs > 1) request.cleanup_threads = 1;  // the clips share the cores
-    return runBatch(items, jobs, [&](const BatchItem& item) {
+    request.cleanup_threads = 1;  // --jobs says how many cores: one per clip
+    return runBatch(items, jobsOption(parsed), [&](const BatchItem& item) {
       CleanupRequest one = request;
       one.input = item.input;
       one.output = item.output;

@@ -90,9 +90,8 @@ int runStylize(const Args& args) {
     const std::vector<BatchItem> items = batchItems(parsed.positional, out, request.output.metrics);
     checkBatchOutputs(items, networks);
     const std::shared_ptr<const style::Stylizer> stylizer = loadStylizer(request);
-    const int jobs = jobsOption(parsed);
-    if (jobs > 1) request.output.cleanup_threads = 1;  // the clips share the cores
-    return runBatch(items, jobs, [&](const BatchItem& item) {
+    request.output.cleanup_threads = 1;  // --jobs says how many cores: one per clip
+    return runBatch(items, jobsOption(parsed), [&](const BatchItem& item) {
       return stylizeFile(*stylizer, request, item.input, item.output, item.metrics);
     }, "stylize", std::cout);
   }

@@ -43,7 +43,7 @@ struct OutputOptions {
   // --time-limit: the clean-up's wall-clock budget (CleanupOptions::max_total_seconds); none by default.
   double time_limit_seconds = std::numeric_limits<double>::infinity();
   // Threads of the clean-up (CleanupOptions::threads; 0: every hardware thread). Batch mode gives
-  // each clip one when it runs several clips at once.
+  // each clip one: --jobs says how many cores work.
   int cleanup_threads = 0;
   nlohmann::ordered_json extra_metrics = nlohmann::ordered_json::object();  // added to --metrics
 };

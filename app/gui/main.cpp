@@ -5,6 +5,7 @@
 //                                     2 if a clip failed to load)
 //   motionstyle --demo                opens the bundled sample clips (content and style) and, if
 //                                     installed, the bundled style network (demo_scene.h)
+//   motionstyle --log FILE            appends the app's log to FILE (app_log.h; also MOTIONSTYLE_LOG)
 #include <QApplication>
 #include <QCommandLineParser>
 #include <QStatusBar>
@@ -12,6 +13,7 @@
 
 #include <cstdio>
 
+#include "app_log.h"
 #include "common/allocator_tuning.h"
 #include "demo_scene.h"
 #include "main_window.h"
@@ -35,11 +37,18 @@ int main(int argc, char** argv) {
                                       QStringLiteral("Save a PNG of the window after loading, then exit."),
                                       QStringLiteral("file"));
   const QCommandLineOption demo(QStringLiteral("demo"), QStringLiteral("Open the bundled demo: sample clips and style network."));
+  const QCommandLineOption log(QStringLiteral("log"),
+                               QStringLiteral("Append the app's log (timings of live edits, ...) to this file."),
+                               QStringLiteral("file"));
   parser.addOption(screenshot);
   parser.addOption(demo);
+  parser.addOption(log);
   parser.addPositionalArgument(QStringLiteral("files"), QStringLiteral("BVH clips to open."), QStringLiteral("[files...]"));
   parser.process(app);
 
+  const QString log_file = parser.isSet(log) ? parser.value(log) : qEnvironmentVariable("MOTIONSTYLE_LOG");
+  if (!motionstyle::app_log::setFile(log_file))
+    std::fprintf(stderr, "motionstyle: cannot write the log %s\n", qPrintable(log_file));
   const bool screenshot_mode = parser.isSet(screenshot);
   motionstyle::MainWindow window(/*persist_settings=*/!screenshot_mode);
   int load_failures = 0;

@@ -21,6 +21,7 @@
 #include "common/errors.h"
 #include "common/output_paths.h"
 #include "common/resource_paths.h"
+#include "app_log.h"
 #include "display_space.h"
 #include "error_text.h"
 #include "familiarity_label.h"
@@ -36,7 +37,8 @@ constexpr int kStrengthSteps = 100;
 
 }  // namespace
 
-ResultPanel::ResultPanel(QWidget* parent) : QWidget(parent) {
+ResultPanel::ResultPanel(QWidget* parent) : QWidget(parent), memory_(std::make_shared<CleanupMemory>()) {
+  clock_.start();
   setObjectName(QStringLiteral("ResultPanel"));
 
   network_choice_ = new QComboBox(this);
@@ -68,8 +70,8 @@ ResultPanel::ResultPanel(QWidget* parent) : QWidget(parent) {
   strength_label_->setMinimumWidth(36);
   connect(strength_slider_, &QSlider::valueChanged, this,
           [this](int value) { strength_label_->setText(QString::number(value / double(kStrengthSteps), 'f', 2)); });
-  // A result follows the slider once the user lets go (one job per release, not per step).
-  connect(strength_slider_, &QSlider::sliderReleased, this, [this] { inputsChanged(tr("the strength changed")); });
+  // The result follows the slider while it moves (inputsChanged drops the steps a job cannot keep up with).
+  connect(strength_slider_, &QSlider::valueChanged, this, [this] { inputsChanged(tr("the strength changed")); });
   keep_path_ = new QCheckBox(tr("Keep the content's path"), this);
   keep_path_->setObjectName(QStringLiteral("KeepPathCheck"));
   keep_path_->setChecked(true);
@@ -211,6 +213,7 @@ void ResultPanel::setContentClip(const LoadedClip* clip) {
   if ((clip == nullptr && !content_) || (clip != nullptr && content_ && content_->id == clip->id)) return;
   cancel();
   content_ = clip != nullptr ? std::make_shared<const LoadedClip>(*clip) : nullptr;
+  memory_ = std::make_shared<CleanupMemory>();  // the last clip's solutions help no other
   overrides_ = content_ ? content_->contact_overrides : Eigen::MatrixXi();
   given_stylized_.reset();
   clearResult();
@@ -248,10 +251,16 @@ bool ResultPanel::canStylize() const { return content_ && content_->mapping && (
 
 void ResultPanel::inputsChanged(const QString& what) {
   if (!result_ && !busy_) return;  // nothing shown or on its way: the next Stylize uses the new inputs
+  last_change_ms_ = clock_.elapsed();
+  last_change_ = what;
   if (result_) stale_reason_ = what;
   const bool rerun = canStylize();
-  if (busy_) cancel();  // its answer would be for the old inputs
-  if (rerun) stylize();
+  if (busy_ && rerun) {
+    pending_ = true;  // after the running job: one job for the latest inputs
+  } else {
+    if (busy_) cancel();
+    if (rerun) stylize();
+  }
   if (resultIsStale()) {
     status_label_->setText(tr("Out of date: %1. %2").arg(what, rerun ? tr("Updating...") : tr("Stylize again to update it.")));
     refreshControls();
@@ -293,6 +302,11 @@ void ResultPanel::stylize() {
   job.path = pathMode();
   job.stylized = given_stylized_;
   job.contact_overrides = overrides_;
+  job.memory = memory_;
+  job_change_ms_ = last_change_ms_ >= 0 ? last_change_ms_ : clock_.elapsed();
+  job_change_ = last_change_ms_ >= 0 ? last_change_ : tr("Stylize");
+  job_strength_ = job.strength;
+  last_change_ms_ = -1;
   startJob(std::move(job));
 }
 
@@ -311,6 +325,7 @@ void ResultPanel::startJob(style::StylizeCleanupJob job) {
 }
 
 void ResultPanel::cancel() {
+  pending_ = false;
   if (!busy_) return;
   // The job stops at its next check; anything it still sends is dropped.
   {
@@ -324,7 +339,7 @@ void ResultPanel::cancel() {
 void ResultPanel::onFinished(std::shared_ptr<const style::StylizeCleanupResult> result) {
   result_ = std::move(result);
   result_network_name_ = job_network_name_;
-  stale_reason_.clear();
+  if (!pending_) stale_reason_.clear();  // else the inputs moved on while it ran: shown, out of date
   QString status = tr("Stylized and cleaned up %1 frames in %2 s.")
                        .arg(result_->cleaned.frameCount())
                        .arg(result_->seconds, 0, 'f', 2);
@@ -332,8 +347,25 @@ void ResultPanel::onFinished(std::shared_ptr<const style::StylizeCleanupResult> 
   refreshMetrics();
   refreshControls();
   emit statusMessage(status);
-  emit resultChanged();
+  const qint64 figures_start = clock_.elapsed();
+  emit resultChanged();  // the figures are rebuilt: on screen at the next paint
+  const CleanupReport& report = result_->report;
+  app_log::write(QStringLiteral("live: %1 -> cleaned result on screen %2 ms after the change (job %3 ms, figures %4 ms, "
+                                "strength %5, %6 frames, clean-up solved %7 of %8 chunks, %9 from the last solution)")
+                     .arg(job_change_)
+                     .arg(clock_.elapsed() - job_change_ms_)
+                     .arg(std::lround(result_->seconds * 1000.0))
+                     .arg(clock_.elapsed() - figures_start)
+                     .arg(job_strength_, 0, 'f', 2)
+                     .arg(report.frames)
+                     .arg(report.chunks - report.chunks_reused)
+                     .arg(report.chunks)
+                     .arg(report.chunks_warm));
   emit jobEnded(true);
+  if (pending_) {
+    pending_ = false;
+    stylize();
+  }
 }
 
 void ResultPanel::setBusy(bool busy, const QString& status) {

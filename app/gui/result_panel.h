@@ -15,6 +15,7 @@
 // The panel owns no clip: MainWindow hands it a copy of the content clip, the user's contact overrides
 // and the network, and rebuilds its figures and tracks on resultChanged().
 
+#include <QElapsedTimer>
 #include <QString>
 #include <QWidget>
 
@@ -164,7 +165,17 @@ class ResultPanel : public QWidget {
   QString last_export_folder_;
 
   JobRunner* runner_ = nullptr;
-  bool busy_ = false;        // a job for the current inputs is on its way
+  bool busy_ = false;        // a job is on its way
+  // Live edits: a change while a job runs lets that job finish (its result is shown, marked out of
+  // date) and then runs ONE job for the latest inputs; the values in between are dropped, never queued.
+  bool pending_ = false;
+  std::shared_ptr<CleanupMemory> memory_;  // the last clean-up of the content: an edit re-solves what changed
+  QElapsedTimer clock_;                    // for the log's latencies (app_log.h)
+  qint64 last_change_ms_ = -1;             // when the inputs last changed, and what changed
+  QString last_change_;
+  qint64 job_change_ms_ = -1;              // the change the running job answers
+  QString job_change_;
+  double job_strength_ = 1.0;
   bool abandoning_ = false;  // dropping a job on purpose: its finished(false) is not a cancellation
 
   QComboBox* network_choice_ = nullptr;

@@ -231,7 +231,7 @@ void CleanupInput::validate() const {
 }
 
 void cleanupMotionInBlocks(const CleanupInput& input, const CleanupOptions& options, const CleanedBlockSink& sink,
-                           CleanupReport* report) {
+                           CleanupReport* report, const CleanupControl& control) {
   const auto start_time = std::chrono::steady_clock::now();
   options.validate();
   input.validate();
@@ -284,7 +284,7 @@ void cleanupMotionInBlocks(const CleanupInput& input, const CleanupOptions& opti
 
   const ik_detail::SolverInput solver_input{model, content, input.mapping[CanonicalJoint::Hips], input.targets, locks.positions,
                                             locks.weights, {input.cm_per_unit, input.up, input.floor_height},
-                                            options.max_total_seconds};
+                                            options.max_total_seconds, control};
   const ik_detail::SolverOutput solved = ik_detail::solveCleanup(solver_input, options, onFinalFrame);
 
   CleanupReport summary;
@@ -294,6 +294,9 @@ void cleanupMotionInBlocks(const CleanupInput& input, const CleanupOptions& opti
   summary.total_iterations = solved.total_iterations;
   summary.solves_at_iteration_cap = solved.solves_at_iteration_cap;
   summary.frames_unsolved = solved.frames_unsolved;
+  summary.chunks = solved.chunks;
+  summary.chunks_reused = solved.chunks_reused;
+  summary.chunks_warm = solved.chunks_warm;
   summary.unknown_rotations = unknowns;
   summary.contact_segments = locks.segments;
   summary.contact_rest_heights = rest;
@@ -306,13 +309,14 @@ void cleanupMotionInBlocks(const CleanupInput& input, const CleanupOptions& opti
   if (report) *report = std::move(summary);
 }
 
-Motion cleanupMotion(const CleanupInput& input, const CleanupOptions& options, CleanupReport* report) {
+Motion cleanupMotion(const CleanupInput& input, const CleanupOptions& options, CleanupReport* report,
+                     const CleanupControl& control) {
   Motion result = input.content;
   cleanupMotionInBlocks(input, options,
                         [&](const CleanedBlock& block) {
                           result.values.middleRows(block.first_frame, block.values.rows()) = block.values;
                         },
-                        report);
+                        report, control);
   return result;
 }
 

@@ -14,7 +14,9 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <atomic>
 #include <functional>
+#include <memory>
 #include <limits>
 #include <string>
 #include <utility>
@@ -64,12 +66,12 @@ struct CleanupOptions {
   int window_frames = 1;         // > 1 only with CleanupSolver::Ceres
   int window_overlap = 0;
   int max_iterations = 25;       // Levenberg-Marquardt iterations per solve (frame or window), >= 1
-  // The clip is solved in chunks of chunk_frames frames (a clip shorter than two chunks: in two halves,
-  // if each is at least three lead-ins long), each starting chunk_lead_in frames early from the
-  // content's pose (those frames are solved and dropped), so that chunks are independent and run on
-  // `threads` cores at once. The result depends on the chunk size, never on the thread count. 40
-  // frames of lead-in leave a chunk within 0.5 mm of one sweep over the whole clip (the smoothness
-  // terms' memory of a different start decays per frame, whatever the frame rate).
+  // The clip is solved in chunks of about chunk_frames frames (at least two once the clip is six
+  // lead-ins long, of equal work), each starting chunk_lead_in frames early from the content's pose
+  // (those frames are solved and dropped), so that chunks are independent and run on `threads` cores at
+  // once. The result depends on the chunk size, never on the thread count. 40 frames of lead-in leave
+  // a chunk within 0.5 mm of one sweep over the whole clip (the smoothness terms' memory of a
+  // different start decays per frame, whatever the frame rate).
   int chunk_frames = 480;
   int chunk_lead_in = 40;
   int threads = 0;               // chunks solved at once; 0: one per hardware thread
@@ -133,6 +135,9 @@ struct CleanupReport {
   int total_iterations = 0;        // summed over solves
   int solves_at_iteration_cap = 0;  // solves that stopped at max_iterations
   int frames_unsolved = 0;         // frames left at their warm start because the time budget ran out
+  int chunks = 0;                  // the clip's chunks (CleanupOptions::chunk_frames)
+  int chunks_reused = 0;           // taken unchanged from CleanupControl::memory
+  int chunks_warm = 0;             // re-solved from CleanupControl::memory's last solution
   double seconds = 0.0;            // wall clock of cleanupMotion
   int unknown_rotations = 0;       // joints whose rotation is solved (per frame)
   int contact_segments = 0;        // over the four contact tracks
@@ -144,6 +149,35 @@ struct CleanupReport {
   double max_position_residual_cm = 0.0;
   // Human-readable, e.g. "targets unreachable: left arm stretched by 12.0 cm at frames 40-60".
   std::vector<std::string> warnings;
+};
+
+// What a clean-up keeps for the next one of the same clip, for re-solving after a small edit: per chunk
+// (CleanupOptions::chunk_frames) a digest of everything its solve reads (content, targets, contact
+// locks, options) and its solution. The next clean-up given the same memory
+//   - reuses a chunk whose digest is unchanged as it is (what a full solve would give, exactly);
+//   - re-solves a changed chunk of the same clip and options starting every frame from its last
+//     solution instead of its predecessor's (a strength step moves every frame a little);
+//   - solves anything else (another clip, other options, another length) from scratch.
+// It holds every solved frame (about 1 KB each on a 24-joint rig): for interactive clips, not for
+// streaming a long clip. One clean-up at a time per memory.
+class CleanupMemory {
+ public:
+  CleanupMemory();
+  ~CleanupMemory();
+  CleanupMemory(const CleanupMemory&) = delete;
+  CleanupMemory& operator=(const CleanupMemory&) = delete;
+  struct Chunks;
+  Chunks& chunks() { return *chunks_; }  // ik/cleanup_solver.cpp's
+
+ private:
+  std::unique_ptr<Chunks> chunks_;
+};
+
+// How a caller steers one clean-up beyond its options: a cancel flag (checked before every frame;
+// OperationCancelled when it turns true) and a memory of the previous clean-up of the clip.
+struct CleanupControl {
+  const std::atomic<bool>* cancel = nullptr;
+  CleanupMemory* memory = nullptr;
 };
 
 // One block of the cleaned clip (frames first_frame .. first_frame + values.rows() - 1).
@@ -160,13 +194,14 @@ using CleanedBlockSink = std::function<void(const CleanedBlock&)>;
 // and, while the locks are planned, the feet's positions (96 bytes per frame). The values are exactly
 // those cleanupMotion returns. `report` is filled after the last block.
 void cleanupMotionInBlocks(const CleanupInput& input, const CleanupOptions& options, const CleanedBlockSink& sink,
-                           CleanupReport* report);
+                           CleanupReport* report, const CleanupControl& control = {});
 
 // Solves the clip. Returns a Motion on content's skeleton (same hierarchy, names, offsets, channel
 // layout, frame time and source) whose values are the solved rotations (degrees, each joint's own Euler
 // order) and root positions (file units). Throws std::invalid_argument from the validate steps.
 // `report` may be null. Never hangs: every solve is capped in iterations and by the time budget;
 // unreachable targets give a best-effort result and a warning.
-Motion cleanupMotion(const CleanupInput& input, const CleanupOptions& options, CleanupReport* report);
+Motion cleanupMotion(const CleanupInput& input, const CleanupOptions& options, CleanupReport* report,
+                     const CleanupControl& control = {});
 
 }  // namespace motionstyle

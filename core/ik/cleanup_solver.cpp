@@ -10,8 +10,11 @@
 #include "ik/cleanup_solver.h"
 
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <condition_variable>
+#include <cstdint>
+#include <cstring>
 #include <exception>
 #include <map>
 #include <memory>
@@ -20,6 +23,7 @@
 #include <thread>
 #include <utility>
 
+#include "common/errors.h"
 #include "ik/cleanup_window_solver.h"
 
 namespace motionstyle::ik_detail {
@@ -63,8 +67,84 @@ struct ChunkResult {
   std::vector<Eigen::Vector3d> roots;
   std::vector<Eigen::Quaterniond> rotations;  // (end - begin) x unknowns
   SolverOutput output;
+  bool reused = false, warm = false;  // from CleanupControl::memory
   std::exception_ptr error;
 };
+
+// FNV-1a over the bytes of the values a chunk's solve reads.
+class Digest {
+ public:
+  void add(const void* data, size_t bytes) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (size_t i = 0; i < bytes; ++i) value_ = (value_ ^ p[i]) * 1099511628211ull;
+  }
+  void add(double v) { add(&v, sizeof v); }
+  void add(int v) { add(&v, sizeof v); }
+  std::uint64_t value() const { return value_; }
+
+ private:
+  std::uint64_t value_ = 14695981039346656037ull;
+};
+
+}  // namespace
+
+// One chunk as the last clean-up left it (cleanup.h: CleanupMemory).
+struct ChunkMemory {
+  int begin = -1, end = -1, start = -1;  // frames [begin, end), its sweep from `start`
+  std::uint64_t clip = 0;                // the content's frames, the skeleton and the options
+  std::uint64_t inputs = 0;              // the targets, locks and problem constants
+  std::vector<Eigen::Vector3d> roots;    // frames start .. end - 1
+  std::vector<Eigen::Quaterniond> rotations;
+  SolverOutput output;
+};
+
+}  // namespace motionstyle::ik_detail
+
+namespace motionstyle {
+struct CleanupMemory::Chunks {
+  std::vector<ik_detail::ChunkMemory> chunks;
+};
+CleanupMemory::CleanupMemory() : chunks_(std::make_unique<Chunks>()) {}
+CleanupMemory::~CleanupMemory() = default;
+}  // namespace motionstyle
+
+namespace motionstyle::ik_detail {
+namespace {
+
+std::uint64_t clipDigest(const SolverInput& input, const CleanupOptions& options, int start, int end) {
+  Digest digest;
+  const Motion& content = input.content;
+  for (int f = start; f < end; ++f)  // row-major: one row is contiguous
+    digest.add(content.values.row(f).data(), sizeof(double) * static_cast<size_t>(content.values.cols()));
+  digest.add(content.frame_time);
+  digest.add(content.skeleton.jointCount());
+  for (const Joint& joint : content.skeleton.joints) digest.add(joint.offset.data(), sizeof(double) * 3);
+  for (double weight : {options.position_weight, options.hips_weight, options.contact_weight, options.floor_weight,
+                        options.root_smoothness_weight, options.rotation_smoothness_weight,
+                        options.prior_weight_mapped, options.prior_weight_unmapped})
+    digest.add(weight);
+  for (int value : {options.max_iterations, options.window_frames, options.window_overlap, options.chunk_frames,
+                    options.chunk_lead_in, static_cast<int>(options.solver), options.lock_contacts ? 1 : 0,
+                    options.keep_above_floor ? 1 : 0})
+    digest.add(value);
+  return digest.value();
+}
+
+std::uint64_t inputsDigest(const SolverInput& input, int start, int end) {
+  Digest digest;
+  for (int f = start; f < end; ++f) {
+    for (Eigen::Index column = 0; column < input.targets.cols(); ++column) digest.add(input.targets(f, column));
+    for (Eigen::Index i = 0; i < input.lock_weights.cols(); ++i) {
+      digest.add(input.lock_weights(f, i));
+      if (input.lock_weights(f, i) != 0.0)  // an unused lock's position is never read (nor set)
+        digest.add(input.lock_positions[static_cast<size_t>(f)][static_cast<size_t>(i)].data(), sizeof(double) * 3);
+    }
+  }
+  digest.add(input.constants.cm_per_unit);
+  digest.add(input.constants.up.data(), sizeof(double) * 3);
+  digest.add(input.constants.floor_height);
+  return digest.value();
+}
 
 class ChunkSweep {
  public:
@@ -74,9 +154,30 @@ class ChunkSweep {
         solver_(makeWindowSolver(input.model, options, input.constants,
                                  std::min(options.window_frames, input.content.frameCount()))) {}
 
-  void run(ChunkResult& chunk) {
+  // Solves `chunk`, or takes it from `memory` (the chunk's slot of a CleanupMemory, or null), which
+  // then holds this solve.
+  void run(ChunkResult& chunk, ChunkMemory* memory) {
     const int start = std::max(0, chunk.begin - options_.chunk_lead_in);
     const int frames = chunk.end - start;
+    warm_ = nullptr;
+    std::uint64_t clip = 0, inputs = 0;
+    if (memory) {
+      clip = clipDigest(input_, options_, start, chunk.end);
+      inputs = inputsDigest(input_, start, chunk.end);
+      if (memory->begin == chunk.begin && memory->end == chunk.end && memory->start == start && memory->clip == clip) {
+        if (memory->inputs == inputs) {
+          chunk.roots.assign(memory->roots.begin() + (chunk.begin - start), memory->roots.end());
+          chunk.rotations.assign(memory->rotations.begin() + static_cast<std::ptrdiff_t>((chunk.begin - start) * unknowns_),
+                                 memory->rotations.end());
+          chunk.output = memory->output;  // its costs; nothing was solved this time
+          chunk.output.solves = chunk.output.total_iterations = chunk.output.solves_at_iteration_cap = 0;
+          chunk.reused = true;
+          return;
+        }
+        warm_ = memory;
+        chunk.warm = true;
+      }
+    }
     const int window = std::min(solver_->window(), frames);
     const int step = std::max(1, window - std::min(options_.window_overlap, window - 1));
     roots_.assign(static_cast<size_t>(frames), Eigen::Vector3d::Zero());
@@ -87,6 +188,7 @@ class ChunkSweep {
     int next_final = start;  // the first frame not yet final
     for (int first = start; first < chunk.end;) {
       first = std::min(first, chunk.end - window);
+      if (input_.control.cancel && input_.control.cancel->load()) throw OperationCancelled();
       loadWindow(first, window, chunk.end);
       const double remaining = std::chrono::duration<double>(deadline_ - Clock::now()).count();
       if (remaining > 0.0) {
@@ -106,6 +208,11 @@ class ChunkSweep {
     chunk.roots.assign(roots_.begin() + (chunk.begin - start), roots_.end());
     chunk.rotations.assign(rotations_.begin() + static_cast<std::ptrdiff_t>((chunk.begin - start) * unknowns_),
                            rotations_.end());
+    if (memory) {
+      *memory = ChunkMemory{};
+      if (chunk.output.frames_unsolved > 0) return;  // not a solution to start from or to reuse
+      *memory = ChunkMemory{chunk.begin, chunk.end, start, clip, inputs, roots_, rotations_, chunk.output};
+    }
   }
 
  private:
@@ -114,11 +221,16 @@ class ChunkSweep {
     return &rotations_[static_cast<size_t>(frame - start_) * static_cast<size_t>(unknowns_)];
   }
 
-  // The next frame's warm start (frames are warmed once each, in order).
+  // The next frame's warm start (frames are warmed once each, in order): the last clean-up's solution
+  // of the frame when the memory has one, else as the header says.
   void warmStartNext() {
     const int frame = start_ + warmed_++;
     const int hips = input_.hips_joint;
-    if (frame == start_) {
+    if (warm_) {
+      const auto row = static_cast<size_t>(frame - start_);
+      root(frame) = warm_->roots[row];
+      std::copy_n(&warm_->rotations[row * static_cast<size_t>(unknowns_)], unknowns_, rotations(frame));
+    } else if (frame == start_) {
       const Eigen::Vector3d content_hips =
           worldPositions(input_.content.skeleton, localPoses(input_.content, frame, 1), std::span<const int>(&hips, 1))
               .row(0).transpose();
@@ -168,6 +280,7 @@ class ChunkSweep {
   ContentPoseBlock content_;
   std::unique_ptr<WindowSolver> solver_;
   int start_ = 0, warmed_ = 0;
+  const ChunkMemory* warm_ = nullptr;  // the last solution of this chunk, or null
   std::vector<Eigen::Vector3d> roots_;
   std::vector<Eigen::Quaterniond> rotations_;
 };
@@ -184,18 +297,22 @@ void addOutput(SolverOutput& total, const SolverOutput& part) {
   total.frames_unsolved += part.frames_unsolved;
 }
 
-// The chunks' frame ranges: chunk_frames long; a clip shorter than two chunks is cut in two parts of
-// equal work (the second's lead-in counted) when each is at least three lead-ins long, so that short
-// clips use two cores too. Depends on the clip's length and the options only, never on the threads.
+// The chunks' frame ranges: about chunk_frames long, at least two when the clip is six lead-ins long
+// (so that short clips use two cores too), and of equal work: the first, which has no lead-in, is
+// longer by one lead-in. Depends on the clip's length and the options only, never on the thread count.
 std::vector<std::pair<int, int>> chunkRanges(int frames, const CleanupOptions& options) {
   const int lead_in = options.chunk_lead_in;
-  if (frames < 2 * options.chunk_frames && frames >= 6 * lead_in) {
-    const int first = (frames + lead_in + 1) / 2;
-    return {{0, first}, {first, frames}};
-  }
+  if (frames < 6 * lead_in) return {{0, frames}};
+  const int count = std::max(2, static_cast<int>(std::lround(frames / static_cast<double>(options.chunk_frames))));
+  const int length = (frames - lead_in) / count;  // the others; the first: length + lead_in
+  if (length < 1) return {{0, frames}};
   std::vector<std::pair<int, int>> ranges;
-  for (int begin = 0; begin < frames; begin += options.chunk_frames)
-    ranges.emplace_back(begin, std::min(frames, begin + options.chunk_frames));
+  int begin = 0;
+  for (int k = 0; k < count; ++k) {
+    const int end = k + 1 == count ? frames : begin + length + (k == 0 ? lead_in : 0);
+    ranges.emplace_back(begin, end);
+    begin = end;
+  }
   return ranges;
 }
 
@@ -210,6 +327,8 @@ SolverOutput solveCleanup(const SolverInput& input, const CleanupOptions& option
   const auto unknowns = static_cast<size_t>(input.model.unknownCount());
   const std::vector<std::pair<int, int>> ranges = chunkRanges(static_cast<int>(input.targets.rows()), options);
   const int chunks = static_cast<int>(ranges.size());
+  std::vector<ChunkMemory>* memory = input.control.memory ? &input.control.memory->chunks().chunks : nullptr;
+  if (memory) memory->resize(static_cast<size_t>(chunks));  // each worker writes its own chunks' slots
   const int hardware = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const int threads = std::clamp(options.threads > 0 ? options.threads : hardware, 1, chunks);
   const int ahead = 2 * threads;
@@ -232,7 +351,7 @@ SolverOutput solveCleanup(const SolverInput& input, const CleanupOptions& option
         chunk.index = next++;
       }
       try {
-        sweep.run(chunk);
+        sweep.run(chunk, memory ? &(*memory)[static_cast<size_t>(chunk.index)] : nullptr);
       } catch (...) {
         chunk.error = std::current_exception();
       }
@@ -266,6 +385,9 @@ SolverOutput solveCleanup(const SolverInput& input, const CleanupOptions& option
       }
       if (chunk.error) std::rethrow_exception(chunk.error);
       addOutput(out, chunk.output);
+      ++out.chunks;
+      if (chunk.reused) ++out.chunks_reused;
+      if (chunk.warm) ++out.chunks_warm;
       for (int f = chunk.begin; f < chunk.end; ++f) {
         const auto row = static_cast<size_t>(f - chunk.begin);
         sink(f, chunk.roots[row], &chunk.rotations[row * unknowns]);
@@ -278,6 +400,7 @@ SolverOutput solveCleanup(const SolverInput& input, const CleanupOptions& option
     }
   } catch (...) {
     stopWorkers();
+    if (memory) memory->clear();  // a cancelled or failed clean-up leaves nothing to trust
     throw;
   }
   stopWorkers();

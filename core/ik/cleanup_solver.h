@@ -24,6 +24,7 @@ struct SolverInput {
   const Eigen::MatrixXd& lock_weights;   // frames x 4
   ProblemConstants constants;
   double time_budget_seconds = 60.0;
+  CleanupControl control;
 };
 
 struct SolverOutput {
@@ -32,6 +33,7 @@ struct SolverOutput {
   int total_iterations = 0;
   int solves_at_iteration_cap = 0;
   int frames_unsolved = 0;
+  int chunks = 0, chunks_reused = 0, chunks_warm = 0;
 };
 
 // Receives each frame's final solution, once, in frame order: the root position (file units) and the

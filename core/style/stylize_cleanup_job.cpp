@@ -30,7 +30,8 @@ StylizeCleanupResult StylizeCleanupJob::run(const std::atomic<bool>* cancel) con
     result.stylized = stylizer->stylize(features, strength, path);
   }
   throwIfCancelled(cancel);
-  StylizedCleanup cleanup = cleanUpStylizedClip(content, mapping, result.stylized, options, output_fps, contact_overrides);
+  StylizedCleanup cleanup = cleanUpStylizedClip(content, mapping, result.stylized, options, output_fps, contact_overrides,
+                                                CleanupControl{cancel, memory.get()});
   throwIfCancelled(cancel);
   result.cleaned = std::move(cleanup.motion);
   result.report = std::move(cleanup.report);

@@ -45,6 +45,9 @@ struct StylizeCleanupJob {
   Eigen::MatrixXi contact_overrides;
   CleanupOptions options;
   double output_fps = 0.0;  // the cleaned clip's rate (resampled): 0 = the content's own
+  // The previous clean-up of this clip (ik/cleanup.h): after a small edit only what changed is solved
+  // again, from the last solution. Null: solve everything. One job at a time per memory.
+  std::shared_ptr<CleanupMemory> memory;
 
   // std::invalid_argument: neither a network nor a stylized clip, a strength outside [0, 1], overrides
   // whose shape is not content frames x 4.
@@ -52,7 +55,7 @@ struct StylizeCleanupJob {
 
   // Validates, stylizes (unless `stylized` is given) and cleans up. Throws InputError (an unmappable or
   // too short clip), std::invalid_argument (a stylized clip that does not belong to the content) and
-  // OperationCancelled when `cancel` is seen between steps (the IK solve itself runs to its end).
+  // OperationCancelled when `cancel` is seen (between steps, and before every frame of the clean-up).
   StylizeCleanupResult run(const std::atomic<bool>* cancel = nullptr) const;
 };
 

@@ -64,7 +64,8 @@ double fileFloorHeight(const FeatureAnchor& anchor) {
 
 StylizedCleanup cleanUpStylizedClip(const Motion& content, const JointMapping& mapping, const StylizedClip& stylized,
                                     const CleanupOptions& options, double output_fps,
-                                    const Eigen::MatrixXi& contact_overrides) {
+                                    const Eigen::MatrixXi& contact_overrides,
+                                    const CleanupControl& control) {
   if (contact_overrides.size() > 0 &&
       (contact_overrides.rows() != content.frameCount() || contact_overrides.cols() != kContactCount))
     throw std::invalid_argument("cleanUpStylizedClip: contact overrides are " + std::to_string(contact_overrides.rows()) +
@@ -99,7 +100,7 @@ StylizedCleanup cleanUpStylizedClip(const Motion& content, const JointMapping& m
   result.contacts = contacts;
   const CleanupInput input(at_rate, mapping, stylized.world_positions, contacts, up, floor,
                            anchor.convention.cm_per_unit);
-  Motion cleaned = cleanupMotion(input, options, &result.report);
+  Motion cleaned = cleanupMotion(input, options, &result.report, control);
 
   // Raw output: canonical joints only, judged against the content's own canonical bone lengths.
   const Eigen::MatrixXd content_world = worldPositions(at_rate);

@@ -27,11 +27,11 @@ struct StylizedCleanup {
 // canonical joints. output_fps <= 0 keeps the content's rate, and then the frame count too (frames
 // past the last solved one hold its pose). contact_overrides: the user's per-frame overrides at the
 // content's rate (frames x 4, -1 automatic / 0 off / 1 on; ik/contacts.h), or empty; they win over
-// the labels the locks would use. Throws std::invalid_argument when the stylized clip does not belong
+// the labels the locks would use. control: the clean-up's cancel flag and memory (ik/cleanup.h). Throws std::invalid_argument when the stylized clip does not belong
 // to the content (frame counts disagree after resampling) or the overrides have the wrong shape.
 StylizedCleanup cleanUpStylizedClip(const Motion& content, const JointMapping& mapping, const StylizedClip& stylized,
                                     const CleanupOptions& options = {}, double output_fps = 0.0,
-                                    const Eigen::MatrixXi& contact_overrides = {});
+                                    const Eigen::MatrixXi& contact_overrides = {}, const CleanupControl& control = {});
 
 // The floor height along the file's up axis, in file units, of a clip whose features have this anchor.
 double fileFloorHeight(const FeatureAnchor& anchor);

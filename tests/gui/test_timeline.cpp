@@ -177,7 +177,7 @@ class TimelineTest : public QObject {
     QCOMPARE(timeline.speed(), 0.25);
   }
 
-  void trackPaintingEmitsOneEditPerStroke() {
+  void trackPaintingEmitsAsTheStrokeGrowsAndOnRelease() {
     TrackView tracks;
     tracks.setFrameCount(100);
     QCOMPARE(tracks.addBoolTrack(QStringLiteral("Left foot"), Qt::yellow), 0);
@@ -192,13 +192,17 @@ class TimelineTest : public QObject {
     QCOMPARE(tracks.frameAt(x(10)), 10);
     QTest::mousePress(&tracks, Qt::LeftButton, Qt::NoModifier, QPoint(x(10), y0));
     QTest::mouseMove(&tracks, QPoint(x(30), y0));  // a fast drag: frames in between are painted too
-    QTest::mouseMove(&tracks, QPoint(x(20), y0));
-    QTest::mouseRelease(&tracks, Qt::LeftButton, Qt::NoModifier, QPoint(x(20), y0));
+    QCOMPARE(edited.count(), 1);                     // while the hand is on it: the result can follow
+    QTest::mouseMove(&tracks, QPoint(x(20), y0));   // back inside the stroke: nothing new
     QCOMPARE(edited.count(), 1);
-    QCOMPARE(edited.at(0).at(0).toInt(), 0);
-    QCOMPARE(edited.at(0).at(1).toInt(), 10);
-    QCOMPARE(edited.at(0).at(2).toInt(), 30);
-    QCOMPARE(edited.at(0).at(3).toBool(), true);
+    QTest::mouseRelease(&tracks, Qt::LeftButton, Qt::NoModifier, QPoint(x(20), y0));
+    QCOMPARE(edited.count(), 2);                     // and the whole stroke on release
+    for (const QList<QVariant>& edit : edited) {
+      QCOMPARE(edit.at(0).toInt(), 0);
+      QCOMPARE(edit.at(1).toInt(), 10);
+      QCOMPARE(edit.at(2).toInt(), 30);
+      QCOMPARE(edit.at(3).toBool(), true);
+    }
     const auto& left = tracks.boolValues(0);
     QVERIFY(!left[9]);
     for (int f = 10; f <= 30; ++f) QVERIFY(left[static_cast<size_t>(f)]);
@@ -207,15 +211,15 @@ class TimelineTest : public QObject {
     // On a frame that is set, the stroke clears.
     const int y1 = tracks.boolTrackRect(1).center().y();
     QTest::mouseClick(&tracks, Qt::LeftButton, Qt::NoModifier, QPoint(x(50), y1));
-    QCOMPARE(edited.count(), 2);
-    QCOMPARE(edited.at(1).at(3).toBool(), false);
+    QCOMPARE(edited.count(), 3);  // a click: the release only
+    QCOMPARE(edited.at(2).at(3).toBool(), false);
     QVERIFY(!tracks.boolValues(1)[50]);
     QVERIFY(tracks.boolValues(1)[49]);
 
     // Read-only tracks ignore strokes.
     tracks.setEditable(false);
     QTest::mouseClick(&tracks, Qt::LeftButton, Qt::NoModifier, QPoint(x(70), y0));
-    QCOMPARE(edited.count(), 2);
+    QCOMPARE(edited.count(), 3);
     QVERIFY(!tracks.boolValues(0)[70]);
   }
 

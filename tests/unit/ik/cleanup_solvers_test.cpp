@@ -7,7 +7,10 @@
 #include <random>
 #include <stdexcept>
 
+#include <atomic>
+
 #include "bvh/bvh_reader.h"
+#include "common/errors.h"
 #include "features/foot_contacts.h"
 #include "ik/cleanup.h"
 #include "ik/cleanup_frame_solver.h"
@@ -225,7 +228,8 @@ class CleanupSolvers : public ::testing::Test {
   }
 
   ClipMetrics metricsOf(const Motion& result) const {
-    MetricsInput input{worldPositions(result), mapping.joints, skeletonBones(clip.skeleton)};
+    const Eigen::MatrixXd world = worldPositions(result);  // MetricsInput refers to it
+    MetricsInput input{world, mapping.joints, skeletonBones(clip.skeleton)};
     input.contacts = contacts;
     input.targets = targets;
     input.up = up;
@@ -272,6 +276,69 @@ TEST_F(CleanupSolvers, ChunksJoinWhereOneSweepWouldBe) {
   whole.chunk_frames = clip.frameCount();
   const Eigen::MatrixXd a = worldPositions(clean(chunked)), b = worldPositions(clean(whole));
   EXPECT_LT((a - b).cwiseAbs().maxCoeff() * cm, 0.1) << "cm";  // under a millimetre anywhere
+}
+
+}  // namespace
+}  // namespace motionstyle
+
+namespace motionstyle {
+namespace {
+
+TEST_F(CleanupSolvers, MemoryReusesWhatDidNotChangeAndMatchesAFullSolve) {
+  CleanupOptions options;
+  options.chunk_frames = 120;
+  CleanupMemory memory;
+  CleanupReport first, again;
+  const Motion a = cleanupMotion(CleanupInput{clip, mapping, targets, contacts, up, floor, cm}, options, &first,
+                                 {nullptr, &memory});
+  EXPECT_EQ(first.chunks_reused, 0);
+  const Motion b = cleanupMotion(CleanupInput{clip, mapping, targets, contacts, up, floor, cm}, options, &again,
+                                 {nullptr, &memory});
+  EXPECT_EQ(again.chunks_reused, again.chunks);
+  EXPECT_EQ(again.solves, 0);
+  EXPECT_EQ(a.values, b.values);
+  EXPECT_DOUBLE_EQ(again.final_costs.total(), first.final_costs.total());
+
+  // One target moved late in the clip: only the chunks that read that frame are solved again, and the
+  // result is what a clean-up without memory gives (within the solver's tolerance).
+  Eigen::MatrixXd edited = targets;
+  const int frame = clip.frameCount() - 30;
+  edited.block<1, 3>(frame, 3 * index(CanonicalJoint::LeftWrist)) += Eigen::RowVector3d(3.0, 0.0, 0.0) / cm;
+  CleanupReport partial;
+  const Motion c = cleanupMotion(CleanupInput{clip, mapping, edited, contacts, up, floor, cm}, options, &partial,
+                                 {nullptr, &memory});
+  EXPECT_EQ(partial.chunks_reused, partial.chunks - 1);
+  EXPECT_EQ(partial.chunks_warm, 1);
+  const Motion full = cleanupMotion(CleanupInput{clip, mapping, edited, contacts, up, floor, cm}, options, nullptr);
+  EXPECT_LT((worldPositions(c) - worldPositions(full)).cwiseAbs().maxCoeff() * cm, 0.05);
+  EXPECT_EQ(c.values.topRows(frame - 120 - options.chunk_lead_in), full.values.topRows(frame - 120 - options.chunk_lead_in));
+}
+
+TEST_F(CleanupSolvers, ACleanupWithMemoryOfAnotherClipSolvesEverything) {
+  CleanupOptions options;
+  options.chunk_frames = 120;
+  CleanupMemory memory;
+  cleanupMotion(CleanupInput{clip, mapping, targets, contacts, up, floor, cm}, options, nullptr, {nullptr, &memory});
+  Motion other = clip;
+  other.values.col(10).array() += 1.0;  // another clip of the same length and rig
+  CleanupReport report;
+  const Motion with_memory = cleanupMotion(CleanupInput{other, mapping, targets, contacts, up, floor, cm}, options,
+                                           &report, {nullptr, &memory});
+  EXPECT_EQ(report.chunks_reused, 0);
+  EXPECT_EQ(report.chunks_warm, 0);
+  EXPECT_EQ(with_memory.values, cleanupMotion(CleanupInput{other, mapping, targets, contacts, up, floor, cm}, options,
+                                              nullptr).values);
+}
+
+TEST_F(CleanupSolvers, CancelStopsTheSolveAndForgetsTheMemory) {
+  std::atomic<bool> cancel{true};
+  CleanupMemory memory;
+  EXPECT_THROW(cleanupMotion(CleanupInput{clip, mapping, targets, contacts, up, floor, cm}, {}, nullptr,
+                             {&cancel, &memory}),
+               OperationCancelled);
+  CleanupReport report;
+  cleanupMotion(CleanupInput{clip, mapping, targets, contacts, up, floor, cm}, {}, &report, {nullptr, &memory});
+  EXPECT_EQ(report.chunks_reused, 0);
 }
 
 }  // namespace
