@@ -141,7 +141,8 @@ class ResultPanel : public QWidget {
   void refreshControls();
   void refreshFamiliarity();
   // An input of the result changed (`what`, e.g. "the style changed"): a shown result becomes stale
-  // and, like a running job made for the old inputs, is replaced by a new run when one is possible.
+  // and is replaced by a new run when one is possible; while a job runs, one run for the latest inputs
+  // follows it (see pending_). Called for every step of a slider drag or a contact stroke.
   void inputsChanged(const QString& what);
   bool canStylize() const;  // a mapped content and a network or stylized clip
   void report(const QString& title, const QString& message);

@@ -10,7 +10,8 @@
 // Everything happens in the clip's FILE SPACE (file length units, file axes), because that is what is
 // exported. Thresholds, weights and reported figures are in centimetres via `cm_per_unit`.
 //
-// Rotations solved as quaternions with Ceres (cleanup_solver.cpp); Ceres never appears in this header.
+// Rotations solved as quaternions frame by frame on the joint tree (cleanup_frame_solver.h), the clip in
+// chunks on all cores (cleanup_solver.cpp); Ceres, the reference, never appears in this header.
 
 #include <Eigen/Core>
 #include <array>
@@ -33,7 +34,7 @@ enum class CleanupSolver { KinematicTree, Ceres };
 
 struct CleanupOptions {
   // --- Cost weights. Each residual is (weight x error), errors in cm or radians, so the weights do not
-  // depend on the file's unit. Ceres minimises the sum of squared residuals.
+  // depend on the file's unit. The solver minimises the sum of squared residuals.
   double position_weight = 1.0;         // mapped joint world position vs target, per cm
   // The hips follow their target more firmly than the other joints, so that the character keeps the
   // output's root path (the content's, when its path is kept: style/path_mode.h) while the locked feet

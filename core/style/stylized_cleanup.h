@@ -1,6 +1,6 @@
 #pragma once
 // The last step of stylize / transfer: the stylized canonical joint positions become a clean clip on
-// the content's OWN skeleton through the Ceres IK clean-up (ik/cleanup.h), with the quality metrics
+// the content's OWN skeleton through the IK clean-up (ik/cleanup.h), with the quality metrics
 // before (raw network output) and after (the cleaned clip).
 //
 // Rates: the stylized clip is at the representation's 60 fps. The content is resampled to that rate for
