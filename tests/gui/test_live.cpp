@@ -7,7 +7,6 @@
 // value; a contact stroke late in the clip re-solves only the chunk it touches.
 #include <QFile>
 #include <QRegularExpression>
-#include <QSignalSpy>
 #include <QSlider>
 #include <QStyle>
 #include <QTemporaryDir>
@@ -99,6 +98,18 @@ class LiveTest : public QObject {
   QString log_;
   std::filesystem::path network_;
 
+  // The user's path to a first result: the window shown, `clip` opened as the content, the elderly
+  // network chosen, Stylize, and the result in.
+  bool showStylized(MainWindow& window, const QString& clip) {
+    window.resize(1400, 900);
+    window.show();
+    if (!QTest::qWaitForWindowExposed(&window) || window.openFiles({clip}) != 1) return false;
+    ResultPanel* panel = window.resultPanel();
+    if (!panel->loadNetworkFile(QString::fromStdString(network_.string()))) return false;
+    panel->stylize();
+    return QTest::qWaitFor([&] { return panel->result() != nullptr && !panel->isBusy(); }, kJobTimeoutMs);
+  }
+
  private slots:
   void initTestCase() {
     QVERIFY(scratch_.isValid());
@@ -123,16 +134,8 @@ class LiveTest : public QObject {
     QFETCH(QString, fixture);
     const QString clip = writeClip(scratch_, fixture, QStringLiteral("clip_500.bvh"));
     MainWindow window(false);
-    window.resize(1400, 900);
-    window.show();
-    QVERIFY(QTest::qWaitForWindowExposed(&window));
-    QCOMPARE(window.openFiles({clip}), 1);
+    QVERIFY(showStylized(window, clip));
     ResultPanel* panel = window.resultPanel();
-    QVERIFY(panel->loadNetworkFile(QString::fromStdString(network_.string())));
-    QSignalSpy ended(panel, &ResultPanel::jobEnded);
-    panel->stylize();
-    QVERIFY(QTest::qWaitFor([&] { return !ended.isEmpty() && !panel->isBusy(); }, kJobTimeoutMs));
-    QVERIFY(panel->result() != nullptr);
 
     auto* slider = panel->findChild<QSlider*>(QStringLiteral("StrengthSlider"));
     QVERIFY(slider != nullptr && slider->isEnabled());
@@ -165,14 +168,8 @@ class LiveTest : public QObject {
   void paintingAContactReSolvesOnlyWhatItTouches() {
     const QString clip = writeClip(scratch_, QStringLiteral("cmu_131_01.bvh"), QStringLiteral("clip_contacts.bvh"));
     MainWindow window(false);
-    window.resize(1400, 900);
-    window.show();
-    QVERIFY(QTest::qWaitForWindowExposed(&window));
-    QCOMPARE(window.openFiles({clip}), 1);
+    QVERIFY(showStylized(window, clip));
     ResultPanel* panel = window.resultPanel();
-    QVERIFY(panel->loadNetworkFile(QString::fromStdString(network_.string())));
-    panel->stylize();
-    QVERIFY(QTest::qWaitFor([&] { return panel->result() != nullptr && !panel->isBusy(); }, kJobTimeoutMs));
 
     TrackView* tracks = window.timeline()->trackView();
     QVERIFY(tracks->isVisible());

@@ -93,14 +93,7 @@ void runOnce(const Scenario& s, const Eigen::MatrixXd& targets, const CleanupOpt
   std::sort(runs.begin(), runs.end());
   const auto [wall_seconds, cpu_seconds] = runs[1];
   const Eigen::MatrixXd world = worldPositions(cleaned);
-  MetricsInput metrics_input{world, s.mapping.joints, skeletonBones(cleaned.skeleton)};
-  metrics_input.contacts = s.contacts;
-  metrics_input.targets = targets;
-  metrics_input.up = s.up;
-  metrics_input.floor_height = s.floor;
-  metrics_input.cm_per_unit = s.cm_per_unit;
-  metrics_input.fps = cleaned.fps();
-  const ClipMetrics m = computeMetrics(metrics_input);
+  const ClipMetrics m = test::cleanedClipMetrics(world, cleaned, s.mapping, s.contacts, targets, s.up, s.floor, s.cm_per_unit);
   const Eigen::MatrixXd clean_canonical = test::canonicalPositions(s.world, s.mapping);
   const Eigen::MatrixXd result_canonical = test::canonicalPositions(world, s.mapping);
   double change = 0.0;

@@ -44,14 +44,7 @@ class CleanupRealClip : public ::testing::TestWithParam<Fixture> {
   }
 
   ClipMetrics metricsOf(const Eigen::MatrixXd& result_world, const Eigen::MatrixXd& targets) const {
-    MetricsInput input{result_world, mapping.joints, skeletonBones(clip.skeleton)};
-    input.contacts = contacts;
-    input.targets = targets;
-    input.up = up;
-    input.floor_height = floor;
-    input.cm_per_unit = cm;
-    input.fps = clip.fps();
-    return computeMetrics(input);
+    return test::cleanedClipMetrics(result_world, clip, mapping, contacts, targets, up, floor, cm);
   }
 
   Motion clip;

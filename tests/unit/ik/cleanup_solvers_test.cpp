@@ -4,7 +4,9 @@
 // the result, and chunks join where a single sweep would have been.
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <random>
+#include <utility>
 #include <stdexcept>
 
 #include <atomic>
@@ -70,6 +72,29 @@ class FrameProblem : public ::testing::Test {
 
   FrameRef ref(int k) const { return {&roots[k], rotations[k].data()}; }
 
+  // The start pose (frame f) moved by `step` along solver coordinate i: [P; d_0; ...], a rotation step
+  // turning on the right, as the solver's own steps do.
+  std::pair<Eigen::Vector3d, std::vector<Eigen::Quaterniond>> perturbed(int i, double step) const {
+    Eigen::Vector3d root = roots[2];
+    std::vector<Eigen::Quaterniond> q = rotations[2];
+    if (i < 3) {
+      root[i] += step;
+    } else {
+      Eigen::Quaterniond& turned = q[static_cast<size_t>(i / 3 - 1)];
+      turned = turned * Eigen::Quaterniond(Eigen::AngleAxisd(step, Eigen::Vector3d::Unit(i % 3)));
+    }
+    return {root, q};
+  }
+
+  // The Ceres window solver of one frame, loaded with this frame at the start pose.
+  std::unique_ptr<ik_detail::WindowSolver> ceresAtStart() const {
+    auto ceres = ik_detail::makeCeresWindowSolver(model, options, constants, 1);
+    ceres->frame(0) = data;
+    ceres->setPrevious(ref(0), ref(1));
+    ceres->setStart(0, roots[2], rotations[2].data());
+    return ceres;
+  }
+
   Motion clip;
   JointMapping mapping;
   ik_detail::CleanupModel model;
@@ -106,12 +131,8 @@ TEST(CleanupSolverOptions, RejectsWindowsForTheTreeSolverAndBadChunks) {
 
 TEST_F(FrameProblem, CostIsTheCeresFunctorsCost) {
   ik_detail::FrameSolver tree(model, options, constants);
-  auto ceres = ik_detail::makeCeresWindowSolver(model, options, constants, 1);
-  ceres->frame(0) = data;
-  ceres->setPrevious(ref(0), ref(1));
-  ceres->setStart(0, roots[2], rotations[2].data());
   CleanupTermCosts reference;
-  ceres->addCosts(0, reference);
+  ceresAtStart()->addCosts(0, reference);
   const CleanupTermCosts ours = tree.costs(data, ref(0), ref(1), roots[2], rotations[2].data());
   ASSERT_GT(ours.floor, 0.0) << "the floor term must be active for this check";
   ASSERT_GT(ours.contact, 0.0);
@@ -127,16 +148,7 @@ TEST_F(FrameProblem, GradientMatchesCentralDifferences) {
   for (int i = 0; i < gradient.size(); ++i) {
     double sides[2];
     for (int side = 0; side < 2; ++side) {
-      Eigen::Vector3d root = roots[2];
-      std::vector<Eigen::Quaterniond> q = rotations[2];
-      const double step = side == 0 ? h : -h;
-      if (i < 3) {
-        root[i] += step;
-      } else {
-        Eigen::Vector3d d = Eigen::Vector3d::Zero();
-        d[i % 3] = step;
-        q[static_cast<size_t>(i / 3 - 1)] = q[static_cast<size_t>(i / 3 - 1)] * Eigen::Quaterniond(Eigen::AngleAxisd(d.norm(), d.normalized()));
-      }
+      const auto [root, q] = perturbed(i, side == 0 ? h : -h);
       sides[side] = tree.costs(data, ref(0), ref(1), root, q.data()).total();
     }
     const double numeric = (sides[0] - sides[1]) / (2.0 * h);
@@ -170,16 +182,7 @@ TEST_F(FrameProblem, NormalMatrixMatchesDifferencesOfTheGradientAtAZeroResidual)
   for (int j = 0; j < normal.cols(); ++j) {
     Eigen::VectorXd sides[2];
     for (int side = 0; side < 2; ++side) {
-      Eigen::Vector3d root = roots[2];
-      std::vector<Eigen::Quaterniond> q = rotations[2];
-      const double step = side == 0 ? h : -h;
-      if (j < 3) {
-        root[j] += step;
-      } else {
-        Eigen::Vector3d d = Eigen::Vector3d::Zero();
-        d[j % 3] = step;
-        q[static_cast<size_t>(j / 3 - 1)] = q[static_cast<size_t>(j / 3 - 1)] * Eigen::Quaterniond(Eigen::AngleAxisd(d.norm(), d.normalized()));
-      }
+      const auto [root, q] = perturbed(j, side == 0 ? h : -h);
       sides[side] = tree.gradient(data, pose, pose, root, q.data());
     }
     numeric.col(j) = (sides[0] - sides[1]) / (2.0 * h);
@@ -196,10 +199,7 @@ TEST_F(FrameProblem, SolvedFrameReachesCeresCost) {
   const double start = tree.costs(data, ref(0), ref(1), root, q.data()).total();
   const ik_detail::FrameSolveResult ours = tree.solve(data, ref(0), ref(1), root, q.data());
 
-  auto ceres = ik_detail::makeCeresWindowSolver(model, options, constants, 1);
-  ceres->frame(0) = data;
-  ceres->setPrevious(ref(0), ref(1));
-  ceres->setStart(0, roots[2], rotations[2].data());
+  auto ceres = ceresAtStart();
   const ik_detail::WindowSolveStats ceres_stats = ceres->solve(60.0);
   CleanupTermCosts reference;
   ceres->addCosts(0, reference);
@@ -228,15 +228,7 @@ class CleanupSolvers : public ::testing::Test {
   }
 
   ClipMetrics metricsOf(const Motion& result) const {
-    const Eigen::MatrixXd world = worldPositions(result);  // MetricsInput refers to it
-    MetricsInput input{world, mapping.joints, skeletonBones(clip.skeleton)};
-    input.contacts = contacts;
-    input.targets = targets;
-    input.up = up;
-    input.floor_height = floor;
-    input.cm_per_unit = cm;
-    input.fps = clip.fps();
-    return computeMetrics(input);
+    return test::cleanedClipMetrics(worldPositions(result), clip, mapping, contacts, targets, up, floor, cm);
   }
 
   Motion clip;

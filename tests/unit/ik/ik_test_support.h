@@ -14,6 +14,7 @@
 #include "features/feature_layout.h"
 #include "ik/cleanup.h"
 #include "ik/contacts.h"
+#include "ik/metrics.h"
 #include "mapping/joint_mapping.h"
 #include "motion/kinematics.h"
 #include "motion/motion.h"
@@ -113,6 +114,22 @@ inline Eigen::MatrixXd canonicalPositions(const Eigen::MatrixXd& world, const Jo
   for (int c = 0; c < kCanonicalJointCount; ++c)
     canonical.middleCols<3>(3 * c) = world.middleCols<3>(3 * mapping.joints[static_cast<size_t>(c)]);
   return canonical;
+}
+
+// The quality metrics of a cleaned clip (`world`: its world positions, every joint) against the targets
+// it was cleaned toward, judged by `contacts` on the content's floor: what the clean-up tests and
+// bench_ik report.
+inline ClipMetrics cleanedClipMetrics(const Eigen::MatrixXd& world, const Motion& clip, const JointMapping& mapping,
+                                      const Eigen::MatrixXi& contacts, const Eigen::MatrixXd& targets,
+                                      const Eigen::Vector3d& up, double floor_height, double cm_per_unit) {
+  MetricsInput input{world, mapping.joints, skeletonBones(clip.skeleton)};
+  input.contacts = contacts;
+  input.targets = targets;
+  input.up = up;
+  input.floor_height = floor_height;
+  input.cm_per_unit = cm_per_unit;
+  input.fps = clip.fps();
+  return computeMetrics(input);
 }
 
 struct Damage {
