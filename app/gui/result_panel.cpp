@@ -37,7 +37,7 @@ constexpr int kStrengthSteps = 100;
 
 }  // namespace
 
-ResultPanel::ResultPanel(QWidget* parent) : QWidget(parent), memory_(std::make_shared<CleanupMemory>()) {
+ResultPanel::ResultPanel(QWidget* parent) : QWidget(parent), memory_(std::make_shared<style::StylizeCleanupMemory>()) {
   clock_.start();
   setObjectName(QStringLiteral("ResultPanel"));
 
@@ -213,7 +213,7 @@ void ResultPanel::setContentClip(const LoadedClip* clip) {
   if ((clip == nullptr && !content_) || (clip != nullptr && content_ && content_->id == clip->id)) return;
   cancel();
   content_ = clip != nullptr ? std::make_shared<const LoadedClip>(*clip) : nullptr;
-  memory_ = std::make_shared<CleanupMemory>();  // the last clip's solutions help no other
+  memory_ = std::make_shared<style::StylizeCleanupMemory>();  // the last clip's solutions help no other
   overrides_ = content_ ? content_->contact_overrides : Eigen::MatrixXi();
   given_stylized_.reset();
   clearResult();
@@ -251,6 +251,7 @@ bool ResultPanel::canStylize() const { return content_ && content_->mapping && (
 
 void ResultPanel::inputsChanged(const QString& what) {
   if (!result_ && !busy_) return;  // nothing shown or on its way: the next Stylize uses the new inputs
+  const bool was_stale = resultIsStale();
   last_change_ms_ = clock_.elapsed();
   last_change_ = what;
   if (result_) stale_reason_ = what;
@@ -264,7 +265,9 @@ void ResultPanel::inputsChanged(const QString& what) {
   if (resultIsStale()) {
     status_label_->setText(tr("Out of date: %1. %2").arg(what, rerun ? tr("Updating...") : tr("Stylize again to update it.")));
     refreshControls();
-    emit resultChanged();  // the figures are renamed "out of date"
+    // The figures are renamed "out of date" once; rebuilding them at every step of a drag would take
+    // the GUI thread from the result on its way.
+    if (!was_stale) emit resultChanged();
   }
 }
 

@@ -170,7 +170,7 @@ class ResultPanel : public QWidget {
   // Live edits: a change while a job runs lets that job finish (its result is shown, marked out of
   // date) and then runs ONE job for the latest inputs; the values in between are dropped, never queued.
   bool pending_ = false;
-  std::shared_ptr<CleanupMemory> memory_;  // the last clean-up of the content: an edit re-solves what changed
+  std::shared_ptr<style::StylizeCleanupMemory> memory_;  // the last job on the content: an edit redoes what changed
   QElapsedTimer clock_;                    // for the log's latencies (app_log.h)
   qint64 last_change_ms_ = -1;             // when the inputs last changed, and what changed
   QString last_change_;

@@ -1,11 +1,14 @@
 #include "common/output_paths.h"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <optional>
+#include <set>
 
 #include "common/atomic_file.h"
 #include "common/clip_files.h"
@@ -21,11 +24,10 @@ std::filesystem::path comparable(const std::filesystem::path& path) {
   return resolved;
 }
 
-// True if `file` (existing) lies anywhere under `folder`.
+// True if `file` lies anywhere under `folder`; both comparable().
 bool isInside(const std::filesystem::path& file, const std::filesystem::path& folder) {
-  const std::filesystem::path f = comparable(file), d = comparable(folder);
-  const auto [end, ignored] = std::mismatch(d.begin(), d.end(), f.begin(), f.end());
-  return end == d.end();
+  const auto [end, ignored] = std::mismatch(folder.begin(), folder.end(), file.begin(), file.end());
+  return end == folder.end();
 }
 
 // Creating a file is the only check that holds for every user and file system (root ignores
@@ -45,7 +47,8 @@ void requireCreatableIn(const std::filesystem::path& folder, const NamedPath& ou
   ::unlink(probe.c_str());
 }
 
-void requireWritable(const NamedPath& output) {
+// `creatable`: folders already found creatable in this check (a batch writes many files into one).
+void requireWritable(const NamedPath& output, std::set<std::filesystem::path>& creatable) {
   const std::filesystem::path target = followSymlinks(output.path);
   std::error_code error;
   const auto status = std::filesystem::status(target, error);
@@ -63,38 +66,74 @@ void requireWritable(const NamedPath& output) {
     throw WriteError(output.path.string(), output.role + ": the folder " + folder.string() + " does not exist");
   if (!std::filesystem::is_directory(folder_status))
     throw WriteError(output.path.string(), output.role + ": " + folder.string() + " is not a folder");
-  requireCreatableIn(folder, output);
+  if (creatable.insert(folder).second) requireCreatableIn(folder, output);
 }
+
+// What identifies a file for sameFile, computed once per path: the device and inode of an existing
+// file (symlinks and hard links meet there), else its absolute path with symlinks followed.
+struct FileIdentity {
+  bool exists = false;
+  dev_t device = 0;
+  ino_t inode = 0;
+  std::filesystem::path path;  // for a file that does not exist (yet)
+
+  explicit FileIdentity(const std::filesystem::path& file) {
+    struct stat info {};
+    if (::stat(file.c_str(), &info) == 0) {
+      exists = true;
+      device = info.st_dev;
+      inode = info.st_ino;
+    } else {
+      path = comparable(file);
+    }
+  }
+
+  bool operator==(const FileIdentity& other) const {
+    if (exists && other.exists) return device == other.device && inode == other.inode;
+    return !exists && !other.exists && path == other.path;
+  }
+};
 
 }  // namespace
 
 bool sameFile(const std::filesystem::path& a, const std::filesystem::path& b) {
-  std::error_code error;
-  if (std::filesystem::exists(a, error) && std::filesystem::exists(b, error)) {
-    const bool same = std::filesystem::equivalent(a, b, error);
-    return !error && same;
-  }
-  return comparable(a) == comparable(b);
+  return FileIdentity(a) == FileIdentity(b);
 }
 
+// Each path is looked at once (a batch of N clips: N identities, not N^2 file-system calls).
 void checkOutputPaths(const std::vector<NamedPath>& inputs, const std::vector<NamedPath>& outputs) {
+  std::vector<FileIdentity> input_identities;
+  std::vector<std::optional<std::filesystem::path>> input_folders;  // comparable(input) when a folder
+  for (const NamedPath& input : inputs) {
+    input_identities.emplace_back(input.path);
+    std::error_code error;
+    input_folders.push_back(std::filesystem::is_directory(input.path, error)
+                                ? std::optional<std::filesystem::path>(comparable(input.path))
+                                : std::nullopt);
+  }
+  std::vector<FileIdentity> output_identities;
+  std::set<std::filesystem::path> creatable_folders;
   for (size_t i = 0; i < outputs.size(); ++i) {
     const NamedPath& output = outputs[i];
-    for (const NamedPath& input : inputs) {
-      std::error_code error;
-      if (sameFile(output.path, input.path))
+    output_identities.emplace_back(output.path);
+    const FileIdentity& identity = output_identities.back();
+    std::optional<std::filesystem::path> resolved;  // comparable(output.path), when a folder asks
+    for (size_t k = 0; k < inputs.size(); ++k) {
+      const NamedPath& input = inputs[k];
+      if (identity == input_identities[k])
         throw WriteError(output.path.string(), output.role + " is " + input.role + " (" + input.path.string() +
                                                    "): refusing to overwrite an input");
-      if (std::filesystem::is_directory(input.path, error) && isClipFile(output.path) &&
-          std::filesystem::exists(output.path, error) && isInside(output.path, input.path))
+      if (!input_folders[k] || !identity.exists || !isClipFile(output.path)) continue;
+      if (!resolved) resolved = comparable(output.path);
+      if (isInside(*resolved, *input_folders[k]))
         throw WriteError(output.path.string(), output.role + " is a clip inside " + input.role + " (" +
                                                    input.path.string() + "): refusing to overwrite an input");
     }
     for (size_t j = 0; j < i; ++j)
-      if (sameFile(output.path, outputs[j].path))
+      if (identity == output_identities[j])
         throw WriteError(output.path.string(), output.role + " and " + outputs[j].role +
                                                    " are the same file: each output needs its own");
-    requireWritable(output);
+    requireWritable(output, creatable_folders);
   }
 }
 

@@ -27,11 +27,22 @@ StylizeCleanupResult StylizeCleanupJob::run(const std::atomic<bool>* cancel) con
   } else {
     const MotionFeatures features = extractFeatures(content, mapping);
     throwIfCancelled(cancel);
-    result.stylized = stylizer->stylize(features, strength, path);
+    if (!memory) {
+      result.stylized = stylizer->stylize(features, strength, path);
+    } else {
+      if (memory->stylizer != stylizer || memory->features.rows() != features.values.rows() ||
+          memory->features.cols() != features.values.cols() || memory->features != features.values) {
+        memory->stylizer = nullptr;  // an exception below leaves no stale pairing
+        memory->network_output = stylizer->networkOutput(features.values);
+        memory->features = features.values;
+        memory->stylizer = stylizer;
+      }
+      result.stylized = stylizer->stylize(features, memory->network_output, strength, path);
+    }
   }
   throwIfCancelled(cancel);
   StylizedCleanup cleanup = cleanUpStylizedClip(content, mapping, result.stylized, options, output_fps, contact_overrides,
-                                                CleanupControl{cancel, memory.get()});
+                                                CleanupControl{cancel, memory ? &memory->cleanup : nullptr});
   throwIfCancelled(cancel);
   result.cleaned = std::move(cleanup.motion);
   result.report = std::move(cleanup.report);

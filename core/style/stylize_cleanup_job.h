@@ -33,6 +33,18 @@ struct StylizeCleanupResult {
   double seconds = 0.0;          // wall clock of the whole job
 };
 
+// What a job keeps for the next one on the same content, so that a live edit redoes only what it
+// changed: the network's output for the content's features (the strength and the path mode do not
+// change it: stylizer.h, networkOutput) and the clean-up's memory (ik/cleanup.h). A job reuses the
+// network output only for the same network and features equal bit for bit; anything else is computed
+// and kept instead. Results never depend on it. One job at a time per memory.
+struct StylizeCleanupMemory {
+  CleanupMemory cleanup;
+  std::shared_ptr<const Stylizer> stylizer;  // whose output network_output is
+  Eigen::MatrixXd features;                  // the content's features it was computed from
+  Eigen::MatrixXd network_output;
+};
+
 struct StylizeCleanupJob {
   Motion content;        // the user's clip at its own rate, file space
   JointMapping mapping;  // its canonical joints
@@ -45,9 +57,10 @@ struct StylizeCleanupJob {
   Eigen::MatrixXi contact_overrides;
   CleanupOptions options;
   double output_fps = 0.0;  // the cleaned clip's rate (resampled): 0 = the content's own
-  // The previous clean-up of this clip (ik/cleanup.h): after a small edit only what changed is solved
-  // again, from the last solution. Null: solve everything. One job at a time per memory.
-  std::shared_ptr<CleanupMemory> memory;
+  // The previous job on this clip: after a small edit only what changed is computed again (the
+  // network not at all for a strength or path change, the clean-up only where its inputs moved, from
+  // the last solution). Null: compute everything.
+  std::shared_ptr<StylizeCleanupMemory> memory;
 
   // std::invalid_argument: neither a network nor a stylized clip, a strength outside [0, 1], overrides
   // whose shape is not content frames x 4.

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "common/errors.h"
 #include "style/training_windows.h"
@@ -42,16 +43,24 @@ Stylizer::Stylizer(nn::StyleModel model, std::string source_name)
   fast_ = std::make_unique<nn::FastStylizer>(model_.transformation, model_.loss_network);
 }
 
-Eigen::MatrixXd Stylizer::stylizeFeatures(const Eigen::MatrixXd& features, double strength, PathMode path) const {
-  requireFeatures(features, "Stylizer::stylizeFeatures");
-  if (!(strength >= 0.0 && strength <= 1.0)) throw std::invalid_argument("stylize strength must be in [0, 1]");
-  if (strength == 0.0) return features;  // exactly the content, no network run
+Eigen::MatrixXd Stylizer::networkOutput(const Eigen::MatrixXd& features) const {
+  requireFeatures(features, "Stylizer::networkOutput");
   nn::Mat<float> styled;
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     styled = fast_->stylize(model_.normalisation.normalized(padEdges(features)));
   }
-  Eigen::MatrixXd result = cropEdges(model_.normalisation.denormalized(styled));
+  return cropEdges(model_.normalisation.denormalized(styled));
+}
+
+Eigen::MatrixXd Stylizer::finishFeatures(const Eigen::MatrixXd& features, const Eigen::MatrixXd& network_output,
+                                         double strength, PathMode path) const {
+  requireFeatures(features, "Stylizer::finishFeatures");
+  if (network_output.rows() != features.rows() || network_output.cols() != features.cols())
+    throw std::invalid_argument("Stylizer::finishFeatures: the network output is not the features' shape");
+  if (!(strength >= 0.0 && strength <= 1.0)) throw std::invalid_argument("stylize strength must be in [0, 1]");
+  if (strength == 0.0) return features;  // exactly the content
+  Eigen::MatrixXd result = network_output;
   if (strength != 1.0) result = features + strength * (result - features);
   applyPathMode(result, features, path);
   enforceBoneLengths(result, referenceProportions());
@@ -62,15 +71,35 @@ Eigen::MatrixXd Stylizer::stylizeFeatures(const Eigen::MatrixXd& features, doubl
   return result;
 }
 
-StylizedClip Stylizer::stylize(const MotionFeatures& content, double strength, PathMode path) const {
+Eigen::MatrixXd Stylizer::stylizeFeatures(const Eigen::MatrixXd& features, double strength, PathMode path) const {
+  requireFeatures(features, "Stylizer::stylizeFeatures");
+  if (!(strength >= 0.0 && strength <= 1.0)) throw std::invalid_argument("stylize strength must be in [0, 1]");
+  if (strength == 0.0) return features;  // exactly the content, no network run
+  return finishFeatures(features, networkOutput(features), strength, path);
+}
+
+namespace {
+
+StylizedClip clipOf(const MotionFeatures& content, Eigen::MatrixXd features, PathMode path) {
   StylizedClip clip;
-  clip.features = stylizeFeatures(content.values, strength, path);
+  clip.features = std::move(features);
   clip.path = path;
   clip.contacts = content.contacts;
   clip.anchor = content.anchor;
   clip.fps = content.anchor.fps;
   clip.world_positions = canonicalWorldPositions(clip.features, clip.anchor);
   return clip;
+}
+
+}  // namespace
+
+StylizedClip Stylizer::stylize(const MotionFeatures& content, double strength, PathMode path) const {
+  return clipOf(content, stylizeFeatures(content.values, strength, path), path);
+}
+
+StylizedClip Stylizer::stylize(const MotionFeatures& content, const Eigen::MatrixXd& network_output, double strength,
+                               PathMode path) const {
+  return clipOf(content, finishFeatures(content.values, network_output, strength, path), path);
 }
 
 Eigen::MatrixXd Stylizer::projectFeatures(const Eigen::MatrixXd& features) const {

@@ -60,6 +60,17 @@ class Stylizer {
   // The whole clip: features, contacts and world positions in the clip's file space.
   StylizedClip stylize(const MotionFeatures& content, double strength, PathMode path = PathMode::Content) const;
 
+  // stylizeFeatures in its two halves, for callers that change only the strength or the path mode
+  // (live edits): networkOutput(x) = L(T(x)) in representation units, independent of both, and
+  // finishFeatures, the blend by strength, the path mode and the bone lengths, which
+  // stylizeFeatures(x, s, p) == finishFeatures(x, networkOutput(x), s, p) (bit for bit). Same throws
+  // as stylizeFeatures; finishFeatures also when network_output's shape is not the features'.
+  Eigen::MatrixXd networkOutput(const Eigen::MatrixXd& features) const;
+  Eigen::MatrixXd finishFeatures(const Eigen::MatrixXd& features, const Eigen::MatrixXd& network_output,
+                                 double strength, PathMode path = PathMode::Content) const;
+  StylizedClip stylize(const MotionFeatures& content, const Eigen::MatrixXd& network_output, double strength,
+                       PathMode path = PathMode::Content) const;
+
   // L(x) = decode(encode(x)) through this network's own loss network (the projection alone), with the
   // kernels prepared once (a fresh projectFeatures() prepares them on every call: 0.1 s, more than a
   // short clip's whole stylize). What measureFamiliarity(const Stylizer&, ...) reads. Thread-safe.

@@ -72,6 +72,34 @@ TEST(StylizeCleanupJob, ASetCancelFlagStopsIt) {
   EXPECT_THROW(job.run(&cancel), OperationCancelled);
 }
 
+// The memory of a live edit: a strength step reuses the network's output, another network does not,
+// and the stylized clip is the memory-less job's bit for bit.
+TEST(StylizeCleanupJob, ItsMemoryReusesTheNetworkOutputOnlyForTheSameNetworkAndClip) {
+  style::StylizeCleanupJob job = cleanupJobOnFixture(90);
+  job.memory = std::make_shared<style::StylizeCleanupMemory>();
+  job.run();
+  ASSERT_EQ(job.memory->stylizer, job.stylizer);
+  const Eigen::MatrixXd kept = job.memory->network_output;
+  job.strength = 0.4;
+  style::StylizeCleanupJob fresh = job;
+  fresh.memory = nullptr;
+  EXPECT_EQ(job.run().stylized.features, fresh.run().stylized.features);
+  EXPECT_EQ(job.memory->network_output, kept);
+
+  nn::StyleModel other_model = test::tinyStyleModel();
+  for (nn::Parameter<float>* p : other_model.transformation.parameters()) p->value *= 1.5f;
+  job.stylizer = std::make_shared<const style::Stylizer>(std::move(other_model));
+  fresh.stylizer = job.stylizer;
+  EXPECT_EQ(job.run().stylized.features, fresh.run().stylized.features);
+  EXPECT_EQ(job.memory->stylizer, job.stylizer);
+  EXPECT_NE(job.memory->network_output, kept);
+
+  job.content.values.conservativeResize(80, Eigen::NoChange);  // another clip
+  fresh.content = job.content;
+  EXPECT_EQ(job.run().stylized.features, fresh.run().stylized.features);
+  EXPECT_EQ(job.memory->features.cols(), job.run().stylized.frameCount());
+}
+
 TEST(OptimizationTransferJob, RefusesMissingFilesAndBadOptions) {
   TempDir dir;
   style::OptimizationTransferJob job;

@@ -69,6 +69,18 @@ TEST(Stylizer, StrengthBlendsLinearlyInFeatureSpaceThenSetsBoneLengths) {
     EXPECT_LT((canonicalBoneLengths(*output) - reference).cwiseAbs().maxCoeff(), 1e-9);
 }
 
+// The two halves (live edits keep the network's output and redo only the blend) are the whole.
+TEST(Stylizer, NetworkOutputThenFinishIsStylizeBitForBit) {
+  const style::Stylizer stylizer(test::tinyStyleModel());
+  const Eigen::MatrixXd& content = test::fixtureClips()[0].features.values;
+  EXPECT_THROW(stylizer.finishFeatures(content, content.leftCols(content.cols() - 1), 0.5), std::invalid_argument);
+  EXPECT_THROW(stylizer.finishFeatures(content, content, 1.5), std::invalid_argument);
+  const Eigen::MatrixXd output = stylizer.networkOutput(content);
+  for (const double strength : {0.0, 0.3, 1.0})
+    for (const style::PathMode path : {style::PathMode::Content, style::PathMode::Style})
+      EXPECT_EQ(stylizer.finishFeatures(content, output, strength, path), stylizer.stylizeFeatures(content, strength, path));
+}
+
 TEST(Stylizer, OutputHasTheInputLengthForOddAndLongClips) {
   const style::Stylizer stylizer(test::tinyStyleModel());
   for (int frames : {1, 2, 25, 301, 1000}) {
