@@ -27,7 +27,7 @@ FigureData cleanedOutputFigure(const style::StylizeCleanupResult& result, const 
       name, FigureRole::Output, parents,
       rowsAtRate(content.display_space.toDisplay(worldPositions(cleaned)), cleaned.fps(), display_fps));
   setFigureContacts(figure, contactJoints(mapping),
-                    resampleRowsNearest(result.contacts, 1.0 / result.stylized.fps, display_fps));
+                    resampleRowsNearest(result.contacts, 1.0 / result.cleanup_fps, display_fps));
   return keepBodySubtree(figure, mapping[CanonicalJoint::Hips]);
 }
 

@@ -448,9 +448,9 @@ QualityTracks ResultPanel::qualityTracks() const {
   if (const auto& familiarity = familiarity_label_->familiarity())
     tracks.familiarity_cm = trackAtRate(familiarity->per_frame_cm, kDefaultFeatureFps, content_->fps());
   if (!result_) return tracks;
-  const double track_fps = result_->stylized.fps;
-  tracks.skate_cm_s = trackAtRate(result_->cleaned_metrics.skate_track_cm_s, track_fps, content_->fps());
-  tracks.raw_bone_error_cm = trackAtRate(result_->raw_metrics.bone_error_track_cm, track_fps, content_->fps());
+  tracks.skate_cm_s = trackAtRate(result_->cleaned_metrics.skate_track_cm_s, result_->cleanup_fps, content_->fps());
+  tracks.raw_bone_error_cm =
+      trackAtRate(result_->raw_metrics.bone_error_track_cm, result_->stylized.fps, content_->fps());
   return tracks;
 }
 

@@ -49,6 +49,7 @@ StylizeCleanupResult StylizeCleanupJob::run(const std::atomic<bool>* cancel) con
   result.raw_metrics = std::move(cleanup.raw);
   result.cleaned_metrics = std::move(cleanup.cleaned);
   result.contacts = std::move(cleanup.contacts);
+  result.cleanup_fps = cleanup.fps;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

@@ -55,6 +55,17 @@ Eigen::MatrixXi restingContacts(const Eigen::MatrixXi& content_contacts, const S
   return kept;
 }
 
+// `rows` cut or extended (holding the last row) to `frames` rows: a clip taken to 60 fps and back at a
+// rate that does not divide 60 (24, 25 fps) can come back a frame short.
+template <typename Matrix>
+Matrix fitRows(Matrix rows, Eigen::Index frames) {
+  const Eigen::Index had = rows.rows();
+  if (had == frames || had == 0) return rows;
+  rows.conservativeResize(frames, Eigen::NoChange);
+  for (Eigen::Index f = had; f < frames; ++f) rows.row(f) = rows.row(had - 1);
+  return rows;
+}
+
 }  // namespace
 
 double fileFloorHeight(const FeatureAnchor& anchor) {
@@ -71,10 +82,20 @@ StylizedCleanup cleanUpStylizedClip(const Motion& content, const JointMapping& m
     throw std::invalid_argument("cleanUpStylizedClip: contact overrides are " + std::to_string(contact_overrides.rows()) +
                                 " x " + std::to_string(contact_overrides.cols()) + ", expected " +
                                 std::to_string(content.frameCount()) + " x 4 (the content's frames)");
-  const Motion at_rate = sameFrameRate(content.fps(), stylized.fps) ? content : resampleMotion(content, stylized.fps);
-  if (at_rate.frameCount() != stylized.frameCount())
+  const bool same_rate = sameFrameRate(content.fps(), stylized.fps);
+  const int content_frames_at_stylized_rate =
+      same_rate ? content.frameCount()
+                : static_cast<int>(resampleSchedule(content.frameCount(), content.frame_time, stylized.fps).size());
+  if (content_frames_at_stylized_rate != stylized.frameCount())
     throw std::invalid_argument("cleanUpStylizedClip: the stylized clip has " + std::to_string(stylized.frameCount()) +
-                                " frames, its content " + std::to_string(at_rate.frameCount()) + " at the same rate");
+                                " frames, its content " + std::to_string(content_frames_at_stylized_rate) +
+                                " at the same rate");
+  // The solve runs at the content's rate when it is below the network's (what is exported: a 30 fps
+  // clip is solved on its 500 frames, not on 999 at 60 fps), else at the network's (120 fps content:
+  // the targets have no more to say between their frames).
+  const bool solve_at_content_rate = same_rate || content.fps() < stylized.fps;
+  const double solve_fps = solve_at_content_rate ? content.fps() : stylized.fps;
+  const Motion at_rate = solve_at_content_rate ? content : resampleMotion(content, stylized.fps);
   const FeatureAnchor& anchor = stylized.anchor;
   const Eigen::Vector3d up = anchor.convention.fileUp();
   const double floor = fileFloorHeight(anchor);
@@ -97,12 +118,15 @@ StylizedCleanup cleanUpStylizedClip(const Motion& content, const JointMapping& m
         contacts, overridesAtRate(contact_overrides, content.fps(), stylized.fps, stylized.frameCount()));
 
   StylizedCleanup result;
-  result.contacts = contacts;
-  const CleanupInput input(at_rate, mapping, stylized.world_positions, contacts, up, floor,
-                           anchor.convention.cm_per_unit);
+  result.fps = solve_fps;
+  result.contacts = fitRows(resampleRowsNearest(contacts, 1.0 / stylized.fps, solve_fps), at_rate.frameCount());
+  const Eigen::MatrixXd targets =
+      fitRows(resampleRowsLinear(stylized.world_positions, 1.0 / stylized.fps, solve_fps), at_rate.frameCount());
+  const CleanupInput input(at_rate, mapping, targets, result.contacts, up, floor, anchor.convention.cm_per_unit);
   Motion cleaned = cleanupMotion(input, options, &result.report, control);
 
-  // Raw output: canonical joints only, judged against the content's own canonical bone lengths.
+  // Raw output: canonical joints only, at the network's rate, judged against the content's own
+  // canonical bone lengths.
   const Eigen::MatrixXd content_world = worldPositions(at_rate);
   MetricsInput raw(stylized.world_positions, identityCanonicalJoints(), canonicalBones(content_world, mapping));
   raw.contacts = content_contacts;
@@ -114,12 +138,12 @@ StylizedCleanup cleanUpStylizedClip(const Motion& content, const JointMapping& m
 
   const Eigen::MatrixXd cleaned_world = worldPositions(cleaned);
   MetricsInput after(cleaned_world, mapping.joints, skeletonBones(cleaned.skeleton));
-  after.contacts = contacts;
-  after.targets = stylized.world_positions;
+  after.contacts = result.contacts;
+  after.targets = targets;
   after.up = up;
   after.floor_height = floor;
   after.cm_per_unit = anchor.convention.cm_per_unit;
-  after.fps = stylized.fps;
+  after.fps = solve_fps;
   result.cleaned = computeMetrics(after);
 
   const double target_fps = output_fps > 0.0 ? output_fps : content.fps();

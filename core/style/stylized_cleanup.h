@@ -3,9 +3,12 @@
 // the content's OWN skeleton through the IK clean-up (ik/cleanup.h), with the quality metrics
 // before (raw network output) and after (the cleaned clip).
 //
-// Rates: the stylized clip is at the representation's 60 fps. The content is resampled to that rate for
-// the solve (so its rotations warm-start and prior each frame), and the cleaned clip is resampled to
-// `output_fps` (default: the content's own rate) for export. Metrics are computed at 60 fps, in cm.
+// Rates: the stylized clip is at the representation's 60 fps. The solve runs at the content's own rate
+// when that is lower (a 30 fps clip: its own frames, the targets taken at its times; half the work of
+// a 60 fps solve whose every other frame the export drops), else at 60 fps with the content resampled
+// to it (its rotations warm-start and prior each frame). The cleaned clip is then resampled to
+// `output_fps` (default: the content's own rate) for export. The raw output's metrics are at 60 fps,
+// the cleaned clip's at the solve's rate; all in cm.
 
 #include "ik/cleanup.h"
 #include "ik/metrics.h"
@@ -20,7 +23,8 @@ struct StylizedCleanup {
   CleanupReport report;
   ClipMetrics raw;        // the network's output (21 canonical joints) judged by the CONTENT's contacts
   ClipMetrics cleaned;    // the cleaned clip's canonical joints by `contacts`, bones of the whole skeleton
-  Eigen::MatrixXi contacts;  // frames x 4 at 60 fps: the labels the clean-up locked (see the .cpp)
+  Eigen::MatrixXi contacts;  // frames x 4 at `fps`: the labels the clean-up locked (see the .cpp)
+  double fps = 0.0;          // the solve's rate: of `contacts` and of the `cleaned` metrics' tracks
 };
 
 // content: the user's clip at its own rate (the one whose features were stylized); mapping: its

@@ -21,6 +21,7 @@
 #include "features/feature_statistics.h"
 #include "features/representation.h"
 #include "mapping/joint_mapping.h"
+#include "motion/resample.h"
 #include "nn/network_file.h"
 #include "style/stylized_cleanup.h"
 #include "style/stylizer.h"
@@ -129,6 +130,33 @@ TEST_F(CleanupStylized, RawOutputMeetsTheCleanUpGoals) {
     // Back at the content's rate (120 -> 60 -> 120 fps may drop the last frame).
     EXPECT_NEAR(run.motion.frameCount(), content.frameCount(), 1);
     EXPECT_DOUBLE_EQ(run.motion.fps(), content.fps());
+  }
+}
+
+// A clip below the network's 60 fps is solved on its own frames (the targets taken at its times), at
+// rates that divide 60 and rates that do not: the result has the content's frames and meets the goals.
+TEST(CleanupStylizedBelowTheNetworksRate, IsSolvedOnTheContentsOwnFrames) {
+  const Motion zombie = readBvh(test::fixture("zombie.bvh"));
+  for (const double fps : {30.0, 24.0}) {
+    SCOPED_TRACE(std::to_string(fps) + " fps");
+    const Motion content = sameFrameRate(zombie.fps(), fps) ? zombie : resampleMotion(zombie, fps);
+    const JointMapping mapping = mapJoints(content.skeleton, content.source);
+    const MotionFeatures features = extractFeatures(content, mapping);
+    const style::StylizedClip stylized = style::Stylizer(networkLikeModel(features, 11, kDamage)).stylize(features, 1.0);
+    ASSERT_GT(stylized.frameCount(), content.frameCount());  // the network's 60 fps
+    const style::StylizedCleanup run = style::cleanUpStylizedClip(content, mapping, stylized);
+    std::printf("[ figures  ] %.0f fps: skate %.3f cm/s, penetration %.3f cm, residual %.2f cm (max %.2f)\n", fps,
+                run.cleaned.foot_skate_cm_s, run.cleaned.penetration_max_cm, run.cleaned.residual_mean_cm,
+                run.cleaned.residual_max_cm);
+    EXPECT_DOUBLE_EQ(run.fps, content.fps());
+    EXPECT_EQ(run.report.frames, content.frameCount());
+    EXPECT_EQ(run.contacts.rows(), content.frameCount());
+    EXPECT_EQ(run.motion.frameCount(), content.frameCount());
+    EXPECT_DOUBLE_EQ(run.motion.fps(), content.fps());
+    EXPECT_GT(run.cleaned.contact_steps, 0);
+    EXPECT_LE(run.cleaned.foot_skate_cm_s, 0.5);
+    EXPECT_LE(run.cleaned.penetration_max_cm, 0.5);
+    EXPECT_LE(run.cleaned.residual_mean_cm, 2.0);
   }
 }
 
