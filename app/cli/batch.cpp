@@ -6,11 +6,13 @@
 #include <exception>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <thread>
 
 #include "common/errors.h"
 #include "common/text_safety.h"
 #include "failure_report.h"
+#include "nn/compute_pool.h"
 #include "progress_bar.h"
 #include "style/motion_dataset.h"
 
@@ -85,7 +87,11 @@ int runBatch(const std::vector<BatchItem>& items, int jobs, const BatchWork& wor
   std::atomic<std::size_t> next{0};
   std::size_t finished = 0;
   const auto start = std::chrono::steady_clock::now();
+  const int threads = std::clamp(jobs, 1, static_cast<int>(items.size()));
   const auto worker = [&] {
+    // With several workers each is one core: its networks run on it (nn/compute_pool.h).
+    std::optional<nn::SerialComputeScope> one_core;
+    if (threads > 1) one_core.emplace();
     for (std::size_t i = next++; i < items.size() && !guard.interrupted(); i = next++) {
       std::string summary;
       std::exception_ptr failure;
@@ -109,7 +115,6 @@ int runBatch(const std::vector<BatchItem>& items, int jobs, const BatchWork& wor
                  finished == items.size());
     }
   };
-  const int threads = std::clamp(jobs, 1, static_cast<int>(items.size()));
   std::vector<std::thread> pool;
   for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
   worker();

@@ -364,6 +364,35 @@ SolverOutput solveCleanup(const SolverInput& input, const CleanupOptions& option
   };
 
   SolverOutput out;
+  const auto emit = [&](const ChunkResult& chunk) {
+    if (chunk.error) std::rethrow_exception(chunk.error);
+    addOutput(out, chunk.output);
+    ++out.chunks;
+    if (chunk.reused) ++out.chunks_reused;
+    if (chunk.warm) ++out.chunks_warm;
+    for (int f = chunk.begin; f < chunk.end; ++f) {
+      const auto row = static_cast<size_t>(f - chunk.begin);
+      sink(f, chunk.roots[row], &chunk.rotations[row * unknowns]);
+    }
+  };
+  if (threads == 1) {  // one core (a batch's worker, a one-chunk clip): no thread to start and hand over to
+    try {
+      ChunkSweep sweep(input, options, deadline);
+      for (int k = 0; k < chunks; ++k) {
+        ChunkResult chunk;
+        chunk.begin = ranges[static_cast<size_t>(k)].first;
+        chunk.end = ranges[static_cast<size_t>(k)].second;
+        chunk.index = k;
+        sweep.run(chunk, memory ? &(*memory)[static_cast<size_t>(k)] : nullptr);
+        emit(chunk);
+      }
+    } catch (...) {
+      if (memory) memory->clear();  // a cancelled or failed clean-up leaves nothing to trust
+      throw;
+    }
+    return out;
+  }
+
   std::vector<std::jthread> workers;
   auto stopWorkers = [&]() {
     {
@@ -383,15 +412,7 @@ SolverOutput solveCleanup(const SolverInput& input, const CleanupOptions& option
         chunk = std::move(finished.at(k));
         finished.erase(k);
       }
-      if (chunk.error) std::rethrow_exception(chunk.error);
-      addOutput(out, chunk.output);
-      ++out.chunks;
-      if (chunk.reused) ++out.chunks_reused;
-      if (chunk.warm) ++out.chunks_warm;
-      for (int f = chunk.begin; f < chunk.end; ++f) {
-        const auto row = static_cast<size_t>(f - chunk.begin);
-        sink(f, chunk.roots[row], &chunk.rotations[row * unknowns]);
-      }
+      emit(chunk);
       {
         const std::lock_guard<std::mutex> lock(mutex);
         ++emitted;

@@ -11,14 +11,22 @@
 namespace motionstyle::nn {
 namespace {
 
-std::array<std::uint32_t, 256> makeCrcTable() {
-  std::array<std::uint32_t, 256> table{};
+// Slicing-by-8 tables: tables[0] is the bytewise CRC table, tables[k][i] the CRC of byte i followed by k
+// zero bytes, so eight bytes are folded in with eight lookups (a network file's 4 MB: 30 ms bytewise,
+// a fifth of a one-clip stylize).
+using CrcTables = std::array<std::array<std::uint32_t, 256>, 8>;
+
+CrcTables makeCrcTables() {
+  CrcTables tables{};
   for (std::uint32_t i = 0; i < 256; ++i) {
     std::uint32_t c = i;
     for (int k = 0; k < 8; ++k) c = (c & 1u) != 0 ? 0xEDB88320u ^ (c >> 1) : c >> 1;
-    table[i] = c;
+    tables[0][i] = c;
   }
-  return table;
+  for (std::size_t k = 1; k < 8; ++k)
+    for (std::size_t i = 0; i < 256; ++i)
+      tables[k][i] = (tables[k - 1][i] >> 8) ^ tables[0][tables[k - 1][i] & 0xFFu];
+  return tables;
 }
 
 std::uint64_t loadLittleEndian(std::string_view bytes, int count) {
@@ -36,9 +44,16 @@ const char* weightPrecisionName(WeightPrecision precision) {
 std::size_t bytesPerWeight(WeightPrecision precision) { return precision == WeightPrecision::F16 ? 2 : 4; }
 
 std::uint32_t crc32(std::string_view bytes) {
-  static const std::array<std::uint32_t, 256> table = makeCrcTable();
+  static const CrcTables tables = makeCrcTables();
   std::uint32_t c = 0xFFFFFFFFu;
-  for (char ch : bytes) c = table[(c ^ static_cast<unsigned char>(ch)) & 0xFFu] ^ (c >> 8);
+  std::size_t i = 0;
+  for (; i + 8 <= bytes.size(); i += 8) {
+    const auto low = static_cast<std::uint32_t>(loadLittleEndian(bytes.substr(i, 4), 4)) ^ c;
+    const auto high = static_cast<std::uint32_t>(loadLittleEndian(bytes.substr(i + 4, 4), 4));
+    c = tables[7][low & 0xFFu] ^ tables[6][(low >> 8) & 0xFFu] ^ tables[5][(low >> 16) & 0xFFu] ^ tables[4][low >> 24] ^
+        tables[3][high & 0xFFu] ^ tables[2][(high >> 8) & 0xFFu] ^ tables[1][(high >> 16) & 0xFFu] ^ tables[0][high >> 24];
+  }
+  for (; i < bytes.size(); ++i) c = tables[0][(c ^ static_cast<unsigned char>(bytes[i])) & 0xFFu] ^ (c >> 8);
   return c ^ 0xFFFFFFFFu;
 }
 

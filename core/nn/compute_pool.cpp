@@ -9,6 +9,7 @@ namespace motionstyle::nn {
 namespace {
 
 thread_local bool t_inside_task = false;
+thread_local int t_serial_scopes = 0;  // SerialComputeScope objects alive on this thread
 
 struct InsideTask {
   InsideTask() { t_inside_task = true; }
@@ -16,6 +17,9 @@ struct InsideTask {
 };
 
 }  // namespace
+
+SerialComputeScope::SerialComputeScope() { ++t_serial_scopes; }
+SerialComputeScope::~SerialComputeScope() { --t_serial_scopes; }
 
 ComputePool::ComputePool(int threads) : thread_count_(std::max(1, threads)) {
   workers_.reserve(static_cast<std::size_t>(thread_count_ - 1));
@@ -66,7 +70,7 @@ void ComputePool::workerLoop(int worker) {
 void ComputePool::run(int parts, const std::function<void(int)>& task) {
   if (parts <= 0) return;
   std::unique_lock<std::mutex> busy(busy_, std::try_to_lock);
-  if (parts == 1 || thread_count_ == 1 || t_inside_task || !busy.owns_lock()) {
+  if (parts == 1 || thread_count_ == 1 || t_inside_task || t_serial_scopes > 0 || !busy.owns_lock()) {
     for (int part = 0; part < parts; ++part) task(part);
     return;
   }

@@ -56,6 +56,18 @@ class ComputePool {
   std::exception_ptr error_;
 };
 
+// While one is alive on a thread, every run() called from that thread runs all its parts on that thread
+// (results are the same: parts never depend on who runs them). For callers that keep every core busy
+// with their own workers (a batch: one clip per core): a layer split with the pool there only made the
+// workers wait for a pool thread that had no core to run on.
+class SerialComputeScope {
+ public:
+  SerialComputeScope();
+  ~SerialComputeScope();
+  SerialComputeScope(const SerialComputeScope&) = delete;
+  SerialComputeScope& operator=(const SerialComputeScope&) = delete;
+};
+
 // The process-wide pool used by the networks: min(hardware threads, 8) threads, created on first use.
 // MOTIONSTYLE_NN_THREADS=<n> in the environment overrides the count (n >= 1), read once.
 ComputePool& computePool();

@@ -206,6 +206,20 @@ TEST(NetworkFile, SavesAtomicallyLoadsAndDescribes) {
 TEST(BinaryIo, Crc32AndHashMatchKnownValues) {
   EXPECT_EQ(crc32("123456789"), 0xCBF43926u);  // the standard CRC-32 check value
   EXPECT_EQ(crc32(""), 0u);
+  // Eight bytes at a time, then the rest: every length and offset as the bytewise definition.
+  std::string bytes;
+  for (int i = 0; i < 300; ++i) bytes.push_back(static_cast<char>((i * 131 + 7) & 0xFF));
+  const auto bytewise = [](std::string_view text) {
+    std::uint32_t c = 0xFFFFFFFFu;
+    for (const char ch : text) {
+      c ^= static_cast<unsigned char>(ch);
+      for (int k = 0; k < 8; ++k) c = (c & 1u) != 0 ? 0xEDB88320u ^ (c >> 1) : c >> 1;
+    }
+    return c ^ 0xFFFFFFFFu;
+  };
+  for (std::size_t offset : {0u, 1u, 5u})
+    for (std::size_t length = 0; length + offset <= bytes.size(); length += 7)
+      EXPECT_EQ(crc32(std::string_view(bytes).substr(offset, length)), bytewise(std::string_view(bytes).substr(offset, length)));
   EXPECT_EQ(contentHash(""), "fnv1a64:cbf29ce484222325");
   EXPECT_EQ(contentHash("a"), "fnv1a64:af63dc4c8601ec8c");
   EXPECT_NE(contentHash("ab"), contentHash("ba"));
