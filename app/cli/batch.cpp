@@ -6,7 +6,6 @@
 #include <exception>
 #include <map>
 #include <mutex>
-#include <optional>
 #include <thread>
 
 #include "common/errors.h"
@@ -89,9 +88,8 @@ int runBatch(const std::vector<BatchItem>& items, int jobs, const BatchWork& wor
   const auto start = std::chrono::steady_clock::now();
   const int threads = std::clamp(jobs, 1, static_cast<int>(items.size()));
   const auto worker = [&] {
-    // With several workers each is one core: its networks run on it (nn/compute_pool.h).
-    std::optional<nn::SerialComputeScope> one_core;
-    if (threads > 1) one_core.emplace();
+    // Each worker is one core (--jobs says how many): its networks run on it alone (nn/compute_pool.h).
+    const nn::SerialComputeScope one_core;
     for (std::size_t i = next++; i < items.size() && !guard.interrupted(); i = next++) {
       std::string summary;
       std::exception_ptr failure;

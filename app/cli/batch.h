@@ -22,11 +22,11 @@
 #include "common/output_paths.h"
 
 // The --help lines of batch mode (a literal, so command tables can concatenate it).
-#define MOTIONSTYLE_BATCH_HELP                                                                           \
-  "\nSeveral clips, or folders (every .bvh below them): OUT is a folder, each clip is written to\n"      \
-  "OUT/<its path below its folder> (--metrics FOLDER likewise, .json), on --jobs N threads (default:\n"   \
-  "every core) under one progress bar. A clip that fails is reported at the end without stopping the\n" \
-  "others (exit 2); no output may be an input.\n"
+#define MOTIONSTYLE_BATCH_HELP                                                                          \
+  "\nSeveral clips, or folders (every .bvh below them): OUT is a folder, each clip is written to\n"     \
+  "OUT/<its path below its folder> (--metrics FOLDER likewise, .json), on --jobs N cores, one clip\n"   \
+  "per core (default: every core), under one progress bar. A clip that fails is reported at the end\n" \
+  "without stopping the others (exit 2); no output may be an input.\n"
 
 namespace motionstyle::cli {
 

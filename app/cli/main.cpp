@@ -29,6 +29,7 @@ void printUsage(std::ostream& out) {
 
 int main(int argc, char** argv) {
   using namespace motionstyle;
+  restartWithHugePages(argv);  // allocator_tuning.h
   keepLargeAllocationsInHeap();
   const std::vector<std::string> all(argv + 1, argv + argc);
   if (all.empty() || all[0] == "--help" || all[0] == "-h" || all[0] == "help") {

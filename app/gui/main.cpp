@@ -21,6 +21,7 @@
 #include "skeleton_viewport.h"
 
 int main(int argc, char** argv) {
+  motionstyle::restartWithHugePages(argv);     // the networks' buffers in 2 MB pages (allocator_tuning.h)
   motionstyle::keepLargeAllocationsInHeap();  // the networks' temporaries (allocator_tuning.h)
   // VTK needs a 3.2 core-profile context: the default format must be set before QApplication exists.
   motionstyle::SkeletonViewport::installDefaultSurfaceFormat();

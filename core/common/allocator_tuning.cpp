@@ -2,6 +2,12 @@
 
 #if defined(__GLIBC__)
 #include <malloc.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <string>
 #endif
 
 namespace motionstyle {
@@ -13,6 +19,27 @@ void keepLargeAllocationsInHeap() {
   constexpr int kThreshold = 1 << 30;
   mallopt(M_MMAP_THRESHOLD, kThreshold);
   mallopt(M_TRIM_THRESHOLD, kThreshold);
+#endif
+}
+
+void restartWithHugePages(char** argv) {
+#if defined(__GLIBC__) && defined(__linux__)
+  constexpr const char* kTunable = "glibc.malloc.hugetlb=1";
+  if (std::getenv("MOTIONSTYLE_NO_HUGE_PAGES") != nullptr) return;
+  const char* tunables = std::getenv("GLIBC_TUNABLES");
+  if (tunables != nullptr && std::strstr(tunables, "glibc.malloc.hugetlb") != nullptr) return;
+  std::string mode;
+  std::getline(std::ifstream("/sys/kernel/mm/transparent_hugepage/enabled"), mode);
+  if (mode.empty() || mode.find("[never]") != std::string::npos) return;
+  const std::string previous = tunables != nullptr ? tunables : "";
+  const std::string value = previous.empty() ? kTunable : previous + ":" + kTunable;
+  if (::setenv("GLIBC_TUNABLES", value.c_str(), 1) != 0) return;
+  ::execv("/proc/self/exe", argv);
+  // Still here: the restart failed; go on as started.
+  if (tunables != nullptr) ::setenv("GLIBC_TUNABLES", previous.c_str(), 1);
+  else ::unsetenv("GLIBC_TUNABLES");
+#else
+  (void)argv;
 #endif
 }
 

@@ -14,4 +14,16 @@ namespace motionstyle {
 // M_MMAP_THRESHOLD and M_TRIM_THRESHOLD). Does nothing on other C libraries.
 void keepLargeAllocationsInHeap();
 
+// Restarts the program once (execv of /proc/self/exe with the same arguments, same process id) with
+// glibc's malloc asking for transparent huge pages (GLIBC_TUNABLES=glibc.malloc.hugetlb=1: glibc reads
+// its tunables only when a process starts). Call it first thing in main(). Returns without restarting
+// when the tunable is already set (by an earlier start or by the user), when
+// MOTIONSTYLE_NO_HUGE_PAGES is set, when the kernel's transparent huge pages are off, or when the
+// restart fails.
+//
+// Why: the networks' prepared kernels and a clip's buffers are tens of MB, first touched page by page:
+// 20,000 page faults, half of a one-clip stylize (0.24 s -> 0.13 s with 2 MB pages), and the part of a
+// batch that no second core divides (docs/decisions.md).
+void restartWithHugePages(char** argv);
+
 }  // namespace motionstyle

@@ -22,6 +22,7 @@
 #include "app_log.h"
 #include "bvh/bvh_reader.h"
 #include "bvh/bvh_writer.h"
+#include "common/allocator_tuning.h"
 #include "common/resource_paths.h"
 #include "demo_scene.h"
 #include "gui_test_support.h"
@@ -230,5 +231,14 @@ class LiveTest : public QObject {
   }
 };
 
-MOTIONSTYLE_GUI_TEST_MAIN(LiveTest)
+// The app's own process set-up (app/gui/main.cpp), so that the latencies are the app's.
+int main(int argc, char** argv) {
+  motionstyle::restartWithHugePages(argv);
+  motionstyle::keepLargeAllocationsInHeap();
+  motionstyle::SkeletonViewport::installDefaultSurfaceFormat();
+  QApplication app(argc, argv);
+  app.setAttribute(Qt::AA_Use96Dpi, true);
+  LiveTest test;
+  return QTest::qExec(&test, argc, argv);
+}
 #include "test_live.moc"
