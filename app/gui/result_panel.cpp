@@ -265,9 +265,7 @@ void ResultPanel::inputsChanged(const QString& what) {
   if (resultIsStale()) {
     status_label_->setText(tr("Out of date: %1. %2").arg(what, rerun ? tr("Updating...") : tr("Stylize again to update it.")));
     refreshControls();
-    // The figures are renamed "out of date" once; rebuilding them at every step of a drag would take
-    // the GUI thread from the result on its way.
-    if (!was_stale) emit resultChanged();
+    if (!was_stale) emit resultChanged();  // renamed "out of date" once, not rebuilt at every step of a drag
   }
 }
 
