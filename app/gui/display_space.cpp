@@ -45,4 +45,13 @@ Eigen::MatrixXd rowsAtRate(const Eigen::MatrixXd& rows, double source_fps, doubl
   return resampleRowsLinear(rows, 1.0 / source_fps, target_fps);
 }
 
+std::vector<float> trackAtRate(const std::vector<double>& track, double track_fps, double fps) {
+  Eigen::MatrixXd rows(static_cast<Eigen::Index>(track.size()), 1);
+  for (size_t i = 0; i < track.size(); ++i) rows(static_cast<Eigen::Index>(i), 0) = track[i];
+  const Eigen::MatrixXd at_rate = rowsAtRate(rows, track_fps, fps);
+  std::vector<float> values(static_cast<size_t>(at_rate.rows()));
+  for (Eigen::Index i = 0; i < at_rate.rows(); ++i) values[static_cast<size_t>(i)] = static_cast<float>(at_rate(i, 0));
+  return values;
+}
+
 }  // namespace motionstyle

@@ -35,4 +35,8 @@ DisplaySpace unmappedDisplaySpace(const Motion& motion, const Eigen::MatrixXd& f
 // interpolation (resampleRowsLinear), so that clips of any rate play in sync by time on one timeline.
 Eigen::MatrixXd rowsAtRate(const Eigen::MatrixXd& rows, double source_fps, double target_fps);
 
+// A per-frame track (one value per frame at track_fps, e.g. a metric) -> one value per frame at fps,
+// as rowsAtRate does it: for the timeline's quality tracks.
+std::vector<float> trackAtRate(const std::vector<double>& track, double track_fps, double fps);
+
 }  // namespace motionstyle

@@ -257,7 +257,12 @@ void ResultPanel::inputsChanged(const QString& what) {
   if (result_) stale_reason_ = what;
   const bool rerun = canStylize();
   if (busy_ && rerun) {
-    pending_ = true;  // after the running job: one job for the latest inputs
+    if (!dropped_previous_ && clock_.elapsed() - job_start_ms_ < last_job_ms_ / 3) {
+      dropped_previous_ = true;  // the running job has only just started: replaced (see the header)
+      runStylize();
+    } else {
+      pending_ = true;  // after the running job: one job for the latest inputs
+    }
   } else {
     if (busy_) cancel();
     if (rerun) stylize();
@@ -279,7 +284,10 @@ void ResultPanel::setStrength(double strength) {
 }
 
 void ResultPanel::stylize() {
-  if (busy_) return;
+  if (!busy_) runStylize();
+}
+
+void ResultPanel::runStylize() {
   if (!content_) {
     report(tr("Nothing to stylize"), tr("Open a BVH clip and use it as the content."));
     return;
@@ -313,6 +321,7 @@ void ResultPanel::stylize() {
 
 void ResultPanel::startJob(style::StylizeCleanupJob job) {
   const QString step = job.stylized ? tr("Cleaning up...") : tr("Stylizing and cleaning up...");
+  job_start_ms_ = clock_.elapsed();
   // A job for older inputs may still be running: it is dropped (its answer never arrives) and this one
   // runs as soon as the worker is free.
   {
@@ -339,6 +348,8 @@ void ResultPanel::cancel() {
 
 void ResultPanel::onFinished(std::shared_ptr<const style::StylizeCleanupResult> result) {
   result_ = std::move(result);
+  last_job_ms_ = std::lround(result_->seconds * 1000.0);
+  dropped_previous_ = false;
   result_network_name_ = job_network_name_;
   if (!pending_) stale_reason_.clear();  // else the inputs moved on while it ran: shown, out of date
   QString status = tr("Stylized and cleaned up %1 frames in %2 s.")
@@ -425,20 +436,6 @@ std::vector<FigureData> ResultPanel::resultFigures(bool include_raw) const {
   if (include_raw) figures.push_back(rawOutputFigure(*result_, *content_, tr("%1 raw").arg(name), content_->fps()));
   return figures;
 }
-
-namespace {
-
-// A per-frame metrics track (at the stylized rate) -> one value per frame at the content's rate.
-std::vector<float> trackAtRate(const std::vector<double>& track, double track_fps, double fps) {
-  Eigen::MatrixXd rows(static_cast<Eigen::Index>(track.size()), 1);
-  for (size_t i = 0; i < track.size(); ++i) rows(static_cast<Eigen::Index>(i), 0) = track[i];
-  const Eigen::MatrixXd at_rate = rowsAtRate(rows, track_fps, fps);
-  std::vector<float> values(static_cast<size_t>(at_rate.rows()));
-  for (Eigen::Index i = 0; i < at_rate.rows(); ++i) values[static_cast<size_t>(i)] = static_cast<float>(at_rate(i, 0));
-  return values;
-}
-
-}  // namespace
 
 QualityTracks ResultPanel::qualityTracks() const {
   QualityTracks tracks;

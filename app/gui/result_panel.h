@@ -144,6 +144,7 @@ class ResultPanel : public QWidget {
   // and is replaced by a new run when one is possible; while a job runs, one run for the latest inputs
   // follows it (see pending_). Called for every step of a slider drag or a contact stroke.
   void inputsChanged(const QString& what);
+  void runStylize();  // stylize() without its "already busy" check: startJob drops a running job
   bool canStylize() const;  // a mapped content and a network or stylized clip
   void report(const QString& title, const QString& message);
   void listShippedNetworks();
@@ -169,7 +170,13 @@ class ResultPanel : public QWidget {
   bool busy_ = false;        // a job is on its way
   // Live edits: a change while a job runs lets that job finish (its result is shown, marked out of
   // date) and then runs ONE job for the latest inputs; the values in between are dropped, never queued.
+  // Except a job started under a third of the last job's time ago: it answers values the hand has left,
+  // so it is dropped and one for the latest inputs starts at once; never two in a row, so results keep
+  // coming however fast the hand moves.
   bool pending_ = false;
+  qint64 job_start_ms_ = -1;       // when the running job was started (clock_)
+  qint64 last_job_ms_ = 0;         // how long the last finished job took
+  bool dropped_previous_ = false;  // the running job replaced a dropped one
   std::shared_ptr<style::StylizeCleanupMemory> memory_;  // the last job on the content: an edit redoes what changed
   QElapsedTimer clock_;                    // for the log's latencies (app_log.h)
   qint64 last_change_ms_ = -1;             // when the inputs last changed, and what changed

@@ -160,7 +160,10 @@ struct CleanupReport {
 //     solution instead of its predecessor's (a strength step moves every frame a little);
 //   - solves anything else (another clip, other options, another length) from scratch.
 // It holds every solved frame (about 1 KB each on a 24-joint rig): for interactive clips, not for
-// streaming a long clip. One clean-up at a time per memory.
+// streaming a long clip. A chunk's slot is written whole once its solve ends, so a cancelled clean-up
+// leaves the memory consistent (the chunks it finished, the rest from before: a live edit that drops a
+// just-started job keeps its warm starts); any other failure empties it. One clean-up at a time per
+// memory.
 class CleanupMemory {
  public:
   CleanupMemory();

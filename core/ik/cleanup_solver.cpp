@@ -386,8 +386,10 @@ SolverOutput solveCleanup(const SolverInput& input, const CleanupOptions& option
         sweep.run(chunk, memory ? &(*memory)[static_cast<size_t>(k)] : nullptr);
         emit(chunk);
       }
+    } catch (const OperationCancelled&) {
+      throw;  // every slot is whole (written after its chunk): the memory stays (cleanup.h)
     } catch (...) {
-      if (memory) memory->clear();  // a cancelled or failed clean-up leaves nothing to trust
+      if (memory) memory->clear();  // a failed clean-up leaves nothing to trust
       throw;
     }
     return out;
@@ -419,9 +421,12 @@ SolverOutput solveCleanup(const SolverInput& input, const CleanupOptions& option
       }
       changed.notify_all();
     }
+  } catch (const OperationCancelled&) {
+    stopWorkers();
+    throw;  // every slot is whole (written after its chunk): the memory stays (cleanup.h)
   } catch (...) {
     stopWorkers();
-    if (memory) memory->clear();  // a cancelled or failed clean-up leaves nothing to trust
+    if (memory) memory->clear();  // a failed clean-up leaves nothing to trust
     throw;
   }
   stopWorkers();

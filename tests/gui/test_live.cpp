@@ -65,12 +65,12 @@ std::vector<LogEntry> readLiveLog(const QString& path) {
   return entries;
 }
 
-// A 500-frame clip from a fixture: its first 500 frames, or played forward then backward (no jump).
-QString writeClip(const QTemporaryDir& dir, const QString& fixture, const QString& name) {
+// A clip of `frames` frames from a fixture: its first frames, or played forward then backward (no jump).
+QString writeClip(const QTemporaryDir& dir, const QString& fixture, const QString& name, int frames = 500) {
   Motion clip = readBvh(test::fixture(fixture).toStdString());
   const int n = clip.frameCount();
-  MatrixRowMajor values(500, clip.values.cols());
-  for (int f = 0; f < 500; ++f) {
+  MatrixRowMajor values(frames, clip.values.cols());
+  for (int f = 0; f < frames; ++f) {
     const int cycle = f % (2 * n - 2);
     values.row(f) = clip.values.row(cycle < n ? cycle : 2 * n - 2 - cycle);
   }
@@ -197,6 +197,28 @@ class LiveTest : public QObject {
     QVERIFY(QTest::qWaitFor([&] { return !panel->isBusy(); }, kJobTimeoutMs));
     QVERIFY(!panel->resultIsStale());
     QCOMPARE(panel->strength(), 0.9);
+  }
+
+  // A job that has only just started when the hand moves on is replaced at once (its values are
+  // already left behind); the next change waits for the replacement, so results keep coming. A long
+  // clip, so that "only just started" (a third of a job) holds whatever the machine's load.
+  void aJobThatHasOnlyJustStartedIsReplaced() {
+    const QString clip =
+        writeClip(scratch_, QStringLiteral("cmu_131_01.bvh"), QStringLiteral("clip_replace.bvh"), 6000);
+    MainWindow window(false);
+    QVERIFY(showStylized(window, clip));
+    ResultPanel* panel = window.resultPanel();
+    auto* slider = panel->findChild<QSlider*>(QStringLiteral("StrengthSlider"));
+    QVERIFY(slider != nullptr);
+    const size_t before = readLiveLog(log_).size();
+    slider->setValue(90);  // starts a job
+    slider->setValue(80);  // at once: that job is replaced
+    slider->setValue(70);  // the replacement is young too, but is not replaced twice in a row: waits
+    QVERIFY(QTest::qWaitFor([&] { return !panel->isBusy(); }, kJobTimeoutMs));
+    const std::vector<LogEntry> all = readLiveLog(log_);
+    std::vector<double> shown;
+    for (size_t i = before; i < all.size(); ++i) shown.push_back(all[i].strength);
+    QCOMPARE(shown, (std::vector<double>{0.8, 0.7}));
   }
 
   void paintingAContactReSolvesOnlyWhatItTouches() {

@@ -322,15 +322,25 @@ TEST_F(CleanupSolvers, ACleanupWithMemoryOfAnotherClipSolvesEverything) {
                                               nullptr).values);
 }
 
-TEST_F(CleanupSolvers, CancelStopsTheSolveAndForgetsTheMemory) {
-  std::atomic<bool> cancel{true};
+// A cancelled clean-up (a live edit dropping a job that has only just started) keeps what the memory
+// held: the next solve of the same inputs reuses every chunk, exactly.
+TEST_F(CleanupSolvers, CancelStopsTheSolveAndKeepsTheMemoryWhole) {
   CleanupMemory memory;
-  EXPECT_THROW(cleanupMotion(CleanupInput{clip, mapping, targets, contacts, up, floor, cm}, {}, nullptr,
+  CleanupReport first;
+  const Motion solved = cleanupMotion(CleanupInput{clip, mapping, targets, contacts, up, floor, cm}, {}, &first,
+                                      {nullptr, &memory});
+  ASSERT_GT(first.chunks, 1);
+  std::atomic<bool> cancel{true};
+  Eigen::MatrixXd moved = targets;
+  moved.array() += 0.5;
+  EXPECT_THROW(cleanupMotion(CleanupInput{clip, mapping, moved, contacts, up, floor, cm}, {}, nullptr,
                              {&cancel, &memory}),
                OperationCancelled);
-  CleanupReport report;
-  cleanupMotion(CleanupInput{clip, mapping, targets, contacts, up, floor, cm}, {}, &report, {nullptr, &memory});
-  EXPECT_EQ(report.chunks_reused, 0);
+  CleanupReport again;
+  const Motion reused = cleanupMotion(CleanupInput{clip, mapping, targets, contacts, up, floor, cm}, {}, &again,
+                                      {nullptr, &memory});
+  EXPECT_EQ(again.chunks_reused, again.chunks);
+  EXPECT_EQ(reused.values, solved.values);
 }
 
 }  // namespace
