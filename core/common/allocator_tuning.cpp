@@ -33,8 +33,13 @@ void restartWithHugePages(char** argv) {
   if (mode.empty() || mode.find("[never]") != std::string::npos) return;
   const std::string previous = tunables != nullptr ? tunables : "";
   const std::string value = previous.empty() ? kTunable : previous + ":" + kTunable;
+  // The program's own file, not /proc/self/exe: the process keeps its name (ps, pkill).
+  std::string program(4096, '\0');
+  const ssize_t length = ::readlink("/proc/self/exe", program.data(), program.size() - 1);
+  if (length <= 0) return;
+  program.resize(static_cast<std::size_t>(length));
   if (::setenv("GLIBC_TUNABLES", value.c_str(), 1) != 0) return;
-  ::execv("/proc/self/exe", argv);
+  ::execv(program.c_str(), argv);
   // Still here: the restart failed; go on as started.
   if (tunables != nullptr) ::setenv("GLIBC_TUNABLES", previous.c_str(), 1);
   else ::unsetenv("GLIBC_TUNABLES");

@@ -14,7 +14,7 @@ namespace motionstyle {
 // M_MMAP_THRESHOLD and M_TRIM_THRESHOLD). Does nothing on other C libraries.
 void keepLargeAllocationsInHeap();
 
-// Restarts the program once (execv of /proc/self/exe with the same arguments, same process id) with
+// Restarts the program once (execv of its own file with the same arguments: same process id and name) with
 // glibc's malloc asking for transparent huge pages (GLIBC_TUNABLES=glibc.malloc.hugetlb=1: glibc reads
 // its tunables only when a process starts). Call it first thing in main(). Returns without restarting
 // when the tunable is already set (by an earlier start or by the user), when
