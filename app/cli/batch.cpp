@@ -86,7 +86,6 @@ int runBatch(const std::vector<BatchItem>& items, int jobs, const BatchWork& wor
   std::atomic<std::size_t> next{0};
   std::size_t finished = 0;
   const auto start = std::chrono::steady_clock::now();
-  const int threads = std::clamp(jobs, 1, static_cast<int>(items.size()));
   const auto worker = [&] {
     // Each worker is one core (--jobs says how many): its networks run on it alone (nn/compute_pool.h).
     const nn::SerialComputeScope one_core;
@@ -113,6 +112,7 @@ int runBatch(const std::vector<BatchItem>& items, int jobs, const BatchWork& wor
                  finished == items.size());
     }
   };
+  const int threads = std::clamp(jobs, 1, static_cast<int>(items.size()));
   std::vector<std::thread> pool;
   for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
   worker();
