@@ -375,26 +375,6 @@ SolverOutput solveCleanup(const SolverInput& input, const CleanupOptions& option
       sink(f, chunk.roots[row], &chunk.rotations[row * unknowns]);
     }
   };
-  if (threads == 1) {  // one core (a batch's worker, a one-chunk clip): no thread to start and hand over to
-    try {
-      ChunkSweep sweep(input, options, deadline);
-      for (int k = 0; k < chunks; ++k) {
-        ChunkResult chunk;
-        chunk.begin = ranges[static_cast<size_t>(k)].first;
-        chunk.end = ranges[static_cast<size_t>(k)].second;
-        chunk.index = k;
-        sweep.run(chunk, memory ? &(*memory)[static_cast<size_t>(k)] : nullptr);
-        emit(chunk);
-      }
-    } catch (const OperationCancelled&) {
-      throw;  // every slot is whole (written after its chunk): the memory stays (cleanup.h)
-    } catch (...) {
-      if (memory) memory->clear();  // a failed clean-up leaves nothing to trust
-      throw;
-    }
-    return out;
-  }
-
   std::vector<std::jthread> workers;
   auto stopWorkers = [&]() {
     {
@@ -404,22 +384,34 @@ SolverOutput solveCleanup(const SolverInput& input, const CleanupOptions& option
     changed.notify_all();
     workers.clear();  // joins
   };
-  for (int t = 0; t < threads; ++t) workers.emplace_back(worker);
   try {
-    for (int k = 0; k < chunks; ++k) {
-      ChunkResult chunk;
-      {
-        std::unique_lock<std::mutex> lock(mutex);
-        changed.wait(lock, [&] { return finished.count(k) > 0; });
-        chunk = std::move(finished.at(k));
-        finished.erase(k);
+    if (threads == 1) {  // one core (a batch's worker, a one-chunk clip): no thread to start and hand over to
+      ChunkSweep sweep(input, options, deadline);
+      for (int k = 0; k < chunks; ++k) {
+        ChunkResult chunk;
+        chunk.begin = ranges[static_cast<size_t>(k)].first;
+        chunk.end = ranges[static_cast<size_t>(k)].second;
+        chunk.index = k;
+        sweep.run(chunk, memory ? &(*memory)[static_cast<size_t>(k)] : nullptr);
+        emit(chunk);
       }
-      emit(chunk);
-      {
-        const std::lock_guard<std::mutex> lock(mutex);
-        ++emitted;
+    } else {
+      for (int t = 0; t < threads; ++t) workers.emplace_back(worker);
+      for (int k = 0; k < chunks; ++k) {
+        ChunkResult chunk;
+        {
+          std::unique_lock<std::mutex> lock(mutex);
+          changed.wait(lock, [&] { return finished.count(k) > 0; });
+          chunk = std::move(finished.at(k));
+          finished.erase(k);
+        }
+        emit(chunk);
+        {
+          const std::lock_guard<std::mutex> lock(mutex);
+          ++emitted;
+        }
+        changed.notify_all();
       }
-      changed.notify_all();
     }
   } catch (const OperationCancelled&) {
     stopWorkers();

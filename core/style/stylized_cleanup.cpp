@@ -55,8 +55,9 @@ Eigen::MatrixXi restingContacts(const Eigen::MatrixXi& content_contacts, const S
   return kept;
 }
 
-// `rows` cut or extended (holding the last row) to `frames` rows: a clip taken to 60 fps and back at a
-// rate that does not divide 60 (24, 25 fps) can come back a frame short.
+// `rows` cut or extended (holding the last row) to `frames` rows; empty rows stay empty. A clip taken
+// to 60 fps and back at a rate that does not divide 60 (24, 25 fps), or solved at 60 fps and taken
+// back to 120, can come back a frame short.
 template <typename Matrix>
 Matrix fitRows(Matrix rows, Eigen::Index frames) {
   const Eigen::Index had = rows.rows();
@@ -151,12 +152,8 @@ StylizedCleanup cleanUpStylizedClip(const Motion& content, const JointMapping& m
   // Back at the content's rate the clip can come out a frame or two short (720 frames at 120 fps are
   // 360 at 60 fps, which give 719 at 120 fps): the content's last frames lie past the last solved one.
   // They hold that pose, as resampling does past the end, so that the export has the content's count.
-  const Eigen::Index solved = result.motion.values.rows();
-  if (sameFrameRate(target_fps, content.fps()) && solved > 0 && solved < content.frameCount()) {
-    result.motion.values.conservativeResize(content.frameCount(), Eigen::NoChange);
-    for (Eigen::Index f = solved; f < result.motion.values.rows(); ++f)
-      result.motion.values.row(f) = result.motion.values.row(solved - 1);
-  }
+  if (sameFrameRate(target_fps, content.fps()) && result.motion.values.rows() < content.frameCount())
+    result.motion.values = fitRows(std::move(result.motion.values), content.frameCount());
   result.motion.source = content.source;
   return result;
 }
