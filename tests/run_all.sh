@@ -6,7 +6,7 @@
 # data (tests over ../shared/data, which skip with a message when the licensed dataset is absent).
 #
 # Environment: MOTIONSTYLE_BUILD_ROOT (default <repo>/build), MOTIONSTYLE_FUZZ_SECONDS (seconds PER fuzz
-# target, default 30: two targets, 60 s in all), MOTIONSTYLE_SKIP_SANITIZERS=1 to skip the sanitizer
+# target, default 30: the two targets run side by side), MOTIONSTYLE_SKIP_SANITIZERS=1 to skip the sanitizer
 # pass (local iteration only).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)

@@ -1,8 +1,10 @@
 #include "features/representation.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <vector>
 
 #include "common/errors.h"
 #include "features/foot_contacts.h"
@@ -49,6 +51,21 @@ double softFloor(const Eigen::MatrixXd& features) {
   Eigen::VectorXd lowest = Eigen::VectorXd::Constant(features.cols(), std::numeric_limits<double>::infinity());
   for (CanonicalJoint foot : kContactJoint) lowest = lowest.cwiseMin(features.row(3 * index(foot) + 1).transpose());
   return quantile(lowest, 0.05);
+}
+
+// The toes' height while they are planted (contacts: kContactCount x frames), the median over those
+// frames, reference cm; NaN when no toe is ever planted.
+double stanceToeHeight(const Eigen::MatrixXd& features, const Eigen::MatrixXd& contacts) {
+  std::vector<double> heights;
+  for (ContactLabel label : {ContactLabel::LeftToe, ContactLabel::RightToe}) {
+    const int joint = index(kContactJoint[static_cast<std::size_t>(label)]);
+    for (Eigen::Index f = 0; f < features.cols(); ++f)
+      if (contacts(static_cast<int>(label), f) > 0.5) heights.push_back(features(3 * joint + 1, f));
+  }
+  if (heights.empty()) return std::numeric_limits<double>::quiet_NaN();
+  const auto middle = heights.begin() + static_cast<std::ptrdiff_t>(heights.size() / 2);
+  std::nth_element(heights.begin(), middle, heights.end());
+  return *middle;
 }
 
 void shiftHeights(Eigen::MatrixXd& features, double shift) {
@@ -144,6 +161,15 @@ MotionFeatures extractFeatures(const Motion& motion, const JointMapping& mapping
   }
   anchor.start_root = root.row(0).transpose();
   anchor.start_heading = heading[0];
+  // Contacts from the project's one detector (foot_contacts.h), here in reference space: Y-up, the floor
+  // at 0, and the body height of the character's rest pose converted to reference cm, so the labels
+  // are the ones the clean-up finds on the clip in its own space.
+  const double body_height = restPoseBodyHeight(motion.skeleton, anchor.convention.fileUp()) *
+                             anchor.convention.cm_per_unit * anchor.scale;
+  result.contacts = detectContacts(world, canonicalContactJoints(), Eigen::Vector3d::UnitY(), 0.0, options.fps,
+                                   body_height)
+                        .transpose()
+                        .cast<double>();
   if (options.retarget_proportions) {
     try {
       anchor.proportions = measureProportions(result.values);
@@ -154,19 +180,15 @@ MotionFeatures extractFeatures(const Motion& motion, const JointMapping& mapping
       }
       anchor.retarget_height_shift = -softFloor(result.values);
       shiftHeights(result.values, anchor.retarget_height_shift);
+      const double stance = stanceToeHeight(result.values, result.contacts);
+      if (std::isfinite(stance)) {
+        anchor.retarget_height_shift += kReferenceStanceToeHeightCm - stance;
+        shiftHeights(result.values, kReferenceStanceToeHeightCm - stance);
+      }
     } catch (const std::invalid_argument& error) {
       throw InputError(motion.source, 0, std::string("cannot retarget the skeleton's proportions: ") + error.what());
     }
   }
-  // Contacts from the project's one detector (foot_contacts.h), here in reference space: Y-up, the floor
-  // at 0, and the body height of the character's rest pose converted to reference cm, so the labels
-  // are the ones the clean-up finds on the clip in its own space.
-  const double body_height = restPoseBodyHeight(motion.skeleton, anchor.convention.fileUp()) *
-                             anchor.convention.cm_per_unit * anchor.scale;
-  result.contacts = detectContacts(world, canonicalContactJoints(), Eigen::Vector3d::UnitY(), 0.0, options.fps,
-                                   body_height)
-                        .transpose()
-                        .cast<double>();
   return result;
 }
 

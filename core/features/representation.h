@@ -14,7 +14,9 @@
 //      networks see every rig with one actor's bone lengths; the clip's own are kept in the anchor;
 //   8. content clips: the rig's girdle placement (hip joints, shoulders, toes) turned to the reference
 //      actor's (rig_canonicalisation.h); the correction is kept in the anchor;
-//      heights are then shifted so that the feet's soft minimum is on the floor again.
+//   9. heights shifted so that the planted toes stand as high as the reference actor's
+//      (kReferenceStanceToeHeightCm; their median over the clip's toe contacts), or, in a clip whose
+//      toes are never planted, so that the feet's soft minimum is on the floor again.
 // Contacts are detected on the clip's own positions (step 5's frame, before 7). The inverse undoes 8,
 // retargets back to the clip's proportions, integrates the velocities from the anchor and undoes steps 2-4,
 // giving world positions of the canonical joints in the clip's own file space (units and axes).
@@ -56,11 +58,20 @@ struct FeatureAnchor {
   Proportions proportions = referenceProportions();
   // The girdle correction of step 8 (identity when off).
   RigCorrection rig;
-  // Added to every height after steps 7 and 8, reference cm: new bone lengths and girdle placement move
-  // the planted feet up or down (CMU's hip joints hang 4 cm lower than the actor's), so the feet's soft
-  // minimum is put back on the floor. The inverse subtracts it before undoing them.
+  // Added to every height after steps 7 and 8 (step 9), reference cm: new bone lengths and girdle
+  // placement move the planted feet up or down (CMU's hip joints hang 4 cm lower than the actor's), and
+  // where a capture's floor lies under the feet differs by studio. The inverse subtracts it before
+  // undoing 7 and 8.
   double retarget_height_shift = 0.0;
 };
+
+// Step 9's target: the planted toes' height above the floor in the reference actor's clips, reference
+// cm (the median over the 184 Bandai dataset-2 normal-style clips of each clip's median, after steps
+// 1-8 with the soft-minimum floor; their 10th-90th percentiles 0.15-0.48). Why not the soft minimum
+// alone: CMU clips' lowest foot joint wanders 3-4 cm over a clip (uneven floors, toe markers), so their
+// planted feet stood 3-4 cm higher than any training clip's and the style networks, which learnt the
+// actor's stance heights, sank them by as much (docs/decisions.md).
+constexpr double kReferenceStanceToeHeightCm = 0.34;
 
 // Computed result for one clip.
 struct MotionFeatures {

@@ -36,24 +36,43 @@ double median(std::vector<double> values) {
 // The content's contact joints (ContactLabel order) as the columns of feet_world (frames x 12).
 constexpr std::array<int, kContactCount> kFeetColumns = {0, 1, 2, 3};
 
-// Height above the floor of each contact joint while the CONTENT clip has that foot planted (its own
-// detected contacts), file units. A joint never planted in the content keeps the low-percentile
-// estimate, which is what detection itself assumes. feet_world: the content's contact joints.
-std::array<double, kContactCount> contactRestHeights(const CleanupInput& input, const Eigen::MatrixXd& feet_world) {
+// Where the CONTENT clip has each contact joint planted (its own detected contacts) and how high above
+// the floor it is then, file units: one median per joint for the whole clip (`rest`), the fallback for
+// a lock where the content's foot is not down. A joint never planted in the content keeps the
+// low-percentile estimate, which is what detection itself assumes. feet_world: the content's contact
+// joints.
+struct ContentFootHeights {
+  std::array<double, kContactCount> rest{};
+  ContactLabels planted;
+};
+
+ContentFootHeights contentFootHeights(const CleanupInput& input, const Eigen::MatrixXd& feet_world) {
   const double body_height = restPoseBodyHeight(input.content.skeleton, input.up);
-  std::array<double, kContactCount> rest =
-      estimateRestHeights(feet_world, kFeetColumns, input.up, input.floor_height, body_height);
-  const ContactLabels planted =
-      detectContacts(feet_world, kFeetColumns, input.up, input.floor_height, input.content.fps(), body_height);
+  ContentFootHeights feet;
+  feet.rest = estimateRestHeights(feet_world, kFeetColumns, input.up, input.floor_height, body_height);
+  feet.planted = detectContacts(feet_world, kFeetColumns, input.up, input.floor_height, input.content.fps(), body_height);
   for (size_t label = 0; label < kContactCount; ++label) {
     std::vector<double> heights;
-    for (Eigen::Index f = 0; f < planted.rows(); ++f)
-      if (planted(f, static_cast<Eigen::Index>(label)) != 0)
+    for (Eigen::Index f = 0; f < feet.planted.rows(); ++f)
+      if (feet.planted(f, static_cast<Eigen::Index>(label)) != 0)
         heights.push_back(input.up.dot(feet_world.block<1, 3>(f, 3 * static_cast<Eigen::Index>(label)).transpose()) -
                           input.floor_height);
-    if (!heights.empty()) rest[label] = std::max(0.0, median(heights));
+    if (!heights.empty()) feet.rest[label] = std::max(0.0, median(heights));
   }
-  return rest;
+  return feet;
+}
+
+// The height above the floor of one lock: the content's own height of that joint over the frames of
+// the segment on which the content has it planted (median), else the clip's rest height. Why per
+// segment: captured floors are not flat (CMU 07_01's left ankle rests 6.0 cm up in one step and 8.9
+// in the next); one clip-wide height lifted or sank every step by the difference.
+double lockHeight(const ContentFootHeights& feet, const CleanupInput& input, const Eigen::MatrixXd& feet_world, int label,
+                  const ContactSegment& range) {
+  std::vector<double> heights;
+  for (int f = range.first; f <= range.last && f < feet.planted.rows(); ++f)
+    if (feet.planted(f, label) != 0)
+      heights.push_back(input.up.dot(feet_world.block<1, 3>(f, 3 * label).transpose()) - input.floor_height);
+  return heights.empty() ? feet.rest[static_cast<size_t>(label)] : std::max(0.0, median(heights));
 }
 
 double smoothstep(double x) {
@@ -75,9 +94,10 @@ struct LockSegment {
 
 // Heel and toe locks of one foot that are active together must sit as far apart as the foot is long,
 // or the solver, unable to meet both, moves the toe when the heel lock lets go (a visible skate).
-// The later of two overlapping segments is moved along the floor to the foot's length from the
-// earlier one; segments are visited in start order so chains of overlaps stay consistent.
-void makeFootLocksConsistent(std::vector<LockSegment>& segments, int heel, int toe, double horizontal_length,
+// The later of two overlapping segments is moved along the floor so that the two locks lie the foot's
+// length apart (their heights kept); segments are visited in start order so chains of overlaps stay
+// consistent.
+void makeFootLocksConsistent(std::vector<LockSegment>& segments, int heel, int toe, double foot_length,
                              const Eigen::Vector3d& up) {
   std::vector<LockSegment*> foot;
   for (LockSegment& segment : segments)
@@ -103,16 +123,17 @@ void makeFootLocksConsistent(std::vector<LockSegment>& segments, int heel, int t
     const double height = up.dot(along);
     along -= height * up;
     if (along.norm() < 1e-9) continue;  // no direction to keep: leave it
+    const double horizontal_length = std::sqrt(std::max(0.0, foot_length * foot_length - height * height));
     later.lock = anchor->lock + along.normalized() * horizontal_length + height * up;
   }
 }
 
 // One lock point per contact segment: the median of the targets over the segment (per axis, on the
-// floor plane), at floor + rest height. Its weight is full inside the segment; on either side the
+// floor plane), at floor + lockHeight. Its weight is full inside the segment; on either side the
 // lock's share of the pull ramps down (CleanupOptions::contact_blend_seconds); where two ramps meet,
 // the nearer segment wins.
-ContactLocks contactLocks(const CleanupInput& input, const CleanupOptions& options,
-                          const std::array<double, kContactCount>& rest, const Eigen::MatrixXd& feet_world) {
+ContactLocks contactLocks(const CleanupInput& input, const CleanupOptions& options, const ContentFootHeights& feet,
+                          const Eigen::MatrixXd& feet_world) {
   const int frames = static_cast<int>(input.targets.rows());
   const Eigen::Vector3d& up = input.up;
   std::vector<LockSegment> segments;
@@ -128,7 +149,8 @@ ContactLocks contactLocks(const CleanupInput& input, const CleanupOptions& optio
         }
         segment.lock[axis] = median(values);
       }
-      segment.lock = segment.lock - up.dot(segment.lock) * up + (input.floor_height + rest[static_cast<size_t>(label)]) * up;
+      segment.lock = segment.lock - up.dot(segment.lock) * up +
+                     (input.floor_height + lockHeight(feet, input, feet_world, label, range)) * up;
       segments.push_back(segment);
     }
   }
@@ -138,9 +160,7 @@ ContactLocks contactLocks(const CleanupInput& input, const CleanupOptions& optio
     std::vector<double> lengths;
     for (Eigen::Index f = 0; f < feet_world.rows(); ++f)
       lengths.push_back((feet_world.block<1, 3>(f, 3 * heel) - feet_world.block<1, 3>(f, 3 * toe)).norm());
-    const double length = median(lengths);
-    const double drop = rest[static_cast<size_t>(heel)] - rest[static_cast<size_t>(toe)];
-    makeFootLocksConsistent(segments, heel, toe, std::sqrt(std::max(0.0, length * length - drop * drop)), up);
+    makeFootLocksConsistent(segments, heel, toe, median(lengths), up);
   }
 
   ContactLocks locks;
@@ -243,8 +263,9 @@ void cleanupMotionInBlocks(const CleanupInput& input, const CleanupOptions& opti
   {
     const std::array<int, kContactCount> feet = contactJoints(input.mapping);
     const Eigen::MatrixXd feet_world = worldPositions(content, feet);  // frames x 12, freed after planning
-    rest = contactRestHeights(input, feet_world);
-    locks = contactLocks(input, options, rest, feet_world);
+    const ContentFootHeights content_feet = contentFootHeights(input, feet_world);
+    rest = content_feet.rest;
+    locks = contactLocks(input, options, content_feet, feet_world);
   }
 
   // Final frames gather into blocks of options.block_frames: the content's local poses of the block with

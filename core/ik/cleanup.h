@@ -4,7 +4,9 @@
 //   - bone lengths exact BY CONSTRUCTION (only rotations and the root position are solved; every other
 //     joint keeps the content's per-frame local translation),
 //   - heels and toes locked to one world position during each labelled contact (blended in and out),
-//   - foot joints kept above the floor, and at their rest height above it during contact,
+//   - foot joints kept above the floor and, during contact, at the height the content's own foot has
+//     there (its median over the contact where the content has that foot planted, else the clip's
+//     rest height: captured floors are not flat),
 //   - joints outside the 21 canonical ones (fingers, clavicles, extra spine, twist) following the
 //     content clip's own rotations.
 // Everything happens in the clip's FILE SPACE (file length units, file axes), because that is what is
@@ -142,8 +144,9 @@ struct CleanupReport {
   double seconds = 0.0;            // wall clock of cleanupMotion
   int unknown_rotations = 0;       // joints whose rotation is solved (per frame)
   int contact_segments = 0;        // over the four contact tracks
-  // Height above the floor of each contact joint during contact (ContactLabel order), file units,
-  // derived from the content clip; the lock height is floor_height + this.
+  // Height above the floor of each contact joint while the content has it planted, the median over the
+  // clip (ContactLabel order), file units: the lock height of a contact where the content's foot is
+  // not down (elsewhere, the content's own height over that contact).
   std::array<double, kContactCount> contact_rest_heights{};
   // Residual of the result on the mapped joints vs the targets, cm.
   double mean_position_residual_cm = 0.0;

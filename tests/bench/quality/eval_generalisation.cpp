@@ -234,6 +234,7 @@ nlohmann::json evaluateNetwork(const nn::StyleModel& model, const nn::LossNetwor
     const double proj = ev.style_distance_before > 0 ? ev.style_distance_projection / ev.style_distance_before : 0;
     nlohmann::json c = {{"file", clips[i].file.filename().string()}, {"frames", ev.frames}, {"style_ratio", ratio},
                         {"projection_ratio", proj}, {"content_distance", ev.content_distance_after},
+                        {"style_distance_before", ev.style_distance_before}, {"style_distance_after", ev.style_distance_after},
                         {"familiarity_cm", ev.reconstruction_joint_error_cm},
                         {"network_path_distance_ratio", ev.network_path_distance_ratio}};
     figures.network_distance += ev.network_path_distance_ratio;

@@ -3,12 +3,15 @@
 // +-3 % bone lengths (ik_test_support.h).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "bvh/bvh_reader.h"
 #include "features/foot_contacts.h"
 #include "ik/cleanup.h"
+#include "ik/contacts.h"
 #include "ik/metrics.h"
 #include "ik_test_support.h"
 #include "mapping/joint_mapping.h"
@@ -96,6 +99,40 @@ TEST_P(CleanupRealClip, CleanClipChangesLittle) {
               m.residual_mean_cm, m.residual_max_cm, m.foot_skate_cm_s);
   EXPECT_LE(m.residual_mean_cm, 1.0);  // targets = the clip itself: the residual is the change
   EXPECT_LE(m.foot_skate_cm_s, 0.5);
+}
+
+TEST_P(CleanupRealClip, OnASlopedFloorEachStepKeepsTheContentsHeight) {
+  // The clip walked up a ramp that rises 8 cm over its length (the root's position channels, X Y Z in
+  // both files, raised along `up`): captured floors are not flat. Cleaned toward itself, each contact
+  // holds the ankle where the content's ankle is during that contact. A single height for the whole
+  // clip puts the first and last steps about 4 cm off.
+  Motion sloped = clip;
+  const double rise = 8.0 / cm;
+  for (int f = 0; f < sloped.frameCount(); ++f)
+    for (int axis = 0; axis < 3; ++axis) sloped.values(f, axis) += rise * up[axis] * f / (sloped.frameCount() - 1);
+  const Eigen::MatrixXd sloped_world = worldPositions(sloped);
+  const std::array<int, kContactCount> feet = contactJoints(mapping);
+  const double low_floor = estimateFloorHeight(sloped_world, feet, up);
+  const Eigen::MatrixXi sloped_contacts =
+      detectContacts(sloped_world, feet, up, low_floor, sloped.fps(), restPoseBodyHeight(sloped.skeleton, up));
+  const Motion result = cleanupMotion(
+      CleanupInput{sloped, mapping, test::canonicalPositions(sloped_world, mapping), sloped_contacts, up, low_floor, cm}, {},
+      nullptr);
+  const Eigen::MatrixXd result_world = worldPositions(result);
+  const int heel = static_cast<int>(ContactLabel::LeftHeel);
+  const int ankle = feet[static_cast<size_t>(heel)];
+  int segments = 0;
+  for (const ContactSegment& segment : contactSegments(sloped_contacts, heel)) {
+    std::vector<double> heights;
+    for (int f = segment.first; f <= segment.last; ++f) heights.push_back(up.dot(sloped_world.block<1, 3>(f, 3 * ankle).transpose()));
+    std::sort(heights.begin(), heights.end());
+    const double content_height = heights[heights.size() / 2];
+    for (int f = segment.first; f <= segment.last; ++f)
+      ASSERT_NEAR(up.dot(result_world.block<1, 3>(f, 3 * ankle).transpose()) * cm, content_height * cm, 0.5)
+          << "frame " << f << " of the contact " << segment.first << "-" << segment.last;
+    ++segments;
+  }
+  EXPECT_GE(segments, 2);
 }
 
 TEST_P(CleanupRealClip, StretchedLegWarnsAndStaysBounded) {
