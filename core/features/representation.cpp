@@ -62,10 +62,7 @@ double stanceToeHeight(const Eigen::MatrixXd& features, const Eigen::MatrixXd& c
     for (Eigen::Index f = 0; f < features.cols(); ++f)
       if (contacts(static_cast<int>(label), f) > 0.5) heights.push_back(features(3 * joint + 1, f));
   }
-  if (heights.empty()) return std::numeric_limits<double>::quiet_NaN();
-  const auto middle = heights.begin() + static_cast<std::ptrdiff_t>(heights.size() / 2);
-  std::nth_element(heights.begin(), middle, heights.end());
-  return *middle;
+  return heights.empty() ? std::numeric_limits<double>::quiet_NaN() : median(std::move(heights));
 }
 
 void shiftHeights(Eigen::MatrixXd& features, double shift) {

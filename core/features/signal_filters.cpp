@@ -53,4 +53,11 @@ double quantile(const Eigen::VectorXd& values, double q) {
   return sorted[static_cast<size_t>(rank)];
 }
 
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
 }  // namespace motionstyle

@@ -2,6 +2,7 @@
 // Small 1-D signal helpers used by the representation (time runs along rows: one row per frame).
 
 #include <Eigen/Core>
+#include <vector>
 
 namespace motionstyle {
 
@@ -11,5 +12,9 @@ Eigen::MatrixXd gaussianSmoothRows(const Eigen::MatrixXd& signal, double sigma_f
 
 // The q-quantile (0..1) of the values, by partial sort of a copy. Empty input: 0.
 double quantile(const Eigen::VectorXd& values, double q);
+
+// The median: the value of rank size / 2 (the upper of the two middle values of an even count), by
+// partial sort of the copy it is given. Empty input: 0.
+double median(std::vector<double> values);
 
 }  // namespace motionstyle

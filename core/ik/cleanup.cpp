@@ -5,12 +5,14 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 #include <utility>
 
 #include "features/foot_contacts.h"
+#include "features/signal_filters.h"
 #include "ik/cleanup_model.h"
 #include "ik/cleanup_solver.h"
 #include "ik/cleanup_warnings.h"
@@ -27,12 +29,6 @@ void requireWeight(double value, const char* name) {
     throw std::invalid_argument(std::string("cleanup options: ") + name + " must be finite and >= 0");
 }
 
-double median(std::vector<double> values) {
-  const size_t middle = values.size() / 2;
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(middle), values.end());
-  return values[middle];
-}
-
 // The content's contact joints (ContactLabel order) as the columns of feet_world (frames x 12).
 constexpr std::array<int, kContactCount> kFeetColumns = {0, 1, 2, 3};
 
@@ -46,33 +42,38 @@ struct ContentFootHeights {
   ContactLabels planted;
 };
 
+// The median height above the floor of contact joint `label` over frames first..last where the content
+// has it planted (at least 0), file units; nothing when it is planted on none of them.
+std::optional<double> plantedHeight(const ContactLabels& planted, const CleanupInput& input,
+                                    const Eigen::MatrixXd& feet_world, int label, int first, int last) {
+  std::vector<double> heights;
+  for (int f = first; f <= last && f < planted.rows(); ++f)
+    if (planted(f, label) != 0)
+      heights.push_back(input.up.dot(feet_world.block<1, 3>(f, 3 * label).transpose()) - input.floor_height);
+  if (heights.empty()) return std::nullopt;
+  return std::max(0.0, median(std::move(heights)));
+}
+
 ContentFootHeights contentFootHeights(const CleanupInput& input, const Eigen::MatrixXd& feet_world) {
   const double body_height = restPoseBodyHeight(input.content.skeleton, input.up);
   ContentFootHeights feet;
   feet.rest = estimateRestHeights(feet_world, kFeetColumns, input.up, input.floor_height, body_height);
   feet.planted = detectContacts(feet_world, kFeetColumns, input.up, input.floor_height, input.content.fps(), body_height);
-  for (size_t label = 0; label < kContactCount; ++label) {
-    std::vector<double> heights;
-    for (Eigen::Index f = 0; f < feet.planted.rows(); ++f)
-      if (feet.planted(f, static_cast<Eigen::Index>(label)) != 0)
-        heights.push_back(input.up.dot(feet_world.block<1, 3>(f, 3 * static_cast<Eigen::Index>(label)).transpose()) -
-                          input.floor_height);
-    if (!heights.empty()) feet.rest[label] = std::max(0.0, median(heights));
-  }
+  const int last = static_cast<int>(feet.planted.rows()) - 1;
+  for (int label = 0; label < kContactCount; ++label)
+    if (const std::optional<double> height = plantedHeight(feet.planted, input, feet_world, label, 0, last))
+      feet.rest[static_cast<size_t>(label)] = *height;
   return feet;
 }
 
-// The height above the floor of one lock: the content's own height of that joint over the frames of
-// the segment on which the content has it planted (median), else the clip's rest height. Why per
-// segment: captured floors are not flat (CMU 07_01's left ankle rests 6.0 cm up in one step and 8.9
-// in the next); one clip-wide height lifted or sank every step by the difference.
+// The height above the floor of one lock: the content's own height of that joint over the segment
+// where the content has it planted, else the clip's rest height. Why per segment: captured floors are
+// not flat (CMU 07_01's left ankle rests 6.0 cm up in one step and 8.9 in the next); one clip-wide
+// height lifted or sank every step by the difference.
 double lockHeight(const ContentFootHeights& feet, const CleanupInput& input, const Eigen::MatrixXd& feet_world, int label,
                   const ContactSegment& range) {
-  std::vector<double> heights;
-  for (int f = range.first; f <= range.last && f < feet.planted.rows(); ++f)
-    if (feet.planted(f, label) != 0)
-      heights.push_back(input.up.dot(feet_world.block<1, 3>(f, 3 * label).transpose()) - input.floor_height);
-  return heights.empty() ? feet.rest[static_cast<size_t>(label)] : std::max(0.0, median(heights));
+  return plantedHeight(feet.planted, input, feet_world, label, range.first, range.last)
+      .value_or(feet.rest[static_cast<size_t>(label)]);
 }
 
 double smoothstep(double x) {

@@ -5,19 +5,13 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "features/signal_filters.h"
 
 namespace motionstyle {
 namespace {
 
 Eigen::Vector3d at(const Eigen::MatrixXd& positions, Eigen::Index frame, int joint) {
   return positions.block<1, 3>(frame, 3 * static_cast<Eigen::Index>(joint)).transpose();
-}
-
-double median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  const size_t middle = values.size() / 2;
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(middle), values.end());
-  return values[middle];
 }
 
 }  // namespace

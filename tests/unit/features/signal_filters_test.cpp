@@ -1,5 +1,5 @@
 // Signal helpers of the representation (signal_filters.h): Gaussian smoothing against a direct clamped
-// convolution, and the quantile.
+// convolution, the quantile and the median.
 
 #include <gtest/gtest.h>
 
@@ -65,6 +65,12 @@ TEST(GaussianSmoothRows, KeepsConstantsAndLinesAwayFromTheEdges) {
   for (Eigen::Index t = 0; t < 200; ++t) line(t, 0) = 0.5 * static_cast<double>(t) - 7.0;
   const Eigen::MatrixXd smoothed = gaussianSmoothRows(line, 3.0);  // symmetric kernel: lines pass through
   EXPECT_LT((smoothed.middleRows(10, 180) - line.middleRows(10, 180)).cwiseAbs().maxCoeff(), 1e-12);
+}
+
+TEST(Median, PicksTheMiddleValueAndTheUpperOfTwo) {
+  EXPECT_EQ(median({}), 0.0);
+  EXPECT_EQ(median({5, 1, 4, 2, 3}), 3.0);
+  EXPECT_EQ(median({4, 1, 3, 2}), 3.0);  // rank size / 2 of 1 2 3 4
 }
 
 TEST(Quantile, PicksTheRankedValue) {
