@@ -10,7 +10,7 @@ packages=(
   clang libclang-rt-14-dev
   # core libraries
   libeigen3-dev libceres-dev nlohmann-json3-dev
-  # desktop app: Qt6 widgets + OpenGL widgets, VTK 9 (rendering only, hosted in a Qt6 QOpenGLWidget)
+  # desktop app: Qt6 widgets + Qt6 OpenGL, VTK 9 (rendering only, into a Qt6 OpenGL framebuffer object)
   qt6-base-dev qt6-base-dev-tools libqt6opengl6-dev libgl-dev libvtk9-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev xvfb xauth libgl1-mesa-dri

@@ -87,7 +87,7 @@ echo "shipped networks in the package: $shipped_nets"
 depends=$(dpkg-deb -f "$deb" Depends)
 # Ceres links statically (Debian's CMake package imports libceres.a); its own runtime libraries
 # (glog, SuiteSparse, LAPACK) come in through shlibdeps like the rest.
-for library in libqt6widgets6 libqt6openglwidgets6 libvtk9.1 libcholmod3 libgoogle-glog0v6; do
+for library in libqt6widgets6 libqt6opengl6 libvtk9.1 libcholmod3 libgoogle-glog0v6; do
   grep -q "\b$library\b" <<<"$depends" && pass "Depends names $library" || fail "Depends lacks $library"
 done
 

@@ -2,11 +2,14 @@
 
 #include <QElapsedTimer>
 #include <QGridLayout>
-#include <QLabel>
 #include <QKeyEvent>
+#include <QLabel>
 #include <QMouseEvent>
+#include <QOffscreenSurface>
 #include <QOpenGLContext>
+#include <QOpenGLFramebufferObject>
 #include <QOpenGLFunctions>
+#include <QPainter>
 #include <QSurfaceFormat>
 #include <QWheelEvent>
 
@@ -40,7 +43,7 @@ struct SkeletonViewport::Impl {
   explicit Impl(SkeletonViewport* owner) : self(owner) {
     window->AddRenderer(scene.renderer());
     window->SetMultiSamples(0);  // edge smoothing is FXAA on the renderer: cheaper than MSAA
-    // The render window asks its host to manage the context: answer with the QOpenGLWidget's.
+    // The render window asks its host to manage the context: answer with the widget's own.
     observers.push_back(window->AddObserver(vtkCommand::WindowMakeCurrentEvent, this, &Impl::onWindowEvent));
     observers.push_back(window->AddObserver(vtkCommand::WindowIsCurrentEvent, this, &Impl::onWindowEvent));
     observers.push_back(window->AddObserver(vtkCommand::WindowFrameEvent, this, &Impl::onWindowEvent));
@@ -49,18 +52,16 @@ struct SkeletonViewport::Impl {
   void onWindowEvent(vtkObject*, unsigned long event, void* call_data) {
     switch (event) {
       case vtkCommand::WindowMakeCurrentEvent:
-        // VTK asks for this many times per render. QOpenGLWidget::makeCurrent() also re-binds Qt's
-        // framebuffer, behind VTK's cached binding, and VTK would then attach its own textures to Qt's
-        // framebuffer: only switch contexts when another one is current.
-        if (QOpenGLContext::currentContext() != self->context()) self->makeCurrent();
+        // VTK asks for this many times per render: only switch when another context is current.
+        if (context && QOpenGLContext::currentContext() != context.get()) context->makeCurrent(&surface);
         break;
       case vtkCommand::WindowIsCurrentEvent: {
         const QOpenGLContext* current = QOpenGLContext::currentContext();
-        *static_cast<bool*>(call_data) = current != nullptr && current == self->context();
+        *static_cast<bool*>(call_data) = current != nullptr && current == context.get();
         break;
       }
       case vtkCommand::WindowFrameEvent:
-        if (!in_paint) self->update();  // VTK rendered outside paintGL: show it
+        if (!in_render) self->requestRender();  // VTK rendered outside render(): render and show it
         break;
       default: break;
     }
@@ -86,6 +87,12 @@ struct SkeletonViewport::Impl {
   }
 
   SkeletonViewport* self;
+  // Declared before the render window, so that it is destroyed after it.
+  QOffscreenSurface surface;
+  std::unique_ptr<QOpenGLContext> context;
+  std::unique_ptr<QOpenGLFramebufferObject> target;  // device pixels, depth and stencil
+  QImage frame;               // the last render, device pixels, top row first
+  QString graphics_problem;   // why there is no 3-D view (no OpenGL 3.2 context), else empty
   vtkNew<vtkGenericOpenGLRenderWindow> window;
   detail::ViewportScene scene;
   std::vector<unsigned long> observers;
@@ -98,14 +105,17 @@ struct SkeletonViewport::Impl {
   bool gl_ready = false;
   bool software_gl = false;
   bool antialiasing_chosen = false;  // the user decided: no automatic default any more
-  bool in_paint = false;
+  bool in_render = false;
+  bool needs_render = true;  // the scene changed since `frame` was rendered
+  int renders = 0;
   Drag drag = Drag::None;
   QPointF last_mouse;
   double last_render_ms = 0.0;
 };
 
-SkeletonViewport::SkeletonViewport(QWidget* parent) : QOpenGLWidget(parent), impl_(std::make_unique<Impl>(this)) {
+SkeletonViewport::SkeletonViewport(QWidget* parent) : QWidget(parent), impl_(std::make_unique<Impl>(this)) {
   setFocusPolicy(Qt::StrongFocus);
+  setAttribute(Qt::WA_OpaquePaintEvent);  // paintEvent covers every pixel
   setMinimumSize(200, 150);
 
   impl_->legend = new QLabel(this);
@@ -182,11 +192,17 @@ int SkeletonViewport::currentFrame() const { return impl_->scene.frame(); }
 SkeletonViewport::Layout SkeletonViewport::layout() const { return impl_->layout; }
 SkeletonViewport::CameraMode SkeletonViewport::cameraMode() const { return impl_->mode; }
 double SkeletonViewport::lastRenderMilliseconds() const { return impl_->last_render_ms; }
+int SkeletonViewport::renderCount() const { return impl_->renders; }
+
+void SkeletonViewport::requestRender() {
+  impl_->needs_render = true;
+  update();
+}
 
 void SkeletonViewport::setFrame(int frame) {
   impl_->scene.setFrame(std::clamp(frame, 0, std::max(0, frameCount() - 1)));
   impl_->follow();
-  update();
+  requestRender();
 }
 
 void SkeletonViewport::setLayout(Layout layout) {
@@ -203,7 +219,7 @@ void SkeletonViewport::setCameraMode(CameraMode mode) {
   impl_->mode = mode;
   impl_->followed = impl_->scene.anchor(impl_->scene.frame());
   refreshOverlay();
-  update();
+  requestRender();
   emit cameraModeChanged(mode);
 }
 
@@ -211,7 +227,7 @@ bool SkeletonViewport::trajectoriesVisible() const { return impl_->scene.traject
 
 void SkeletonViewport::setTrajectoriesVisible(bool visible) {
   impl_->scene.setTrajectoriesVisible(visible);
-  update();
+  requestRender();
 }
 
 bool SkeletonViewport::antialiasing() const { return impl_->scene.antialiasing(); }
@@ -220,7 +236,7 @@ bool SkeletonViewport::softwareRenderer() const { return impl_->software_gl; }
 void SkeletonViewport::setAntialiasing(bool on) {
   impl_->antialiasing_chosen = true;
   impl_->scene.setAntialiasing(on);
-  update();
+  requestRender();
 }
 
 void SkeletonViewport::resetCamera() {
@@ -228,10 +244,14 @@ void SkeletonViewport::resetCamera() {
   box[2] = std::min(box[2], 0.0);  // keep the floor under the feet in view
   detail::frameBox(impl_->camera(), box, kDefaultAzimuthDegrees, kDefaultElevationDegrees, impl_->aspect());
   impl_->followed = impl_->scene.anchor(impl_->scene.frame());
-  update();
+  requestRender();
 }
 
-QImage SkeletonViewport::grabFrame() { return grabFramebuffer(); }
+QImage SkeletonViewport::grabFrame() {
+  const QSize device_size = (QSizeF(size()) * devicePixelRatioF()).toSize().expandedTo(QSize(1, 1));
+  if (impl_->needs_render || impl_->frame.size() != device_size) render();
+  return impl_->frame;
+}
 
 std::optional<QPointF> SkeletonViewport::projectToWidget(int figure, int joint, int frame) const {
   if (figure < 0 || figure >= figureCount()) return std::nullopt;
@@ -247,54 +267,90 @@ std::optional<QPointF> SkeletonViewport::projectToWidget(int figure, int joint, 
   return QPointF(display[0] / ratio, (device_height - display[1]) / ratio);
 }
 
-void SkeletonViewport::initializeGL() {
-  // A new context (first show, or after reparenting): VTK must forget resources of the old one.
-  connect(context(), &QOpenGLContext::aboutToBeDestroyed, this, &SkeletonViewport::releaseGraphics,
-          Qt::UniqueConnection);
+bool SkeletonViewport::ensureGraphics() {
+  if (impl_->gl_ready) return true;
+  if (!impl_->graphics_problem.isEmpty()) return false;
+  const QSurfaceFormat format = QSurfaceFormat::defaultFormat();
+  impl_->surface.setFormat(format);
+  impl_->surface.create();
+  impl_->context = std::make_unique<QOpenGLContext>();
+  impl_->context->setFormat(format);
+  if (!impl_->surface.isValid() || !impl_->context->create() || !impl_->context->makeCurrent(&impl_->surface) ||
+      impl_->context->format().version() < qMakePair(3, 2)) {
+    impl_->context.reset();
+    impl_->graphics_problem = tr("The 3-D view needs OpenGL 3.2, which this display does not offer.");
+    return false;
+  }
   vtkGenericOpenGLRenderWindow* window = impl_->window;
   window->SetOwnContext(false);
-  window->SetFrameBlitModeToBlitToCurrent();
+  window->SetFrameBlitModeToBlitToCurrent();  // into the framebuffer object bound when Render() starts
   window->OpenGLInitContext();
   window->SetReadyForRendering(true);
   impl_->gl_ready = true;
-  const auto* renderer_name = reinterpret_cast<const char*>(context()->functions()->glGetString(GL_RENDERER));
+  const auto* renderer_name = reinterpret_cast<const char*>(impl_->context->functions()->glGetString(GL_RENDERER));
   const QByteArray name = QByteArray(renderer_name != nullptr ? renderer_name : "").toLower();
   impl_->software_gl = name.contains("llvmpipe") || name.contains("softpipe") || name.contains("swrast");
   if (!impl_->antialiasing_chosen) impl_->scene.setAntialiasing(!impl_->software_gl);
-
+  return true;
 }
 
-void SkeletonViewport::resizeGL(int width, int height) {
-  const double ratio = devicePixelRatioF();
-  impl_->window->SetSize(static_cast<int>(std::lround(width * ratio)), static_cast<int>(std::lround(height * ratio)));
-}
-
-void SkeletonViewport::paintGL() {
-  if (!impl_->gl_ready) return;
-  // The render window re-applies its cached GL state at every Start() (it does not own the context),
-  // so what Qt and the overlay painter change between frames is overwritten; the framebuffer binding
-  // is the exception VTK must READ: Qt bound its own framebuffer, and VTK returns to it at the end.
-  impl_->in_paint = true;
+void SkeletonViewport::render() {
+  impl_->needs_render = false;
+  if (!ensureGraphics()) {
+    impl_->frame = QImage();
+    return;
+  }
+  QOpenGLContext& context = *impl_->context;
+  context.makeCurrent(&impl_->surface);
+  const QSize size = (QSizeF(this->size()) * devicePixelRatioF()).toSize().expandedTo(QSize(1, 1));
+  if (!impl_->target || impl_->target->size() != size)
+    impl_->target = std::make_unique<QOpenGLFramebufferObject>(size, QOpenGLFramebufferObject::CombinedDepthStencil);
+  impl_->window->SetSize(size.width(), size.height());
+  // The render window re-applies its cached GL state at every Start() (it does not own the context);
+  // the framebuffer binding is the exception VTK must READ: it blits into the one bound now.
+  impl_->target->bind();
+  impl_->in_render = true;
   impl_->window->GetState()->ResetFramebufferBindings();
   impl_->scene.renderer()->ResetCameraClippingRange();
   QElapsedTimer timer;
   timer.start();
   impl_->window->Render();
   impl_->last_render_ms = static_cast<double>(timer.nsecsElapsed()) / 1e6;
-  impl_->in_paint = false;
+  impl_->in_render = false;
+  ++impl_->renders;
 
-  // VTK blits into the framebuffer bound when it started (Qt's); make sure it is still bound, then
-  // force alpha to 1: Mesa leaves alpha = 0 in the blit and Qt composites the widget with that alpha,
-  // so the view would come out transparent.
-  QOpenGLFunctions* gl = context()->functions();
-  gl->glBindFramebuffer(GL_FRAMEBUFFER, defaultFramebufferObject());
-  gl->glViewport(0, 0, impl_->window->GetSize()[0], impl_->window->GetSize()[1]);
+  // Read back as 0xffRRGGBB words (QImage::Format_RGB32): alpha forced to 1 first, since Mesa leaves
+  // alpha = 0 in VTK's blit; OpenGL's rows run bottom-up.
+  QOpenGLFunctions* gl = context.functions();
+  gl->glBindFramebuffer(GL_FRAMEBUFFER, impl_->target->handle());
+  gl->glViewport(0, 0, size.width(), size.height());
   gl->glDisable(GL_SCISSOR_TEST);
   gl->glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_TRUE);
   gl->glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
   gl->glClear(GL_COLOR_BUFFER_BIT);
   gl->glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  if (impl_->frame.size() != size || impl_->frame.format() != QImage::Format_RGB32)
+    impl_->frame = QImage(size, QImage::Format_RGB32);
+  gl->glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  gl->glReadPixels(0, 0, size.width(), size.height(), GL_BGRA, GL_UNSIGNED_BYTE, impl_->frame.bits());
+  impl_->frame.mirror(false, true);
+  impl_->frame.setDevicePixelRatio(devicePixelRatioF());
 }
+
+void SkeletonViewport::paintEvent(QPaintEvent*) {
+  const QSize device_size = (QSizeF(size()) * devicePixelRatioF()).toSize().expandedTo(QSize(1, 1));
+  if (impl_->needs_render || impl_->frame.size() != device_size) render();
+  QPainter painter(this);
+  if (impl_->frame.isNull()) {
+    painter.fillRect(rect(), QColor(34, 36, 41));
+    painter.setPen(QColor(235, 238, 242));
+    painter.drawText(rect(), Qt::AlignCenter | Qt::TextWordWrap, impl_->graphics_problem);
+    return;
+  }
+  painter.drawImage(QPointF(0.0, 0.0), impl_->frame);  // clipped to the region being repainted
+}
+
+void SkeletonViewport::resizeEvent(QResizeEvent*) { impl_->needs_render = true; }
 
 void SkeletonViewport::refreshOverlay() {
   // Child widgets, not QPainter on the GL framebuffer: Qt composites them over the 3-D view, they
@@ -319,11 +375,12 @@ void SkeletonViewport::setEmptyMessage(const QString& message) {
 
 void SkeletonViewport::releaseGraphics() {
   if (!impl_->gl_ready) return;
-  makeCurrent();
+  impl_->context->makeCurrent(&impl_->surface);
   impl_->window->Finalize();
   impl_->window->SetReadyForRendering(false);
+  impl_->target.reset();
   impl_->gl_ready = false;
-  doneCurrent();
+  impl_->context->doneCurrent();
 }
 
 void SkeletonViewport::mousePressEvent(QMouseEvent* event) {
@@ -350,7 +407,7 @@ void SkeletonViewport::mouseMoveEvent(QMouseEvent* event) {
       break;
     case Impl::Drag::None: break;
   }
-  update();
+  requestRender();
 }
 
 void SkeletonViewport::mouseReleaseEvent(QMouseEvent* event) {
@@ -366,7 +423,7 @@ void SkeletonViewport::wheelEvent(QWheelEvent* event) {
   const double steps = event->angleDelta().y() / 120.0;
   const double height_cm = impl_->scene.characterHeight();
   detail::dollyCamera(impl_->camera(), std::pow(kWheelStepFactor, steps), 0.1 * height_cm, 60.0 * height_cm);
-  update();
+  requestRender();
   event->accept();
 }
 
@@ -376,7 +433,7 @@ void SkeletonViewport::keyPressEvent(QKeyEvent* event) {
     case Qt::Key_C:
       setCameraMode(impl_->mode == CameraMode::Follow ? CameraMode::Fixed : CameraMode::Follow);
       break;
-    default: QOpenGLWidget::keyPressEvent(event); return;
+    default: QWidget::keyPressEvent(event); return;
   }
   event->accept();
 }

@@ -1,10 +1,15 @@
 #pragma once
 // SkeletonViewport: the 3-D view of up to four characters played in sync (content, style, output,
-// raw output), drawn with VTK inside a Qt6 QOpenGLWidget. This header names no VTK type (pimpl).
+// raw output), drawn with VTK. This header names no VTK type (pimpl).
 //
-// Why not QVTKOpenGLNativeWidget: Debian 12's VTK 9.1 Qt module is built against Qt5. The widget
-// hosts a vtkGenericOpenGLRenderWindow that renders into Qt's framebuffer instead, and handles the
-// mouse itself (no vtkRenderWindowInteractor):
+// How VTK is hosted: Debian 12's VTK 9.1 Qt module is built against Qt5, so QVTKOpenGLNativeWidget is
+// out. A vtkGenericOpenGLRenderWindow renders into a framebuffer object of the widget's own OpenGL
+// context (on an offscreen surface); the frame is read back once per render and painted as an image.
+// Why not a QOpenGLWidget: one in a window makes Qt compose the WHOLE window with OpenGL at every
+// repaint of any widget in it (a label, the slider), which under a software OpenGL (llvmpipe, Xvfb)
+// cost more CPU than the work the window shows (docs/decisions.md, "The viewport as an image").
+// A repaint that does not change the scene (an overlay, an exposed region) only repaints the image.
+// The widget handles the mouse itself (no vtkRenderWindowInteractor):
 //   left drag: orbit   middle drag or Shift+left drag: pan   right drag or wheel: zoom
 //   F or double-click: reset the camera   C: toggle follow / fixed camera
 // A legend (role colours and clip names) and the camera mode are child widgets over the view: they
@@ -18,8 +23,8 @@
 
 #include <QImage>
 #include <QString>
-#include <QOpenGLWidget>
 #include <QPointF>
+#include <QWidget>
 
 #include <memory>
 #include <optional>
@@ -29,7 +34,7 @@
 
 namespace motionstyle {
 
-class SkeletonViewport : public QOpenGLWidget {
+class SkeletonViewport : public QWidget {
   Q_OBJECT
 
  public:
@@ -57,7 +62,8 @@ class SkeletonViewport : public QOpenGLWidget {
   CameraMode cameraMode() const;
   bool trajectoriesVisible() const;
 
-  // The framebuffer as rendered now (renders first if needed), device pixels.
+  // The 3-D view as it is now (rendered first if anything changed since the last render), device
+  // pixels, without the overlay widgets. Works before the widget is shown (at its current size).
   QImage grabFrame();
   // Where joint `joint` of figure `figure` at frame `frame` (clamped to that figure) appears, in widget
   // pixels, with the CURRENT camera (in follow mode the camera moves with the current frame). Empty for
@@ -67,10 +73,12 @@ class SkeletonViewport : public QOpenGLWidget {
   // Xvfb), where the extra full-screen pass halves the frame rate; the first setAntialiasing() call
   // overrides the default.
   bool antialiasing() const;
-  // Whether the OpenGL renderer is a software rasteriser (known after the widget is first shown).
+  // Whether the OpenGL renderer is a software rasteriser (known after the first render).
   bool softwareRenderer() const;
-  // Time the last paint spent in VTK's Render(), milliseconds (for the status bar and benchmarks).
+  // Time the last render spent in VTK's Render(), milliseconds (for the status bar and benchmarks).
   double lastRenderMilliseconds() const;
+  // Renders so far (a repaint that changed nothing in the scene does not render): for tests.
+  int renderCount() const;
 
  public slots:
   // Poses every figure at `frame` (a shorter figure holds its last frame): only point coordinates of
@@ -90,9 +98,8 @@ class SkeletonViewport : public QOpenGLWidget {
   void cameraModeChanged(CameraMode mode);
 
  protected:
-  void initializeGL() override;
-  void resizeGL(int width, int height) override;
-  void paintGL() override;
+  void paintEvent(QPaintEvent* event) override;
+  void resizeEvent(QResizeEvent* event) override;
   void mousePressEvent(QMouseEvent* event) override;
   void mouseMoveEvent(QMouseEvent* event) override;
   void mouseReleaseEvent(QMouseEvent* event) override;
@@ -102,6 +109,9 @@ class SkeletonViewport : public QOpenGLWidget {
 
  private:
   void refreshOverlay();
+  void requestRender();  // the scene changed: render at the next paint
+  void render();         // VTK's Render() into the framebuffer object, then read back into the frame
+  bool ensureGraphics();
   void releaseGraphics();
 
   struct Impl;

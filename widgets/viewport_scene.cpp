@@ -1,64 +1,25 @@
 #include "viewport_scene.h"
 
 #include <vtkActor.h>
-#include <vtkCellArray.h>
-#include <vtkCylinderSource.h>
-#include <vtkDoubleArray.h>
-#include <vtkGlyph3DMapper.h>
 #include <vtkLight.h>
 #include <vtkMath.h>
 #include <vtkNew.h>
-#include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkProperty.h>
 #include <vtkRenderer.h>
-#include <vtkSphereSource.h>
-#include <vtkTransform.h>
 #include <vtkTransformPolyDataFilter.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
+#include "viewport_figure_visual.h"
 #include "viewport_floor.h"
 
 namespace motionstyle::detail {
 namespace {
-
-// Sizes relative to the character's height, so a 30 cm toy rig and a 2 m giant look alike.
-constexpr double kJointRadiusPerHeight = 0.019;
-constexpr double kBoneRadiusPerHeight = 0.012;
-constexpr double kContactRadiusPerHeight = 0.045;
-// Small lifts above the floor so markers and paths never z-fight with it.
-constexpr double kTrajectoryLiftCm = 0.4;
-constexpr double kContactLiftCm = 0.2;
-
-std::array<double, 3> rgbOf(const QColor& color) {
-  return {static_cast<double>(color.redF()), static_cast<double>(color.greenF()), static_cast<double>(color.blueF())};
-}
-
-void setColor(vtkProperty* property, const QColor& color, double scale = 1.0) {
-  const auto rgb = rgbOf(color);
-  property->SetColor(std::min(1.0, rgb[0] * scale), std::min(1.0, rgb[1] * scale), std::min(1.0, rgb[2] * scale));
-}
-
-void applySatinMaterial(vtkProperty* property) {
-  property->SetInterpolationToPhong();
-  property->SetAmbient(0.22);
-  property->SetDiffuse(0.80);
-  property->SetSpecular(0.28);
-  property->SetSpecularPower(28.0);
-  property->SetSpecularColor(1.0, 1.0, 1.0);
-}
-
-QColor mixWithWhite(const QColor& color, double amount) {
-  const auto rgb = rgbOf(color);
-  return QColor::fromRgbF(static_cast<float>(rgb[0] + (1.0 - rgb[0]) * amount),
-                          static_cast<float>(rgb[1] + (1.0 - rgb[1]) * amount),
-                          static_cast<float>(rgb[2] + (1.0 - rgb[2]) * amount));
-}
 
 // A tile edge that reads well: 1, 2 or 5 times a power of ten centimetres.
 double niceLength(double approximate) {
@@ -69,96 +30,13 @@ double niceLength(double approximate) {
   return 10.0 * decade;
 }
 
-
 }  // namespace
-
-struct ViewportScene::FigureVisual {
-  double height = 170.0;
-  double lateral_extent = 40.0;  // max horizontal reach of any joint from the root, cm
-  // Placement: drawn = R_y(yaw) (p - pivot) + lane, with pivot the first frame's root on the floor
-  // plane (actor origin), yaw about the vertical (actor orientation) and lane where it starts.
-  Vec3 pivot{};
-  double yaw_degrees = 0.0;
-  Vec3 lane{};
-  std::vector<int> bone_joints;  // joints with a parent: one bone each, parent -> joint
-
-  vtkNew<vtkSphereSource> joint_sphere;
-  vtkNew<vtkPoints> joint_points;
-  vtkNew<vtkPolyData> joints;
-  vtkNew<vtkGlyph3DMapper> joint_mapper;
-  vtkNew<vtkActor> joint_actor;
-
-  vtkNew<vtkPoints> bone_points;  // bone midpoints
-  vtkNew<vtkDoubleArray> bone_directions;
-  vtkNew<vtkDoubleArray> bone_scales;  // (length, radius, radius) of the unit X-axis cylinder
-  vtkNew<vtkPolyData> bones;
-  vtkNew<vtkGlyph3DMapper> bone_mapper;
-  vtkNew<vtkActor> bone_actor;
-
-  vtkNew<vtkCylinderSource> contact_disc;
-  vtkNew<vtkPoints> contact_points;
-  vtkNew<vtkDoubleArray> contact_scales;  // 1 in contact, 0 hides the disc
-  vtkNew<vtkPolyData> contacts;
-  vtkNew<vtkGlyph3DMapper> contact_mapper;
-  vtkNew<vtkActor> contact_actor;
-
-  vtkNew<vtkPolyData> trajectory;
-  vtkNew<vtkPolyDataMapper> trajectory_mapper;
-  vtkNew<vtkActor> trajectory_actor;
-
-  void addTo(vtkRenderer* renderer) const {
-    for (vtkActor* actor : actors()) renderer->AddActor(actor);
-  }
-  void removeFrom(vtkRenderer* renderer) const {
-    for (vtkActor* actor : actors()) renderer->RemoveActor(actor);
-  }
-  std::array<vtkActor*, 4> actors() const {
-    return {joint_actor.Get(), bone_actor.Get(), contact_actor.Get(), trajectory_actor.Get()};
-  }
-  void place(const Vec3& first_root, double yaw, const Vec3& start) {
-    pivot = first_root;
-    yaw_degrees = yaw;
-    lane = start;
-    for (vtkActor* actor : actors()) {
-      actor->SetOrigin(pivot[0], pivot[1], pivot[2]);
-      actor->SetOrientation(0.0, yaw_degrees, 0.0);
-      actor->SetPosition(lane[0] - pivot[0], lane[1] - pivot[1], lane[2] - pivot[2]);
-    }
-  }
-  Vec3 drawn(double x, double y, double z) const {
-    const double a = vtkMath::RadiansFromDegrees(yaw_degrees);
-    const double dx = x - pivot[0];
-    const double dz = z - pivot[2];
-    // vtkProp3D's RotateY: x' = x cos a + z sin a, z' = -x sin a + z cos a.
-    return {lane[0] + dx * std::cos(a) + dz * std::sin(a), y, lane[2] - dx * std::sin(a) + dz * std::cos(a)};
-  }
-};
 
 struct ViewportScene::Floor {
   vtkNew<vtkPolyData> mesh;
   vtkNew<vtkPolyDataMapper> mapper;
   vtkNew<vtkActor> actor;
 };
-
-namespace {
-
-vtkSmartPointer<vtkTransformPolyDataFilter> makeUnitBoneCylinder() {
-  // vtkCylinderSource is centred on the origin along Y; the glyph mapper's DIRECTION mode turns the
-  // glyph's X axis onto the bone, so rotate the cylinder to lie along X with unit length and radius.
-  vtkNew<vtkCylinderSource> cylinder;
-  cylinder->SetHeight(1.0);
-  cylinder->SetRadius(1.0);
-  cylinder->SetResolution(14);
-  cylinder->CappingOff();  // the joint spheres (wider than bones) cover the ends
-  vtkNew<vtkTransform> to_x_axis;
-  to_x_axis->RotateZ(-90.0);
-  auto filter = vtkSmartPointer<vtkTransformPolyDataFilter>::New();
-  filter->SetInputConnection(cylinder->GetOutputPort());
-  filter->SetTransform(to_x_axis);
-  return filter;
-}
-
-}  // namespace
 
 ViewportScene::ViewportScene() : renderer_(vtkSmartPointer<vtkRenderer>::New()), floor_(std::make_unique<Floor>()) {
   // Studio look: a cool gradient backdrop and two lights that follow the camera: a warm key from the
@@ -203,8 +81,21 @@ int ViewportScene::frameCount() const {
   return frames;
 }
 
+
+namespace {
+
+// Same joints, hierarchy and contact joints: a figure's VTK pipeline can be refilled for the other.
+bool sameSkeleton(const FigureData& a, const FigureData& b) {
+  return a.parents == b.parents && a.contact_joints == b.contact_joints;
+}
+
+}  // namespace
+
 void ViewportScene::setFigures(std::vector<FigureData> figures) {
-  for (const auto& visual : visuals_) visual->removeFrom(renderer_);
+  // A figure whose skeleton is unchanged (a new result for the same clip: every live edit) keeps its
+  // VTK pipeline and buffers and is only refilled; the others are built anew.
+  std::vector<std::unique_ptr<FigureVisual>> previous = std::move(visuals_);
+  const std::vector<FigureData> previous_figures = std::move(figures_);
   visuals_.clear();
   figures_ = std::move(figures);
   frame_ = 0;
@@ -215,103 +106,22 @@ void ViewportScene::setFigures(std::vector<FigureData> figures) {
       for (int j = 0; j < figure.jointCount(); ++j) floor_height_ = std::min(floor_height_, figure.y(f, j));
   }
 
-  const auto bone_cylinder = makeUnitBoneCylinder();
-  for (const FigureData& figure : figures_) {
-    auto visual = std::make_unique<FigureVisual>();
-    FigureVisual& v = *visual;
-    double lateral = 0.0;
-    double tallest = 1.0;
-    for (int f = 0; f < figure.frame_count; ++f) {
-      double low = std::numeric_limits<double>::max();
-      double high = std::numeric_limits<double>::lowest();
-      for (int j = 0; j < figure.jointCount(); ++j) {
-        low = std::min(low, figure.y(f, j));
-        high = std::max(high, figure.y(f, j));
-        lateral = std::max(lateral, std::hypot(figure.x(f, j) - figure.x(f, 0), figure.z(f, j) - figure.z(f, 0)));
-      }
-      tallest = std::max(tallest, high - low);
+  vtkSmartPointer<vtkTransformPolyDataFilter> bone_cylinder;
+  for (size_t i = 0; i < figures_.size(); ++i) {
+    std::unique_ptr<FigureVisual> visual;
+    if (i < previous.size() && previous[i] && sameSkeleton(previous_figures[i], figures_[i])) {
+      visual = std::move(previous[i]);
+    } else {
+      if (!bone_cylinder) bone_cylinder = makeUnitBoneCylinder();
+      visual = std::make_unique<FigureVisual>();
+      visual->connectPipeline(bone_cylinder);
+      visual->addTo(renderer_);
     }
-    v.height = tallest;
-    v.lateral_extent = lateral;
-    const QColor color = figureColor(figure.role);
-
-    v.joint_sphere->SetRadius(kJointRadiusPerHeight * v.height);
-    v.joint_sphere->SetThetaResolution(14);
-    v.joint_sphere->SetPhiResolution(10);
-    v.joint_points->SetNumberOfPoints(figure.jointCount());
-    v.joints->SetPoints(v.joint_points);
-    v.joint_mapper->SetInputData(v.joints);
-    v.joint_mapper->SetSourceConnection(v.joint_sphere->GetOutputPort());
-    v.joint_mapper->ScalingOff();
-    v.joint_mapper->OrientOff();
-    v.joint_actor->SetMapper(v.joint_mapper);
-    applySatinMaterial(v.joint_actor->GetProperty());
-    setColor(v.joint_actor->GetProperty(), color, 0.82);
-
-    for (int j = 0; j < figure.jointCount(); ++j)
-      if (figure.parents[static_cast<size_t>(j)] >= 0) v.bone_joints.push_back(j);
-    const auto bones = static_cast<vtkIdType>(v.bone_joints.size());
-    v.bone_points->SetNumberOfPoints(bones);
-    v.bone_directions->SetName("direction");
-    v.bone_directions->SetNumberOfComponents(3);
-    v.bone_directions->SetNumberOfTuples(bones);
-    v.bone_scales->SetName("scale");
-    v.bone_scales->SetNumberOfComponents(3);
-    v.bone_scales->SetNumberOfTuples(bones);
-    v.bones->SetPoints(v.bone_points);
-    v.bones->GetPointData()->AddArray(v.bone_directions);
-    v.bones->GetPointData()->AddArray(v.bone_scales);
-    v.bone_mapper->SetInputData(v.bones);
-    v.bone_mapper->SetSourceConnection(bone_cylinder->GetOutputPort());
-    v.bone_mapper->SetOrientationArray("direction");
-    v.bone_mapper->SetOrientationModeToDirection();
-    v.bone_mapper->SetScaleArray("scale");
-    v.bone_mapper->SetScaleModeToScaleByVectorComponents();
-    v.bone_mapper->ScalingOn();
-    v.bone_actor->SetMapper(v.bone_mapper);
-    applySatinMaterial(v.bone_actor->GetProperty());
-    setColor(v.bone_actor->GetProperty(), color);
-
-    const auto contact_count = static_cast<vtkIdType>(figure.contact_joints.size());
-    v.contact_disc->SetRadius(kContactRadiusPerHeight * v.height);
-    v.contact_disc->SetHeight(0.4);
-    v.contact_disc->SetResolution(32);
-    v.contact_points->SetNumberOfPoints(contact_count);
-    v.contact_scales->SetName("contact");
-    v.contact_scales->SetNumberOfTuples(contact_count);
-    v.contacts->SetPoints(v.contact_points);
-    v.contacts->GetPointData()->AddArray(v.contact_scales);
-    v.contact_mapper->SetInputData(v.contacts);
-    v.contact_mapper->SetSourceConnection(v.contact_disc->GetOutputPort());
-    v.contact_mapper->SetScaleArray("contact");
-    v.contact_mapper->SetScaleModeToScaleByMagnitude();
-    v.contact_mapper->ScalingOn();
-    v.contact_mapper->OrientOff();
-    v.contact_actor->SetMapper(v.contact_mapper);
-    v.contact_actor->GetProperty()->SetAmbient(0.6);
-    v.contact_actor->GetProperty()->SetDiffuse(0.5);
-    setColor(v.contact_actor->GetProperty(), mixWithWhite(color, 0.45));
-
-    // The root's path on the floor: static for the clip, built once.
-    vtkNew<vtkPoints> path;
-    vtkNew<vtkCellArray> line;
-    line->InsertNextCell(figure.frame_count);
-    for (int f = 0; f < figure.frame_count; ++f) {
-      path->InsertNextPoint(figure.x(f, 0), floor_height_ + kTrajectoryLiftCm, figure.z(f, 0));
-      line->InsertCellPoint(f);
-    }
-    v.trajectory->SetPoints(path);
-    v.trajectory->SetLines(line);
-    v.trajectory_mapper->SetInputData(v.trajectory);
-    v.trajectory_actor->SetMapper(v.trajectory_mapper);
-    v.trajectory_actor->GetProperty()->SetLineWidth(2.0f);
-    v.trajectory_actor->GetProperty()->LightingOff();
-    setColor(v.trajectory_actor->GetProperty(), mixWithWhite(color, 0.25));
-    v.trajectory_actor->SetVisibility(trajectories_visible_);
-
-    visual->addTo(renderer_);
+    visual->fill(figures_[i], floor_height_, trajectories_visible_);
     visuals_.push_back(std::move(visual));
   }
+  for (const auto& visual : previous)
+    if (visual) visual->removeFrom(renderer_);
   placeFigures();
   setFrame(0);
 }

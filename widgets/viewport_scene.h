@@ -2,7 +2,7 @@
 // ViewportScene: the VTK pipeline behind SkeletonViewport (INTERNAL header: only .cpp files of this
 // library include it; public headers stay free of VTK types).
 //
-// Built once per setFigures(): per figure a joints actor (instanced spheres), a bones actor (instanced
+// Built by setFigures() (a figure whose skeleton is unchanged keeps its pipeline): per figure a joints actor (instanced spheres), a bones actor (instanced
 // cylinders oriented parent -> joint), a contact-marker actor (flat discs on the floor) and a root
 // trajectory polyline; plus one floor (a checker that fades out with distance), a light kit and a
 // gradient background. setFrame() only rewrites point coordinates and glyph arrays of existing data

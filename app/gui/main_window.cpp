@@ -328,6 +328,9 @@ void MainWindow::rebuildFigures() {
   viewport_->setFrame(timeline_->frame());
   contact_tracks_->refresh();
   contact_tracks_->setQualityTracks(result_panel_->qualityTracks());
+  // Painted now, not at the event loop's next pass: a result counts as shown when it is on screen
+  // (the live latency in the log is measured to here).
+  viewport_->repaint();
 }
 
 void MainWindow::setRawOutputVisible(bool visible) {

@@ -360,7 +360,7 @@ void ResultPanel::onFinished(std::shared_ptr<const style::StylizeCleanupResult> 
   refreshControls();
   emit statusMessage(status);
   const qint64 figures_start = clock_.elapsed();
-  emit resultChanged();  // the figures are rebuilt: on screen at the next paint
+  emit resultChanged();  // the figures are rebuilt and painted (MainWindow::rebuildFigures)
   const CleanupReport& report = result_->report;
   app_log::write(QStringLiteral("live: %1 -> cleaned result on screen %2 ms after the change (job %3 ms, figures %4 ms, "
                                 "strength %5, %6 frames, clean-up solved %7 of %8 chunks, %9 from the last solution)")

@@ -42,7 +42,7 @@ struct LogEntry {
   QString change;
   int latency_ms = 0;
   int job_ms = 0;      // of which the job on the worker
-  int figures_ms = 0;  // and the figures rebuilt; the rest is waiting for the worker and the event loop
+  int figures_ms = 0;  // and the figures rebuilt and painted; the rest is waiting for the worker and the event loop
   double strength = 0.0;
   int chunks_solved = 0, chunks = 0;
 };

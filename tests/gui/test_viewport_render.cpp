@@ -1,5 +1,5 @@
-// The viewport really renders: a real CMU clip drawn through VTK inside the Qt6 QOpenGLWidget under
-// Xvfb. Checks the image is not blank, that pixels at the projected hips / head / ankles carry the
+// The viewport really renders: a real CMU clip drawn through VTK into the viewport's framebuffer
+// object under Xvfb, and painted as an image. Checks the image is not blank, that pixels at the projected hips / head / ankles carry the
 // role's colour while the background does not, that figures move with the frame, the layouts, and
 // how long a frame takes with three figures.
 #include <QElapsedTimer>
@@ -95,6 +95,31 @@ class ViewportRenderTest : public QObject {
     QVERIFY2(test::luminanceVariance(image) > 20.0, "the empty view is blank: VTK did not render");
     QVERIFY(qAlpha(image.pixel(image.width() / 2, image.height() / 2)) == 255);
     test::saveScreenshot(image, QStringLiteral("viewport_empty"));
+  }
+
+  // VTK renders only when the scene changed: repainting the widget (an overlay label, an exposed
+  // region, a window being composed) shows the last frame again, and the widget's own grab() holds the
+  // 3-D view (what a screenshot of the window shows).
+  void aRepaintWithoutASceneChangeDoesNotRender() {
+    SkeletonViewport viewport;
+    viewport.resize(640, 400);
+    viewport.setFigures({figureFromClip(cmu_, FigureRole::Content)});
+    viewport.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&viewport));
+    const QImage first = viewport.grabFrame();
+    const int renders = viewport.renderCount();
+    QVERIFY(renders >= 1);
+    viewport.setEmptyMessage(QStringLiteral("nothing yet"));  // an overlay change
+    viewport.repaint();
+    const QImage shown = viewport.grab().toImage();
+    QCOMPARE(viewport.renderCount(), renders);
+    QVERIFY2(test::luminanceVariance(shown) > 50.0, "the widget's own picture of the 3-D view is blank");
+    viewport.setFrame(60);  // the scene changed: one render at the next paint
+    viewport.repaint();
+    viewport.repaint();
+    QCOMPARE(viewport.renderCount(), renders + 1);
+    QVERIFY(viewport.grabFrame() != first);
+    QCOMPARE(viewport.renderCount(), renders + 1);
   }
 
   void contentFigureIsDrawnWhereItsJointsProject() {
@@ -302,6 +327,32 @@ class ViewportRenderTest : public QObject {
     const int head_joint = jointNamed(cmu_, {"Head"});
     const double later = QLineF(*viewport.projectToWidget(0, 0, 20), *viewport.projectToWidget(0, head_joint, 20)).length();
     QVERIFY2(later > 0.8 * zoomed, qPrintable(QStringLiteral("hips-head %1 px after playing, %2 px zoomed").arg(later).arg(zoomed)));
+  }
+
+  // A new figure with the skeleton of the one it replaces (every live edit's result) reuses its VTK
+  // pipeline: it must still be drawn with its own colour, pose and size.
+  void aFigureReplacedByOneWithTheSameSkeletonIsDrawnAnew() {
+    SkeletonViewport viewport;
+    viewport.resize(800, 560);
+    viewport.setFigures({figureFromClip(cmu_, FigureRole::Output)});
+    viewport.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&viewport));
+    viewport.grabFrame();
+    // Green (content) where blue (output) was, the same skeleton 20 % smaller, at another frame.
+    FigureData smaller = figureFromClip(cmu_, FigureRole::Content);
+    for (double& value : smaller.positions) value *= 0.8;
+    viewport.setFigures({smaller});
+    viewport.setFrame(90);
+    const QImage image = viewport.grabFrame();
+    const int head = jointNamed(cmu_, {"Head", "head"});
+    for (const int joint : {0, head}) {
+      const auto point = viewport.projectToWidget(0, joint, 90);
+      QVERIFY(point.has_value());
+      const int green = test::countAround(image, toImage(image, *point), 3, test::isGreenish);
+      QVERIFY2(green >= 5, qPrintable(QStringLiteral("joint %1: only %2 of 49 pixels are green").arg(joint).arg(green)));
+    }
+    viewport.setFigures({figureFromClip(zombie_, FigureRole::Content)});  // another skeleton: built anew
+    QVERIFY(test::luminanceVariance(viewport.grabFrame()) > 50.0);
   }
 
   void threeFiguresPlayAtInteractiveRates() {
