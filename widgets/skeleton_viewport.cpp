@@ -107,6 +107,8 @@ struct SkeletonViewport::Impl {
   bool antialiasing_chosen = false;  // the user decided: no automatic default any more
   bool in_render = false;
   bool needs_render = true;  // the scene changed since `frame` was rendered
+  bool reduced = false;       // setReducedResolution
+  double render_scale = 1.0;  // of `frame` and the render window: device pixels x this
   int renders = 0;
   Drag drag = Drag::None;
   QPointF last_mouse;
@@ -194,6 +196,15 @@ SkeletonViewport::CameraMode SkeletonViewport::cameraMode() const { return impl_
 double SkeletonViewport::lastRenderMilliseconds() const { return impl_->last_render_ms; }
 int SkeletonViewport::renderCount() const { return impl_->renders; }
 
+void SkeletonViewport::setReducedResolution(bool on) {
+  if (on == impl_->reduced) return;
+  impl_->reduced = on;
+  syncRenderSize();
+  requestRender();
+}
+
+bool SkeletonViewport::reducedResolution() const { return impl_->reduced; }
+
 void SkeletonViewport::requestRender() {
   impl_->needs_render = true;
   update();
@@ -248,9 +259,20 @@ void SkeletonViewport::resetCamera() {
 }
 
 QImage SkeletonViewport::grabFrame() {
-  const QSize device_size = (QSizeF(size()) * devicePixelRatioF()).toSize().expandedTo(QSize(1, 1));
-  if (impl_->needs_render || impl_->frame.size() != device_size) render();
+  if (impl_->needs_render || impl_->frame.size() != renderSize()) render();
   return impl_->frame;
+}
+
+QSize SkeletonViewport::renderSize() const {
+  const double scale = devicePixelRatioF() * (impl_->reduced ? 0.5 : 1.0);
+  return (QSizeF(size()) * scale).toSize().expandedTo(QSize(1, 1));
+}
+
+QSize SkeletonViewport::syncRenderSize() {
+  const QSize size = renderSize();
+  impl_->render_scale = impl_->reduced ? 0.5 : 1.0;
+  impl_->window->SetSize(size.width(), size.height());
+  return size;
 }
 
 std::optional<QPointF> SkeletonViewport::projectToWidget(int figure, int joint, int frame) const {
@@ -262,9 +284,9 @@ std::optional<QPointF> SkeletonViewport::projectToWidget(int figure, int joint, 
   renderer->SetWorldPoint(world[0], world[1], world[2], 1.0);
   renderer->WorldToDisplay();
   const double* display = renderer->GetDisplayPoint();  // device pixels, origin bottom-left
-  const double ratio = devicePixelRatioF();
-  const int device_height = impl_->window->GetSize()[1];
-  return QPointF(display[0] / ratio, (device_height - display[1]) / ratio);
+  const double ratio = devicePixelRatioF() * impl_->render_scale;  // render pixels per widget pixel
+  const int render_height = impl_->window->GetSize()[1];
+  return QPointF(display[0] / ratio, (render_height - display[1]) / ratio);
 }
 
 bool SkeletonViewport::ensureGraphics() {
@@ -302,10 +324,9 @@ void SkeletonViewport::render() {
   }
   QOpenGLContext& context = *impl_->context;
   context.makeCurrent(&impl_->surface);
-  const QSize size = (QSizeF(this->size()) * devicePixelRatioF()).toSize().expandedTo(QSize(1, 1));
+  const QSize size = syncRenderSize();
   if (!impl_->target || impl_->target->size() != size)
     impl_->target = std::make_unique<QOpenGLFramebufferObject>(size, QOpenGLFramebufferObject::CombinedDepthStencil);
-  impl_->window->SetSize(size.width(), size.height());
   // The render window re-applies its cached GL state at every Start() (it does not own the context);
   // the framebuffer binding is the exception VTK must READ: it blits into the one bound now.
   impl_->target->bind();
@@ -334,12 +355,11 @@ void SkeletonViewport::render() {
   gl->glPixelStorei(GL_PACK_ALIGNMENT, 4);
   gl->glReadPixels(0, 0, size.width(), size.height(), GL_BGRA, GL_UNSIGNED_BYTE, impl_->frame.bits());
   impl_->frame.mirror(false, true);
-  impl_->frame.setDevicePixelRatio(devicePixelRatioF());
+  impl_->frame.setDevicePixelRatio(devicePixelRatioF() * impl_->render_scale);
 }
 
 void SkeletonViewport::paintEvent(QPaintEvent*) {
-  const QSize device_size = (QSizeF(size()) * devicePixelRatioF()).toSize().expandedTo(QSize(1, 1));
-  if (impl_->needs_render || impl_->frame.size() != device_size) render();
+  if (impl_->needs_render || impl_->frame.size() != renderSize()) render();
   QPainter painter(this);
   if (impl_->frame.isNull()) {
     painter.fillRect(rect(), QColor(34, 36, 41));
@@ -347,10 +367,14 @@ void SkeletonViewport::paintEvent(QPaintEvent*) {
     painter.drawText(rect(), Qt::AlignCenter | Qt::TextWordWrap, impl_->graphics_problem);
     return;
   }
+  if (impl_->render_scale != 1.0) painter.setRenderHint(QPainter::SmoothPixmapTransform);
   painter.drawImage(QPointF(0.0, 0.0), impl_->frame);  // clipped to the region being repainted
 }
 
-void SkeletonViewport::resizeEvent(QResizeEvent*) { impl_->needs_render = true; }
+void SkeletonViewport::resizeEvent(QResizeEvent*) {
+  syncRenderSize();  // projectToWidget answers for the new size before the next render
+  impl_->needs_render = true;
+}
 
 void SkeletonViewport::refreshOverlay() {
   // Child widgets, not QPainter on the GL framebuffer: Qt composites them over the 3-D view, they

@@ -79,6 +79,11 @@ class SkeletonViewport : public QWidget {
   double lastRenderMilliseconds() const;
   // Renders so far (a repaint that changed nothing in the scene does not render): for tests.
   int renderCount() const;
+  // While on (the user's hand is on a control whose every step brings a new result), frames render at
+  // half the pixels across and down and are scaled up: a quarter of the software rasteriser's work
+  // per result. Turning it off renders at full resolution again at the next paint.
+  void setReducedResolution(bool on);
+  bool reducedResolution() const;
 
  public slots:
   // Poses every figure at `frame` (a shorter figure holds its last frame): only point coordinates of
@@ -110,6 +115,8 @@ class SkeletonViewport : public QWidget {
  private:
   void refreshOverlay();
   void requestRender();  // the scene changed: render at the next paint
+  QSize renderSize() const;  // device pixels, halved across and down at reduced resolution
+  QSize syncRenderSize();    // the render window and its scale set to renderSize(), which it returns
   void render();         // VTK's Render() into the framebuffer object, then read back into the frame
   bool ensureGraphics();
   void releaseGraphics();

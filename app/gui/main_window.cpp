@@ -28,6 +28,7 @@
 #include "common/errors.h"
 #include "contact_tracks.h"
 #include "error_text.h"
+#include "live_resolution.h"
 #include "network_panel.h"
 #include "result_panel.h"
 #include "skeleton_viewport.h"
@@ -59,6 +60,7 @@ MainWindow::MainWindow(bool persist_settings, QWidget* parent)
   };
 
   viewport_ = new SkeletonViewport(this);
+  live_resolution_ = new LiveResolution(viewport_, this);
   viewport_->setEmptyMessage(
       tr("<b>No clips yet</b><br><br>File &#9656; Open BVH (Ctrl+O), or drop BVH files or folders here.<br>"
          "New to MotionStyle? Help &#9656; Open Demo loads two sample clips and a style."));
@@ -329,7 +331,8 @@ void MainWindow::rebuildFigures() {
   contact_tracks_->refresh();
   contact_tracks_->setQualityTracks(result_panel_->qualityTracks());
   // Painted now, not at the event loop's next pass: a result counts as shown when it is on screen
-  // (the live latency in the log is measured to here).
+  // (the live latency in the log is measured to here); at reduced resolution while a drag goes on.
+  live_resolution_->resultShown();
   viewport_->repaint();
 }
 

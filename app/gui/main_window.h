@@ -29,6 +29,7 @@ class QTreeWidget;
 namespace motionstyle {
 
 class ContactTrackController;
+class LiveResolution;
 class NetworkPanel;
 class ResultPanel;
 class SkeletonViewport;
@@ -132,6 +133,7 @@ class MainWindow : public QMainWindow {
   QStringList session_recent_;  // recent files when settings are not persisted
 
   SkeletonViewport* viewport_ = nullptr;
+  LiveResolution* live_resolution_ = nullptr;
   TimelineWidget* timeline_ = nullptr;
   QTreeWidget* clip_list_ = nullptr;
   QMenu* recent_menu_ = nullptr;

@@ -3,8 +3,9 @@
 // clean-up runs on 1,000 frames at the network's 60 fps), with the shipped elderly network. The
 // latencies come from the app's own log (app_log.h): "cleaned result on screen N ms after the change".
 // They are printed (the figures in the README come from here), not asserted: a test checks behaviour.
-// Checked: results arrive while the hand is still on the control; the last result answers the last
-// value; a contact stroke late in the clip re-solves only the chunk it touches.
+// Checked: results arrive while the hand is still on the control, drawn at reduced resolution until
+// it lets go; the last result answers the last value; a contact stroke late in the clip re-solves
+// only the chunk it touches.
 #include <QFile>
 #include <QRegularExpression>
 #include <QSignalSpy>
@@ -29,6 +30,7 @@
 #include "main_window.h"
 #include "result_panel.h"
 #include "shipped_networks.h"
+#include "skeleton_viewport.h"
 #include "timeline_widget.h"
 #include "track_view.h"
 
@@ -163,8 +165,13 @@ class LiveTest : public QObject {
       QTest::qWait(30);
     }
     const std::vector<LogEntry> while_dragging = readLiveLog(log_);
+    // Results that arrive while the hand is down are drawn at reduced resolution (LiveResolution)...
+    QVERIFY(window.viewport()->reducedResolution());
     QTest::mouseRelease(slider, Qt::LeftButton, Qt::NoModifier, QPoint(sliderX(*slider, 40), y));
     QVERIFY(QTest::qWaitFor([&] { return !panel->isBusy(); }, kJobTimeoutMs));
+    // ... and the last one, once it is let go, at full resolution.
+    QVERIFY(!window.viewport()->reducedResolution());
+    QCOMPARE(window.viewport()->grabFrame().size(), window.viewport()->size() * window.viewport()->devicePixelRatio());
     QVERIFY2(slider->value() < 60, qPrintable(QString::number(slider->value())));
 
     std::vector<LogEntry> latencies;
