@@ -367,8 +367,11 @@ void SkeletonViewport::paintEvent(QPaintEvent*) {
     painter.drawText(rect(), Qt::AlignCenter | Qt::TextWordWrap, impl_->graphics_problem);
     return;
   }
+  // Into the whole widget, explicitly: QPainter::drawImage(point, image) scales by the image's device
+  // pixel ratio only when that is above 1, so a reduced frame would come out at half size. Clipped to
+  // the region being repainted.
   if (impl_->render_scale != 1.0) painter.setRenderHint(QPainter::SmoothPixmapTransform);
-  painter.drawImage(QPointF(0.0, 0.0), impl_->frame);  // clipped to the region being repainted
+  painter.drawImage(QRectF(rect()), impl_->frame, QRectF(impl_->frame.rect()));
 }
 
 void SkeletonViewport::resizeEvent(QResizeEvent*) {

@@ -329,6 +329,31 @@ class ViewportRenderTest : public QObject {
     QVERIFY2(later > 0.8 * zoomed, qPrintable(QStringLiteral("hips-head %1 px after playing, %2 px zoomed").arg(later).arg(zoomed)));
   }
 
+  // At reduced resolution (a drag: LiveResolution) the frame has half the pixels across and down and
+  // is scaled up to the whole widget: joints appear where they project, as at full resolution.
+  void aReducedResolutionFrameFillsTheView() {
+    SkeletonViewport viewport;
+    viewport.resize(900, 600);
+    viewport.setFigures({figureFromClip(cmu_, FigureRole::Content)});
+    viewport.setFrame(60);
+    viewport.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&viewport));
+    viewport.setReducedResolution(true);
+    QCOMPARE(viewport.grabFrame().size(), QSize(450, 300) * viewport.devicePixelRatio());
+    const QImage shown = viewport.grab().toImage();  // what the screen shows: the widget's own paint
+    const int head = jointNamed(cmu_, {"Head", "head"});
+    const int right_ankle = jointNamed(cmu_, {"RightAnkle", "RightFoot"});
+    for (const int joint : {0, head, right_ankle}) {
+      const auto point = viewport.projectToWidget(0, joint, 60);
+      QVERIFY(point.has_value());
+      const int green = test::countAround(shown, toImage(shown, *point), 3, test::isGreenish);
+      QVERIFY2(green >= 5, qPrintable(QStringLiteral("joint %1 at (%2, %3): only %4 of 49 pixels are green")
+                                          .arg(joint).arg(point->x()).arg(point->y()).arg(green)));
+    }
+    viewport.setReducedResolution(false);
+    QCOMPARE(viewport.grabFrame().size(), QSize(900, 600) * viewport.devicePixelRatio());
+  }
+
   // A new figure with the skeleton of the one it replaces (every live edit's result) reuses its VTK
   // pipeline: it must still be drawn with its own colour, pose and size.
   void aFigureReplacedByOneWithTheSameSkeletonIsDrawnAnew() {
