@@ -13,7 +13,7 @@ packages=(
   # desktop app: Qt6 widgets + Qt6 OpenGL, VTK 9 (rendering only, into a Qt6 OpenGL framebuffer object)
   qt6-base-dev qt6-base-dev-tools libqt6opengl6-dev libgl-dev libvtk9-dev
   # tests and benchmarks
-  libgtest-dev libgmock-dev libbenchmark-dev xvfb xauth libgl1-mesa-dri
+  libgtest-dev libgmock-dev libbenchmark-dev xvfb xauth libgl1-mesa-dri xdotool
   # packaging
   dpkg-dev file
   # the CLI mutation test (tests/cli/mutation_test.py)

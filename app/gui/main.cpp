@@ -5,7 +5,10 @@
 //                                     2 if a clip failed to load)
 //   motionstyle --demo                opens the bundled sample clips (content and style) and, if
 //                                     installed, the bundled style network (demo_scene.h)
-//   motionstyle --log FILE            appends the app's log to FILE (app_log.h; also MOTIONSTYLE_LOG)
+//   motionstyle --log FILE            appends the app's log to FILE (app_log.h; also MOTIONSTYLE_LOG),
+//                                     with where its named buttons and sliders are on the screen
+#include <QAbstractButton>
+#include <QAbstractSlider>
 #include <QApplication>
 #include <QCommandLineParser>
 #include <QStatusBar>
@@ -19,6 +22,23 @@
 #include "main_window.h"
 #include "result_panel.h"
 #include "skeleton_viewport.h"
+
+namespace {
+
+// One log line per named button and slider, where it is on the screen ("control: StylizeButton at
+// 1062 162 size 360 26"), so that a test driving the window with real X events (xdotool) finds them.
+void logControls(const QWidget& window) {
+  for (const QWidget* widget : window.findChildren<QWidget*>()) {
+    if (widget->objectName().isEmpty() || !widget->isVisible()) continue;
+    if (!qobject_cast<const QAbstractButton*>(widget) && !qobject_cast<const QAbstractSlider*>(widget)) continue;
+    const QPoint at = widget->mapToGlobal(QPoint(0, 0));
+    motionstyle::app_log::write(QStringLiteral("control: %1 at %2 %3 size %4 %5")
+                                    .arg(widget->objectName()).arg(at.x()).arg(at.y())
+                                    .arg(widget->width()).arg(widget->height()));
+  }
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   motionstyle::restartWithHugePages(argv);     // the networks' buffers in 2 MB pages (allocator_tuning.h)
@@ -69,6 +89,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "motionstyle: %s\n", qPrintable(outcome.message));
   }
 
+  if (motionstyle::app_log::enabled()) QTimer::singleShot(500, &window, [&window] { logControls(window); });
   if (!screenshot_mode) return QApplication::exec();
 
   // Let the window map and lay out, then grab it (grabbing renders the GL viewport itself).
