@@ -108,7 +108,7 @@ struct SkeletonViewport::Impl {
   bool in_render = false;
   bool needs_render = true;  // the scene changed since `frame` was rendered
   bool reduced = false;       // setReducedResolution
-  double render_scale = 1.0;  // of `frame` and the render window: device pixels x this
+  double renderScale() const { return reduced ? 0.5 : 1.0; }  // render pixels per device pixel
   int renders = 0;
   Drag drag = Drag::None;
   QPointF last_mouse;
@@ -259,18 +259,20 @@ void SkeletonViewport::resetCamera() {
 }
 
 QImage SkeletonViewport::grabFrame() {
-  if (impl_->needs_render || impl_->frame.size() != renderSize()) render();
+  renderIfStale();
   return impl_->frame;
 }
 
+void SkeletonViewport::renderIfStale() {
+  if (impl_->needs_render || impl_->frame.size() != renderSize()) render();
+}
+
 QSize SkeletonViewport::renderSize() const {
-  const double scale = devicePixelRatioF() * (impl_->reduced ? 0.5 : 1.0);
-  return (QSizeF(size()) * scale).toSize().expandedTo(QSize(1, 1));
+  return (QSizeF(size()) * devicePixelRatioF() * impl_->renderScale()).toSize().expandedTo(QSize(1, 1));
 }
 
 QSize SkeletonViewport::syncRenderSize() {
   const QSize size = renderSize();
-  impl_->render_scale = impl_->reduced ? 0.5 : 1.0;
   impl_->window->SetSize(size.width(), size.height());
   return size;
 }
@@ -284,7 +286,7 @@ std::optional<QPointF> SkeletonViewport::projectToWidget(int figure, int joint, 
   renderer->SetWorldPoint(world[0], world[1], world[2], 1.0);
   renderer->WorldToDisplay();
   const double* display = renderer->GetDisplayPoint();  // device pixels, origin bottom-left
-  const double ratio = devicePixelRatioF() * impl_->render_scale;  // render pixels per widget pixel
+  const double ratio = devicePixelRatioF() * impl_->renderScale();  // render pixels per widget pixel
   const int render_height = impl_->window->GetSize()[1];
   return QPointF(display[0] / ratio, (render_height - display[1]) / ratio);
 }
@@ -355,11 +357,11 @@ void SkeletonViewport::render() {
   gl->glPixelStorei(GL_PACK_ALIGNMENT, 4);
   gl->glReadPixels(0, 0, size.width(), size.height(), GL_BGRA, GL_UNSIGNED_BYTE, impl_->frame.bits());
   impl_->frame.mirror(false, true);
-  impl_->frame.setDevicePixelRatio(devicePixelRatioF() * impl_->render_scale);
+  impl_->frame.setDevicePixelRatio(devicePixelRatioF() * impl_->renderScale());
 }
 
 void SkeletonViewport::paintEvent(QPaintEvent*) {
-  if (impl_->needs_render || impl_->frame.size() != renderSize()) render();
+  renderIfStale();
   QPainter painter(this);
   if (impl_->frame.isNull()) {
     painter.fillRect(rect(), QColor(34, 36, 41));
@@ -370,7 +372,7 @@ void SkeletonViewport::paintEvent(QPaintEvent*) {
   // Into the whole widget, explicitly: QPainter::drawImage(point, image) scales by the image's device
   // pixel ratio only when that is above 1, so a reduced frame would come out at half size. Clipped to
   // the region being repainted.
-  if (impl_->render_scale != 1.0) painter.setRenderHint(QPainter::SmoothPixmapTransform);
+  if (impl_->reduced) painter.setRenderHint(QPainter::SmoothPixmapTransform);
   painter.drawImage(QRectF(rect()), impl_->frame, QRectF(impl_->frame.rect()));
 }
 

@@ -116,8 +116,9 @@ class SkeletonViewport : public QWidget {
   void refreshOverlay();
   void requestRender();  // the scene changed: render at the next paint
   QSize renderSize() const;  // device pixels, halved across and down at reduced resolution
-  QSize syncRenderSize();    // the render window and its scale set to renderSize(), which it returns
+  QSize syncRenderSize();    // the render window set to renderSize(), which it returns
   void render();         // VTK's Render() into the framebuffer object, then read back into the frame
+  void renderIfStale();  // render() if the scene or the render size changed since the last frame
   bool ensureGraphics();
   void releaseGraphics();
 
