@@ -183,6 +183,11 @@ void SkeletonViewport::setFigures(std::vector<FigureData> figures) {
 
 void SkeletonViewport::clearFigures() { setFigures({}); }
 
+void SkeletonViewport::renameFigure(int index, const QString& name) {
+  impl_->scene.renameFigure(index, name);
+  refreshOverlay();
+}
+
 int SkeletonViewport::figureCount() const { return static_cast<int>(impl_->scene.figures().size()); }
 
 const FigureData& SkeletonViewport::figure(int index) const {
@@ -334,7 +339,8 @@ void SkeletonViewport::render() {
   impl_->target->bind();
   impl_->in_render = true;
   impl_->window->GetState()->ResetFramebufferBindings();
-  impl_->scene.renderer()->ResetCameraClippingRange();
+  std::array<double, 6> drawn = impl_->scene.drawnBounds();
+  impl_->scene.renderer()->ResetCameraClippingRange(drawn.data());
   QElapsedTimer timer;
   timer.start();
   impl_->window->Render();
@@ -390,9 +396,11 @@ void SkeletonViewport::refreshOverlay() {
     legend += QStringLiteral("<span style='color:%1'>&#9679;</span>&nbsp;&nbsp;%2&nbsp;&nbsp;<span style='color:#aeb4bc'>%3</span>")
                   .arg(figureColor(figure.role).name(), figureRoleName(figure.role), figure.name.toHtmlEscaped());
   }
-  impl_->legend->setText(legend);
+  if (legend != impl_->legend->text()) {  // a live result keeps its names: no new rich-text layout
+    impl_->legend->setText(legend);
+    impl_->legend->adjustSize();
+  }
   impl_->legend->setVisible(!legend.isEmpty());
-  impl_->legend->adjustSize();
   impl_->mode_label->setText(impl_->mode == CameraMode::Follow ? tr("Follow camera") : tr("Fixed camera"));
   impl_->empty_message->setVisible(impl_->scene.figures().empty() && !impl_->empty_message->text().isEmpty());
 }

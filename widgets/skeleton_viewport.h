@@ -53,6 +53,8 @@ class SkeletonViewport : public QWidget {
   // (FigureData::validate).
   void setFigures(std::vector<FigureData> figures);
   void clearFigures();
+  // Renames figure `index` (the legend only: nothing is rebuilt or rendered). Throws std::out_of_range.
+  void renameFigure(int index, const QString& name);
   int figureCount() const;
   const FigureData& figure(int index) const;
   int frameCount() const;  // the longest figure's frames

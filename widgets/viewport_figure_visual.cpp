@@ -6,6 +6,7 @@
 #include <vtkTransform.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace motionstyle::detail {
@@ -118,7 +119,10 @@ void ViewportScene::FigureVisual::fill(const FigureData& figure, double floor_he
   lateral_extent = lateral;
   const QColor color = figureColor(figure.role);
 
-  joint_sphere->SetRadius(kJointRadiusPerHeight * height);
+  // A new result for the same figure changes its height by a little: the glyphs keep their size then
+  // (within 2 %), so the glyph mappers do not rebuild their buffers at every live edit.
+  const auto resize = [](double current, double wanted) { return std::abs(current - wanted) > 0.02 * wanted; };
+  if (resize(joint_sphere->GetRadius(), kJointRadiusPerHeight * height)) joint_sphere->SetRadius(kJointRadiusPerHeight * height);
   joint_sphere->SetThetaResolution(14);
   joint_sphere->SetPhiResolution(10);
   joint_points->SetNumberOfPoints(figure.jointCount());
@@ -134,7 +138,8 @@ void ViewportScene::FigureVisual::fill(const FigureData& figure, double floor_he
   setColor(bone_actor->GetProperty(), color);
 
   const auto contact_count = static_cast<vtkIdType>(figure.contact_joints.size());
-  contact_disc->SetRadius(kContactRadiusPerHeight * height);
+  if (resize(contact_disc->GetRadius(), kContactRadiusPerHeight * height))
+    contact_disc->SetRadius(kContactRadiusPerHeight * height);
   contact_points->SetNumberOfPoints(contact_count);
   contact_scales->SetNumberOfTuples(contact_count);
   setColor(contact_actor->GetProperty(), mixWithWhite(color, 0.45));

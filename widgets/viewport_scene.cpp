@@ -36,6 +36,10 @@ struct ViewportScene::Floor {
   vtkNew<vtkPolyData> mesh;
   vtkNew<vtkPolyDataMapper> mapper;
   vtkNew<vtkActor> actor;
+  // What the mesh was filled for (centre x, height, centre z, tile, half tiles): an unchanged floor
+  // is not refilled, so its buffers are not rebuilt at every live result.
+  std::array<double, 5> filled_for{};
+  bool filled = false;
 };
 
 ViewportScene::ViewportScene() : renderer_(vtkSmartPointer<vtkRenderer>::New()), floor_(std::make_unique<Floor>()) {
@@ -292,7 +296,22 @@ void ViewportScene::buildFloor() {
   const double centre_z = std::round(0.5 * (box[4] + box[5]) / tile) * tile;
   const double reach = std::max({0.5 * (box[1] - box[0]), 0.5 * (box[5] - box[4]), 0.0});
   const int half_tiles = std::clamp(static_cast<int>(std::ceil((reach + 3.0 * height) / tile)), 4, 60);
-  fillFloorMesh(floor_->mesh, {centre_x, floor_height_, centre_z}, tile, half_tiles);
+  const std::array<double, 5> wanted = {centre_x, floor_height_, centre_z, tile, static_cast<double>(half_tiles)};
+  if (!floor_->filled || floor_->filled_for != wanted) {
+    fillFloorMesh(floor_->mesh, {centre_x, floor_height_, centre_z}, tile, half_tiles);
+    floor_->filled_for = wanted;
+    floor_->filled = true;
+  }
+  // Everything drawn lies in the floor's square and the figures' whole-clip box grown by a joint's
+  // radius (and above the floor by a character's height when there are no figures).
+  std::array<double, 6> drawn{};
+  floor_->mesh->GetBounds(drawn.data());
+  const double margin = 0.1 * height;
+  for (size_t a = 0; a < 3; ++a) {
+    drawn[2 * a] = std::min(drawn[2 * a], box[2 * a] - margin);
+    drawn[2 * a + 1] = std::max(drawn[2 * a + 1], box[2 * a + 1] + margin);
+  }
+  drawn_bounds_ = drawn;
 }
 
 }  // namespace motionstyle::detail

@@ -41,6 +41,7 @@ class ViewportScene {
   // Replaces the figures (each already validated) and shows frame 0.
   void setFigures(std::vector<FigureData> figures);
   const std::vector<FigureData>& figures() const { return figures_; }
+  void renameFigure(int index, const QString& name) { figures_.at(static_cast<size_t>(index)).name = name; }
   int frameCount() const;  // the longest figure's frames; 0 without figures
 
   void setLayout(SceneLayout layout);
@@ -62,6 +63,10 @@ class ViewportScene {
   // Axis-aligned bounds {xmin, xmax, ymin, ymax, zmin, zmax} of the drawn joints at `frame`, or over
   // the whole clip when frame < 0. Without figures: a 2 m box around the origin.
   std::array<double, 6> bounds(int frame) const;
+  // A box {xmin, xmax, ymin, ymax, zmin, zmax} that holds everything drawn at any frame (floor,
+  // figures, paths): the camera's clipping range is set from it, which VTK would otherwise compute
+  // at every render from every actor's bounds (a sixth of a render's cost under software GL).
+  const std::array<double, 6>& drawnBounds() const { return drawn_bounds_; }
   // The tallest figure's height in cm (vertical extent of its joints), 170 without figures.
   double characterHeight() const;
 
@@ -80,6 +85,7 @@ class ViewportScene {
   SceneLayout layout_ = SceneLayout::SideBySide;
   int frame_ = 0;
   double floor_height_ = 0.0;
+  std::array<double, 6> drawn_bounds_{};
   bool trajectories_visible_ = true;
 };
 

@@ -134,6 +134,7 @@ void MainWindow::createResultDock() {
   dock->setWidget(result_panel_);
   addDockWidget(Qt::RightDockWidgetArea, dock);
   connect(result_panel_, &ResultPanel::resultChanged, this, &MainWindow::rebuildFigures);
+  connect(result_panel_, &ResultPanel::resultRenamed, this, &MainWindow::renameResultFigures);
   connect(result_panel_, &ResultPanel::sourceChanged, this, &MainWindow::rebuildFigures);
   connect(result_panel_, &ResultPanel::statusMessage, this, [this](const QString& text) { status_label_->setText(text); });
   const auto content = [this]() -> LoadedClip* { return content_ >= 0 ? &clips_[static_cast<size_t>(content_)] : nullptr; };
@@ -334,6 +335,14 @@ void MainWindow::rebuildFigures() {
   // (the live latency in the log is measured to here); at reduced resolution while a drag goes on.
   live_resolution_->resultShown();
   viewport_->repaint();
+}
+
+void MainWindow::renameResultFigures() {
+  // The result's figures are the last ones (rebuildFigures), unless the training preview stands in.
+  const QStringList names = result_panel_->resultFigureNames(raw_output_action_->isChecked());
+  const int first = viewport_->figureCount() - static_cast<int>(names.size());
+  if (training_preview_ || names.isEmpty() || first < 0) return rebuildFigures();
+  for (int i = 0; i < names.size(); ++i) viewport_->renameFigure(first + i, names[i]);
 }
 
 void MainWindow::setRawOutputVisible(bool visible) {

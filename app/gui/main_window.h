@@ -105,6 +105,7 @@ class MainWindow : public QMainWindow {
   void createDocks();
   void createMenus();
   void rebuildFigures();
+  void renameResultFigures();  // the result went out of date: its figures' names only
   // openFiles and openFolder: loads in order (stopping when `progress` is cancelled), then one list
   // refresh, one status line for all of them and one report of every failure.
   int loadClips(const QStringList& paths, QProgressDialog* progress);

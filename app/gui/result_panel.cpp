@@ -8,7 +8,6 @@
 #include <QFormLayout>
 #include <QHBoxLayout>
 #include <QLabel>
-#include <QProgressBar>
 #include <QScopedValueRollback>
 #include <QPushButton>
 #include <QSlider>
@@ -22,6 +21,7 @@
 #include "common/output_paths.h"
 #include "common/resource_paths.h"
 #include "app_log.h"
+#include "busy_indicator.h"
 #include "display_space.h"
 #include "error_text.h"
 #include "familiarity_label.h"
@@ -31,11 +31,8 @@
 #include "style/training.h"
 
 namespace motionstyle {
-namespace {
 
-constexpr int kStrengthSteps = 100;
-
-}  // namespace
+constexpr int kStrengthSteps = 100;  // slider steps over strength 0..1 (internal linkage: const)
 
 ResultPanel::ResultPanel(QWidget* parent) : QWidget(parent), memory_(std::make_shared<style::StylizeCleanupMemory>()) {
   clock_.start();
@@ -94,9 +91,7 @@ ResultPanel::ResultPanel(QWidget* parent) : QWidget(parent), memory_(std::make_s
   auto* buttons = new QHBoxLayout;
   buttons->addWidget(stylize_button_, 1);
   buttons->addWidget(cancel_button_);
-  progress_ = new QProgressBar(this);
-  progress_->setRange(0, 0);  // busy indicator: the IK reports no fraction
-  progress_->setVisible(false);
+  progress_ = new BusyIndicator(this);
   status_label_ = new QLabel(this);
   status_label_->setWordWrap(true);
 
@@ -270,7 +265,7 @@ void ResultPanel::inputsChanged(const QString& what) {
   if (resultIsStale()) {
     status_label_->setText(tr("Out of date: %1. %2").arg(what, rerun ? tr("Updating...") : tr("Stylize again to update it.")));
     refreshControls();
-    if (!was_stale) emit resultChanged();  // renamed "out of date" once, not rebuilt at every step of a drag
+    if (!was_stale) emit resultRenamed();  // once, not at every step of a drag
   }
 }
 
@@ -383,7 +378,7 @@ void ResultPanel::onFinished(std::shared_ptr<const style::StylizeCleanupResult> 
 void ResultPanel::setBusy(bool busy, const QString& status) {
   const bool changed = busy != busy_;
   busy_ = busy;
-  progress_->setVisible(busy);
+  progress_->setBusy(busy);
   status_label_->setText(status);
   refreshControls();
   if (changed) emit busyChanged(busy);
@@ -427,13 +422,19 @@ void ResultPanel::refreshControls() {
 
 void ResultPanel::refreshMetrics() { metrics_->showResult(result_.get()); }
 
-std::vector<FigureData> ResultPanel::resultFigures(bool include_raw) const {
-  std::vector<FigureData> figures;
-  if (!result_ || !content_) return figures;
+QStringList ResultPanel::resultFigureNames(bool include_raw) const {
+  if (!result_ || !content_) return {};
   const QString name = resultIsStale() ? tr("%1 (%2, out of date)").arg(content_->name, result_network_name_)
                                        : tr("%1 (%2)").arg(content_->name, result_network_name_);
-  figures.push_back(cleanedOutputFigure(*result_, *content_, name, content_->fps()));
-  if (include_raw) figures.push_back(rawOutputFigure(*result_, *content_, tr("%1 raw").arg(name), content_->fps()));
+  return include_raw ? QStringList{name, tr("%1 raw").arg(name)} : QStringList{name};
+}
+
+std::vector<FigureData> ResultPanel::resultFigures(bool include_raw) const {
+  std::vector<FigureData> figures;
+  const QStringList names = resultFigureNames(include_raw);
+  if (names.isEmpty()) return figures;
+  figures.push_back(cleanedOutputFigure(*result_, *content_, names.front(), content_->fps()));
+  if (include_raw) figures.push_back(rawOutputFigure(*result_, *content_, names.back(), content_->fps()));
   return figures;
 }
 

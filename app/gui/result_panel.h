@@ -39,13 +39,13 @@
 class QCheckBox;
 class QComboBox;
 class QLabel;
-class QProgressBar;
 class QPushButton;
 class QSlider;
 class QTableWidget;
 
 namespace motionstyle {
 
+class BusyIndicator;
 class FamiliarityLabel;
 
 class ResultPanel : public QWidget {
@@ -110,6 +110,8 @@ class ResultPanel : public QWidget {
   // (blue) with its contacts, then, when `include_raw`, the raw network output (grey). Empty without a
   // result.
   std::vector<FigureData> resultFigures(bool include_raw) const;
+  // Their names, in the same order ("out of date" while resultIsStale()).
+  QStringList resultFigureNames(bool include_raw) const;
   // The timeline's per-frame quality of the result at the content's rate; empty without a result.
   QualityTracks qualityTracks() const;
 
@@ -124,6 +126,9 @@ class ResultPanel : public QWidget {
 
  signals:
   void resultChanged();           // a new result, or none any more
+  // The shown result went out of date: only its figures' names change (resultFigureNames), so they
+  // are renamed, not rebuilt; rebuilding them took GUI time from the job that will replace them.
+  void resultRenamed();
   void sourceChanged();           // resultComesFromNetwork() may have changed (a network or stylized clip given)
   void familiarityChanged();      // the content or the network changed: familiarity() is new
   // The user asked to adapt the networks to clips like the content (the familiarity row's link).
@@ -194,7 +199,7 @@ class ResultPanel : public QWidget {
   FamiliarityLabel* familiarity_label_ = nullptr;
   QPushButton* stylize_button_ = nullptr;
   QPushButton* cancel_button_ = nullptr;
-  QProgressBar* progress_ = nullptr;
+  BusyIndicator* progress_ = nullptr;
   QLabel* status_label_ = nullptr;
   ResultMetricsView* metrics_ = nullptr;
   QPushButton* export_button_ = nullptr;

@@ -5,6 +5,8 @@
 #include <QSignalSpy>
 #include <QTest>
 #include <QThread>
+#include <QLabel>
+#include <QVBoxLayout>
 
 #include <atomic>
 #include <chrono>
@@ -13,6 +15,7 @@
 
 #include "common/errors.h"
 #include "gui_test_support.h"
+#include "busy_indicator.h"
 #include "job_runner.h"
 
 using namespace motionstyle;
@@ -32,6 +35,32 @@ class JobRunnerTest : public QObject {
   Q_OBJECT
 
  private slots:
+  // The panels' busy bar: work shorter than the delay never shows it (a live edit's job), longer work
+  // does until it ends; shown or hidden, it keeps its place in the layout.
+  void theBusyBarAppearsOnlyForWorkThatOutlastsItsDelay() {
+    QWidget panel;
+    auto* layout = new QVBoxLayout(&panel);
+    auto* bar = new BusyIndicator(&panel, 150);
+    auto* below = new QLabel(QStringLiteral("status"), &panel);
+    layout->addWidget(bar);
+    layout->addWidget(below);
+    panel.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&panel));
+    const int status_y = below->y();
+    QVERIFY(!bar->isVisible());
+    bar->setBusy(true);
+    QTest::qWait(60);
+    bar->setBusy(false);  // a short job
+    QTest::qWait(250);
+    QVERIFY(!bar->isVisible());
+    bar->setBusy(true);  // a long one
+    QVERIFY(QTest::qWaitFor([&] { return bar->isVisible(); }, 2000));
+    QCOMPARE(below->y(), status_y);
+    bar->setBusy(false);
+    QVERIFY(!bar->isVisible());
+    QCOMPARE(below->y(), status_y);
+  }
+
   void aSecondStartWhileBusyIsRefused() {
     JobRunner runner;
     QSignalSpy finished(&runner, &JobRunner::finished);

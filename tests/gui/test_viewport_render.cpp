@@ -3,6 +3,7 @@
 // role's colour while the background does not, that figures move with the frame, the layouts, and
 // how long a frame takes with three figures.
 #include <QElapsedTimer>
+#include <QLabel>
 #include <QTest>
 
 #include <cmath>
@@ -378,6 +379,58 @@ class ViewportRenderTest : public QObject {
     }
     viewport.setFigures({figureFromClip(zombie_, FigureRole::Content)});  // another skeleton: built anew
     QVERIFY(test::luminanceVariance(viewport.grabFrame()) > 50.0);
+  }
+
+  // A figure renamed (the result went out of date): the legend says so at once, nothing is rendered.
+  void aRenamedFigureChangesOnlyTheLegend() {
+    SkeletonViewport viewport;
+    viewport.resize(640, 400);
+    viewport.setFigures({figureFromClip(cmu_, FigureRole::Content), figureFromClip(cmu_, FigureRole::Output)});
+    viewport.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&viewport));
+    viewport.grabFrame();
+    const int renders = viewport.renderCount();
+    QVERIFY_THROWS_EXCEPTION(std::out_of_range, viewport.renameFigure(2, QStringLiteral("none")));
+    viewport.renameFigure(1, QStringLiteral("walk (elderly, out of date)"));
+    QCOMPARE(viewport.figure(1).name, QStringLiteral("walk (elderly, out of date)"));
+    bool in_legend = false;
+    for (const QLabel* label : viewport.findChildren<QLabel*>())
+      in_legend = in_legend || (label->isVisible() && label->text().contains(QStringLiteral("walk (elderly, out of date)")));
+    QVERIFY(in_legend);
+    viewport.repaint();
+    QCOMPARE(viewport.renderCount(), renders);
+  }
+
+  // The camera's clipping range is set from the scene's own bounds (floor and whole clip) rather than
+  // computed by VTK at every render: a figure refilled with the same skeleton and lifted 3 m in its
+  // second half is drawn where its joints project at every frame. (Gross errors in those bounds fail
+  // most tests here; the floor alone already spans this clip's depth, so this test guards the refill.)
+  void aRefilledFigureIsDrawnWhereverItGoes() {
+    SkeletonViewport viewport;
+    viewport.resize(800, 560);
+    viewport.setCameraMode(SkeletonViewport::CameraMode::Fixed);
+    FigureData lifted = figureFromClip(cmu_, FigureRole::Content);
+    const int half = lifted.frame_count / 2;
+    for (int f = half; f < lifted.frame_count; ++f)
+      for (int j = 0; j < lifted.jointCount(); ++j)
+        lifted.positions[(static_cast<size_t>(f) * lifted.parents.size() + static_cast<size_t>(j)) * 3 + 1] += 300.0;
+    viewport.setFigures({figureFromClip(cmu_, FigureRole::Content)});
+    viewport.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&viewport));
+    viewport.grabFrame();
+    viewport.setFigures({lifted});  // the same skeleton: refilled
+    const int head = jointNamed(cmu_, {"Head", "head"});
+    for (const int frame : {0, half + 10, lifted.frame_count - 1}) {
+      viewport.setFrame(frame);
+      const QImage image = viewport.grabFrame();
+      for (const int joint : {0, head}) {
+        const auto point = viewport.projectToWidget(0, joint, frame);
+        QVERIFY(point.has_value());
+        const int green = test::countAround(image, toImage(image, *point), 3, test::isGreenish);
+        QVERIFY2(green >= 5, qPrintable(QStringLiteral("frame %1, joint %2: only %3 of 49 pixels are green")
+                                           .arg(frame).arg(joint).arg(green)));
+      }
+    }
   }
 
   void threeFiguresPlayAtInteractiveRates() {
