@@ -204,6 +204,7 @@ int SkeletonViewport::renderCount() const { return impl_->renders; }
 void SkeletonViewport::setReducedResolution(bool on) {
   if (on == impl_->reduced) return;
   impl_->reduced = on;
+  impl_->scene.setCoarseGlyphs(on);
   syncRenderSize();
   requestRender();
 }

@@ -82,8 +82,10 @@ class SkeletonViewport : public QWidget {
   // Renders so far (a repaint that changed nothing in the scene does not render): for tests.
   int renderCount() const;
   // While on (the user's hand is on a control whose every step brings a new result), frames render at
-  // half the pixels across and down and are scaled up: a quarter of the software rasteriser's work
-  // per result. Turning it off renders at full resolution again at the next paint.
+  // half the pixels across and down and are scaled up, with coarser joint spheres, bones and contact
+  // discs: a quarter of the software rasteriser's pixels and about half its vertices per result (the
+  // spheres' vertices were half of a render's time). Turning it off renders at full resolution again
+  // at the next paint.
   void setReducedResolution(bool on);
   bool reducedResolution() const;
 

@@ -45,7 +45,7 @@ vtkSmartPointer<vtkTransformPolyDataFilter> makeUnitBoneCylinder() {
   vtkNew<vtkCylinderSource> cylinder;
   cylinder->SetHeight(1.0);
   cylinder->SetRadius(1.0);
-  cylinder->SetResolution(14);
+  cylinder->SetResolution(kBoneSides);
   cylinder->CappingOff();  // the joint spheres (wider than bones) cover the ends
   vtkNew<vtkTransform> to_x_axis;
   to_x_axis->RotateZ(-90.0);
@@ -73,6 +73,7 @@ void ViewportScene::FigureVisual::connectPipeline(vtkAlgorithm* bone_glyph) {
   bones->GetPointData()->AddArray(bone_scales);
   bone_mapper->SetInputData(bones);
   bone_mapper->SetSourceConnection(bone_glyph->GetOutputPort());
+  bone_cylinder = vtkCylinderSource::SafeDownCast(bone_glyph->GetInputAlgorithm());
   bone_mapper->SetOrientationArray("direction");
   bone_mapper->SetOrientationModeToDirection();
   bone_mapper->SetScaleArray("scale");
@@ -82,7 +83,6 @@ void ViewportScene::FigureVisual::connectPipeline(vtkAlgorithm* bone_glyph) {
   applySatinMaterial(bone_actor->GetProperty());
 
   contact_disc->SetHeight(0.4);
-  contact_disc->SetResolution(32);
   contact_scales->SetName("contact");
   contacts->SetPoints(contact_points);
   contacts->GetPointData()->AddArray(contact_scales);
@@ -123,8 +123,6 @@ void ViewportScene::FigureVisual::fill(const FigureData& figure, double floor_he
   // (within 2 %), so the glyph mappers do not rebuild their buffers at every live edit.
   const auto resize = [](double current, double wanted) { return std::abs(current - wanted) > 0.02 * wanted; };
   if (resize(joint_sphere->GetRadius(), kJointRadiusPerHeight * height)) joint_sphere->SetRadius(kJointRadiusPerHeight * height);
-  joint_sphere->SetThetaResolution(14);
-  joint_sphere->SetPhiResolution(10);
   joint_points->SetNumberOfPoints(figure.jointCount());
   setColor(joint_actor->GetProperty(), color, 0.82);
 
@@ -156,6 +154,14 @@ void ViewportScene::FigureVisual::fill(const FigureData& figure, double floor_he
   trajectory->SetLines(line);
   setColor(trajectory_actor->GetProperty(), mixWithWhite(color, 0.25));
   trajectory_actor->SetVisibility(trajectory_visible);
+}
+
+void ViewportScene::FigureVisual::setCoarse(bool coarse) {
+  // vtkSetMacro: an unchanged value does not re-run the source or rebuild the glyph buffers.
+  joint_sphere->SetThetaResolution(coarse ? kCoarseJointSphereSides : kJointSphereSides);
+  joint_sphere->SetPhiResolution(coarse ? kCoarseJointSphereRings : kJointSphereRings);
+  contact_disc->SetResolution(coarse ? kCoarseContactDiscSides : kContactDiscSides);
+  if (bone_cylinder) bone_cylinder->SetResolution(coarse ? kCoarseBoneSides : kBoneSides);
 }
 
 }  // namespace motionstyle::detail

@@ -30,6 +30,11 @@ namespace motionstyle::detail {
 inline constexpr double kJointRadiusPerHeight = 0.019;
 inline constexpr double kBoneRadiusPerHeight = 0.012;
 inline constexpr double kContactRadiusPerHeight = 0.045;
+// Tessellation: fine, and coarse while results follow the hand (setCoarse). 8 x 6 spheres read as
+// round at the reduced resolution and halve a software render's vertex work.
+inline constexpr int kJointSphereSides = 14, kJointSphereRings = 10, kBoneSides = 14, kContactDiscSides = 32;
+inline constexpr int kCoarseJointSphereSides = 8, kCoarseJointSphereRings = 6, kCoarseBoneSides = 8,
+                     kCoarseContactDiscSides = 16;
 // Small lifts above the floor so markers and paths never z-fight with it.
 inline constexpr double kTrajectoryLiftCm = 0.4;
 inline constexpr double kContactLiftCm = 0.2;
@@ -55,6 +60,7 @@ struct ViewportScene::FigureVisual {
   vtkNew<vtkDoubleArray> bone_scales;  // (length, radius, radius) of the unit X-axis cylinder
   vtkNew<vtkPolyData> bones;
   vtkNew<vtkGlyph3DMapper> bone_mapper;
+  vtkCylinderSource* bone_cylinder = nullptr;  // the scene's unit bone, behind the shared glyph filter
   vtkNew<vtkActor> bone_actor;
 
   vtkNew<vtkCylinderSource> contact_disc;
@@ -72,6 +78,9 @@ struct ViewportScene::FigureVisual {
   void connectPipeline(vtkAlgorithm* bone_glyph);
   // For each figure shown: sizes, colours, glyph counts and the floor path (the pose: poseFigure).
   void fill(const FigureData& figure, double floor_height, bool trajectory_visible);
+  // The glyphs' tessellation: fine, or coarse while results follow the user's hand. The bone cylinder
+  // is the scene's, shared by its figures.
+  void setCoarse(bool coarse);
 
   void addTo(vtkRenderer* renderer) const {
     for (vtkActor* actor : actors()) renderer->AddActor(actor);

@@ -122,6 +122,7 @@ void ViewportScene::setFigures(std::vector<FigureData> figures) {
       visual->addTo(renderer_);
     }
     visual->fill(figures_[i], floor_height_, trajectories_visible_);
+    visual->setCoarse(coarse_glyphs_);
     visuals_.push_back(std::move(visual));
   }
   for (const auto& visual : previous)
@@ -134,6 +135,11 @@ void ViewportScene::setLayout(SceneLayout layout) {
   if (layout == layout_) return;
   layout_ = layout;
   placeFigures();
+}
+
+void ViewportScene::setCoarseGlyphs(bool coarse) {
+  coarse_glyphs_ = coarse;
+  for (const auto& visual : visuals_) visual->setCoarse(coarse);
 }
 
 void ViewportScene::setAntialiasing(bool on) { renderer_->SetUseFXAA(on); }

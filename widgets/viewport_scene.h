@@ -48,6 +48,9 @@ class ViewportScene {
   SceneLayout layout() const { return layout_; }
   void setTrajectoriesVisible(bool visible);
   bool trajectoriesVisible() const { return trajectories_visible_; }
+  // Coarser tessellation of the joint spheres, bone cylinders and contact discs (kept across
+  // setFigures until turned off).
+  void setCoarseGlyphs(bool coarse);
   // FXAA edge smoothing (one full-screen pass per frame).
   void setAntialiasing(bool on);
   bool antialiasing() const;
@@ -87,6 +90,7 @@ class ViewportScene {
   double floor_height_ = 0.0;
   std::array<double, 6> drawn_bounds_{};
   bool trajectories_visible_ = true;
+  bool coarse_glyphs_ = false;
 };
 
 }  // namespace motionstyle::detail

@@ -342,6 +342,7 @@ class ViewportRenderTest : public QObject {
     viewport.setReducedResolution(true);
     QCOMPARE(viewport.grabFrame().size(), QSize(450, 300) * viewport.devicePixelRatio());
     const QImage shown = viewport.grab().toImage();  // what the screen shows: the widget's own paint
+    QVERIFY(!test::saveScreenshot(shown, QStringLiteral("viewport_reduced")).isEmpty());
     const int head = jointNamed(cmu_, {"Head", "head"});
     const int right_ankle = jointNamed(cmu_, {"RightAnkle", "RightFoot"});
     for (const int joint : {0, head, right_ankle}) {
