@@ -340,7 +340,7 @@ void SkeletonViewport::render() {
   impl_->target->bind();
   impl_->in_render = true;
   impl_->window->GetState()->ResetFramebufferBindings();
-  std::array<double, 6> drawn = impl_->scene.drawnBounds();
+  std::array<double, 6> drawn = impl_->scene.drawnBounds();  // not VTK's per-render bounds of every actor
   impl_->scene.renderer()->ResetCameraClippingRange(drawn.data());
   QElapsedTimer timer;
   timer.start();

@@ -341,7 +341,10 @@ void MainWindow::renameResultFigures() {
   // The result's figures are the last ones (rebuildFigures), unless the training preview stands in.
   const QStringList names = result_panel_->resultFigureNames(raw_output_action_->isChecked());
   const int first = viewport_->figureCount() - static_cast<int>(names.size());
-  if (training_preview_ || names.isEmpty() || first < 0) return rebuildFigures();
+  if (training_preview_ || names.isEmpty() || first < 0) {
+    rebuildFigures();
+    return;
+  }
   for (int i = 0; i < names.size(); ++i) viewport_->renameFigure(first + i, names[i]);
 }
 

@@ -32,7 +32,7 @@
 
 namespace motionstyle {
 
-constexpr int kStrengthSteps = 100;  // slider steps over strength 0..1 (internal linkage: const)
+constexpr int kStrengthSteps = 100;  // slider steps over strength 0..1
 
 ResultPanel::ResultPanel(QWidget* parent) : QWidget(parent), memory_(std::make_shared<style::StylizeCleanupMemory>()) {
   clock_.start();
