@@ -252,7 +252,7 @@ void ResultPanel::inputsChanged(const QString& what) {
   if (result_) stale_reason_ = what;
   const bool rerun = canStylize();
   if (busy_ && rerun) {
-    if (!dropped_previous_ && clock_.elapsed() - job_start_ms_ < last_job_ms_ / 3) {
+    if (!dropped_previous_ && clock_.elapsed() - job_start_ms_ < last_job_ms_ / 2) {
       dropped_previous_ = true;  // the running job has only just started: replaced (see the header)
       runStylize();
     } else {

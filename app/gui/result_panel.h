@@ -175,9 +175,10 @@ class ResultPanel : public QWidget {
   bool busy_ = false;        // a job is on its way
   // Live edits: a change while a job runs lets that job finish (its result is shown, marked out of
   // date) and then runs ONE job for the latest inputs; the values in between are dropped, never queued.
-  // Except a job started under a third of the last job's time ago: it answers values the hand has left,
-  // so it is dropped and one for the latest inputs starts at once; never two in a row, so results keep
-  // coming however fast the hand moves.
+  // Except a job started under half the last job's time ago: it answers values the hand has left, and
+  // finishing it would hold the latest inputs back by more than half a job and a paint, so it is
+  // dropped and one for the latest inputs starts at once; never two in a row, so results keep coming
+  // however fast the hand moves (the half against a third: docs/decisions.md).
   bool pending_ = false;
   qint64 job_start_ms_ = -1;       // when the running job was started (clock_)
   qint64 last_job_ms_ = 0;         // how long the last finished job took

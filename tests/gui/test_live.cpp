@@ -216,7 +216,7 @@ class LiveTest : public QObject {
 
   // A job that has only just started when the hand moves on is replaced at once (its values are
   // already left behind); the next change waits for the replacement, so results keep coming. A long
-  // clip, so that "only just started" (a third of a job) holds whatever the machine's load.
+  // clip, so that "only just started" (half a job) holds whatever the machine's load.
   void aJobThatHasOnlyJustStartedIsReplaced() {
     const QString clip =
         writeClip(scratch_, QStringLiteral("cmu_131_01.bvh"), QStringLiteral("clip_replace.bvh"), 6000);
