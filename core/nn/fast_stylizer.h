@@ -18,7 +18,9 @@
 //    multiplications of the plain decoder and no depooled buffer;
 //  - the decoder's "Depool(H) - b0" becomes "H - b0" before the product (depool repeats values);
 //  - buffers persist across calls: same-length calls allocate nothing of ours.
-// Not thread-safe (scratch buffers): use one instance per thread (copies are independent).
+// Not thread-safe (scratch buffers): use one instance per thread. A copy has its own scratch and shares
+// the prepared kernel spectra (read-only here), so copying a prepared stylizer costs its weights'
+// few MB, not the spectra's tens.
 
 #include <optional>
 

@@ -83,14 +83,16 @@ void SpectralCorrelation<S>::setKernel(const Mat<S>& weight) {
     throw std::invalid_argument("SpectralCorrelation: kernel is " + std::to_string(weight.rows()) + " x " +
                                 std::to_string(weight.cols()) + ", expected " + std::to_string(out_) + " x " +
                                 std::to_string(in_ * width_));
-  if (kernel_weight_.size() == weight.size() && kernel_weight_ == weight) return;
-  kernel_weight_ = weight;
+  if (kernel_ && kernel_->weight.size() == weight.size() && kernel_->weight == weight) return;
+  if (!kernel_ || kernel_.use_count() > 1) kernel_ = std::make_shared<Kernel>();  // copies keep theirs
+  Mat<S>& spectra = kernel_->spectra;
+  kernel_->weight = weight;
   // Tap-major storage makes the weight an (out*in) x K matrix whose row o + c*out holds w[o][c][.].
   const ConstMap<S> taps(weight.data(), static_cast<Eigen::Index>(out_) * in_, width_);
-  kernel_spectra_.resize(taps.rows(), 4 * bins_);
-  fft_.forward(taps.data(), taps.rows(), width_, taps.rows(), kernel_spectra_.data(), kernel_spectra_.rows());
+  spectra.resize(taps.rows(), 4 * bins_);
+  fft_.forward(taps.data(), taps.rows(), width_, taps.rows(), spectra.data(), spectra.rows());
   computePool().parallelRanges(static_cast<int>(taps.rows()), 1, kMinRowsPerThread, [&](int begin, int end) {
-    auto rows = kernel_spectra_.middleRows(begin, end - begin);
+    auto rows = spectra.middleRows(begin, end - begin);
     rows.middleCols(bins_, bins_) = -rows.middleCols(bins_, bins_);  // the conjugate: correlation, not convolution
     rows.middleCols(2 * bins_, bins_) = rows.leftCols(bins_) + rows.middleCols(bins_, bins_);
     rows.rightCols(bins_) = rows.leftCols(bins_) - rows.middleCols(bins_, bins_);
@@ -99,7 +101,7 @@ void SpectralCorrelation<S>::setKernel(const Mat<S>& weight) {
 
 template <typename S>
 Eigen::Map<const Mat<S>> SpectralCorrelation<S>::kernelPart(int f, int part) const {
-  return Eigen::Map<const Mat<S>>(kernel_spectra_.col(part * bins_ + f).data(), out_, in_);
+  return Eigen::Map<const Mat<S>>(kernel_->spectra.col(part * bins_ + f).data(), out_, in_);
 }
 
 template <typename S>
@@ -121,7 +123,7 @@ void SpectralCorrelation<S>::transform(const S* sequence, Eigen::Index available
 
 template <typename S>
 void SpectralCorrelation<S>::forward(const S* padded, Eigen::Index available, Eigen::Index count, S* out) {
-  if (kernel_spectra_.size() == 0) throw std::logic_error("SpectralCorrelation: forward() before setKernel()");
+  if (!kernel_) throw std::logic_error("SpectralCorrelation: forward() before setKernel()");
   const Eigen::Index segments = segmentCount(count);
   transform(padded, available, in_, points_, segments, segments_, input_spectra_);
   input_count_ = count;

@@ -29,6 +29,8 @@
 //
 // Not thread-safe (cached spectra and scratch): one instance per layer and thread.
 
+#include <memory>
+
 #include "nn/real_fft.h"
 #include "nn/tensor.h"
 
@@ -63,7 +65,7 @@ class SpectralCorrelation {
 
   // Uses the kernel `weight` (out x (in*width), tap-major, tensor.h). Its spectra are recomputed only
   // when `weight` differs from the one of the previous call. Throws std::invalid_argument on a shape
-  // mismatch.
+  // mismatch. Copies share the kernel and its spectra until one of them is given another weight.
   void setKernel(const Mat<S>& weight);
 
   // out (out_ x count, column-major) = sum_k W_k * padded[:, j + k] for j in [0, count): the contract
@@ -88,10 +90,15 @@ class SpectralCorrelation {
 
   int in_, out_, width_, block_, points_, bins_;
   RealFft<S> fft_;
-  Mat<S> kernel_weight_;     // the weight the cached spectra belong to
-  // (out*in) x 4H: for frequency f, columns f, H+f, 2H+f, 3H+f hold Re C_f, Im C_f, Re + Im and Re - Im
-  // (out x in each; the last two serve Gauss's three-product complex multiplication).
-  Mat<S> kernel_spectra_;
+  struct Kernel {
+    Mat<S> weight;   // the weight the cached spectra belong to
+    // (out*in) x 4H: for frequency f, columns f, H+f, 2H+f, 3H+f hold Re C_f, Im C_f, Re + Im and
+    // Re - Im (out x in each; the last two serve Gauss's three-product complex multiplication).
+    Mat<S> spectra;
+  };
+  // Shared by copies (a copy of a prepared layer costs no spectra: tens of MB in a stylizer), written
+  // in place by setKernel() while this instance is its only owner, replaced otherwise.
+  std::shared_ptr<Kernel> kernel_;
   Mat<S> input_spectra_;     // (in*segments) x 2H: column f is S_f, in x segments (kept for backward)
   Eigen::Index input_count_ = -1;  // count of the forward() the input spectra belong to
   // Scratch, reused across calls.

@@ -40,16 +40,30 @@ Stylizer::Stylizer(nn::StyleModel model, std::string source_name)
   model_.normalisation.validate();
   if (model_.transformation.shape().features != kFeatureCount || model_.loss_network.shape().features != kFeatureCount)
     throw std::invalid_argument("Stylizer: the networks must take 66 features");
-  fast_ = std::make_unique<nn::FastStylizer>(model_.transformation, model_.loss_network);
+  prototype_ = std::make_unique<const nn::FastStylizer>(model_.transformation, model_.loss_network);
+}
+
+template <typename Run>
+auto Stylizer::withNetwork(Run run) const {
+  std::unique_ptr<nn::FastStylizer> network;
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (!idle_.empty()) {
+      network = std::move(idle_.back());
+      idle_.pop_back();
+    }
+  }
+  if (!network) network = std::make_unique<nn::FastStylizer>(*prototype_);
+  auto result = run(*network);
+  const std::lock_guard<std::mutex> lock(mutex_);
+  idle_.push_back(std::move(network));
+  return result;
 }
 
 Eigen::MatrixXd Stylizer::networkOutput(const Eigen::MatrixXd& features) const {
   requireFeatures(features, "Stylizer::networkOutput");
-  nn::Mat<float> styled;
-  {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    styled = fast_->stylize(model_.normalisation.normalized(padEdges(features)));
-  }
+  const nn::Mat<float> input = model_.normalisation.normalized(padEdges(features));
+  const nn::Mat<float> styled = withNetwork([&](nn::FastStylizer& network) { return network.stylize(input); });
   return cropEdges(model_.normalisation.denormalized(styled));
 }
 
@@ -104,11 +118,8 @@ StylizedClip Stylizer::stylize(const MotionFeatures& content, const Eigen::Matri
 
 Eigen::MatrixXd Stylizer::projectFeatures(const Eigen::MatrixXd& features) const {
   requireFeatures(features, "Stylizer::projectFeatures");
-  nn::Mat<float> projected;
-  {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    projected = fast_->project(model_.normalisation.normalized(padEdges(features)));
-  }
+  const nn::Mat<float> input = model_.normalisation.normalized(padEdges(features));
+  const nn::Mat<float> projected = withNetwork([&](nn::FastStylizer& network) { return network.project(input); });
   return cropEdges(model_.normalisation.denormalized(projected));
 }
 

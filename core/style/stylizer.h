@@ -17,6 +17,7 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <vector>
 
 #include "features/representation.h"
 #include "nn/fast_stylizer.h"
@@ -53,7 +54,8 @@ class Stylizer {
   // come from extractFeatures, already validated); InputError naming source_name when the output is
   // not physical: a value that is not finite or beyond kMaxPhysicalFeature (reference cm, or cm per
   // frame; a body is 170 cm) - only damaged weights produce one, and the clean-up cannot mend it.
-  // Thread-safe (one call at a time runs the fast path; others wait).
+  // Thread-safe: concurrent calls run on copies of the prepared networks (which share their kernel
+  // spectra), made the first time a call finds every copy busy, and kept for later calls.
   Eigen::MatrixXd stylizeFeatures(const Eigen::MatrixXd& features, double strength,
                                   PathMode path = PathMode::Content) const;
 
@@ -79,8 +81,15 @@ class Stylizer {
  private:
   nn::StyleModel model_;
   std::string source_name_;
-  mutable std::mutex mutex_;
-  mutable std::unique_ptr<nn::FastStylizer> fast_;
+  // Runs `run` on an idle prepared network, made from prototype_ when every one is busy, and puts it
+  // back. Why not one network behind a lock: a batch's workers waited for each other's clips (its
+  // speed-up on 2 cores, docs/decisions.md).
+  template <typename Run>
+  auto withNetwork(Run run) const;
+
+  std::unique_ptr<const nn::FastStylizer> prototype_;  // prepared once, never run: copied
+  mutable std::mutex mutex_;                           // guards idle_
+  mutable std::vector<std::unique_ptr<nn::FastStylizer>> idle_;
 };
 
 // L(x) = decode(encode(x)) of a clip in representation units (66 x frames): the loss network's

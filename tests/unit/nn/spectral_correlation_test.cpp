@@ -128,6 +128,34 @@ TEST(SpectralCorrelation, ChangedWeightsAreUsedByTheNextForward) {
   EXPECT_LT(relativeDifference(conv.forward(x, 50), naiveConv(conv, x, 50)), 1e-12);
 }
 
+// Copies share the prepared spectra (the stylizer's per-thread copies): a copy computes what the
+// original does, and keeps its kernel when the original is given another (and the other way round).
+TEST(SpectralCorrelation, ACopyKeepsItsKernelWhenTheOriginalGetsAnother) {
+  std::mt19937 rng(26);
+  const int in = 3, out = 4, width = 5, count = 70;
+  const MatD first = randomMatrix(out, in * width, rng), second = randomMatrix(out, in * width, rng);
+  const MatD padded = randomMatrix(in, count + width - 1, rng);
+  const auto run = [&](SpectralCorrelation<double>& layer) {
+    MatD y(out, count);
+    layer.forward(padded.data(), padded.cols(), count, y.data());
+    return y;
+  };
+  SpectralCorrelation<double> original(in, out, width, 16);
+  original.setKernel(first);
+  const MatD with_first = run(original);
+  SpectralCorrelation<double> copy = original;
+  EXPECT_EQ(run(copy), with_first);
+  original.setKernel(second);
+  const MatD with_second = run(original);
+  EXPECT_GT((with_second - with_first).cwiseAbs().maxCoeff(), 1e-3);
+  EXPECT_EQ(run(copy), with_first);
+  copy.setKernel(second);
+  EXPECT_EQ(run(copy), with_second);
+  original.setKernel(first);
+  EXPECT_EQ(run(original), with_first);
+  EXPECT_EQ(run(copy), with_second);
+}
+
 TEST(SpectralCorrelationGradient, InputWeightsAndBiasOverRandomShapes) {
   std::mt19937 rng(24);
   for (int trial = 0; trial < 8; ++trial) {

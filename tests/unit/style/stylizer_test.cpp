@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <thread>
+#include <vector>
 #include <nlohmann/json.hpp>
 
 #include "common/errors.h"
@@ -79,6 +81,31 @@ TEST(Stylizer, NetworkOutputThenFinishIsStylizeBitForBit) {
   for (const double strength : {0.0, 0.3, 1.0})
     for (const style::PathMode path : {style::PathMode::Content, style::PathMode::Style})
       EXPECT_EQ(stylizer.finishFeatures(content, output, strength, path), stylizer.stylizeFeatures(content, strength, path));
+}
+
+// Concurrent callers (a batch's workers, the app's job and its familiarity reading) each run on a
+// prepared network of their own: the results are the serial ones, bit for bit.
+TEST(Stylizer, ConcurrentCallsGiveTheSerialResults) {
+  const style::Stylizer stylizer(test::tinyStyleModel());
+  std::vector<Eigen::MatrixXd> clips, serial;
+  for (const int frames : {180, 301, 64, 500}) {
+    clips.push_back(longFeatures(frames));
+    serial.push_back(stylizer.networkOutput(clips.back()));
+  }
+  std::atomic<int> mismatches{0};
+  const auto worker = [&](int offset) {
+    for (int round = 0; round < 10; ++round)
+      for (size_t i = 0; i < clips.size(); ++i) {
+        const size_t k = (i + static_cast<size_t>(offset)) % clips.size();
+        if (stylizer.networkOutput(clips[k]) != serial[k]) ++mismatches;
+        if (stylizer.projectFeatures(clips[k]).cols() != clips[k].cols()) ++mismatches;
+      }
+  };
+  std::thread a(worker, 0), b(worker, 1), c(worker, 2);
+  a.join();
+  b.join();
+  c.join();
+  EXPECT_EQ(mismatches.load(), 0);
 }
 
 TEST(Stylizer, OutputHasTheInputLengthForOddAndLongClips) {
