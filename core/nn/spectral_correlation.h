@@ -27,7 +27,8 @@
 // NUMERICS. Rounding only: ~1e-6 of the largest output in float, ~1e-14 in double. tests/unit/nn
 // compare this path with the direct one and gradient-check it in double.
 //
-// Not thread-safe (cached spectra and scratch): one instance per layer and thread.
+// Not thread-safe (scratch): one instance per layer and thread. Copies may run on different threads:
+// they share the kernel spectra read-only, and setKernel() on a shared one makes its own.
 
 #include <memory>
 
