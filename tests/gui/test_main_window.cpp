@@ -8,6 +8,7 @@
 #include <QMessageBox>
 #include <QMimeData>
 #include <QPushButton>
+#include <QScreen>
 #include <QSettings>
 #include <QSpinBox>
 #include <QStatusBar>
@@ -282,6 +283,41 @@ class MainWindowTest : public QObject {
       QVERIFY2(list->columnWidth(column) >= needed,
                qPrintable(QStringLiteral("column %1: %2 px for %3 px of \"%4\"")
                               .arg(column).arg(list->columnWidth(column)).arg(needed).arg(item->text(column))));
+    }
+  }
+
+  // Issue 14 ("new clip rows sometimes do not draw until clicked"): what the X server shows, read back
+  // from the screen, not the widget's own rendering: every row of clips opened one after another while
+  // the window is up has its name drawn, with no click.
+  void newClipRowsAreOnTheScreenWithoutAClick() {
+    MainWindow window(/*persist_settings=*/false);
+    window.resize(1200, 800);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    auto* list = window.findChild<QTreeWidget*>(QStringLiteral("ClipList"));
+    QVERIFY(list != nullptr);
+    const QStringList files = {test::fixture(QStringLiteral("cmu_131_01.bvh")), test::fixture(QStringLiteral("zombie.bvh")),
+                               test::fixture(QStringLiteral("cmu_131_01.bvh"))};
+    for (int opened = 1; opened <= files.size(); ++opened) {
+      QCOMPARE(window.openFiles({files[opened - 1]}), 1);
+      QTest::qWait(150);  // the event loop paints and flushes; nothing is clicked
+      const QImage screen = window.screen()->grabWindow(window.winId()).toImage();
+      for (int row = 0; row < opened; ++row) {
+        QTreeWidgetItem* item = list->topLevelItem(row);
+        QVERIFY(item != nullptr);
+        QRect cell = list->visualItemRect(item);
+        cell.setWidth(list->columnWidth(0));
+        const QRect on_screen(list->viewport()->mapTo(&window, cell.topLeft()) * screen.devicePixelRatio(),
+                              cell.size() * screen.devicePixelRatio());
+        // Text: pixels far from the cell's background (its first pixel, left of the name).
+        const int background = qGray(screen.pixel(on_screen.topLeft() + QPoint(1, 1)));
+        int ink = 0;
+        for (int y = on_screen.top(); y <= on_screen.bottom(); ++y)
+          for (int x = on_screen.left(); x <= on_screen.right(); ++x)
+            ink += screen.valid(x, y) && std::abs(qGray(screen.pixel(x, y)) - background) > 60;
+        QVERIFY2(ink >= 20, qPrintable(QStringLiteral("after %1 clip(s), row %2 (\"%3\") shows %4 text pixels")
+                                           .arg(opened).arg(row).arg(item->text(0)).arg(ink)));
+      }
     }
   }
 
