@@ -37,6 +37,13 @@ QColor mixWithWhite(const QColor& color, double amount) {
                           static_cast<float>(rgb[2] + (1.0 - rgb[2]) * amount));
 }
 
+// A new result for the same figure changes its height by a little: a glyph source keeps its radius
+// then (within 2 %), so the glyph mappers do not rebuild their buffers at every live edit.
+template <typename Source>
+void setRadiusUnlessClose(Source& source, double radius) {
+  if (std::abs(source->GetRadius() - radius) > 0.02 * radius) source->SetRadius(radius);
+}
+
 }  // namespace
 
 vtkSmartPointer<vtkTransformPolyDataFilter> makeUnitBoneCylinder() {
@@ -119,10 +126,7 @@ void ViewportScene::FigureVisual::fill(const FigureData& figure, double floor_he
   lateral_extent = lateral;
   const QColor color = figureColor(figure.role);
 
-  // A new result for the same figure changes its height by a little: the glyphs keep their size then
-  // (within 2 %), so the glyph mappers do not rebuild their buffers at every live edit.
-  const auto resize = [](double current, double wanted) { return std::abs(current - wanted) > 0.02 * wanted; };
-  if (resize(joint_sphere->GetRadius(), kJointRadiusPerHeight * height)) joint_sphere->SetRadius(kJointRadiusPerHeight * height);
+  setRadiusUnlessClose(joint_sphere, kJointRadiusPerHeight * height);
   joint_points->SetNumberOfPoints(figure.jointCount());
   setColor(joint_actor->GetProperty(), color, 0.82);
 
@@ -136,8 +140,7 @@ void ViewportScene::FigureVisual::fill(const FigureData& figure, double floor_he
   setColor(bone_actor->GetProperty(), color);
 
   const auto contact_count = static_cast<vtkIdType>(figure.contact_joints.size());
-  if (resize(contact_disc->GetRadius(), kContactRadiusPerHeight * height))
-    contact_disc->SetRadius(kContactRadiusPerHeight * height);
+  setRadiusUnlessClose(contact_disc, kContactRadiusPerHeight * height);
   contact_points->SetNumberOfPoints(contact_count);
   contact_scales->SetNumberOfTuples(contact_count);
   setColor(contact_actor->GetProperty(), mixWithWhite(color, 0.45));

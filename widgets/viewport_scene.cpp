@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "viewport_figure_visual.h"
 #include "viewport_floor.h"
@@ -36,10 +37,9 @@ struct ViewportScene::Floor {
   vtkNew<vtkPolyData> mesh;
   vtkNew<vtkPolyDataMapper> mapper;
   vtkNew<vtkActor> actor;
-  // What the mesh was filled for (centre x, height, centre z, tile, half tiles): an unchanged floor
-  // is not refilled, so its buffers are not rebuilt at every live result.
-  std::array<double, 5> filled_for{};
-  bool filled = false;
+  // What the mesh was filled for (centre x, height, centre z, tile, half tiles), once it was: an
+  // unchanged floor is not refilled, so its buffers are not rebuilt at every live result.
+  std::optional<std::array<double, 5>> filled_for;
 };
 
 ViewportScene::ViewportScene() : renderer_(vtkSmartPointer<vtkRenderer>::New()), floor_(std::make_unique<Floor>()) {
@@ -303,10 +303,9 @@ void ViewportScene::buildFloor() {
   const double reach = std::max({0.5 * (box[1] - box[0]), 0.5 * (box[5] - box[4]), 0.0});
   const int half_tiles = std::clamp(static_cast<int>(std::ceil((reach + 3.0 * height) / tile)), 4, 60);
   const std::array<double, 5> wanted = {centre_x, floor_height_, centre_z, tile, static_cast<double>(half_tiles)};
-  if (!floor_->filled || floor_->filled_for != wanted) {
+  if (floor_->filled_for != wanted) {
     fillFloorMesh(floor_->mesh, {centre_x, floor_height_, centre_z}, tile, half_tiles);
     floor_->filled_for = wanted;
-    floor_->filled = true;
   }
   // Everything drawn lies in the floor's square and the figures' whole-clip box grown by a joint's
   // radius (and above the floor by a character's height when there are no figures).

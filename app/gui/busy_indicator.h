@@ -19,7 +19,6 @@ class BusyIndicator : public QProgressBar {
 
   // Busy: the bar appears once the delay has passed and the work still goes on; not busy: it hides.
   void setBusy(bool busy);
-  bool isBusy() const { return busy_; }
 
  private:
   QTimer delay_;
