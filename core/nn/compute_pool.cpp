@@ -1,6 +1,7 @@
 #include "nn/compute_pool.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <stdexcept>
 #include <string>
@@ -15,6 +16,21 @@ struct InsideTask {
   InsideTask() { t_inside_task = true; }
   ~InsideTask() { t_inside_task = false; }
 };
+
+// Spins until done() or kSpinMicroseconds have passed; returns done().
+template <typename Done>
+bool spinUntil(const Done& done) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::microseconds(ComputePool::kSpinMicroseconds);
+  for (;;) {
+    for (int i = 0; i < 64; ++i) {
+      if (done()) return true;
+#if defined(__x86_64__) || defined(__i386__)
+      __builtin_ia32_pause();
+#endif
+    }
+    if (std::chrono::steady_clock::now() >= deadline) return done();
+  }
+}
 
 }  // namespace
 
@@ -49,19 +65,20 @@ void ComputePool::runParts(int first, int stride) {
 void ComputePool::workerLoop(int worker) {
   long seen = 0;
   for (;;) {
-    {
+    const auto woken = [&] { return stop_.load() || generation_.load() != seen; };
+    if (!spinUntil(woken)) {
       std::unique_lock<std::mutex> lock(state_);
-      wake_.wait(lock, [&] { return stop_ || generation_ != seen; });
-      if (stop_) return;
-      seen = generation_;
+      wake_.wait(lock, woken);
     }
+    if (stop_) return;
+    seen = generation_;
     {
       InsideTask inside;
       runParts(worker, thread_count_);
     }
-    {
+    if (pending_.fetch_sub(1) == 1) {
+      // Taking the lock orders this with a caller between its check and its wait: no lost wake-up.
       std::lock_guard<std::mutex> lock(state_);
-      --pending_;
     }
     done_.notify_one();
   }
@@ -87,10 +104,14 @@ void ComputePool::run(int parts, const std::function<void(int)>& task) {
     InsideTask inside;
     runParts(0, thread_count_);
   }
+  const auto finished = [&] { return pending_.load() == 0; };
   std::exception_ptr error;
   {
-    std::unique_lock<std::mutex> lock(state_);
-    done_.wait(lock, [&] { return pending_ == 0; });
+    if (!spinUntil(finished)) {
+      std::unique_lock<std::mutex> lock(state_);
+      done_.wait(lock, finished);
+    }
+    std::lock_guard<std::mutex> lock(state_);
     error = error_;
     error_ = nullptr;
     task_ = nullptr;

@@ -97,6 +97,11 @@ void SpectralCorrelation<S>::setKernel(const Mat<S>& weight) {
     rows.middleCols(2 * bins_, bins_) = rows.leftCols(bins_) + rows.middleCols(bins_, bins_);
     rows.rightCols(bins_) = rows.leftCols(bins_) - rows.middleCols(bins_, bins_);
   });
+  kernel_->forward_parts.resize(3 * static_cast<std::size_t>(bins_));
+  computePool().parallelRanges(3 * bins_, 1, kMinBinsPerThread, [&](int begin, int end) {
+    for (int index = begin; index < end; ++index)
+      kernel_->forward_parts[index].pack(spectra.col(index).data(), out_, in_);
+  });
 }
 
 template <typename S>
@@ -130,22 +135,23 @@ void SpectralCorrelation<S>::forward(const S* padded, Eigen::Index available, Ei
 
   // Y_f = C_f S_f with Gauss's three real products: Yr = CrSr - CiSi, Yi = (Cr + Ci)(Sr + Si) - CrSr - CiSi.
   product_spectra_.resize(out_ * segments, 2 * bins_);
+  const std::vector<PackedMatrix<S>>& parts = kernel_->forward_parts;
   computePool().parallelRanges(bins_, 1, kMinBinsPerThread, [&](int begin, int end) {
     Mat<S> ci_si(out_, segments), s_sum(in_, segments);
+    typename PackedMatrix<S>::Scratch scratch;
     for (int f = begin; f < end; ++f) {
-      const ConstMap<S> cr = kernelPart(f, 0), ci = kernelPart(f, 1), c_sum = kernelPart(f, 2);
-      const ConstMap<S> sr(input_spectra_.col(f).data(), in_, segments),
-          si(input_spectra_.col(bins_ + f).data(), in_, segments);
-      MutableMap<S> yr(product_spectra_.col(f).data(), out_, segments),
-          yi(product_spectra_.col(bins_ + f).data(), out_, segments);
-      yr.noalias() = cr * sr;
+      const S* sr = input_spectra_.col(f).data();
+      const S* si = input_spectra_.col(bins_ + f).data();
+      S* yr_data = product_spectra_.col(f).data();
+      MutableMap<S> yr(yr_data, out_, segments), yi(product_spectra_.col(bins_ + f).data(), out_, segments);
+      parts[f].multiplyInto(sr, in_, segments, yr_data, out_, scratch);
       if (isRealBin(f, points_)) {
         yi.setZero();
         continue;
       }
-      ci_si.noalias() = ci * si;
-      s_sum = sr + si;
-      yi.noalias() = c_sum * s_sum;
+      parts[bins_ + f].multiplyInto(si, in_, segments, ci_si.data(), out_, scratch);
+      s_sum = ConstMap<S>(sr, in_, segments) + ConstMap<S>(si, in_, segments);
+      parts[2 * bins_ + f].multiplyInto(s_sum.data(), in_, segments, yi.data(), out_, scratch);
       yi -= yr + ci_si;
       yr -= ci_si;
     }

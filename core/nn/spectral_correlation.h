@@ -8,7 +8,8 @@
 // channel mixing at each of the H = floor(N/2) + 1 frequencies is ONE complex matrix product
 // (out x in) x (in x segments). With Gauss's three-product complex multiplication that is 3H/L real
 // multiply-adds per (channel pair, frame) instead of K: with K = 25 and N = 64 (L = 40), 2.5 instead
-// of 25. The channel mixing runs on Eigen's GEMM; the transforms are batched real FFTs (real_fft.h),
+// of 25. The channel mixing runs on Eigen's GEMM kernel (forward: on kernel spectra packed once,
+// packed_product.h); the transforms are batched real FFTs (real_fft.h),
 // both split over the compute pool (compute_pool.h). The kernel's spectra are cached and recomputed
 // only when its weights change, so a frozen network (the loss network during style training, any
 // network at inference) pays once.
@@ -31,7 +32,9 @@
 // they share the kernel spectra read-only, and setKernel() on a shared one makes its own.
 
 #include <memory>
+#include <vector>
 
+#include "nn/packed_product.h"
 #include "nn/real_fft.h"
 #include "nn/tensor.h"
 
@@ -96,6 +99,9 @@ class SpectralCorrelation {
     // (out*in) x 4H: for frequency f, columns f, H+f, 2H+f, 3H+f hold Re C_f, Im C_f, Re + Im and
     // Re - Im (out x in each; the last two serve Gauss's three-product complex multiplication).
     Mat<S> spectra;
+    // forward()'s three parts (Re, Im, Re + Im) per frequency, index part * H + f, packed for the GEMM
+    // kernel once per weight: a short clip's products would otherwise copy them every call.
+    std::vector<PackedMatrix<S>> forward_parts;
   };
   // Shared by copies (a copy of a prepared layer costs no spectra: tens of MB in a stylizer), written
   // in place by setKernel() while this instance is its only owner, replaced otherwise.

@@ -3,10 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
 #include <mutex>
 #include <set>
 #include <stdexcept>
 #include <thread>
+#include <vector>
 
 #include "nn/compute_pool.h"
 
@@ -57,6 +59,23 @@ TEST(ComputePool, NestedAndConcurrentCallersRunSeriallyWithoutDeadlock) {
   for (int i = 0; i < 200; ++i) pool.run(2, [&](int) { ++total; });
   other.join();
   EXPECT_EQ(total.load(), 800);
+}
+
+// Regions back to back (the workers find the next one while they spin) and regions after a pause
+// longer than the spin (the workers sleep and are woken): every part runs once per region, and what a
+// part wrote (plain memory, no atomics) is what the caller reads after run() returns.
+TEST(ComputePool, RegionsAfterSpinningAndAfterSleepingSeeEachOthersWrites) {
+  for (int threads : {2, 4}) {
+    ComputePool pool(threads);
+    std::vector<long> written(16, 0);
+    long expected = 0;
+    for (int region = 0; region < 300; ++region) {
+      if (region % 50 == 0) std::this_thread::sleep_for(std::chrono::microseconds(4 * ComputePool::kSpinMicroseconds));
+      pool.run(16, [&](int part) { written[static_cast<std::size_t>(part)] += region; });
+      expected += region;
+      for (long value : written) ASSERT_EQ(value, expected) << threads << " threads, region " << region;
+    }
+  }
 }
 
 }  // namespace
