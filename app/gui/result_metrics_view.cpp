@@ -43,10 +43,17 @@ ResultMetricsView::ResultMetricsView(QWidget* parent) : QWidget(parent) {
 }
 
 void ResultMetricsView::showResult(const style::StylizeCleanupResult* result) {
+  // A cell is written only when its text changes: during a live drag a result arrives every few
+  // tens of milliseconds, and a new item relaid the headers and repainted the whole table each time.
   const auto put = [this](int row, int column, const QString& text) {
-    auto* item = new QTableWidgetItem(text);
-    item->setTextAlignment(Qt::AlignRight | Qt::AlignVCenter);
-    table_->setItem(row, column, item);
+    QTableWidgetItem* item = table_->item(row, column);
+    if (item == nullptr) {
+      item = new QTableWidgetItem(text);
+      item->setTextAlignment(Qt::AlignRight | Qt::AlignVCenter);
+      table_->setItem(row, column, item);
+    } else if (item->text() != text) {
+      item->setText(text);
+    }
   };
   const QString none = QStringLiteral("-");
   if (!result) {

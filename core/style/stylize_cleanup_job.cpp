@@ -1,6 +1,8 @@
 #include "style/stylize_cleanup_job.h"
 
+#include <algorithm>
 #include <chrono>
+#include <optional>
 #include <stdexcept>
 
 #include "features/feature_layout.h"
@@ -8,6 +10,39 @@
 #include "style/stylized_cleanup.h"
 
 namespace motionstyle::style {
+namespace {
+
+bool sameSkeleton(const Skeleton& a, const Skeleton& b) {
+  return std::equal(a.joints.begin(), a.joints.end(), b.joints.begin(), b.joints.end(),
+                    [](const Joint& x, const Joint& y) {
+                      return x.name == y.name && x.parent == y.parent && x.offset == y.offset &&
+                             x.channels == y.channels && x.end_site == y.end_site;
+                    });
+}
+
+// The same clip, value for value (not its source name: a rename changes no feature).
+bool sameContent(const Motion& a, const JointMapping& a_mapping, const Motion& b, const JointMapping& b_mapping) {
+  return a.frame_time == b.frame_time && a.values.rows() == b.values.rows() && a.values.cols() == b.values.cols() &&
+         a_mapping.joints == b_mapping.joints && a_mapping.convention == b_mapping.convention &&
+         sameSkeleton(a.skeleton, b.skeleton) && a.values == b.values;
+}
+
+// The content's features: the memory's when they were extracted from this very clip and mapping
+// (a live edit changes neither), else extracted now and kept in the memory (or in `own`).
+const MotionFeatures& contentFeatures(const Motion& content, const JointMapping& mapping, StylizeCleanupMemory* memory,
+                                      std::optional<MotionFeatures>& own) {
+  if (!memory) return own.emplace(extractFeatures(content, mapping));
+  if (!memory->content_features || !sameContent(content, mapping, memory->content, memory->mapping)) {
+    memory->content_features.reset();  // an exception below leaves no stale pairing
+    MotionFeatures features = extractFeatures(content, mapping);
+    memory->content = content;
+    memory->mapping = mapping;
+    memory->content_features = std::move(features);
+  }
+  return *memory->content_features;
+}
+
+}  // namespace
 
 void StylizeCleanupJob::validate() const {
   if (!stylized && !stylizer) throw std::invalid_argument("no style network and no stylized clip to clean up");
@@ -22,10 +57,11 @@ StylizeCleanupResult StylizeCleanupJob::run(const std::atomic<bool>* cancel) con
   validate();
   const auto start = std::chrono::steady_clock::now();
   StylizeCleanupResult result;
+  std::optional<MotionFeatures> own_features;  // the features when there is no memory to keep them
   if (stylized) {
     result.stylized = *stylized;
   } else {
-    const MotionFeatures features = extractFeatures(content, mapping);
+    const MotionFeatures& features = contentFeatures(content, mapping, memory.get(), own_features);
     throwIfCancelled(cancel);
     if (!memory) {
       result.stylized = stylizer->stylize(features, strength, path);

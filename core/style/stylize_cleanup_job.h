@@ -14,6 +14,7 @@
 #include <optional>
 
 #include "ik/cleanup.h"
+#include "features/representation.h"
 #include "ik/metrics.h"
 #include "mapping/joint_mapping.h"
 #include "motion/motion.h"
@@ -35,12 +36,16 @@ struct StylizeCleanupResult {
 };
 
 // What a job keeps for the next one on the same content, so that a live edit redoes only what it
-// changed: the network's output for the content's features (the strength and the path mode do not
-// change it: stylizer.h, networkOutput) and the clean-up's memory (ik/cleanup.h). A job reuses the
-// network output only for the same network and features equal bit for bit; anything else is computed
-// and kept instead. Results never depend on it. One job at a time per memory.
+// changed: the content's features (for a content and mapping equal bit for bit to the last job's), the
+// network's output for them (the strength and the path mode do not change it: stylizer.h,
+// networkOutput) and the clean-up's memory (ik/cleanup.h). A job reuses the network output only for
+// the same network and features equal bit for bit; anything else is computed and kept instead. Results
+// never depend on it. One job at a time per memory.
 struct StylizeCleanupMemory {
   CleanupMemory cleanup;
+  Motion content;  // the clip and mapping content_features were extracted from
+  JointMapping mapping;
+  std::optional<MotionFeatures> content_features;
   std::shared_ptr<const Stylizer> stylizer;  // whose output network_output is
   Eigen::MatrixXd features;                  // the content's features it was computed from
   Eigen::MatrixXd network_output;

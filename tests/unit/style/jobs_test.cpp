@@ -100,6 +100,33 @@ TEST(StylizeCleanupJob, ItsMemoryReusesTheNetworkOutputOnlyForTheSameNetworkAndC
   EXPECT_EQ(job.memory->features.cols(), job.run().stylized.frameCount());
 }
 
+// The content's features are extracted once per clip: a strength step keeps them (the same object),
+// and a clip that differs by one value, or the same clip under another mapping, gets its own, so that
+// the stylized clip stays the memory-less job's bit for bit.
+TEST(StylizeCleanupJob, ItsMemoryKeepsTheContentsFeaturesOnlyForTheSameClipAndMapping) {
+  style::StylizeCleanupJob job = cleanupJobOnFixture(90);
+  job.memory = std::make_shared<style::StylizeCleanupMemory>();
+  job.run();
+  ASSERT_TRUE(job.memory->content_features.has_value());
+  const double* kept = job.memory->content_features->values.data();
+  job.strength = 0.5;
+  job.run();
+  EXPECT_EQ(job.memory->content_features->values.data(), kept);  // not extracted again
+
+  style::StylizeCleanupJob fresh = job;
+  fresh.memory = nullptr;
+  job.content.values(45, 7) += 10.0;  // one channel of one frame moved
+  fresh.content = job.content;
+  EXPECT_EQ(job.run().stylized.features, fresh.run().stylized.features);
+  EXPECT_EQ(job.memory->content.values, job.content.values);
+
+  job.mapping.convention = "file:another.map";  // the same joints under another name: re-extracted
+  const Eigen::MatrixXd before = job.memory->content_features->values;
+  job.run();
+  EXPECT_EQ(job.memory->mapping.convention, "file:another.map");
+  EXPECT_EQ(job.memory->content_features->values, before);
+}
+
 TEST(OptimizationTransferJob, RefusesMissingFilesAndBadOptions) {
   TempDir dir;
   style::OptimizationTransferJob job;
