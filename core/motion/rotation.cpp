@@ -96,15 +96,21 @@ SinCos halfAngleSinCosOf(double degrees) {
   return std::abs(degrees) < kLargeHalfAngle ? halfAngleSinCosSmall(degrees) : halfAngleSinCosLarge(degrees);
 }
 
-// Maps degrees into (-180, 180].
+// Maps degrees into (-180, 180]. An angle already there is returned as it is, as remainder() would
+// return it, without the library call (a clip's conversion to channels makes millions of them).
 double wrapPrincipal(double degrees) {
+  if (degrees > -180.0 && degrees <= 180.0) return degrees;
   double wrapped = std::remainder(degrees, 360.0);  // [-180, 180]
   if (wrapped <= -180.0) wrapped += 360.0;
   return wrapped;
 }
 
-// `degrees` moved by a multiple of 360 to lie within 180 of `reference`.
-double wrapNear(double degrees, double reference) { return reference + std::remainder(degrees - reference, 360.0); }
+// `degrees` moved by a multiple of 360 to lie within 180 of `reference` (remainder() returns a
+// difference of at most 180 unchanged: the fast path gives the same number).
+double wrapNear(double degrees, double reference) {
+  const double difference = degrees - reference;
+  return reference + (std::abs(difference) <= 180.0 ? difference : std::remainder(difference, 360.0));
+}
 
 // Three distinct axes i, j, k in channel order and the parity sign s: +1 when (i, j, k) is a cyclic
 // permutation of (X, Y, Z), -1 otherwise. With it the matrix entries of R = Ri(a) Rj(b) Rk(c) read
@@ -132,6 +138,12 @@ Eigen::Vector3d completeFromFirst(const Eigen::Matrix3d& r, const TaitBryan& t, 
   return {a, b, c};
 }
 
+// completeFromFirst's last angle c alone (the same arithmetic, one atan2 fewer).
+double lastFromFirst(const Eigen::Matrix3d& r, const TaitBryan& t, double a) {
+  const Eigen::Matrix3d m = axisMatrix(t.i, a).transpose() * r;
+  return std::atan2(t.s * m(t.j, t.i), m(t.j, t.j));
+}
+
 // Principal solution in radians: b in [-pi/2, pi/2]; at gimbal lock c = 0 and a carries the free angle.
 Eigen::Vector3d principalRadians(const Eigen::Matrix3d& r, const TaitBryan& t, bool& gimbal_lock) {
   // b from row i = (cos b cos c, -s cos b sin c, s sin b): well conditioned everywhere, in [-pi/2, pi/2].
@@ -149,7 +161,7 @@ Eigen::Vector3d principalRadians(const Eigen::Matrix3d& r, const TaitBryan& t, b
     a = t.s * (b > 0.0 ? 1.0 : -1.0) * phi;
   }
   // c from a (not from row i, whose entries vanish near lock), so that the three stay consistent.
-  return {a, b, completeFromFirst(r, t, a)[2]};
+  return {a, b, lastFromFirst(r, t, a)};
 }
 
 Eigen::Vector3d toDegrees(const Eigen::Vector3d& radians) { return radians * kDegreesPerRadian; }
