@@ -18,7 +18,7 @@ FamiliarityLabel::FamiliarityLabel(QWidget* parent) : QLabel(parent) {
   setText(QStringLiteral("-"));
 }
 
-void FamiliarityLabel::measure(const LoadedClip* clip, const nn::StyleModel* network) {
+void FamiliarityLabel::measure(const LoadedClip* clip, const style::Stylizer* network) {
   familiarity_.reset();
   if (clip != nullptr && clip->mapping && network != nullptr) {
     try {

@@ -12,6 +12,7 @@
 #include "clip_loader.h"
 #include "nn/network_file.h"
 #include "style/familiarity.h"
+#include "style/stylizer.h"
 
 namespace motionstyle {
 
@@ -21,9 +22,10 @@ class FamiliarityLabel : public QLabel {
  public:
   explicit FamiliarityLabel(QWidget* parent = nullptr);
 
-  // Measures `clip` (its content features) with `network`'s loss network; either may be null (then
-  // "-"). A clip that cannot be featurised reads "-" too (Stylize says why).
-  void measure(const LoadedClip* clip, const nn::StyleModel* network);
+  // Measures `clip` (its content features) with `network`'s loss network, as the network prepared it
+  // (no layer set up again); either may be null (then "-"). A clip that cannot be featurised reads
+  // "-" too (Stylize says why).
+  void measure(const LoadedClip* clip, const style::Stylizer* network);
   const std::optional<style::Familiarity>& familiarity() const { return familiarity_; }
 
  signals:

@@ -140,70 +140,6 @@ void ResultPanel::report(const QString& title, const QString& message) {
   if (reporter_) reporter_(title, message);
 }
 
-void ResultPanel::setStyleNetwork(std::shared_ptr<const nn::StyleModel> model, const QString& name) {
-  useNetwork(std::move(model), name, QString());
-}
-
-void ResultPanel::useNetwork(std::shared_ptr<const nn::StyleModel> model, const QString& name, const QString& file) {
-  const auto previous = stylizer_;
-  stylizer_.reset();
-  network_name_.clear();
-  given_stylized_.reset();
-  if (model) {
-    try {
-      stylizer_ = std::make_shared<const style::Stylizer>(*model, (file.isEmpty() ? name : file).toStdString());
-      network_name_ = name.isEmpty() ? tr("style network") : name;
-    } catch (...) {
-      report(tr("Could not use the style network"), errorText(std::current_exception(), file));
-    }
-  }
-  if (hasNetwork()) showNetworkInChoice(network_name_, file);  // a listed file keeps its entry's label
-  refreshControls();
-  refreshFamiliarity();
-  emit sourceChanged();
-  if (stylizer_ != previous) inputsChanged(tr("the style changed"));
-}
-
-void ResultPanel::renameNetwork(const QString& old_name, const QString& new_name) {
-  for (int i = 0; i < network_choice_->count(); ++i)
-    if (network_choice_->itemText(i) == old_name && network_choice_->itemData(i).toString().isEmpty())
-      network_choice_->setItemText(i, new_name);
-  for (QString* name : {&network_name_, &job_network_name_, &result_network_name_})
-    if (*name == old_name) *name = new_name;
-  if (result_) emit resultChanged();  // the output figures are named after the network
-}
-
-void ResultPanel::listShippedNetworks() { addShippedStyleNetworks(network_choice_); }
-
-void ResultPanel::showNetworkInChoice(const QString& label, const QString& file) {
-  int index = file.isEmpty() ? -1 : network_choice_->findData(file);
-  if (index < 0) {
-    index = network_choice_->findText(label);
-    if (index < 0 || network_choice_->itemData(index).toString() != file) {
-      network_choice_->addItem(label, file);
-      index = network_choice_->count() - 1;
-    }
-  }
-  network_choice_->setCurrentIndex(index);
-}
-
-bool ResultPanel::loadNetworkFile(const QString& file) {
-  try {
-    auto model = std::make_shared<const nn::StyleModel>(style::loadCompatibleStyleModel(file.toStdString()));
-    useNetwork(std::move(model), QFileInfo(file).completeBaseName(), QFileInfo(file).absoluteFilePath());
-    return hasNetwork();
-  } catch (...) {
-    report(tr("Could not open the style network"), errorText(std::current_exception(), file));
-  }
-  return false;
-}
-
-void ResultPanel::browseNetwork() {
-  const QString file = QFileDialog::getOpenFileName(this, tr("Open a style network"), QString(),
-                                                    tr("Style networks (*.net);;All files (*)"));
-  if (!file.isEmpty()) loadNetworkFile(file);
-}
-
 void ResultPanel::setContentClip(const LoadedClip* clip) {
   if ((clip == nullptr && !content_) || (clip != nullptr && content_ && content_->id == clip->id)) return;
   cancel();
@@ -270,7 +206,7 @@ void ResultPanel::inputsChanged(const QString& what) {
 }
 
 void ResultPanel::refreshFamiliarity() {
-  familiarity_label_->measure(content_.get(), stylizer_ ? &stylizer_->model() : nullptr);
+  familiarity_label_->measure(content_.get(), stylizer_.get());
   emit familiarityChanged();
 }
 

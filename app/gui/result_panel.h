@@ -34,6 +34,7 @@
 #include "result_metrics_view.h"
 #include "nn/network_file.h"
 #include "style/stylize_cleanup_job.h"
+#include "stylizer_cache.h"
 #include "style/familiarity.h"
 
 class QCheckBox;
@@ -155,6 +156,7 @@ class ResultPanel : public QWidget {
   void listShippedNetworks();
   // setStyleNetwork / loadNetworkFile: `file` is the network's file ("" when it has none).
   void useNetwork(std::shared_ptr<const nn::StyleModel> model, const QString& name, const QString& file);
+  void useStylizer(std::shared_ptr<const style::Stylizer> stylizer, const QString& name, const QString& file);
   // Selects (adding it if needed) the chooser entry for `file` ("" for a network without a file, e.g.
   // one from the Networks panel or a stylized clip), showing `label`.
   void showNetworkInChoice(const QString& label, const QString& file);
@@ -183,6 +185,7 @@ class ResultPanel : public QWidget {
   qint64 job_start_ms_ = -1;       // when the running job was started (clock_)
   qint64 last_job_ms_ = 0;         // how long the last finished job took
   bool dropped_previous_ = false;  // the running job replaced a dropped one
+  StylizerCache stylizers_;  // networks prepared from files: switching back to one skips reading it
   std::shared_ptr<style::StylizeCleanupMemory> memory_;  // the last job on the content: an edit redoes what changed
   QElapsedTimer clock_;                    // for the log's latencies (app_log.h)
   qint64 last_change_ms_ = -1;             // when the inputs last changed, and what changed

@@ -6,6 +6,8 @@
 // Checked: results arrive while the hand is still on the control, drawn at reduced resolution until
 // it lets go; the last result answers the last value; a contact stroke late in the clip re-solves
 // only the chunk it touches.
+#include <QComboBox>
+#include <QElapsedTimer>
 #include <QFile>
 #include <QRegularExpression>
 #include <QSignalSpy>
@@ -234,6 +236,38 @@ class LiveTest : public QObject {
     std::vector<double> shown;
     for (size_t i = before; i < all.size(); ++i) shown.push_back(all[i].strength);
     QCOMPARE(shown, (std::vector<double>{0.8, 0.7}));
+  }
+
+  // Another style picked in the Result panel's list with the keyboard, as a user does: the network
+  // is loaded and the clip stylized and cleaned up again. Printed: the wall time from the key press to
+  // the new result painted, beside the log's latency.
+  void switchingTheStyleShowsItsResult() {
+    const QString clip = writeClip(scratch_, QStringLiteral("cmu_131_01.bvh"), QStringLiteral("clip_switch.bvh"));
+    MainWindow window(false);
+    QVERIFY(showStylized(window, clip));
+    ResultPanel* panel = window.resultPanel();
+    auto* choice = panel->findChild<QComboBox*>(QStringLiteral("NetworkChoice"));
+    QVERIFY(choice != nullptr && choice->count() >= 3);
+    std::vector<int> wall_ms;
+    std::vector<LogEntry> latencies;
+    for (int step = 0; step < 4; ++step) {
+      const size_t before = readLiveLog(log_).size();
+      const QString from = choice->currentText();
+      choice->setFocus();
+      QElapsedTimer timer;
+      timer.start();
+      QTest::keyClick(choice, step % 2 == 0 ? Qt::Key_Down : Qt::Key_Up);
+      QVERIFY(choice->currentText() != from);
+      QVERIFY(QTest::qWaitFor([&] { return readLiveLog(log_).size() > before && !panel->isBusy(); }, kJobTimeoutMs));
+      wall_ms.push_back(static_cast<int>(timer.elapsed()));
+      const std::vector<LogEntry> all = readLiveLog(log_);
+      QVERIFY(all.back().change.contains(QStringLiteral("style")));
+      QVERIFY(!panel->resultIsStale());
+      latencies.push_back(all.back());
+    }
+    printLatencies("style switch, 500 frames at 120 fps", latencies);
+    qInfo("style switch: key press -> new result painted, wall clock: median %d ms, max %d ms", median(wall_ms),
+          *std::max_element(wall_ms.begin(), wall_ms.end()));
   }
 
   void paintingAContactReSolvesOnlyWhatItTouches() {

@@ -477,6 +477,36 @@ class ResultTest : public QObject {
     QVERIFY(window.viewport()->figure(window.viewport()->figureCount() - 1).name.contains(QStringLiteral("other_style")));
   }
 
+  // A network file chosen again is taken prepared from the cache: the same network, no new job. A
+  // file rewritten since (another network under the same name) is read again and redoes the result.
+  void aNetworkFileIsReadAgainOnlyWhenItChanged() {
+    const std::filesystem::path file = writeTinyNetwork(scratch_, QStringLiteral("rewritten_style"), 5);
+    const std::filesystem::path other = writeTinyNetwork(scratch_, QStringLiteral("another_style"), 9);
+    MainWindow window(false);
+    QCOMPARE(window.openFiles({test::fixture(QStringLiteral("cmu_131_01.bvh"))}), 1);
+    ResultPanel* panel = window.resultPanel();
+    QSignalSpy ended(panel, &ResultPanel::jobEnded);
+    QVERIFY(panel->loadNetworkFile(QString::fromStdString(file.string())));
+    panel->stylize();
+    QVERIFY(waitForJobs(ended));
+    const Eigen::MatrixXd first = panel->result()->stylized.features;
+
+    QVERIFY(panel->loadNetworkFile(QString::fromStdString(file.string())));  // the same network: nothing to redo
+    QVERIFY(!panel->isBusy());
+    QVERIFY(panel->loadNetworkFile(QString::fromStdString(other.string())));
+    QVERIFY(waitForJobs(ended, 2));
+    QVERIFY(panel->loadNetworkFile(QString::fromStdString(file.string())));  // back: from the cache
+    QVERIFY(waitForJobs(ended, 3));
+    QCOMPARE(panel->result()->stylized.features, first);
+
+    nn::StyleModel changed = test::tinyStyleModel(11);
+    nn::saveStyleModel(changed, file);  // another network in the same file
+    QVERIFY(panel->loadNetworkFile(QString::fromStdString(file.string())));
+    QVERIFY2(panel->isBusy(), "a rewritten network file must be read again");
+    QVERIFY(waitForJobs(ended, 4));
+    QVERIFY(panel->result()->stylized.features != first);
+  }
+
   void cancelDropsTheJobAndClosingStaysClean() {
     MainWindow window(false);
     window.setErrorReporter([](const QString& title, const QString& message) { QFAIL(qPrintable(title + message)); });

@@ -1,0 +1,92 @@
+// The Result panel's style networks: the chooser, files read (or taken prepared from the cache),
+// networks from the Networks panel (result_panel.h).
+#include <QComboBox>
+#include <QFileDialog>
+#include <QFileInfo>
+
+#include <exception>
+
+#include "error_text.h"
+#include "result_panel.h"
+#include "shipped_networks.h"
+#include "style/training.h"
+
+namespace motionstyle {
+
+void ResultPanel::setStyleNetwork(std::shared_ptr<const nn::StyleModel> model, const QString& name) {
+  useNetwork(std::move(model), name, QString());
+}
+
+void ResultPanel::useNetwork(std::shared_ptr<const nn::StyleModel> model, const QString& name, const QString& file) {
+  std::shared_ptr<const style::Stylizer> stylizer;
+  if (model) {
+    try {
+      stylizer = std::make_shared<const style::Stylizer>(*model, (file.isEmpty() ? name : file).toStdString());
+    } catch (...) {
+      report(tr("Could not use the style network"), errorText(std::current_exception(), file));
+    }
+  }
+  useStylizer(std::move(stylizer), name, file);
+}
+
+void ResultPanel::useStylizer(std::shared_ptr<const style::Stylizer> stylizer, const QString& name, const QString& file) {
+  const auto previous = stylizer_;
+  const bool came_from_network = resultComesFromNetwork();
+  stylizer_ = std::move(stylizer);
+  network_name_ = stylizer_ ? (name.isEmpty() ? tr("style network") : name) : QString();
+  given_stylized_.reset();
+  if (hasNetwork()) showNetworkInChoice(network_name_, file);  // a listed file keeps its entry's label
+  refreshControls();
+  refreshFamiliarity();
+  // One network for another draws the same figures (rebuilding them cost a style switch 18-28 ms).
+  if (resultComesFromNetwork() != came_from_network) emit sourceChanged();
+  if (stylizer_ != previous) inputsChanged(tr("the style changed"));
+}
+
+void ResultPanel::renameNetwork(const QString& old_name, const QString& new_name) {
+  for (int i = 0; i < network_choice_->count(); ++i)
+    if (network_choice_->itemText(i) == old_name && network_choice_->itemData(i).toString().isEmpty())
+      network_choice_->setItemText(i, new_name);
+  for (QString* name : {&network_name_, &job_network_name_, &result_network_name_})
+    if (*name == old_name) *name = new_name;
+  if (result_) emit resultChanged();  // the output figures are named after the network
+}
+
+void ResultPanel::listShippedNetworks() { addShippedStyleNetworks(network_choice_); }
+
+void ResultPanel::showNetworkInChoice(const QString& label, const QString& file) {
+  int index = file.isEmpty() ? -1 : network_choice_->findData(file);
+  if (index < 0) {
+    index = network_choice_->findText(label);
+    if (index < 0 || network_choice_->itemData(index).toString() != file) {
+      network_choice_->addItem(label, file);
+      index = network_choice_->count() - 1;
+    }
+  }
+  network_choice_->setCurrentIndex(index);
+}
+
+bool ResultPanel::loadNetworkFile(const QString& file) {
+  const QString name = QFileInfo(file).completeBaseName(), path = QFileInfo(file).absoluteFilePath();
+  if (auto prepared = stylizers_.find(file)) {
+    useStylizer(std::move(prepared), name, path);
+    return true;
+  }
+  try {
+    auto model = std::make_shared<const nn::StyleModel>(style::loadCompatibleStyleModel(file.toStdString()));
+    useNetwork(std::move(model), name, path);
+    if (hasNetwork()) stylizers_.store(file, stylizer_);
+    return hasNetwork();
+  } catch (...) {
+    report(tr("Could not open the style network"), errorText(std::current_exception(), file));
+  }
+  return false;
+}
+
+void ResultPanel::browseNetwork() {
+  const QString file = QFileDialog::getOpenFileName(this, tr("Open a style network"), QString(),
+                                                    tr("Style networks (*.net);;All files (*)"));
+  if (!file.isEmpty()) loadNetworkFile(file);
+}
+
+}  // namespace motionstyle
