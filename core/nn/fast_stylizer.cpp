@@ -35,7 +35,7 @@ FastStylizer::Layer FastStylizer::makeLayer(Mat<float> weight, Vec<float> bias, 
   layer.in = in;
   layer.out = out;
   layer.width = width;
-  layer.spectral.emplace(in, out, width, defaultSpectralPoints(width));
+  layer.spectral.emplace(in, out, width, defaultSpectralPoints(width), SpectralPasses::ForwardOnly);
   layer.spectral->setKernel(layer.weight);
   return layer;
 }

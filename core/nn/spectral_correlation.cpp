@@ -68,13 +68,14 @@ int checkedPoints(int in, int out, int width, int points) {
 }  // namespace
 
 template <typename S>
-SpectralCorrelation<S>::SpectralCorrelation(int in, int out, int width, int points)
+SpectralCorrelation<S>::SpectralCorrelation(int in, int out, int width, int points, SpectralPasses passes)
     : in_(in),
       out_(out),
       width_(width),
       block_(checkedPoints(in, out, width, points) - width + 1),
       points_(points),
       bins_(points / 2 + 1),
+      passes_(passes),
       fft_(points) {}
 
 template <typename S>
@@ -102,6 +103,7 @@ void SpectralCorrelation<S>::setKernel(const Mat<S>& weight) {
     for (int index = begin; index < end; ++index)
       kernel_->forward_parts[index].pack(spectra.col(index).data(), out_, in_);
   });
+  if (passes_ == SpectralPasses::ForwardOnly) spectra = Mat<S>();  // backward() is refused
 }
 
 template <typename S>
@@ -171,6 +173,8 @@ void SpectralCorrelation<S>::forward(const S* padded, Eigen::Index available, Ei
 
 template <typename S>
 void SpectralCorrelation<S>::backward(const S* grad_out, Eigen::Index count, Mat<S>* weight_grad, S* padded_grad) {
+  if (passes_ == SpectralPasses::ForwardOnly)
+    throw std::logic_error("SpectralCorrelation: backward() of an instance made for the forward pass only");
   if (count != input_count_)
     throw std::logic_error("SpectralCorrelation: backward() over " + std::to_string(count) +
                            " outputs, the last forward() had " + std::to_string(input_count_));

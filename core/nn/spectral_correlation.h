@@ -53,12 +53,18 @@ int defaultSpectralPoints(int width);
 // Always false when MOTIONSTYLE_NN_CONV=direct is set in the environment (read once).
 bool spectralIsFaster(int in, int out, int width, long count);
 
+// Which passes a SpectralCorrelation serves. ForwardOnly (inference: FastStylizer) keeps only the
+// packed forward parts of the kernel spectra, 3/7 of the memory of both (a prepared style network
+// held 120 MB with both).
+enum class SpectralPasses { ForwardAndBackward, ForwardOnly };
+
 template <typename S>
 class SpectralCorrelation {
  public:
   // in, out >= 1; width odd >= 1; points (N) a power of two >= max(4, width). Throws
   // std::invalid_argument otherwise.
-  SpectralCorrelation(int in, int out, int width, int points);
+  SpectralCorrelation(int in, int out, int width, int points,
+                      SpectralPasses passes = SpectralPasses::ForwardAndBackward);
 
   int inChannels() const { return in_; }
   int outChannels() const { return out_; }
@@ -77,6 +83,7 @@ class SpectralCorrelation {
   // `available` frames. Keeps the input spectra for backward(). Needs setKernel() first.
   void forward(const S* padded, Eigen::Index available, Eigen::Index count, S* out);
 
+  // Throws std::logic_error for a ForwardOnly instance.
   // grad_out: out_ x count, the gradient of the last forward()'s output (same count). ADDS dLoss/dW
   // into *weight_grad (out x (in*width)) when it is not null, and dLoss/dpadded into padded_grad
   // (in_ x (count + width - 1), column-major) when it is not null.
@@ -93,11 +100,13 @@ class SpectralCorrelation {
   Eigen::Map<const Mat<S>> kernelPart(int f, int part) const;
 
   int in_, out_, width_, block_, points_, bins_;
+  SpectralPasses passes_;
   RealFft<S> fft_;
   struct Kernel {
     Mat<S> weight;   // the weight the cached spectra belong to
     // (out*in) x 4H: for frequency f, columns f, H+f, 2H+f, 3H+f hold Re C_f, Im C_f, Re + Im and
     // Re - Im (out x in each; the last two serve Gauss's three-product complex multiplication).
+    // Empty for ForwardOnly, which needs only forward_parts.
     Mat<S> spectra;
     // forward()'s three parts (Re, Im, Re + Im) per frequency, index part * H + f, packed for the GEMM
     // kernel once per weight: a short clip's products would otherwise copy them every call.

@@ -118,6 +118,26 @@ TEST(SpectralCorrelation, FloatDefaultLayerAgreesWithTheDirectProductToRounding)
 }
 
 // The kernel spectra are cached: a weight change (an optimiser step) must be seen by the next call.
+// The inference-only layer (FastStylizer's): backward() refused, the forward pass the full layer's bit
+// for bit, before and after a new kernel.
+TEST(SpectralCorrelation, ForwardOnlyRefusesBackwardAndComputesTheSameForward) {
+  std::mt19937 rng(29);
+  SpectralCorrelation<double> full(3, 4, 5, 16), forward_only(3, 4, 5, 16, SpectralPasses::ForwardOnly);
+  const MatD padded = randomMatrix(3, 64, rng);
+  MatD expected(4, 60), out(4, 60);
+  for (int kernel = 0; kernel < 2; ++kernel) {
+    const MatD weight = randomMatrix(4, 15, rng);
+    full.setKernel(weight);
+    forward_only.setKernel(weight);
+    full.forward(padded.data(), padded.cols(), 60, expected.data());
+    forward_only.forward(padded.data(), padded.cols(), 60, out.data());
+    EXPECT_EQ(out, expected);
+  }
+  MatD grad = MatD::Zero(4, 60);
+  EXPECT_THROW(forward_only.backward(grad.data(), 60, nullptr, nullptr), std::logic_error);
+  EXPECT_NO_THROW(full.backward(grad.data(), 60, nullptr, nullptr));
+}
+
 TEST(SpectralCorrelation, ChangedWeightsAreUsedByTheNextForward) {
   std::mt19937 rng(23);
   Conv1d<double> conv = randomConv(3, 4, 5, false, rng);
