@@ -332,11 +332,13 @@ void cleanupMotionInBlocks(const CleanupInput& input, const CleanupOptions& opti
 }
 
 Motion cleanupMotion(const CleanupInput& input, const CleanupOptions& options, CleanupReport* report,
-                     const CleanupControl& control) {
+                     const CleanupControl& control, Eigen::MatrixXd* world) {
   Motion result = input.content;
+  if (world != nullptr) world->resize(result.frameCount(), 3 * result.skeleton.jointCount());
   cleanupMotionInBlocks(input, options,
                         [&](const CleanedBlock& block) {
                           result.values.middleRows(block.first_frame, block.values.rows()) = block.values;
+                          if (world != nullptr) world->middleRows(block.first_frame, block.world.rows()) = block.world;
                         },
                         report, control);
   return result;

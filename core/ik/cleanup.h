@@ -207,8 +207,10 @@ void cleanupMotionInBlocks(const CleanupInput& input, const CleanupOptions& opti
 // layout, frame time and source) whose values are the solved rotations (degrees, each joint's own Euler
 // order) and root positions (file units). Throws std::invalid_argument from the validate steps.
 // `report` may be null. Never hangs: every solve is capped in iterations and by the time budget;
-// unreachable targets give a best-effort result and a warning.
+// unreachable targets give a best-effort result and a warning. When `world` is not null it receives
+// the result's world positions of every joint (frames x 3 joints, file units: worldPositions() of the
+// returned Motion up to rounding), which the clean-up computes anyway.
 Motion cleanupMotion(const CleanupInput& input, const CleanupOptions& options, CleanupReport* report,
-                     const CleanupControl& control = {});
+                     const CleanupControl& control = {}, Eigen::MatrixXd* world = nullptr);
 
 }  // namespace motionstyle

@@ -124,17 +124,10 @@ StylizedCleanup cleanUpStylizedClip(const Motion& content, const JointMapping& m
   const Eigen::MatrixXd targets =
       fitRows(resampleRowsLinear(stylized.world_positions, 1.0 / stylized.fps, solve_fps), at_rate.frameCount());
   const CleanupInput input(at_rate, mapping, targets, result.contacts, up, floor, anchor.convention.cm_per_unit);
-  // The clean-up's own world positions of every block serve the metrics below (computing them again
-  // from the channel values cost a live edit 1-1.5 ms for a 500-frame clip).
-  Motion cleaned = at_rate;
-  Eigen::MatrixXd cleaned_world(at_rate.frameCount(), 3 * at_rate.skeleton.jointCount());
-  cleanupMotionInBlocks(
-      input, options,
-      [&](const CleanedBlock& block) {
-        cleaned.values.middleRows(block.first_frame, block.values.rows()) = block.values;
-        cleaned_world.middleRows(block.first_frame, block.world.rows()) = block.world;
-      },
-      &result.report, control);
+  // The clean-up's own world positions serve the metrics below (computing them again from the channel
+  // values cost a live edit 1-1.5 ms for a 500-frame clip).
+  Eigen::MatrixXd cleaned_world;
+  Motion cleaned = cleanupMotion(input, options, &result.report, control, &cleaned_world);
 
   // Raw output: canonical joints only, at the network's rate, judged against the content's own
   // canonical bone lengths.

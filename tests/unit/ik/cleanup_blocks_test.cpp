@@ -65,6 +65,10 @@ TEST_F(CleanupBlocks, BlocksArriveInOrderAndMakeUpTheWholeResult) {
   const Motion whole = cleanupMotion(input(), one_block, nullptr);  // the block size changes nothing
   EXPECT_LT((whole.values - values).cwiseAbs().maxCoeff(), 1e-9);
   EXPECT_LT((worldPositions(whole) - block_world).cwiseAbs().maxCoeff(), 1e-9);  // the world handed out is the result's
+  Eigen::MatrixXd handed_out;
+  const Motion with_world = cleanupMotion(input(), inBlocks(), nullptr, {}, &handed_out);  // as cleanUpStylizedClip asks
+  EXPECT_EQ(with_world.values, values);
+  EXPECT_EQ(handed_out, block_world);
 }
 
 TEST_F(CleanupBlocks, TheResultHasNoSeamAtBlockBoundaries) {
