@@ -32,6 +32,7 @@ struct StylizeRequest {
   std::filesystem::path network;
   std::optional<std::filesystem::path> loss_network;  // checked against the network's own loss network
   double strength = 1.0;
+  style::StyleRefinement refinement;  // --refine-steps
   style::DatasetOptions dataset;
   OutputOptions output;  // --path, --no-cleanup, --fps, --time-limit; --metrics per clip
 };
@@ -46,7 +47,7 @@ std::shared_ptr<const style::Stylizer> loadStylizer(const StylizeRequest& reques
                        "this style network was trained against another loss network than " +
                            request.loss_network->string() + " (it embeds its own; omit --loss-network to use it)");
   }
-  return std::make_shared<const style::Stylizer>(std::move(model), request.network.string());
+  return std::make_shared<const style::Stylizer>(std::move(model), request.network.string(), request.refinement);
 }
 
 // One clip: its familiarity, the stylized targets (60 fps), then the clean-up and OUT
@@ -60,7 +61,8 @@ std::string stylizeFile(const style::Stylizer& stylizer, const StylizeRequest& r
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::ostringstream log;
   log << "stylized " << stylized.frameCount() << " frames (60 fps) at strength " << request.strength << " in "
-      << seconds * 1000.0 << " ms (path: " << style::pathModeName(request.output.path) << ")\n";
+      << seconds * 1000.0 << " ms (path: " << style::pathModeName(request.output.path)
+      << ", refinement steps: " << stylizer.refinementSteps() << ")\n";
   OutputOptions options = request.output;
   options.metrics = metrics;
   writeStylizedOutput(input, stylized, options, output, log, &familiarity);
@@ -72,7 +74,7 @@ std::string stylizeFile(const style::Stylizer& stylizer, const StylizeRequest& r
 }  // namespace
 
 int runStylize(const Args& args) {
-  std::vector<OptionSpec> specs = {{"loss-network"}, {"net"}, {"out"}, {"strength"}, {"unit"}, {"jobs"}};
+  std::vector<OptionSpec> specs = {{"loss-network"}, {"net"}, {"out"}, {"strength"}, {"refine-steps"}, {"unit"}, {"jobs"}};
   for (const OptionSpec& spec : outputOptionSpecs()) specs.push_back(spec);
   const ParsedArgs parsed = parseArgs(args, specs);
   if (parsed.positional.empty()) throw UsageError("stylize needs an input clip IN.bvh (or several, or folders)");
@@ -81,6 +83,8 @@ int runStylize(const Args& args) {
   request.network = resolveNetworkArgument(parsed.required("net"));
   if (auto loss_network = parsed.value("loss-network")) request.loss_network = resolveNetworkArgument(*loss_network);
   request.strength = parsed.number("strength", 1.0, {0.0, 1.0});
+  request.refinement.iterations =
+      parsed.integer("refine-steps", request.refinement.iterations, 0, style::StyleRefinement::kMaxIterations);
   request.dataset.features.unit = lengthUnit(parsed);
   const std::filesystem::path out = parsed.required("out");
   std::vector<NamedPath> networks = {{request.network, "--net"}};

@@ -129,6 +129,10 @@ const std::vector<Command>& commands() {
        "  --loss-network LOSS\n"
        "                  optional: checked to be the loss network NET was trained against\n"
        "  --strength S    0 = the content unchanged, 1 = fully styled (default 1), blended in feature space\n"
+       "  --refine-steps N\n"
+       "                  steps of the network's own objective (eq. 10's content and style terms) on this\n"
+       "                  clip after the network (default 30, 0 = the network's output as it is): clips\n"
+       "                  unlike the network's training data get the style it gives its own\n"
        "  --unit UNIT     IN's length unit (default: guessed)\n" MOTIONSTYLE_OUTPUT_OPTIONS_HELP MOTIONSTYLE_BATCH_HELP,
        runStylize},
       {"transfer", "style transfer by optimisation (Holden et al. 2016), no style network needed",

@@ -111,7 +111,7 @@ void FastStylizer::convolve(Layer& layer, const Mat<float>& in, Mat<float>& out,
   });
 }
 
-void FastStylizer::projectPadded(int frames, Mat<float>& out) {
+void FastStylizer::encodePadded(int frames) {
   const int even = frames + frames % 2;
   const int pooled = even / 2;
   const Eigen::Index enc_pad = encoder_.width / 2;
@@ -126,6 +126,19 @@ void FastStylizer::projectPadded(int frames, Mat<float>& out) {
       pooled_.col(phase_left_ + s) =
           (encoded_.col(2 * s).cwiseMax(encoded_.col(2 * s + 1)) + encoder_bias_).cwiseMax(0.0f) - encoder_bias_;
   });
+}
+
+void FastStylizer::projectPadded(int frames, Mat<float>& out, const HiddenEdit& edit) {
+  const int even = frames + frames % 2;
+  const int pooled = even / 2;
+  encodePadded(frames);
+  if (edit) {
+    Mat<float> hidden = pooled_.middleCols(phase_left_, pooled).colwise() + encoder_bias_;
+    edit(hidden);
+    if (hidden.rows() != hidden_ || hidden.cols() != pooled)
+      throw std::invalid_argument("FastStylizer: the hidden-unit edit changed their shape");
+    pooled_.middleCols(phase_left_, pooled) = hidden.colwise() - encoder_bias_;
+  }
 
   // Polyphase decoder: column s of the (2*features) x pooled product is frames 2s and 2s+1.
   out.resize(features_, frames);
@@ -138,16 +151,18 @@ void FastStylizer::projectPadded(int frames, Mat<float>& out) {
   if (frames % 2 == 1) out = decoded_.leftCols(frames);
 }
 
-void FastStylizer::project(const Mat<float>& x, Mat<float>& out) {
+int FastStylizer::loadEncoderInput(const Mat<float>& x) {
   requireClip(x, features_);
   const int frames = static_cast<int>(x.cols());
   const Eigen::Index enc_pad = encoder_.width / 2;
   ensureZeroed(encoder_input_, features_, frames + frames % 2 + 2 * enc_pad);
   encoder_input_.middleCols(enc_pad, frames) = x;
-  projectPadded(frames, out);
+  return frames;
 }
 
-void FastStylizer::stylize(const Mat<float>& x, Mat<float>& out) {
+void FastStylizer::project(const Mat<float>& x, Mat<float>& out) { projectPadded(loadEncoderInput(x), out); }
+
+void FastStylizer::stylize(const Mat<float>& x, Mat<float>& out, const HiddenEdit& edit) {
   if (!has_transformer_) throw std::invalid_argument("FastStylizer: stylize() needs a transformation network");
   requireClip(x, features_);
   const int frames = static_cast<int>(x.cols());
@@ -167,7 +182,15 @@ void FastStylizer::stylize(const Mat<float>& x, Mat<float>& out) {
     y.colwise() += t3_.bias;
     if (residual_) y += x.middleCols(begin, end - begin);
   });
-  projectPadded(frames, out);
+  projectPadded(frames, out, edit);
+}
+
+void FastStylizer::stylize(const Mat<float>& x, Mat<float>& out) { stylize(x, out, HiddenEdit{}); }
+
+Mat<float> FastStylizer::encode(const Mat<float>& x) {
+  const int frames = loadEncoderInput(x);
+  encodePadded(frames);
+  return pooled_.middleCols(phase_left_, (frames + frames % 2) / 2).colwise() + encoder_bias_;
 }
 
 Mat<float> FastStylizer::stylize(const Mat<float>& x) {

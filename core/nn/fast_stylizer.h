@@ -22,6 +22,7 @@
 // the prepared kernel spectra (read-only here), so copying a prepared stylizer costs its weights'
 // few MB, not the spectra's tens.
 
+#include <functional>
 #include <optional>
 
 #include "nn/loss_network.h"
@@ -45,6 +46,14 @@ class FastStylizer {
   Mat<float> stylize(const Mat<float>& x);
   Mat<float> project(const Mat<float>& x);
 
+  // The loss network's hidden units H = ReLU(maxpool(conv(x)) + b0) of x (features x frames,
+  // normalised): hidden x evenFrames(frames)/2, as LossNetwork::encode up to float rounding.
+  Mat<float> encode(const Mat<float>& x);
+  // stylize(x) with `edit` given T(x)'s hidden units H (hidden x evenFrames(frames)/2) to change in
+  // place before they are decoded: decode(edit(encode(T(x)))). What the style refinement runs in.
+  using HiddenEdit = std::function<void(Mat<float>& hidden)>;
+  void stylize(const Mat<float>& x, Mat<float>& out, const HiddenEdit& edit);
+
   // The decoder's two phase kernels stacked (tests compare them with the plain decoder).
   const Mat<float>& polyphaseKernel() const { return polyphase_; }
 
@@ -65,8 +74,13 @@ class FastStylizer {
   // direct, whichever the cost model picks for `count`.
   static void correlate(Layer& layer, const float* padded, Eigen::Index available, int count, float* out);
   void buildPolyphase(const LossNetwork<float>& loss_network);
-  // Runs the projection on the (even-length) padded buffer input_to_encoder_, writing `frames` columns.
-  void projectPadded(int frames, Mat<float>& out);
+  // Copies x into the padded buffer encoder_input_; returns its frames.
+  int loadEncoderInput(const Mat<float>& x);
+  // The encoder and its pool on the padded buffer encoder_input_: pooled_ = H - b0.
+  void encodePadded(int frames);
+  // Runs the projection on the (even-length) padded buffer encoder_input_, writing `frames` columns;
+  // `edit` (may be empty) changes the hidden units before the decoder.
+  void projectPadded(int frames, Mat<float>& out, const HiddenEdit& edit = {});
   void convolve(Layer& layer, const Mat<float>& in, Mat<float>& out, int frames, bool relu);
 
   bool has_transformer_ = false;

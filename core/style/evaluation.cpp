@@ -107,12 +107,13 @@ double footSkate(const Eigen::MatrixXd& features, const Eigen::MatrixXd& contact
 
 EvaluationReport evaluateStyleNetwork(const nn::LossNetworkModel& loss_network, const nn::StyleModel& network,
                                       const std::vector<MotionClip>& clips, const std::vector<MotionClip>& styles,
-                                      const std::vector<int>& pairing, PathMode path) {
+                                      const std::vector<int>& pairing, PathMode path,
+                                      const StyleRefinement& refinement) {
   if (pairing.size() != clips.size()) throw std::invalid_argument("evaluateStyleNetwork: one pairing per clip");
   const auto started = Clock::now();
   EvaluationReport report;
   report.loss_network_matches_network = nn::sameWeights(loss_network.network, network.loss_network);
-  const Stylizer stylizer(network);
+  const Stylizer stylizer(network, "the style network", refinement);
   const nn::LossNetwork<float>& loss = network.loss_network;
   const FeatureStatistics& norm = network.normalisation;
   std::vector<nn::Mat<float>> style_grams;

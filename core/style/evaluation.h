@@ -36,6 +36,7 @@
 #include "nn/network_file.h"
 #include "style/motion_dataset.h"
 #include "style/path_mode.h"
+#include "style/style_refinement.h"
 
 namespace motionstyle::style {
 
@@ -69,10 +70,12 @@ struct EvaluationReport {
   double seconds = 0;                       // wall time of the whole evaluation
 };
 
-// clips: the content clips; styles: the style clips; pairing[i] indexes `styles` for clips[i].
+// clips: the content clips; styles: the style clips; pairing[i] indexes `styles` for clips[i]. The
+// network runs as the Stylizer does with `refinement`.
 EvaluationReport evaluateStyleNetwork(const nn::LossNetworkModel& loss_network, const nn::StyleModel& network,
                                       const std::vector<MotionClip>& clips, const std::vector<MotionClip>& styles,
-                                      const std::vector<int>& pairing, PathMode path = PathMode::Content);
+                                      const std::vector<int>& pairing, PathMode path = PathMode::Content,
+                                      const StyleRefinement& refinement = {});
 
 // The distances of the report for one output: eq. 4 between `output` and `content`, eq. 5 of `content`
 // and of `output` to the style clip's Gram matrix, all through `encoder` (features 66 x frames in

@@ -6,12 +6,12 @@
 #include <stdexcept>
 
 #include "common/errors.h"
-#include "nn/adam.h"
 #include "nn/init.h"
 #include "nn/layers.h"
 #include "nn/losses.h"
 #include "nn/transformation_objective.h"
 #include "style/cancellation.h"
+#include "style/hidden_style_descent.h"
 
 namespace motionstyle::style {
 namespace {
@@ -77,13 +77,11 @@ OptimizationResult optimizeStyleTransfer(const nn::LossNetworkModel& loss_networ
   const nn::LossNetwork<float>& network = loss_network.network;
   const nn::Mat<float> content_n = norm.normalized(content);
   const nn::Mat<float> content_hidden = network.encode(content_n, frames);
-  const std::vector<nn::Mat<float>> style_gram = {nn::styleGram(network, norm.normalized(style))};
-  const int pooled = static_cast<int>(content_hidden.cols());
-  const float c = static_cast<float>(options.content_weight / (options.content_weight + options.style_weight));
-  const float s = static_cast<float>(options.style_weight / (options.content_weight + options.style_weight));
+  nn::Mat<float> style_gram = nn::styleGram(network, norm.normalized(style));
+  const double c = options.content_weight / (options.content_weight + options.style_weight);
+  const double s = options.style_weight / (options.content_weight + options.style_weight);
 
-  nn::Parameter<float> hidden;
-  hidden.name = "hidden";
+  nn::Mat<float> start;
   if (options.start_from_noise) {
     std::mt19937 rng(options.seed);
     nn::Mat<float> noise(content_n.rows(), content_n.cols());
@@ -91,12 +89,11 @@ OptimizationResult optimizeStyleTransfer(const nn::LossNetworkModel& loss_networ
     // in normalised units, from the portable draws of nn/init.h.
     for (Eigen::Index i = 0; i < noise.size(); ++i)
       noise.data()[i] = static_cast<float>(std::sqrt(3.0) * nn::symmetricUniform(rng));
-    hidden.value = network.encode(noise, frames);
+    start = network.encode(noise, frames);
   } else {
-    hidden.value = content_hidden;
+    start = content_hidden;
   }
-  hidden.zeroGrad();
-  nn::Adam<float> adam({&hidden}, nn::AdamOptions{options.learning_rate});
+  HiddenStyleDescent descent(std::move(start), content_hidden, std::move(style_gram), c, s, options.learning_rate);
 
   OptimizationResult result;
   OptimizationProgress progress;
@@ -104,29 +101,25 @@ OptimizationResult optimizeStyleTransfer(const nn::LossNetworkModel& loss_networ
     progress.stage = stage;
     progress.iteration = iteration;
     progress.iterations = iterations;
+    progress.content = descent.content();
+    progress.style = descent.style();
     progress.elapsed_seconds = std::chrono::duration<double>(Clock::now() - started).count();
     if (callbacks.progress) callbacks.progress(progress);
-  };
-  const auto styleTerms = [&]() {  // stage-1 objective; adds its gradient into hidden.grad
-    progress.content = static_cast<double>(nn::meanSquaredError(hidden.value, content_hidden, c, &hidden.grad));
-    progress.style = static_cast<double>(nn::styleLoss(hidden.value, pooled, style_gram, s, &hidden.grad));
-    return static_cast<double>(c) * progress.content + static_cast<double>(s) * progress.style;
   };
 
   try {
     for (int i = 0; i < options.iterations; ++i) {
       throwIfCancelled(callbacks.cancel);
-      adam.zeroGrad();
-      progress.total = styleTerms();
-      adam.step();
+      progress.total = descent.step();
       report("style", i + 1, options.iterations);
     }
     Decoder decoder(network, frames);
     const nn::Mat<float> contacts = content_contacts.cast<float>();
     const nn::Mat<float> bones = canonicalBoneLengths(content).tail(nn::kBoneCount).cast<float>();
+    nn::Parameter<float>& hidden = descent.hidden();
     for (int i = 0; i < options.constraint_iterations; ++i) {
       throwIfCancelled(callbacks.cancel);
-      adam.zeroGrad();
+      descent.zeroGrad();
       const nn::Mat<float> output = decoder.forward(hidden.value);
       nn::Mat<float> grad_output = nn::Mat<float>::Zero(output.rows(), output.cols());
       progress.foot = static_cast<double>(
@@ -136,9 +129,9 @@ OptimizationResult optimizeStyleTransfer(const nn::LossNetworkModel& loss_networ
       progress.trajectory = static_cast<double>(
           nn::trajectoryLoss(output, content_n, norm, static_cast<float>(options.trajectory_weight), &grad_output));
       hidden.grad += decoder.backward(grad_output);
-      progress.total = styleTerms() + options.foot_weight * progress.foot + options.bone_weight * progress.bone +
+      progress.total = descent.addTerms() + options.foot_weight * progress.foot + options.bone_weight * progress.bone +
                        options.trajectory_weight * progress.trajectory;
-      adam.step();
+      descent.applyStep();
       report("constraints", i + 1, options.constraint_iterations);
     }
   } catch (const OperationCancelled&) {
@@ -146,9 +139,9 @@ OptimizationResult optimizeStyleTransfer(const nn::LossNetworkModel& loss_networ
     result.seconds = std::chrono::duration<double>(Clock::now() - started).count();
     return result;
   }
-  if (!hidden.value.allFinite()) throw std::runtime_error("the optimisation diverged (non-finite hidden units)");
+  if (!descent.value().allFinite()) throw std::runtime_error("the optimisation diverged (non-finite hidden units)");
 
-  result.clip.features = norm.denormalized(Decoder(network, frames).forward(hidden.value));
+  result.clip.features = norm.denormalized(Decoder(network, frames).forward(descent.value()));
   applyPathMode(result.clip.features, content, options.path);
   enforceBoneLengths(result.clip.features, referenceProportions());
   result.clip.path = options.path;

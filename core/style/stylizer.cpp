@@ -35,9 +35,10 @@ Eigen::MatrixXd cropEdges(const Eigen::MatrixXd& padded) {
 
 }  // namespace
 
-Stylizer::Stylizer(nn::StyleModel model, std::string source_name)
-    : model_(std::move(model)), source_name_(std::move(source_name)) {
+Stylizer::Stylizer(nn::StyleModel model, std::string source_name, StyleRefinement refinement)
+    : model_(std::move(model)), source_name_(std::move(source_name)), refinement_(refinement) {
   model_.normalisation.validate();
+  refinement_.validate();
   if (model_.transformation.shape().features != kFeatureCount || model_.loss_network.shape().features != kFeatureCount)
     throw std::invalid_argument("Stylizer: the networks must take 66 features");
   prototype_ = std::make_unique<const nn::FastStylizer>(model_.transformation, model_.loss_network);
@@ -63,7 +64,21 @@ auto Stylizer::withNetwork(Run run) const {
 Eigen::MatrixXd Stylizer::networkOutput(const Eigen::MatrixXd& features) const {
   requireFeatures(features, "Stylizer::networkOutput");
   const nn::Mat<float> input = model_.normalisation.normalized(padEdges(features));
-  const nn::Mat<float> styled = withNetwork([&](nn::FastStylizer& network) { return network.stylize(input); });
+  const bool refine = refinementSteps() > 0;
+  const nn::Mat<float> styled = withNetwork([&](nn::FastStylizer& network) {
+    if (!refine) return network.stylize(input);
+    // The clip's own pooled columns, between the edges' padding.
+    const Eigen::Index first = kEdgePaddingFrames / 2, count = (features.cols() + 1) / 2;
+    const nn::Mat<float> content_hidden = network.encode(input).middleCols(first, count);
+    nn::Mat<float> styled_padded;
+    network.stylize(input, styled_padded, [&](nn::Mat<float>& hidden) {
+      nn::Mat<float> clip = hidden.middleCols(first, count);
+      const int target = nearestStyleTarget(model_.style_targets, clip);
+      refineHiddenUnits(clip, content_hidden, model_.style_targets[static_cast<std::size_t>(target)].gram, refinement_);
+      hidden.middleCols(first, count) = clip;
+    });
+    return styled_padded;
+  });
   return cropEdges(model_.normalisation.denormalized(styled));
 }
 

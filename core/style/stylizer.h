@@ -1,7 +1,9 @@
 #pragma once
 // Stylize: the transformation network T, then the manifold projection through the loss network L
 // (decode(encode(.)), paper "Manifold Projection"), over a whole clip of any length at once: the
-// networks are fully convolutional, so there is no 240-frame limit and there are no seams. Runs on the
+// networks are fully convolutional, so there is no 240-frame limit and there are no seams. Between
+// encode and decode the style refinement (style_refinement.h) finishes T's work on this clip; its
+// Gram matrix is the whole clip's, so with it every frame depends on the whole clip. Runs on the
 // float32 fast path (nn/fast_stylizer.h).
 //
 // Strength s in [0, 1] blends in the representation's own units (cm, cm/frame, rad/frame):
@@ -23,6 +25,7 @@
 #include "nn/fast_stylizer.h"
 #include "nn/network_file.h"
 #include "style/path_mode.h"
+#include "style/style_refinement.h"
 
 namespace motionstyle::style {
 
@@ -45,9 +48,16 @@ class Stylizer {
  public:
   // Throws std::invalid_argument if the model is inconsistent (feature counts, normalisation).
   // source_name names the network in errors (its file, where there is one).
-  explicit Stylizer(nn::StyleModel model, std::string source_name = "the style network");
+  // `refinement` finishes T's output per clip (style_refinement.h); it needs the network's stored
+  // style targets and is skipped for a network without them (files before format 3).
+  explicit Stylizer(nn::StyleModel model, std::string source_name = "the style network",
+                    StyleRefinement refinement = {});
 
   const nn::StyleModel& model() const { return model_; }
+  const StyleRefinement& refinement() const { return refinement_; }
+  // The refinement steps networkOutput runs: refinement().iterations, or 0 for a network without
+  // stored style targets.
+  int refinementSteps() const { return model_.style_targets.empty() ? 0 : refinement_.iterations; }
 
   // features: 66 x frames (frames >= 1) in representation units. Returns the same shape and units.
   // Throws std::invalid_argument for a strength outside [0, 1] or NaN, or a wrong shape (the features
@@ -63,7 +73,7 @@ class Stylizer {
   StylizedClip stylize(const MotionFeatures& content, double strength, PathMode path = PathMode::Content) const;
 
   // stylizeFeatures in its two halves, for callers that change only the strength or the path mode
-  // (live edits): networkOutput(x) = L(T(x)) in representation units, independent of both, and
+  // (live edits): networkOutput(x) = L(T(x)) in representation units (refined), independent of both, and
   // finishFeatures, the blend by strength, the path mode and the bone lengths, which
   // stylizeFeatures(x, s, p) == finishFeatures(x, networkOutput(x), s, p) (bit for bit). Same throws
   // as stylizeFeatures; finishFeatures also when network_output's shape is not the features'.
@@ -81,6 +91,7 @@ class Stylizer {
  private:
   nn::StyleModel model_;
   std::string source_name_;
+  StyleRefinement refinement_;
   // Runs `run` on an idle prepared network, made from prototype_ when every one is busy, and puts it
   // back. Why not one network behind a lock: a batch's workers waited for each other's clips (its
   // speed-up on 2 cores, docs/decisions.md).

@@ -35,6 +35,16 @@ expect 0 "wrote $work/quick.net: 6 epochs" "$cli" train-style --loss-network "$w
 expect 2 "not both" "$cli" train-style --loss-network "$work/ae.net" --content "$content" --style "$style" \
   --out "$work/quick2.net" --quick --epochs 3
 expect 0 "wrote $work/out.bvh: 300 frames" "$cli" stylize --net "$work/style.net" "$content" --out "$work/out.bvh"
+# The style refinement: on by default (the network stores its style target), off with 0, and a bad
+# count refused before anything is written.
+expect 0 "refinement steps: 30" "$cli" stylize --net "$work/style.net" "$content" --out "$work/refined.bvh" --no-cleanup
+expect 0 "refinement steps: 0" "$cli" stylize --net "$work/style.net" "$content" --out "$work/plain.bvh" --no-cleanup \
+  --refine-steps 0
+cmp -s "$work/refined.bvh" "$work/plain.bvh" && fail "stylize --refine-steps 0 wrote the refined clip"
+for bad in -1 2.5 100000 x; do
+  expect 2 "--refine-steps" "$cli" stylize --net "$work/style.net" "$content" --out "$work/refused.bvh" --refine-steps "$bad"
+done
+[ -e "$work/refused.bvh" ] && fail "a refused --refine-steps still wrote a clip"
 expect 0 "frames       300 at 30 fps" "$cli" info "$work/out.bvh"
 
 # eval: one entry per clip in the JSON.

@@ -5,12 +5,15 @@
 //   eval_generalisation [--models DIR] [--loss-network FILE] [--styles elderly,sad,...] [--data BANDAI_ROOT]
 //                       [--fixtures SHARED_FIXTURES] [--samples DIR] [--no-cleanup] [--per-joint]
 //                       [--path content|style] [--probes] [--json FILE]
+//                       [--refine STEPS] [--refine-rate LR] [--refine-content C] [--refine-style S]
 //
 // Clip sets:
 //   bandai-ae-heldout     every 10th file of dataset-1 then dataset-2 (train_models.sh's train-loss-network split)
 //   bandai-style-heldout  every 5th dataset-2 normal-style walk, run or turn (train_models.sh's train-style split)
 //   other-studios         the two samples (CMU 131_01 trimmed, the zombie) and ../shared/fixtures/
 //                         cmu_walks/*.bvh without their rest-pose frame 0 (their README)
+// The networks run as `stylize` runs them, with the style refinement's defaults (style_refinement.h)
+// unless the --refine* options change them (--refine 0: the network's output as it is).
 // Per network and clip: style distance ratio and content distance (eval's definitions), familiarity
 // (style/familiarity.h), and unless --no-cleanup the IK clean-up's residual, skate and "unreachable"
 // warnings, and the cleaned output's root path against the content's (features/root_path.h).
@@ -200,7 +203,7 @@ struct NetworkFigures {
 
 nlohmann::json evaluateNetwork(const nn::StyleModel& model, const nn::LossNetworkModel& loss_network, const ClipSet& set,
                                const fs::path& data, bool cleanup, style::PathMode path, const CleanupOptions& cleanup_options,
-                               NetworkFigures& figures) {
+                               const style::StyleRefinement& refinement, NetworkFigures& figures) {
   // Style clips by label from the network's own metadata ("style_for_walk" -> file name).
   std::map<std::string, std::string> style_for;
   for (const auto& [key, value] : model.metadata.properties)
@@ -225,8 +228,8 @@ nlohmann::json evaluateNetwork(const nn::StyleModel& model, const nn::LossNetwor
   }
   nlohmann::json out = nlohmann::json::object();
   if (clips.empty()) return out;
-  const style::EvaluationReport report = style::evaluateStyleNetwork(loss_network, model, clips, styles, pairing, path);
-  const style::Stylizer stylizer(model);
+  const style::EvaluationReport report = style::evaluateStyleNetwork(loss_network, model, clips, styles, pairing, path, refinement);
+  const style::Stylizer stylizer(model, "the style network", refinement);
   nlohmann::json per_clip = nlohmann::json::array();
   for (std::size_t i = 0; i < clips.size(); ++i) {
     const style::ClipEvaluation& ev = report.clips[i];
@@ -298,6 +301,7 @@ int main(int argc, char** argv) {
   bool cleanup = true, per_joint = false, probes = false;
   style::PathMode path = style::PathMode::Content;
   CleanupOptions cleanup_options;
+  style::StyleRefinement refinement;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const auto next = [&]() -> std::string {
@@ -313,6 +317,10 @@ int main(int argc, char** argv) {
     else if (a == "--no-cleanup") cleanup = false;
     else if (a == "--per-joint") per_joint = true;
     else if (a == "--probes") probes = true;
+    else if (a == "--refine") refinement.iterations = std::stoi(next());
+    else if (a == "--refine-rate") refinement.learning_rate = std::stod(next());
+    else if (a == "--refine-style") refinement.style_weight = std::stod(next());
+    else if (a == "--refine-content") refinement.content_weight = std::stod(next());
     else if (a == "--hips-weight") cleanup_options.hips_weight = std::stod(next());
     else if (a == "--path") path = style::parsePathMode(next()).value_or(style::PathMode::Content);
     else if (a == "--styles") {
@@ -342,7 +350,7 @@ int main(int argc, char** argv) {
       for (const ClipSet& set : sets) {
         if (set.name == "bandai-ae-heldout") continue;
         NetworkFigures figures;
-        json["networks"][name][set.name] = evaluateNetwork(model, loss_network, set, data, cleanup, path, cleanup_options, figures);
+        json["networks"][name][set.name] = evaluateNetwork(model, loss_network, set, data, cleanup, path, cleanup_options, refinement, figures);
         printFigures(name, set.name, figures);
       }
     }

@@ -94,5 +94,31 @@ TEST(FastStylizer, ReusedBuffersGiveTheSameResultAcrossLengths) {
   EXPECT_EQ(fast.stylize(a), first);  // deterministic, and no stale padding from the shorter clip
 }
 
+// The hidden units the style refinement edits: encode() is LossNetwork::encode, an edit that leaves
+// them alone gives stylize() bit for bit, and an edit reaches the output.
+TEST(FastStylizer, EncodesAsTheReferenceAndDecodesEditedHiddenUnits) {
+  Networks n(true);
+  FastStylizer fast(n.t, n.loss_network);
+  std::mt19937 rng(7);
+  for (int frames : {61, 240}) {
+    const Mat<float> x = test::randomMatrix(kFeatureCount, frames, rng).cast<float>();
+    const MatD expected = n.loss_network_ref.encode(x.cast<double>(), frames);
+    const Mat<float> hidden = fast.encode(x);
+    ASSERT_EQ(hidden.rows(), expected.rows());
+    ASSERT_EQ(hidden.cols(), expected.cols());
+    EXPECT_LT(relativeMaxError(hidden.cast<double>(), expected), 1e-5) << frames;
+
+    const Mat<float> plain = fast.stylize(x);
+    Mat<float> untouched, edited;
+    int seen_columns = 0;
+    fast.stylize(x, untouched, [&](Mat<float>& h) { seen_columns = static_cast<int>(h.cols()); });
+    EXPECT_EQ(seen_columns, (frames + 1) / 2);
+    EXPECT_EQ(untouched, plain);
+    fast.stylize(x, edited, [](Mat<float>& h) { h.col(h.cols() / 2).array() += 1.0f; });
+    EXPECT_GT((edited - plain).cwiseAbs().maxCoeff(), 1e-3f) << frames;
+    EXPECT_THROW(fast.stylize(x, edited, [](Mat<float>& h) { h.resize(h.rows(), 1); }), std::invalid_argument);
+  }
+}
+
 }  // namespace
 }  // namespace motionstyle::nn

@@ -1,0 +1,53 @@
+#include "style/style_refinement.h"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "nn/losses.h"
+#include "style/hidden_style_descent.h"
+
+namespace motionstyle::style {
+
+void StyleRefinement::validate() const {
+  if (iterations < 0 || iterations > kMaxIterations)
+    throw std::invalid_argument("refinement iterations must be in [0, " + std::to_string(kMaxIterations) + "]");
+  if (!std::isfinite(learning_rate) || learning_rate <= 0)
+    throw std::invalid_argument("refinement learning rate must be > 0");
+  if (!std::isfinite(content_weight) || !std::isfinite(style_weight) || content_weight < 0 || style_weight < 0 ||
+      content_weight + style_weight <= 0)
+    throw std::invalid_argument("refinement weights must be finite, >= 0 and not both 0");
+}
+
+int nearestStyleTarget(const std::vector<nn::StyleTarget>& targets, const nn::Mat<float>& hidden) {
+  if (targets.empty()) return -1;
+  const nn::Mat<float> gram = nn::gramMatrix(hidden);
+  int nearest = -1;
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    if (targets[i].gram.rows() != gram.rows() || targets[i].gram.cols() != gram.cols())
+      throw std::invalid_argument("nearestStyleTarget: a target is not hidden x hidden");
+    const double distance = static_cast<double>((targets[i].gram - gram).squaredNorm());
+    if (distance < best) {
+      best = distance;
+      nearest = static_cast<int>(i);
+    }
+  }
+  return nearest;
+}
+
+void refineHiddenUnits(nn::Mat<float>& hidden, const nn::Mat<float>& content_hidden, const nn::Mat<float>& target,
+                       const StyleRefinement& refinement) {
+  refinement.validate();
+  if (content_hidden.rows() != hidden.rows() || content_hidden.cols() != hidden.cols() ||
+      target.rows() != hidden.rows() || target.cols() != hidden.rows())
+    throw std::invalid_argument("refineHiddenUnits: content hidden x frames as the hidden units, the target hidden x hidden");
+  if (refinement.iterations == 0) return;
+  HiddenStyleDescent descent(hidden, content_hidden, target, refinement.content_weight, refinement.style_weight,
+                             refinement.learning_rate);
+  for (int i = 0; i < refinement.iterations; ++i) descent.step();
+  hidden = descent.value();
+}
+
+}  // namespace motionstyle::style

@@ -1,0 +1,126 @@
+// The style refinement (style_refinement.h) and the hidden-unit descent it shares with the
+// optimisation method: invalid input first, then that it lowers eq. 10's objective, picks the nearest
+// style target, and that the Stylizer runs it only where asked and where the network has targets.
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <random>
+#include <stdexcept>
+
+#include "nn/losses.h"
+#include "nn/transformation_objective.h"
+#include "style/evaluation.h"
+#include "style/hidden_style_descent.h"
+#include "style/style_refinement.h"
+#include "style/stylizer.h"
+#include "style_test_support.h"
+
+namespace motionstyle {
+namespace {
+
+nn::Mat<float> randomHidden(int rows, int cols, std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  nn::Mat<float> m(rows, cols);
+  for (Eigen::Index i = 0; i < m.size(); ++i) m.data()[i] = u(rng);
+  return m;
+}
+
+// The objective the refinement descends, evaluated without gradients.
+double objective(const nn::Mat<float>& hidden, const nn::Mat<float>& content, const nn::Mat<float>& gram,
+                 const style::StyleRefinement& r) {
+  const double c = nn::meanSquaredError<float>(hidden, content, 0.0f, nullptr);
+  const double s = nn::styleLoss<float>(hidden, static_cast<int>(hidden.cols()), {gram}, 0.0f, nullptr);
+  return r.content_weight * c + r.style_weight * s;
+}
+
+// A tiny style network that stores the zombie's Gram matrix as its one (default) style target.
+nn::StyleModel tinyModelWithTarget() {
+  nn::StyleModel model = test::tinyStyleModel();
+  const Eigen::MatrixXd& style = test::fixtureClips()[1].features.values;
+  model.style_targets.push_back({"", style::styleGramOf(model.loss_network, model.normalisation, style)});
+  return model;
+}
+
+TEST(StyleRefinementInvalid, RefusesBadSettingsAndShapes) {
+  const auto refused = [](auto change) {
+    style::StyleRefinement r;
+    change(r);
+    return [r] { r.validate(); };
+  };
+  EXPECT_THROW(refused([](auto& r) { r.iterations = -1; })(), std::invalid_argument);
+  EXPECT_THROW(refused([](auto& r) { r.iterations = style::StyleRefinement::kMaxIterations + 1; })(), std::invalid_argument);
+  EXPECT_THROW(refused([](auto& r) { r.learning_rate = 0; })(), std::invalid_argument);
+  EXPECT_THROW(refused([](auto& r) { r.learning_rate = std::numeric_limits<double>::quiet_NaN(); })(), std::invalid_argument);
+  EXPECT_THROW(refused([](auto& r) { r.style_weight = -1; })(), std::invalid_argument);
+  EXPECT_THROW(refused([](auto& r) { r.content_weight = 0, r.style_weight = 0; })(), std::invalid_argument);
+  EXPECT_NO_THROW(style::StyleRefinement{}.validate());
+
+  const nn::Mat<float> hidden = randomHidden(8, 20, 1);
+  nn::Mat<float> edited = hidden;
+  EXPECT_THROW(style::refineHiddenUnits(edited, randomHidden(8, 19, 2), nn::gramMatrix(hidden), {}), std::invalid_argument);
+  EXPECT_THROW(style::refineHiddenUnits(edited, hidden, randomHidden(7, 7, 3), {}), std::invalid_argument);
+  EXPECT_THROW(style::HiddenStyleDescent(hidden, hidden, nn::gramMatrix(hidden), 0, 0, 0.01), std::invalid_argument);
+  EXPECT_THROW(style::nearestStyleTarget({{"walk", randomHidden(7, 7, 4)}}, hidden), std::invalid_argument);
+  EXPECT_EQ(style::nearestStyleTarget({}, hidden), -1);
+  EXPECT_THROW(style::Stylizer(test::tinyStyleModel(), "tiny", style::StyleRefinement{-1}), std::invalid_argument);
+}
+
+TEST(StyleRefinement, PicksTheNearestTarget) {
+  const nn::Mat<float> hidden = randomHidden(8, 30, 5);
+  const std::vector<nn::StyleTarget> targets = {{"walk", randomHidden(8, 8, 6)},
+                                                {"run", nn::gramMatrix(hidden) * 1.01f},
+                                                {"", randomHidden(8, 8, 7)}};
+  EXPECT_EQ(style::nearestStyleTarget(targets, hidden), 1);
+}
+
+TEST(StyleRefinement, StepsLowerTheObjectiveAndZeroStepsChangeNothing) {
+  const nn::Mat<float> content = randomHidden(8, 40, 8);
+  const nn::Mat<float> start = content + 0.1f * randomHidden(8, 40, 9);
+  const nn::Mat<float> target = nn::gramMatrix(randomHidden(8, 60, 10)) * 2.0f;
+  style::StyleRefinement refinement;
+  refinement.iterations = 0;
+  nn::Mat<float> unchanged = start;
+  style::refineHiddenUnits(unchanged, content, target, refinement);
+  EXPECT_EQ(unchanged, start);
+
+  double previous = objective(start, content, target, refinement);
+  for (int steps : {10, 30, 100}) {
+    refinement.iterations = steps;
+    nn::Mat<float> refined = start;
+    style::refineHiddenUnits(refined, content, target, refinement);
+    const double now = objective(refined, content, target, refinement);
+    EXPECT_LT(now, previous) << steps << " steps";
+    previous = now;
+  }
+}
+
+TEST(StyleRefinement, TheStylizerRunsItOnlyWithTargetsAndItAddsStyle) {
+  const nn::StyleModel model = tinyModelWithTarget();
+  const Eigen::MatrixXd& content = test::fixtureClips()[0].features.values;
+  style::StyleRefinement off;
+  off.iterations = 0;
+  const style::Stylizer plain(model, "tiny", off);
+  const style::Stylizer without_targets(test::tinyStyleModel(), "tiny");  // the default refinement
+  EXPECT_EQ(plain.refinementSteps(), 0);
+  EXPECT_EQ(without_targets.refinementSteps(), 0);
+  // No targets: the network's output as it is (the same network, the same bits).
+  EXPECT_EQ(without_targets.networkOutput(content), plain.networkOutput(content));
+
+  style::StyleRefinement on;
+  on.iterations = 60;
+  const style::Stylizer refined(model, "tiny", on);
+  EXPECT_EQ(refined.refinementSteps(), 60);
+  const Eigen::MatrixXd before = plain.networkOutput(content);
+  const Eigen::MatrixXd after = refined.networkOutput(content);
+  ASSERT_EQ(after.cols(), content.cols());
+  const nn::Mat<float>& gram = model.style_targets[0].gram;
+  const style::StyleDistances d_before = style::measureStyleDistances(model.loss_network, model.normalisation, content, before, gram);
+  const style::StyleDistances d_after = style::measureStyleDistances(model.loss_network, model.normalisation, content, after, gram);
+  EXPECT_LT(d_after.style_after, 0.9 * d_before.style_after);
+  // Deterministic: the same clip, the same refined output.
+  EXPECT_EQ(refined.networkOutput(content), after);
+}
+
+}  // namespace
+}  // namespace motionstyle
