@@ -4,7 +4,8 @@
 // refinement (style_refinement.h) descend:
 //   E(H) = c * mean((H - H_content)^2) + s * mean((Gram(H) - G)^2)
 // (eq. 4 with H_content = L(C); eq. 5 with Gram as nn::gramMatrix, G the style clip's). No network
-// pass per step: only H's Gram matrix, so a step costs 2 hidden^2 x frames multiply-adds.
+// pass per step: only H's Gram matrix, so a step costs hidden^2 x frames / 2 multiply-adds for the
+// Gram matrix's triangle and hidden^2 x frames for the gradient, both split over the cores.
 
 #include <vector>
 
@@ -37,12 +38,16 @@ class HiddenStyleDescent {
   double style() const { return style_; }
 
  private:
+  double addStyleTerm();  // eq. 5's value; adds its gradient
+
   nn::Parameter<float> hidden_;
   nn::Mat<float> content_hidden_;
-  std::vector<nn::Mat<float>> style_gram_;  // one: the whole clip is one window
+  nn::Mat<float> style_gram_;
   float content_weight_, style_weight_;
   nn::Adam<float> optimizer_;
   double content_ = 0, style_ = 0;
+  std::vector<nn::Mat<float>> gram_parts_;  // scratch: the Gram matrix's partial sums by columns
+  nn::Mat<float> gram_difference_;          // scratch: Gram(H) - G
 };
 
 }  // namespace motionstyle::style

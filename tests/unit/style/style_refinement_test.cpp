@@ -66,6 +66,24 @@ TEST(StyleRefinementInvalid, RefusesBadSettingsAndShapes) {
   EXPECT_THROW(style::Stylizer(test::tinyStyleModel(), "tiny", style::StyleRefinement{-1}), std::invalid_argument);
 }
 
+// The descent's own eq. 5 (split over the cores by chunks of columns) is nn::styleLoss's, value and
+// gradient, for a clip of several chunks and a remainder.
+TEST(StyleRefinement, ItsTermsAreTheLossesOfEq10) {
+  const nn::Mat<float> start = randomHidden(16, 150, 11);
+  const nn::Mat<float> content = randomHidden(16, 150, 12);
+  const nn::Mat<float> target = nn::gramMatrix(randomHidden(16, 40, 13));
+  style::HiddenStyleDescent descent(start, content, target, 2.0, 30.0, 0.01);
+  descent.zeroGrad();
+  const double value = descent.addTerms();
+  nn::Mat<float> grad = nn::Mat<float>::Zero(start.rows(), start.cols());
+  const double c = nn::meanSquaredError<float>(start, content, 2.0f, &grad);
+  const double s = nn::styleLoss<float>(start, static_cast<int>(start.cols()), {target}, 30.0f, &grad);
+  EXPECT_NEAR(descent.content(), c, 1e-6 * c);
+  EXPECT_NEAR(descent.style(), s, 1e-5 * s);
+  EXPECT_NEAR(value, 2.0 * c + 30.0 * s, 1e-5 * value);
+  EXPECT_LT((descent.hidden().grad - grad).cwiseAbs().maxCoeff(), 1e-5f * grad.cwiseAbs().maxCoeff());
+}
+
 TEST(StyleRefinement, PicksTheNearestTarget) {
   const nn::Mat<float> hidden = randomHidden(8, 30, 5);
   const std::vector<nn::StyleTarget> targets = {{"walk", randomHidden(8, 8, 6)},
