@@ -13,7 +13,7 @@
 namespace motionstyle::cli {
 
 int runEval(const Args& args) {
-  const ParsedArgs parsed = parseArgs(args, {{"loss-network"}, {"net"}, {"style", true, true}, {"json"}, {"unit"}, {"path"}});
+  const ParsedArgs parsed = parseArgs(args, {{"loss-network"}, {"net"}, {"style", true, true}, {"json"}, {"unit"}, {"path"}, {"refine-steps"}});
   if (parsed.positional.empty()) throw UsageError("eval needs the clips to evaluate (files or folders)");
   style::DatasetOptions dataset;
   dataset.features.unit = lengthUnit(parsed);
@@ -35,6 +35,8 @@ int runEval(const Args& args) {
     if (!mode) throw UsageError("--path must be content or style, not '" + *value + "'");
     job.path = *mode;
   }
+  job.refinement.iterations =
+      parsed.integer("refine-steps", job.refinement.iterations, 0, style::StyleRefinement::kMaxIterations);
   style::EvaluationReport report = job.run();
   report.loss_network_file = loss_network_file.string();
   report.network_file = net_file.string();

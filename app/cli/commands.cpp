@@ -171,7 +171,7 @@ const std::vector<Command>& commands() {
        runCleanup},
       {"eval", "evaluate a style network on held-out clips (JSON report)",
        "usage: motionstyle-cli eval --loss-network LOSS --net NET --style CLIP.bvh [--style LABEL=CLIP.bvh ...] CLIPS...\n"
-       "                            [--json FILE] [--path content|style]\n\n"
+       "                            [--json FILE] [--path content|style] [--refine-steps N]\n\n"
        "For each clip (files or folders): the loss network's reconstruction error (normalised MSE, mean joint\n"
        "error in cm; the familiarity reading: familiar, unusual, far), the content distance (eq. 4) and style distance (eq. 5, against the paired style clip)\n"
        "before and after stylizing (and the style distance of the projection decode(encode(.)) alone, to\n"
@@ -182,6 +182,8 @@ const std::vector<Command>& commands() {
        "the network never trained on (train-* --holdout N lists them). Pairing as for train-style.\n\n"
        "  --json FILE   write the report to FILE (atomically) and print a summary; default: JSON on stdout\n"
        "  --path P      the output judged keeps the content's path (content, default) or the network's (style)\n"
+       "  --refine-steps N\n"
+       "                the style refinement's steps, as for stylize (default 30, 0 = the network's output)\n"
        "  --unit UNIT   length unit of the clips (default: guessed)\n",
        runEval},
       {"pack", "rewrite a network file with f16 (half the size) or f32 weights",

@@ -9,6 +9,7 @@ namespace motionstyle::style {
 void EvaluationJob::validate() const {
   if (clips.empty()) throw std::invalid_argument("no clips to evaluate");
   if (styles.empty()) throw std::invalid_argument("no style clip to measure against");
+  refinement.validate();
 }
 
 EvaluationReport EvaluationJob::run(const std::atomic<bool>* cancel) const {
@@ -21,7 +22,7 @@ EvaluationReport EvaluationJob::run(const std::atomic<bool>* cancel) const {
   for (const MotionClip& clip : content) labels.push_back(clip.labels.content);
   const std::vector<int> pairing = pairStyles(labels, styles);
   throwIfCancelled(cancel);
-  return evaluateStyleNetwork(loss_network, network, content, style_clips, pairing, path);
+  return evaluateStyleNetwork(loss_network, network, content, style_clips, pairing, path, refinement);
 }
 
 }  // namespace motionstyle::style

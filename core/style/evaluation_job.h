@@ -24,6 +24,7 @@ struct EvaluationJob {
   std::vector<StyleSource> styles;            // the style clips and their pairing, at least one
   DatasetOptions dataset;                     // how the clips are read (unit)
   PathMode path = PathMode::Content;          // whose root path the judged output follows
+  StyleRefinement refinement;                 // as stylize runs the network (style_refinement.h)
 
   // std::invalid_argument: no clip or no style clip.
   void validate() const;

@@ -56,6 +56,16 @@ report = json.load(open(sys.argv[1]))
 assert report["format"] and isinstance(report["clips"], list) and len(report["clips"]) == 1, report.keys()
 assert "summary" in report
 PY
+# eval judges what stylize writes: refined by default, as the network leaves it with --refine-steps 0.
+expect 0 "evaluated 1 clip" "$cli" eval --loss-network "$work/ae.net" --net "$work/style.net" --style "$style" "$content" \
+  --json "$work/eval_plain.json" --refine-steps 0
+python3 - "$work/eval.json" "$work/eval_plain.json" <<'PY' || fail "eval --refine-steps 0 judged the refined output"
+import json, sys
+refined, plain = (json.load(open(f))["summary"]["style_distance"]["after"] for f in sys.argv[1:3])
+assert refined < plain, (refined, plain)
+PY
+expect 2 "--refine-steps" "$cli" eval --loss-network "$work/ae.net" --net "$work/style.net" --style "$style" "$content" \
+  --refine-steps -3
 
 # pack: f16 halves the file, the network still stylizes, and packs back to f32.
 expect 0 "f16" "$cli" pack "$work/style.net" --out "$work/style16.net" --precision f16
