@@ -20,14 +20,16 @@ nn::Parameter<float> startingAt(nn::Mat<float> start) {
   return hidden;
 }
 
-void requireValid(const nn::Mat<float>& start, const nn::Mat<float>& content_hidden, const nn::Mat<float>& style_gram,
-                  double content_weight, double style_weight) {
+// `start`, once the shapes and weights are checked.
+nn::Mat<float> checkedStart(nn::Mat<float> start, const nn::Mat<float>& content_hidden, const nn::Mat<float>& style_gram,
+                            double content_weight, double style_weight) {
   if (start.rows() < 1 || start.cols() < 1 || content_hidden.rows() != start.rows() ||
       content_hidden.cols() != start.cols() || style_gram.rows() != start.rows() || style_gram.cols() != start.rows())
     throw std::invalid_argument("HiddenStyleDescent: start and content hidden x frames, the Gram hidden x hidden");
   if (!std::isfinite(content_weight) || !std::isfinite(style_weight) || content_weight < 0 || style_weight < 0 ||
       content_weight + style_weight <= 0)
     throw std::invalid_argument("HiddenStyleDescent: weights finite, >= 0 and not both 0");
+  return start;
 }
 
 // Columns per partial Gram matrix: the partials are summed in column order, so the result does not
@@ -38,7 +40,7 @@ constexpr int kGramChunkColumns = 64;
 
 HiddenStyleDescent::HiddenStyleDescent(nn::Mat<float> start, nn::Mat<float> content_hidden, nn::Mat<float> style_gram,
                                        double content_weight, double style_weight, double learning_rate)
-    : hidden_((requireValid(start, content_hidden, style_gram, content_weight, style_weight), startingAt(std::move(start)))),
+    : hidden_(startingAt(checkedStart(std::move(start), content_hidden, style_gram, content_weight, style_weight))),
       content_hidden_(std::move(content_hidden)),
       style_gram_(std::move(style_gram)),
       content_weight_(static_cast<float>(content_weight)),
