@@ -145,6 +145,7 @@ void ResultPanel::setContentClip(const LoadedClip* clip) {
   cancel();
   content_ = clip != nullptr ? std::make_shared<const LoadedClip>(*clip) : nullptr;
   memory_ = std::make_shared<style::StylizeCleanupMemory>();  // the last clip's solutions help no other
+  recent_.clear();
   overrides_ = content_ ? content_->contact_overrides : Eigen::MatrixXi();
   given_stylized_.reset();
   clearResult();
@@ -186,6 +187,7 @@ void ResultPanel::inputsChanged(const QString& what) {
   last_change_ms_ = clock_.elapsed();
   last_change_ = what;
   if (result_) stale_reason_ = what;
+  if (showRememberedResult()) return;
   const bool rerun = canStylize();
   if (busy_ && rerun) {
     if (!dropped_previous_ && clock_.elapsed() - job_start_ms_ < last_job_ms_ / 2) {
@@ -282,26 +284,21 @@ void ResultPanel::onFinished(std::shared_ptr<const style::StylizeCleanupResult> 
   last_job_ms_ = std::lround(result_->seconds * 1000.0);
   dropped_previous_ = false;
   result_network_name_ = job_network_name_;
-  if (!pending_) stale_reason_.clear();  // else the inputs moved on while it ran: shown, out of date
-  // The figures first, painted at once and alone (MainWindow::rebuildFigures); the rows, status and
-  // buttons set below follow at the event loop's next pass (painted with the figures: 3-5 ms more).
+  if (!pending_) {  // else the inputs moved on while it ran: shown, out of date
+    stale_reason_.clear();
+    if (!given_stylized_) recent_.remember({currentInputs(), result_, result_network_name_, memory_});
+  }
   const qint64 figures_start = clock_.elapsed();
-  emit resultChanged();
-  const qint64 figures_end = clock_.elapsed();
-  QString status = tr("Stylized and cleaned up %1 frames in %2 s.")
-                       .arg(result_->cleaned.frameCount())
-                       .arg(result_->seconds, 0, 'f', 2);
-  setBusy(false, status);
-  refreshMetrics();
-  refreshControls();
-  emit statusMessage(status);
+  const qint64 on_screen = showResult(tr("Stylized and cleaned up %1 frames in %2 s.")
+                                          .arg(result_->cleaned.frameCount())
+                                          .arg(result_->seconds, 0, 'f', 2));
   const CleanupReport& report = result_->report;
   app_log::write(QStringLiteral("live: %1 -> cleaned result on screen %2 ms after the change (job %3 ms, figures %4 ms, "
                                 "strength %5, %6 frames, clean-up solved %7 of %8 chunks, %9 from the last solution)")
                      .arg(job_change_)
-                     .arg(figures_end - job_change_ms_)
+                     .arg(on_screen - job_change_ms_)
                      .arg(std::lround(result_->seconds * 1000.0))
-                     .arg(figures_end - figures_start)
+                     .arg(on_screen - figures_start)
                      .arg(job_strength_, 0, 'f', 2)
                      .arg(report.frames)
                      .arg(report.chunks - report.chunks_reused)
@@ -312,6 +309,18 @@ void ResultPanel::onFinished(std::shared_ptr<const style::StylizeCleanupResult> 
     pending_ = false;
     stylize();
   }
+}
+
+qint64 ResultPanel::showResult(const QString& status) {
+  // The figures first, painted at once and alone (MainWindow::rebuildFigures); the rows, status and
+  // buttons set below follow at the event loop's next pass (painted with the figures: 3-5 ms more).
+  emit resultChanged();
+  const qint64 on_screen = clock_.elapsed();
+  setBusy(false, status);
+  refreshMetrics();
+  refreshControls();
+  emit statusMessage(status);
+  return on_screen;
 }
 
 void ResultPanel::setBusy(bool busy, const QString& status) {

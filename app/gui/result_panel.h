@@ -31,6 +31,7 @@
 #include "contact_tracks.h"
 #include "figure_data.h"
 #include "job_runner.h"
+#include "recent_results.h"
 #include "result_metrics_view.h"
 #include "nn/network_file.h"
 #include "style/stylize_cleanup_job.h"
@@ -151,6 +152,14 @@ class ResultPanel : public QWidget {
   // follows it (see pending_). Called for every step of a slider drag or a contact stroke.
   void inputsChanged(const QString& what);
   void runStylize();  // stylize() without its "already busy" check: startJob drops a running job
+  // The inputs a network's result depends on, as they are now (recent_results.h).
+  ResultInputs currentInputs() const;
+  // Shows the result remembered for the current inputs, if any (a style shown before with the same
+  // clip, strength, path and contacts): no job. Returns whether it did.
+  bool showRememberedResult();
+  // Shows result_: the figures first, then the rows, `status` and the buttons. Returns when (clock_)
+  // the figures were on the screen: what the live latencies in the log are measured to.
+  qint64 showResult(const QString& status);
   bool canStylize() const;  // a mapped content and a network or stylized clip
   void report(const QString& title, const QString& message);
   void listShippedNetworks();
@@ -186,6 +195,7 @@ class ResultPanel : public QWidget {
   qint64 last_job_ms_ = 0;         // how long the last finished job took
   bool dropped_previous_ = false;  // the running job replaced a dropped one
   StylizerCache stylizers_;  // networks prepared from files: switching back to one skips reading it
+  RecentResults recent_;     // results per network for their inputs: switching back to one shows it
   std::shared_ptr<style::StylizeCleanupMemory> memory_;  // the last job on the content: an edit redoes what changed
   QElapsedTimer clock_;                    // for the log's latencies (app_log.h)
   qint64 last_change_ms_ = -1;             // when the inputs last changed, and what changed

@@ -49,6 +49,7 @@ void ResultPanel::renameNetwork(const QString& old_name, const QString& new_name
       network_choice_->setItemText(i, new_name);
   for (QString* name : {&network_name_, &job_network_name_, &result_network_name_})
     if (*name == old_name) *name = new_name;
+  recent_.renameNetwork(old_name, new_name);
   if (result_) emit resultChanged();  // the output figures are named after the network
 }
 

@@ -1,0 +1,58 @@
+#pragma once
+// The Result panel's last results, one per style network, each with the inputs it was made from:
+// going back to a style already shown for the same clip, strength, path and contacts shows its result
+// at once instead of computing it again. An artist compares styles by switching back and forth; a
+// switch to a style not yet computed costs a job (50-65 ms for 500 frames), one back costs a paint.
+// At most kCapacity results (a few MB each for a 500-frame clip), the least recently used going first.
+
+#include <QString>
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "style/path_mode.h"
+#include "style/stylize_cleanup_job.h"
+
+namespace motionstyle {
+
+// What a result of a network depends on. Networks are compared by identity: a file read again is
+// another network (StylizerCache hands out the same one while its file is unchanged).
+struct ResultInputs {
+  std::uint64_t content_id = 0;  // LoadedClip::id: another clip, or the same clip mapped again
+  std::shared_ptr<const style::Stylizer> stylizer;
+  double strength = 1.0;
+  style::PathMode path = style::PathMode::Content;
+  Eigen::MatrixXi contact_overrides;  // at the content's rate, as the job takes them
+
+  bool operator==(const ResultInputs& other) const;
+};
+
+class RecentResults {
+ public:
+  static constexpr int kCapacity = 4;
+
+  struct Entry {
+    ResultInputs inputs;
+    std::shared_ptr<const style::StylizeCleanupResult> result;
+    QString network_name;
+    // The job memory that made it: the next live edit of this style starts from its solution.
+    std::shared_ptr<style::StylizeCleanupMemory> memory;
+  };
+
+  // Keeps `entry`, replacing the one of the same network.
+  void remember(Entry entry);
+  // The entry made from exactly `inputs` (and now the most recently used), else null.
+  const Entry* find(const ResultInputs& inputs);
+  void clear() { entries_.clear(); }
+  // The network called `old_name` is now `new_name` (ResultPanel::renameNetwork).
+  void renameNetwork(const QString& old_name, const QString& new_name);
+  int size() const { return static_cast<int>(entries_.size()); }
+
+ private:
+  std::vector<Entry> entries_;  // least recently used first
+};
+
+}  // namespace motionstyle
