@@ -9,6 +9,7 @@
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QScopedValueRollback>
+#include <QTimer>
 #include <QPushButton>
 #include <QSlider>
 #include <QVBoxLayout>
@@ -118,6 +119,10 @@ ResultPanel::ResultPanel(QWidget* parent) : QWidget(parent), memory_(std::make_s
   layout->addStretch(1);
 
   runner_ = new JobRunner(this);
+  look_ahead_ = new JobRunner(this);  // its failures are not the user's: not reported
+  look_ahead_timer_ = new QTimer(this);
+  look_ahead_timer_->setSingleShot(true);
+  connect(look_ahead_timer_, &QTimer::timeout, this, &ResultPanel::lookAhead);
   connect(runner_, &JobRunner::failed, this, [this](const QString& title, const QString& message) {
     setBusy(false, tr("Failed."));
     report(title, message);
@@ -145,6 +150,7 @@ void ResultPanel::setContentClip(const LoadedClip* clip) {
   cancel();
   content_ = clip != nullptr ? std::make_shared<const LoadedClip>(*clip) : nullptr;
   memory_ = std::make_shared<style::StylizeCleanupMemory>();  // the last clip's solutions help no other
+  stopLookAhead();
   recent_.clear();
   overrides_ = content_ ? content_->contact_overrides : Eigen::MatrixXi();
   given_stylized_.reset();
@@ -182,6 +188,7 @@ const std::optional<style::Familiarity>& ResultPanel::familiarity() const { retu
 bool ResultPanel::canStylize() const { return content_ && content_->mapping && (hasNetwork() || given_stylized_); }
 
 void ResultPanel::inputsChanged(const QString& what) {
+  stopLookAhead();
   if (!result_ && !busy_) return;  // nothing shown or on its way: the next Stylize uses the new inputs
   const bool was_stale = resultIsStale();
   last_change_ms_ = clock_.elapsed();
@@ -253,6 +260,7 @@ void ResultPanel::runStylize() {
 }
 
 void ResultPanel::startJob(style::StylizeCleanupJob job) {
+  stopLookAhead();  // the cores are the edit's
   const QString step = job.stylized ? tr("Cleaning up...") : tr("Stylizing and cleaning up...");
   job_start_ms_ = clock_.elapsed();
   // A job for older inputs may still be running: it is dropped (its answer never arrives) and this one
@@ -308,6 +316,8 @@ void ResultPanel::onFinished(std::shared_ptr<const style::StylizeCleanupResult> 
   if (pending_) {
     pending_ = false;
     stylize();
+  } else {
+    scheduleLookAhead();
   }
 }
 

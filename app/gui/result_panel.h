@@ -44,6 +44,7 @@ class QLabel;
 class QPushButton;
 class QSlider;
 class QTableWidget;
+class QTimer;
 
 namespace motionstyle {
 
@@ -82,6 +83,12 @@ class ResultPanel : public QWidget {
   // The style chooser: the shipped style networks (resources/models, by name), then networks opened
   // from files. Choosing one loads it.
   QComboBox* networkChoice() const { return network_choice_; }
+  // How long the inputs must rest after a result before the styles next to the chosen one are
+  // computed ahead (result_panel_look_ahead.cpp); negative: never. Default kLookAheadDelayMs.
+  static constexpr int kLookAheadDelayMs = 400;
+  void setLookAheadDelay(int milliseconds);
+  // The results remembered for switching back or ahead (recent_results.h).
+  const RecentResults& recentResults() const { return recent_; }
 
   // The clip to stylize (a copy is kept), nullptr for none. The result is dropped when the clip's id
   // changes (another clip, or the same clip re-mapped); the same id again is a no-op.
@@ -157,6 +164,12 @@ class ResultPanel : public QWidget {
   // Shows the result remembered for the current inputs, if any (a style shown before with the same
   // clip, strength, path and contacts): no job. Returns whether it did.
   bool showRememberedResult();
+  // The look-ahead (result_panel_look_ahead.cpp): scheduled after a result, stopped by any change.
+  void scheduleLookAhead();
+  void stopLookAhead();
+  void lookAhead();
+  void startLookAhead(ResultInputs inputs, const QString& file, const QString& name);
+  void onLookedAhead(RecentResults::Entry entry, const QString& file, qint64 milliseconds);
   // Shows result_: the figures first, then the rows, `status` and the buttons. Returns when (clock_)
   // the figures were on the screen: what the live latencies in the log are measured to.
   qint64 showResult(const QString& status);
@@ -196,6 +209,9 @@ class ResultPanel : public QWidget {
   bool dropped_previous_ = false;  // the running job replaced a dropped one
   StylizerCache stylizers_;  // networks prepared from files: switching back to one skips reading it
   RecentResults recent_;     // results per network for their inputs: switching back to one shows it
+  JobRunner* look_ahead_ = nullptr;     // computes the neighbouring styles while the user looks
+  QTimer* look_ahead_timer_ = nullptr;  // the inputs' rest before it starts
+  int look_ahead_delay_ms_ = kLookAheadDelayMs;
   std::shared_ptr<style::StylizeCleanupMemory> memory_;  // the last job on the content: an edit redoes what changed
   QElapsedTimer clock_;                    // for the log's latencies (app_log.h)
   qint64 last_change_ms_ = -1;             // when the inputs last changed, and what changed

@@ -31,6 +31,7 @@ bool ResultPanel::showRememberedResult() {
                      .arg(result_->report.frames)
                      .arg(result_->report.chunks));
   last_change_ms_ = -1;
+  scheduleLookAhead();
   return true;
 }
 

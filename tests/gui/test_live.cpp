@@ -70,6 +70,11 @@ std::vector<LogEntry> readLiveLog(const QString& path) {
   return entries;
 }
 
+QString readLogText(const QString& path) {
+  QFile file(path);
+  return file.open(QIODevice::ReadOnly | QIODevice::Text) ? QString::fromUtf8(file.readAll()) : QString();
+}
+
 // A clip of `frames` frames from a fixture: its first frames, or played forward then backward (no jump).
 QString writeClip(const QTemporaryDir& dir, const QString& fixture, const QString& name, int frames = 500) {
   Motion clip = readBvh(test::fixture(fixture).toStdString());
@@ -248,8 +253,9 @@ class LiveTest : public QObject {
   void switchingTheStyleShowsItsResult() {
     const QString clip = writeClip(scratch_, QStringLiteral("cmu_131_01.bvh"), QStringLiteral("clip_switch.bvh"));
     MainWindow window(false);
-    QVERIFY(showStylized(window, clip));
     ResultPanel* panel = window.resultPanel();
+    panel->setLookAheadDelay(-1);  // which switches are computed must not depend on the test's pace
+    QVERIFY(showStylized(window, clip));
     auto* choice = panel->findChild<QComboBox*>(QStringLiteral("NetworkChoice"));
     auto* slider = panel->findChild<QSlider*>(QStringLiteral("StrengthSlider"));
     QVERIFY(choice != nullptr && choice->count() >= 3 && slider != nullptr);
@@ -290,6 +296,46 @@ class LiveTest : public QObject {
           "median %d ms, max %d ms",
           median(wall_computed), *std::max_element(wall_computed.begin(), wall_computed.end()), median(wall_remembered),
           *std::max_element(wall_remembered.begin(), wall_remembered.end()));
+  }
+
+  // While the user looks at a result, the styles next to it in the chooser are computed ahead: the
+  // first switch to the next one is shown without a job. A change of the inputs drops them.
+  void theNeighbouringStylesAreComputedAhead() {
+    const QString clip = writeClip(scratch_, QStringLiteral("cmu_131_01.bvh"), QStringLiteral("clip_ahead.bvh"));
+    MainWindow window(false);
+    ResultPanel* panel = window.resultPanel();
+    panel->setLookAheadDelay(0);
+    QVERIFY(showStylized(window, clip));
+    auto* choice = panel->findChild<QComboBox*>(QStringLiteral("NetworkChoice"));
+    QVERIFY(choice != nullptr && choice->currentIndex() + 1 < choice->count());
+    const int neighbours = choice->currentIndex() > 0 ? 2 : 1;
+    QVERIFY(QTest::qWaitFor([&] { return panel->recentResults().size() == 1 + neighbours; }, kJobTimeoutMs));
+    QVERIFY(readLogText(log_).contains(QStringLiteral("look-ahead: ")));
+
+    const size_t before = readLiveLog(log_).size();
+    const QString from = choice->currentText();
+    choice->setFocus();
+    QElapsedTimer timer;
+    timer.start();
+    QTest::keyClick(choice, Qt::Key_Down);
+    QVERIFY(choice->currentText() != from);
+    QVERIFY(QTest::qWaitFor([&] { return readLiveLog(log_).size() > before && !panel->isBusy(); }, kJobTimeoutMs));
+    const LogEntry entry = readLiveLog(log_).back();
+    QVERIFY2(entry.remembered, "the next style was not computed ahead");
+    QVERIFY(!panel->resultIsStale());
+    qInfo("style switch to a style computed ahead: key press -> new result painted %d ms (figures %d ms)",
+          static_cast<int>(timer.elapsed()), entry.figures_ms);
+
+    // Another strength: nothing computed ahead matches it; the switch back is a job.
+    panel->setLookAheadDelay(-1);
+    auto* slider = panel->findChild<QSlider*>(QStringLiteral("StrengthSlider"));
+    const size_t before_strength = readLiveLog(log_).size();
+    slider->setValue(slider->value() - 5);
+    QVERIFY(QTest::qWaitFor([&] { return readLiveLog(log_).size() > before_strength && !panel->isBusy(); }, kJobTimeoutMs));
+    const size_t before_back = readLiveLog(log_).size();
+    QTest::keyClick(choice, Qt::Key_Up);
+    QVERIFY(QTest::qWaitFor([&] { return readLiveLog(log_).size() > before_back && !panel->isBusy(); }, kJobTimeoutMs));
+    QVERIFY(!readLiveLog(log_).back().remembered);
   }
 
   void paintingAContactReSolvesOnlyWhatItTouches() {

@@ -1,0 +1,77 @@
+// The Result panel's look-ahead: while the user looks at a result, the styles next to it in the
+// chooser are computed for the same inputs on a second worker and remembered (recent_results.h), so
+// that the first switch to either is shown at once. It starts only after the inputs have rested for
+// a moment (a drag's steps never start it), one style at a time, and any change drops it.
+#include <QComboBox>
+#include <QTimer>
+
+#include "app_log.h"
+#include "result_panel.h"
+#include "style/training.h"
+
+namespace motionstyle {
+
+void ResultPanel::setLookAheadDelay(int milliseconds) {
+  look_ahead_delay_ms_ = milliseconds;
+  if (milliseconds < 0) stopLookAhead();
+}
+
+void ResultPanel::scheduleLookAhead() {
+  if (look_ahead_delay_ms_ >= 0) look_ahead_timer_->start(look_ahead_delay_ms_);
+}
+
+void ResultPanel::stopLookAhead() {
+  look_ahead_timer_->stop();
+  if (look_ahead_->isBusy()) look_ahead_->abandon();
+}
+
+void ResultPanel::lookAhead() {
+  if (busy_ || !result_ || resultIsStale() || given_stylized_ || !canStylize() || look_ahead_->isBusy()) return;
+  const int current = network_choice_->currentIndex();
+  for (int index : {current + 1, current - 1}) {
+    if (index < 0 || index >= network_choice_->count()) continue;
+    const QString file = network_choice_->itemData(index).toString();
+    if (file.isEmpty()) continue;  // a network without a file: nothing to read ahead
+    std::shared_ptr<const style::Stylizer> prepared = stylizers_.find(file);
+    ResultInputs inputs = currentInputs();
+    inputs.stylizer = prepared;
+    if (prepared && recent_.find(inputs) != nullptr) continue;  // already there
+    startLookAhead(std::move(inputs), file, network_choice_->itemText(index));
+    return;  // one at a time: its completion looks for the next
+  }
+}
+
+void ResultPanel::startLookAhead(ResultInputs inputs, const QString& file, const QString& name) {
+  style::StylizeCleanupJob job;
+  job.content = content_->motion;
+  job.mapping = *content_->mapping;
+  job.strength = inputs.strength;
+  job.path = inputs.path;
+  job.contact_overrides = inputs.contact_overrides;
+  job.memory = std::make_shared<style::StylizeCleanupMemory>();  // the shown style's is in use: its own
+  const qint64 started = clock_.elapsed();
+  look_ahead_->restart(tr("Could not compute a neighbouring style"),
+                       [this, job = std::move(job), inputs = std::move(inputs), file, name,
+                        started](const JobRunner::Context& context) mutable -> JobRunner::Completion {
+                         if (!inputs.stylizer)
+                           inputs.stylizer = std::make_shared<const style::Stylizer>(
+                               style::loadCompatibleStyleModel(file.toStdString()), file.toStdString());
+                         job.stylizer = inputs.stylizer;
+                         auto result = std::make_shared<const style::StylizeCleanupResult>(job.run(context.cancelFlag()));
+                         return [this, result, inputs, memory = job.memory, file, name, started] {
+                           onLookedAhead({inputs, result, name, memory}, file, clock_.elapsed() - started);
+                         };
+                       });
+}
+
+void ResultPanel::onLookedAhead(RecentResults::Entry entry, const QString& file, qint64 milliseconds) {
+  ResultInputs now = currentInputs();
+  now.stylizer = entry.inputs.stylizer;
+  if (!(now == entry.inputs)) return;  // the inputs moved on while it ran
+  if (!stylizers_.find(file)) stylizers_.store(file, entry.inputs.stylizer);
+  app_log::write(QStringLiteral("look-ahead: %1 computed for the current inputs in %2 ms").arg(entry.network_name).arg(milliseconds));
+  recent_.remember(std::move(entry));
+  scheduleLookAhead();  // the other neighbour
+}
+
+}  // namespace motionstyle
