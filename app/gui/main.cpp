@@ -10,6 +10,7 @@
 #include <QAbstractButton>
 #include <QAbstractSlider>
 #include <QApplication>
+#include <QComboBox>
 #include <QCommandLineParser>
 #include <QStatusBar>
 #include <QTimer>
@@ -25,12 +26,14 @@
 
 namespace {
 
-// One log line per named button and slider, where it is on the screen ("control: StylizeButton at
+// One log line per named button, slider and list box, where it is on the screen ("control: StylizeButton at
 // 1062 162 size 360 26"), so that a test driving the window with real X events (xdotool) finds them.
 void logControls(const QWidget& window) {
   for (const QWidget* widget : window.findChildren<QWidget*>()) {
     if (widget->objectName().isEmpty() || !widget->isVisible()) continue;
-    if (!qobject_cast<const QAbstractButton*>(widget) && !qobject_cast<const QAbstractSlider*>(widget)) continue;
+    if (!qobject_cast<const QAbstractButton*>(widget) && !qobject_cast<const QAbstractSlider*>(widget) &&
+        !qobject_cast<const QComboBox*>(widget))
+      continue;
     const QPoint at = widget->mapToGlobal(QPoint(0, 0));
     motionstyle::app_log::write(QStringLiteral("control: %1 at %2 %3 size %4 %5")
                                     .arg(widget->objectName()).arg(at.x()).arg(at.y())

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # A user's path through the real app with real X events (xdotool), as ctest runs it under xvfb-run:
 # the demo opened, "Stylize & Clean Up" clicked, the strength slider dragged by the mouse for about a
-# second and let go. Checked from the app's own log (app_log.h): results follow the hand while it
-# moves, and the last one answers where the slider was let go. Prints the latencies.
+# second and let go, then, after a look, the next style picked from the style list. Checked from the
+# app's own log (app_log.h): results follow the hand while it moves, the last one answers where the
+# slider was let go, and the next style was computed ahead while the result rested (shown without a
+# job). Prints the latencies.
 #
 #   bash tests/gui/user_drag_test.sh MOTIONSTYLE_BINARY
 #
@@ -58,5 +60,25 @@ awk -v s="$last" 'BEGIN { exit !(s >= 0.4 && s <= 0.6) }' || fail "the last resu
 latencies=$(grep "live: the strength changed" "$log" | sed -E 's/.*on screen ([0-9]+) ms.*/\1/' | sort -n)
 count=$(wc -l <<< "$latencies")
 median=$(sed -n "$(( (count + 1) / 2 ))p" <<< "$latencies")
+
+# The user looks at the result, then picks the next style in the list: it was computed ahead while
+# they looked (result_panel_look_ahead.cpp), so it is shown without a job.
+wait_for "look-ahead: " 60 || fail "no neighbouring style was computed ahead while the result rested"
+read -r cx cy cw ch <<< "$(control NetworkChoice)"
+[ -n "$cx" ] || fail "the style list's position is not in the log"
+switches_before=$(grep -c "live: the style changed" "$log")
+xdotool mousemove $(( cx + cw / 2 )) $(( cy + ch / 2 )) click 1
+sleep 0.5
+xdotool key Down Return
+deadline=$(( $(date +%s) + 60 ))
+until [ "$(grep -c "live: the style changed" "$log")" -gt "$switches_before" ]; do
+  [ "$(date +%s)" -lt "$deadline" ] || fail "no result after picking the next style in the list"
+  sleep 0.2
+done
+switch=$(grep "live: the style changed" "$log" | tail -1)
+grep -q "remembered" <<< "$switch" || fail "the next style was computed after the switch, not ahead: $switch"
+switch_ms=$(sed -E 's/.*on screen ([0-9]+) ms.*/\1/' <<< "$switch")
+
 echo "PASS: $while_dragging results while dragging, $count in all, the last for strength $last;" \
-     "latency median $median ms, max $(tail -1 <<< "$latencies") ms (real X events from xdotool, which shares the cores)"
+     "latency median $median ms, max $(tail -1 <<< "$latencies") ms (real X events from xdotool, which shares the cores);" \
+     "the next style, computed ahead, on screen $switch_ms ms after it was picked"
