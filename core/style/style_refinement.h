@@ -3,10 +3,10 @@
 // studio's clips; on a clip unlike them it stops short of the style. A few steps of the same
 // objective's content and style terms on this clip's own hidden units (HiddenStyleDescent), from
 // where T left them, finish the job:
-//   H0 = L(T(x)),  H = H0 - Adam steps on  c * mean((H - L(x))^2) + s * mean((Gram(H) - G)^2),
+//   H0 = encode(T(x)),  H = H0 - Adam steps on  c * mean((H - encode(x))^2) + s * mean((Gram(H) - G)^2),
 //   output = decode(H)
 // with c, s eq. 10's content and style weights (what T was trained on) and G the network's stored
-// style target nearest to Gram(H0). Zero iterations give T's output exactly. Why here and not in the
+// style target nearest to Gram(H0). Zero iterations give decode(H0), the network's output as it was. Why here and not in the
 // training: augmenting one actor's content did not close the gap to other studios (docs/decisions.md).
 
 #include <vector>
