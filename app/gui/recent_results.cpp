@@ -24,6 +24,10 @@ const RecentResults::Entry* RecentResults::find(const ResultInputs& inputs) {
   return &entries_.back();
 }
 
+bool RecentResults::contains(const ResultInputs& inputs) const {
+  return std::any_of(entries_.begin(), entries_.end(), [&](const Entry& e) { return e.inputs == inputs; });
+}
+
 void RecentResults::renameNetwork(const QString& old_name, const QString& new_name) {
   for (Entry& entry : entries_)
     if (entry.network_name == old_name) entry.network_name = new_name;

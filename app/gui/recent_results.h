@@ -46,6 +46,8 @@ class RecentResults {
   void remember(Entry entry);
   // The entry made from exactly `inputs` (and now the most recently used), else null.
   const Entry* find(const ResultInputs& inputs);
+  // Whether there is one, without making it the most recently used (a look, not a use).
+  bool contains(const ResultInputs& inputs) const;
   void clear() { entries_.clear(); }
   // The network called `old_name` is now `new_name` (ResultPanel::renameNetwork).
   void renameNetwork(const QString& old_name, const QString& new_name);

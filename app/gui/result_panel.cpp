@@ -301,17 +301,9 @@ void ResultPanel::onFinished(std::shared_ptr<const style::StylizeCleanupResult> 
                                           .arg(result_->cleaned.frameCount())
                                           .arg(result_->seconds, 0, 'f', 2));
   const CleanupReport& report = result_->report;
-  app_log::write(QStringLiteral("live: %1 -> cleaned result on screen %2 ms after the change (job %3 ms, figures %4 ms, "
-                                "strength %5, %6 frames, clean-up solved %7 of %8 chunks, %9 from the last solution)")
-                     .arg(job_change_)
-                     .arg(on_screen - job_change_ms_)
-                     .arg(std::lround(result_->seconds * 1000.0))
-                     .arg(on_screen - figures_start)
-                     .arg(job_strength_, 0, 'f', 2)
-                     .arg(report.frames)
-                     .arg(report.chunks - report.chunks_reused)
-                     .arg(report.chunks)
-                     .arg(report.chunks_warm));
+  logResultOnScreen(job_change_, on_screen - job_change_ms_, std::lround(result_->seconds * 1000.0),
+                    on_screen - figures_start, job_strength_, report.chunks - report.chunks_reused,
+                    QStringLiteral("%1 from the last solution").arg(report.chunks_warm));
   emit jobEnded(true);
   if (pending_) {
     pending_ = false;
@@ -331,6 +323,21 @@ qint64 ResultPanel::showResult(const QString& status) {
   refreshControls();
   emit statusMessage(status);
   return on_screen;
+}
+
+void ResultPanel::logResultOnScreen(const QString& change, qint64 latency_ms, qint64 job_ms, qint64 figures_ms,
+                                    double strength, int chunks_solved, const QString& how) const {
+  app_log::write(QStringLiteral("live: %1 -> cleaned result on screen %2 ms after the change (job %3 ms, figures %4 ms, "
+                                "strength %5, %6 frames, clean-up solved %7 of %8 chunks, %9)")
+                     .arg(change)
+                     .arg(latency_ms)
+                     .arg(job_ms)
+                     .arg(figures_ms)
+                     .arg(strength, 0, 'f', 2)
+                     .arg(result_->report.frames)
+                     .arg(chunks_solved)
+                     .arg(result_->report.chunks)
+                     .arg(how));
 }
 
 void ResultPanel::setBusy(bool busy, const QString& status) {

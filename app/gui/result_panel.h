@@ -173,6 +173,10 @@ class ResultPanel : public QWidget {
   // Shows result_: the figures first, then the rows, `status` and the buttons. Returns when (clock_)
   // the figures were on the screen: what the live latencies in the log are measured to.
   qint64 showResult(const QString& status);
+  // The app log's line for result_ on the screen (app_log.h; test_gui_live and user_drag_test.sh
+  // read it): the latency from the change, the job's and the figures' share, and `how` it was made.
+  void logResultOnScreen(const QString& change, qint64 latency_ms, qint64 job_ms, qint64 figures_ms, double strength,
+                         int chunks_solved, const QString& how) const;
   bool canStylize() const;  // a mapped content and a network or stylized clip
   void report(const QString& title, const QString& message);
   void listShippedNetworks();

@@ -35,7 +35,7 @@ void ResultPanel::lookAhead() {
     std::shared_ptr<const style::Stylizer> prepared = stylizers_.find(file);
     ResultInputs inputs = currentInputs();
     inputs.stylizer = prepared;
-    if (prepared && recent_.find(inputs) != nullptr) continue;  // already there
+    if (prepared && recent_.contains(inputs)) continue;  // already there
     startLookAhead(std::move(inputs), file, network_choice_->itemText(index));
     return;  // one at a time: its completion looks for the next
   }

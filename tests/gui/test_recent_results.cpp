@@ -65,9 +65,11 @@ class RecentResultsTest : public QObject {
     QVERIFY(recent.find(inputs[1]) == nullptr);
     QVERIFY(recent.find(moved) != nullptr);
     QVERIFY(recent.find(inputs[0]) != nullptr);  // used: now the most recent
+    QVERIFY(recent.contains(inputs[2]));          // looked at, not used: still the least recent
+    QVERIFY(!recent.contains(inputs[1]));
     recent.remember(entry({1, network(), 1.0, style::PathMode::Content, {}}));
     QCOMPARE(recent.size(), RecentResults::kCapacity);
-    QVERIFY(recent.find(inputs[2]) == nullptr);  // the least recently used went
+    QVERIFY(!recent.contains(inputs[2]));  // the least recently used went
     QVERIFY(recent.find(inputs[0]) != nullptr);
     recent.clear();
     QCOMPARE(recent.size(), 0);
