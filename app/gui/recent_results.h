@@ -3,7 +3,8 @@
 // going back to a style already shown for the same clip, strength, path and contacts shows its result
 // at once instead of computing it again. An artist compares styles by switching back and forth; a
 // switch to a style not yet computed costs a job (50-65 ms for 500 frames), one back costs a paint.
-// At most kCapacity results (a few MB each for a 500-frame clip), the least recently used going first.
+// At most kCapacity results (a few MB each for a 500-frame clip, plus the prepared network each holds),
+// the least recently used going first.
 
 #include <QString>
 
@@ -32,7 +33,8 @@ struct ResultInputs {
 
 class RecentResults {
  public:
-  static constexpr int kCapacity = 4;
+  // The shown style, the four its look-ahead computes (ResultPanel::kLookAheadReach) and the one before.
+  static constexpr int kCapacity = 6;
 
   struct Entry {
     ResultInputs inputs;

@@ -83,9 +83,11 @@ class ResultPanel : public QWidget {
   // The style chooser: the shipped style networks (resources/models, by name), then networks opened
   // from files. Choosing one loads it.
   QComboBox* networkChoice() const { return network_choice_; }
-  // How long the inputs must rest after a result before the styles next to the chosen one are
-  // computed ahead (result_panel_look_ahead.cpp); negative: never. Default kLookAheadDelayMs.
+  // How long the inputs must rest after a result before the styles near the chosen one (up to
+  // kLookAheadReach places above and below it in the chooser) are computed ahead
+  // (result_panel_look_ahead.cpp); negative: never. Default kLookAheadDelayMs.
   static constexpr int kLookAheadDelayMs = 400;
+  static constexpr int kLookAheadReach = 2;
   void setLookAheadDelay(int milliseconds);
   // The results remembered for switching back or ahead (recent_results.h).
   const RecentResults& recentResults() const { return recent_; }
@@ -213,7 +215,7 @@ class ResultPanel : public QWidget {
   bool dropped_previous_ = false;  // the running job replaced a dropped one
   StylizerCache stylizers_;  // networks prepared from files: switching back to one skips reading it
   RecentResults recent_;     // results per network for their inputs: switching back to one shows it
-  JobRunner* look_ahead_ = nullptr;     // computes the neighbouring styles while the user looks
+  JobRunner* look_ahead_ = nullptr;     // computes the nearby styles while the user looks
   QTimer* look_ahead_timer_ = nullptr;  // the inputs' rest before it starts
   int look_ahead_delay_ms_ = kLookAheadDelayMs;
   std::shared_ptr<style::StylizeCleanupMemory> memory_;  // the last job on the content: an edit redoes what changed

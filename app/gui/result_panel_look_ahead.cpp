@@ -1,7 +1,9 @@
-// The Result panel's look-ahead: while the user looks at a result, the styles next to it in the
-// chooser are computed for the same inputs on a second worker and remembered (recent_results.h), so
-// that the first switch to either is shown at once. It starts only after the inputs have rested for
-// a moment (a drag's steps never start it), one style at a time, and any change drops it.
+// The Result panel's look-ahead: while the user looks at a result, the styles near it in the chooser
+// (kLookAheadReach above and below, the nearest first) are computed for the same inputs on a second
+// worker and remembered (recent_results.h), so that a switch to any of them is shown at once. It
+// starts only after the inputs have rested for a moment (a drag's steps never start it), one style at
+// a time, and any change drops it. Not every style: each one computed ahead keeps its prepared
+// network (about 77 MB, stylizer_cache.h) alive with its result.
 #include <QComboBox>
 #include <QTimer>
 
@@ -10,6 +12,10 @@
 #include "style/training.h"
 
 namespace motionstyle {
+
+static_assert(StylizerCache::kCapacity >= RecentResults::kCapacity &&
+                  RecentResults::kCapacity >= 2 + 2 * ResultPanel::kLookAheadReach,
+              "a style computed ahead must stay remembered and prepared until it is chosen");
 
 void ResultPanel::setLookAheadDelay(int milliseconds) {
   look_ahead_delay_ms_ = milliseconds;
@@ -28,7 +34,8 @@ void ResultPanel::stopLookAhead() {
 void ResultPanel::lookAhead() {
   if (busy_ || !result_ || resultIsStale() || given_stylized_ || !canStylize() || look_ahead_->isBusy()) return;
   const int current = network_choice_->currentIndex();
-  for (int index : {current + 1, current - 1}) {
+  for (int step = 0; step < 2 * kLookAheadReach; ++step) {
+    const int index = current + (step % 2 == 0 ? 1 + step / 2 : -(1 + step / 2));  // +1, -1, +2, -2, ...
     if (index < 0 || index >= network_choice_->count()) continue;
     const QString file = network_choice_->itemData(index).toString();
     if (file.isEmpty()) continue;  // a network without a file: nothing to read ahead
@@ -71,7 +78,7 @@ void ResultPanel::onLookedAhead(RecentResults::Entry entry, const QString& file,
   if (!stylizers_.find(file)) stylizers_.store(file, entry.inputs.stylizer);
   app_log::write(QStringLiteral("look-ahead: %1 computed for the current inputs in %2 ms").arg(entry.network_name).arg(milliseconds));
   recent_.remember(std::move(entry));
-  scheduleLookAhead();  // the other neighbour
+  scheduleLookAhead();  // the next nearest
 }
 
 }  // namespace motionstyle

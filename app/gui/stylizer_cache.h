@@ -4,7 +4,8 @@
 // on the GUI thread, measured by test_gui_live's style switch). A file whose size or modification
 // time changed since is read again. At most kCapacity networks, the least recently used going first:
 // a prepared shipped network holds about 77 MB (its layers' kernel spectra), so the cache keeps the
-// few styles a user compares, not all of them.
+// few styles a user compares and the look-ahead computes (as many as RecentResults keeps, so that a
+// style computed ahead is found prepared when it is chosen), not all of them.
 
 #include <QDateTime>
 #include <QString>
@@ -18,7 +19,7 @@ namespace motionstyle {
 
 class StylizerCache {
  public:
-  static constexpr int kCapacity = 4;
+  static constexpr int kCapacity = 6;
 
   // The network prepared from `file` when the file is unchanged since, else null.
   std::shared_ptr<const style::Stylizer> find(const QString& file);

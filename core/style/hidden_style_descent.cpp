@@ -61,11 +61,12 @@ double HiddenStyleDescent::addStyleTerm() {
     const int first = k * kGramChunkColumns;
     const auto columns = h.middleCols(first, std::min(kGramChunkColumns, frames - first));
     nn::Mat<float>& part = gram_parts_[static_cast<std::size_t>(k)];
-    part.resize(hidden, hidden);
-    part.noalias() = columns * columns.transpose();
+    part.setZero(hidden, hidden);
+    part.selfadjointView<Eigen::Lower>().rankUpdate(columns);  // the lower half: half the multiply-adds
   });
   gram_difference_ = gram_parts_[0];
   for (std::size_t k = 1; k < gram_parts_.size(); ++k) gram_difference_ += gram_parts_[k];
+  gram_difference_.triangularView<Eigen::StrictlyUpper>() = gram_difference_.transpose().eval();
   gram_difference_ /= static_cast<float>(frames);
   gram_difference_ -= style_gram_;
   const float entries = static_cast<float>(hidden * hidden);

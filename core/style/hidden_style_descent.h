@@ -4,8 +4,8 @@
 // refinement (style_refinement.h) descend:
 //   E(H) = c * mean((H - H_content)^2) + s * mean((Gram(H) - G)^2)
 // (eq. 4 with H_content = L(C); eq. 5 with Gram as nn::gramMatrix, G the style clip's). No network
-// pass per step: only H's Gram matrix, so a step costs hidden^2 x frames multiply-adds for the Gram
-// matrix and as many for the gradient, both split over the cores.
+// pass per step: only H's Gram matrix, so a step costs hidden^2 x frames / 2 multiply-adds for the Gram
+// matrix (symmetric: its lower half) and hidden^2 x frames for the gradient, both split over the cores.
 
 #include <vector>
 
