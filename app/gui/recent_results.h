@@ -33,8 +33,9 @@ struct ResultInputs {
 
 class RecentResults {
  public:
-  // The shown style, the four its look-ahead computes (ResultPanel::kLookAheadReach) and the one before.
-  static constexpr int kCapacity = 6;
+  // The shown style, the eight its look-ahead computes at most (ResultPanel::kLookAheadMaxStyles) and
+  // one more: the one shown before.
+  static constexpr int kCapacity = 10;
 
   struct Entry {
     ResultInputs inputs;

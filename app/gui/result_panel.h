@@ -83,11 +83,15 @@ class ResultPanel : public QWidget {
   // The style chooser: the shipped style networks (resources/models, by name), then networks opened
   // from files. Choosing one loads it.
   QComboBox* networkChoice() const { return network_choice_; }
-  // How long the inputs must rest after a result before the styles near the chosen one (up to
-  // kLookAheadReach places above and below it in the chooser) are computed ahead
-  // (result_panel_look_ahead.cpp); negative: never. Default kLookAheadDelayMs.
+  // How long the inputs must rest after a result before the styles nearest the chosen one in the
+  // chooser are computed ahead (result_panel_look_ahead.cpp); negative: never. Default kLookAheadDelayMs.
   static constexpr int kLookAheadDelayMs = 400;
-  static constexpr int kLookAheadReach = 2;
+  // How many: kLookAheadFrames / the clip's frames, between kLookAheadMinStyles and kLookAheadMaxStyles
+  // (all eight other shipped styles of a 500-frame clip, two of a clip over 2,000 frames).
+  static constexpr int kLookAheadFrames = 4000;
+  static constexpr int kLookAheadMinStyles = 2;
+  static constexpr int kLookAheadMaxStyles = 8;
+  int lookAheadStyles() const;
   void setLookAheadDelay(int milliseconds);
   // The results remembered for switching back or ahead (recent_results.h).
   const RecentResults& recentResults() const { return recent_; }

@@ -1,10 +1,12 @@
 // The Result panel's look-ahead: while the user looks at a result, the styles near it in the chooser
-// (kLookAheadReach above and below, the nearest first) are computed for the same inputs on a second
-// worker and remembered (recent_results.h), so that a switch to any of them is shown at once. It
-// starts only after the inputs have rested for a moment (a drag's steps never start it), one style at
-// a time, and any change drops it. Not every style: each one computed ahead keeps its prepared
-// network (about 77 MB, stylizer_cache.h) alive with its result.
+// (+1, -1, +2, -2, ...: the nearest first) are computed for the same inputs on a second worker and
+// remembered (recent_results.h), so that a switch to any of them is shown at once. It starts only
+// after the inputs have rested for a moment (a drag's steps never start it), one style at a time, and
+// any change drops it. How many: lookAheadStyles(), every shipped style for a clip of a few hundred
+// frames, two for a long one (each costs a job on both cores and keeps its result and prepared network).
 #include <QComboBox>
+
+#include <algorithm>
 #include <QTimer>
 
 #include "app_log.h"
@@ -14,7 +16,7 @@
 namespace motionstyle {
 
 static_assert(StylizerCache::kCapacity >= RecentResults::kCapacity &&
-                  RecentResults::kCapacity >= 2 + 2 * ResultPanel::kLookAheadReach,
+                  RecentResults::kCapacity >= 2 + ResultPanel::kLookAheadMaxStyles,
               "a style computed ahead must stay remembered and prepared until it is chosen");
 
 void ResultPanel::setLookAheadDelay(int milliseconds) {
@@ -31,14 +33,21 @@ void ResultPanel::stopLookAhead() {
   if (look_ahead_->isBusy()) look_ahead_->abandon();
 }
 
+int ResultPanel::lookAheadStyles() const {
+  const int frames = content_ ? std::max(1, content_->motion.frameCount()) : 1;
+  return std::clamp(kLookAheadFrames / frames, kLookAheadMinStyles, kLookAheadMaxStyles);
+}
+
 void ResultPanel::lookAhead() {
   if (busy_ || !result_ || resultIsStale() || given_stylized_ || !canStylize() || look_ahead_->isBusy()) return;
-  const int current = network_choice_->currentIndex();
-  for (int step = 0; step < 2 * kLookAheadReach; ++step) {
+  const int current = network_choice_->currentIndex(), count = network_choice_->count();
+  int candidates = 0;
+  for (int step = 0; step < 2 * count && candidates < lookAheadStyles(); ++step) {
     const int index = current + (step % 2 == 0 ? 1 + step / 2 : -(1 + step / 2));  // +1, -1, +2, -2, ...
-    if (index < 0 || index >= network_choice_->count()) continue;
+    if (index < 0 || index >= count) continue;
     const QString file = network_choice_->itemData(index).toString();
     if (file.isEmpty()) continue;  // a network without a file: nothing to read ahead
+    ++candidates;
     std::shared_ptr<const style::Stylizer> prepared = stylizers_.find(file);
     ResultInputs inputs = currentInputs();
     inputs.stylizer = prepared;
@@ -65,6 +74,7 @@ void ResultPanel::startLookAhead(ResultInputs inputs, const QString& file, const
                                style::loadCompatibleStyleModel(file.toStdString()), file.toStdString());
                          job.stylizer = inputs.stylizer;
                          auto result = std::make_shared<const style::StylizeCleanupResult>(job.run(context.cancelFlag()));
+                         inputs.stylizer->releaseIdleNetworks();  // its scratch: it may never be chosen
                          return [this, result, inputs, memory = job.memory, file, name, started] {
                            onLookedAhead({inputs, result, name, memory}, file, clock_.elapsed() - started);
                          };

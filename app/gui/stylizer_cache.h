@@ -3,9 +3,10 @@
 // reading its file and preparing its layers (a shipped network: 14-16 ms to read, 13-14 ms to prepare,
 // on the GUI thread, measured by test_gui_live's style switch). A file whose size or modification
 // time changed since is read again. At most kCapacity networks, the least recently used going first:
-// a prepared shipped network holds about 77 MB (its layers' kernel spectra), so the cache keeps the
-// few styles a user compares and the look-ahead computes (as many as RecentResults keeps, so that a
-// style computed ahead is found prepared when it is chosen), not all of them.
+// a prepared shipped network holds about 38 MB (its model and its transformation network's kernel
+// spectra; the loss network's, about 40 MB, are shared: style::sharedProjection), so the cache keeps
+// the styles a user compares and the look-ahead computes (as many as RecentResults keeps, so that a
+// style computed ahead is found prepared when it is chosen), not every network ever opened.
 
 #include <QDateTime>
 #include <QString>
@@ -19,7 +20,7 @@ namespace motionstyle {
 
 class StylizerCache {
  public:
-  static constexpr int kCapacity = 6;
+  static constexpr int kCapacity = 10;
 
   // The network prepared from `file` when the file is unchanged since, else null.
   std::shared_ptr<const style::Stylizer> find(const QString& file);

@@ -67,6 +67,17 @@ FastStylizer::FastStylizer(const LossNetwork<float>& loss_network) {
 
 FastStylizer::FastStylizer(const TransformationNetwork<float>& transformation, const LossNetwork<float>& loss_network)
     : FastStylizer(loss_network) {
+  addTransformation(transformation);
+}
+
+FastStylizer::FastStylizer(const TransformationNetwork<float>& transformation, const FastStylizer& projection)
+    : FastStylizer(projection) {  // a copy shares the prepared spectra (the layers' SpectralCorrelation)
+  if (projection.has_transformer_)
+    throw std::invalid_argument("FastStylizer: the projection to build on already has a transformation network");
+  addTransformation(transformation);
+}
+
+void FastStylizer::addTransformation(const TransformationNetwork<float>& transformation) {
   if (transformation.shape().features != features_)
     throw std::invalid_argument("FastStylizer: the transformation network has " +
                                 std::to_string(transformation.shape().features) +

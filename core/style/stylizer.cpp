@@ -41,7 +41,8 @@ Stylizer::Stylizer(nn::StyleModel model, std::string source_name, StyleRefinemen
   refinement_.validate();
   if (model_.transformation.shape().features != kFeatureCount || model_.loss_network.shape().features != kFeatureCount)
     throw std::invalid_argument("Stylizer: the networks must take 66 features");
-  prototype_ = std::make_unique<const nn::FastStylizer>(model_.transformation, model_.loss_network);
+  projection_ = sharedProjection(model_.loss_network);
+  prototype_ = std::make_unique<const nn::FastStylizer>(model_.transformation, *projection_);
 }
 
 template <typename Run>
@@ -59,6 +60,14 @@ auto Stylizer::withNetwork(Run run) const {
   const std::lock_guard<std::mutex> lock(mutex_);
   idle_.push_back(std::move(network));
   return result;
+}
+
+void Stylizer::releaseIdleNetworks() const {
+  std::vector<std::unique_ptr<nn::FastStylizer>> released;
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    released.swap(idle_);
+  }  // freed outside the lock
 }
 
 Eigen::MatrixXd Stylizer::networkOutput(const Eigen::MatrixXd& features) const {
@@ -136,6 +145,23 @@ Eigen::MatrixXd Stylizer::projectFeatures(const Eigen::MatrixXd& features) const
   const nn::Mat<float> input = model_.normalisation.normalized(padEdges(features));
   const nn::Mat<float> projected = withNetwork([&](nn::FastStylizer& network) { return network.project(input); });
   return cropEdges(model_.normalisation.denormalized(projected));
+}
+
+std::shared_ptr<const nn::FastStylizer> sharedProjection(const nn::LossNetwork<float>& loss_network) {
+  struct Entry {
+    nn::LossNetwork<float> network;  // to recognise it (sameWeights)
+    std::weak_ptr<const nn::FastStylizer> projection;
+  };
+  static std::mutex mutex;
+  static std::vector<Entry> entries;
+  const std::lock_guard<std::mutex> lock(mutex);
+  std::erase_if(entries, [](const Entry& entry) { return entry.projection.expired(); });
+  for (const Entry& entry : entries)
+    if (nn::sameWeights(entry.network, loss_network))
+      if (std::shared_ptr<const nn::FastStylizer> projection = entry.projection.lock()) return projection;
+  auto projection = std::make_shared<const nn::FastStylizer>(loss_network);
+  entries.push_back({loss_network, projection});
+  return projection;
 }
 
 Eigen::MatrixXd projectFeatures(const nn::LossNetworkModel& loss_network, const Eigen::MatrixXd& features) {

@@ -88,6 +88,11 @@ class Stylizer {
   // short clip's whole stylize). What measureFamiliarity(const Stylizer&, ...) reads. Thread-safe.
   Eigen::MatrixXd projectFeatures(const Eigen::MatrixXd& features) const;
 
+  // Drops the prepared copies kept for later calls (each holds its scratch: about 18 MB after a
+  // 600-frame clip); the next call makes one again from the prototype (a copy of its weights, a few
+  // ms). For a network that may not run again soon (the app's look-ahead). Thread-safe.
+  void releaseIdleNetworks() const;
+
  private:
   nn::StyleModel model_;
   std::string source_name_;
@@ -98,10 +103,16 @@ class Stylizer {
   template <typename Run>
   auto withNetwork(Run run) const;
 
-  std::unique_ptr<const nn::FastStylizer> prototype_;  // prepared once, never run: copied
+  std::shared_ptr<const nn::FastStylizer> projection_;  // its loss network's, shared (sharedProjection)
+  std::unique_ptr<const nn::FastStylizer> prototype_;   // prepared once, never run: copied
   mutable std::mutex mutex_;                           // guards idle_
   mutable std::vector<std::unique_ptr<nn::FastStylizer>> idle_;
 };
+
+// The prepared projection (nn::FastStylizer(loss_network)) of `loss_network`, one per process for
+// every caller with a loss network of the same weights (nn::sameWeights) while any of them holds it:
+// Stylizers of networks trained against one loss network share its kernel spectra. Thread-safe.
+std::shared_ptr<const nn::FastStylizer> sharedProjection(const nn::LossNetwork<float>& loss_network);
 
 // L(x) = decode(encode(x)) of a clip in representation units (66 x frames): the loss network's
 // reconstruction, used by eval and as the "projection only" preview. float32 fast path.

@@ -306,8 +306,9 @@ class LiveTest : public QObject {
           *std::max_element(wall_remembered.begin(), wall_remembered.end()));
   }
 
-  // While the user looks at a result, the styles near it in the chooser (two places above and below)
-  // are computed ahead: a switch to the next one, and then to the one after, is shown without a job.
+  // While the user looks at a result, the styles near it in the chooser (for a 500-frame clip, every
+  // other shipped style) are computed ahead: a switch to the next one, and then to the one after, is
+  // shown without a job.
   // A change of the inputs drops them.
   void theNearbyStylesAreComputedAhead() {
     const QString clip = writeClip(scratch_, QStringLiteral("cmu_131_01.bvh"), QStringLiteral("clip_ahead.bvh"));
@@ -317,11 +318,10 @@ class LiveTest : public QObject {
     QVERIFY(showStylized(window, clip));
     auto* choice = panel->findChild<QComboBox*>(QStringLiteral("NetworkChoice"));
     QVERIFY(choice != nullptr && choice->currentIndex() + 2 < choice->count());
-    const int current = choice->currentIndex();
-    int nearby = 0;
-    for (int index = current - ResultPanel::kLookAheadReach; index <= current + ResultPanel::kLookAheadReach; ++index)
-      nearby += index >= 0 && index < choice->count() && index != current;
-    QVERIFY(QTest::qWaitFor([&] { return panel->recentResults().size() == 1 + nearby; }, kJobTimeoutMs));
+    // 500 frames: every other shipped style is computed ahead (lookAheadStyles), one at a time.
+    const int ahead = std::min(panel->lookAheadStyles(), choice->count() - 1);
+    QCOMPARE(ahead, std::min(ResultPanel::kLookAheadMaxStyles, choice->count() - 1));
+    QVERIFY(QTest::qWaitFor([&] { return panel->recentResults().size() == 1 + ahead; }, kJobTimeoutMs));
     QVERIFY(readLogText(log_).contains(QStringLiteral("look-ahead: ")));
 
     choice->setFocus();

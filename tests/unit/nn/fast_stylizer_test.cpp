@@ -51,6 +51,23 @@ TEST(FastStylizerInvalid, RejectsBadClipsAndMissingTransformationNetwork) {
   EXPECT_THROW(projection_only.project(Mat<float>::Zero(kFeatureCount, 0)), std::invalid_argument);
   TransformationNetwork<float> small({12, 8, 5, false});
   EXPECT_THROW(FastStylizer(small, loss_network), std::invalid_argument);
+  EXPECT_THROW(FastStylizer(small, projection_only), std::invalid_argument);
+  TransformationNetwork<float> t({kFeatureCount, 16, 5, true});
+  const FastStylizer styled(t, projection_only);
+  EXPECT_THROW(FastStylizer(t, styled), std::invalid_argument);  // a projection with a transformation already
+}
+
+// Built on a prepared projection, a style network gives the other constructor's output bit for bit
+// (the projection's spectra are shared, not recomputed), and the projection itself is unchanged.
+TEST(FastStylizer, OnASharedProjectionItIsTheSameStylizer) {
+  Networks n(true);
+  const FastStylizer projection(n.loss_network);
+  FastStylizer shared(n.t, projection), own(n.t, n.loss_network);
+  std::mt19937 rng(8);
+  const Mat<float> x = test::randomMatrix(kFeatureCount, 301, rng).cast<float>();
+  EXPECT_EQ(shared.stylize(x), own.stylize(x));
+  FastStylizer projection_copy(projection);
+  EXPECT_EQ(projection_copy.project(x), FastStylizer(n.loss_network).project(x));
 }
 
 TEST(FastStylizer, MatchesTheDoubleReferenceForAnyLength) {

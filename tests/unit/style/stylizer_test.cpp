@@ -266,5 +266,27 @@ TEST(Evaluation, ReportHasEveryFigure) {
   for (const char* key : {"before", "after", "ratio"}) EXPECT_TRUE(json["summary"]["style_distance"].contains(key)) << key;
 }
 
+// Stylizers of networks trained against one loss network share its prepared projection while any
+// of them holds it; another loss network gets its own, and once every holder is gone it is released.
+// A Stylizer that dropped its idle copies gives the same output.
+TEST(SharedProjection, IsOnePerLossNetworkWhileHeld) {
+  const nn::StyleModel model = test::tinyStyleModel();
+  std::shared_ptr<const nn::FastStylizer> first = style::sharedProjection(model.loss_network);
+  EXPECT_EQ(style::sharedProjection(model.loss_network), first);
+  nn::LossNetwork<float> other = model.loss_network;
+  other.decoder.weight.value(0, 0) += 0.5f;
+  EXPECT_NE(style::sharedProjection(other), first);
+  const std::weak_ptr<const nn::FastStylizer> released = first;
+  first.reset();
+  EXPECT_TRUE(released.expired());
+  // Two Stylizers of the same network: the same output as ever (the projection is shared, not changed).
+  const style::Stylizer a(model, "a"), b(model, "b");
+  const Eigen::MatrixXd& content = test::fixtureClips()[0].features.values;
+  const Eigen::MatrixXd output = a.networkOutput(content);
+  EXPECT_EQ(output, b.networkOutput(content));
+  a.releaseIdleNetworks();  // its prepared copies dropped: the next call makes one, the same output
+  EXPECT_EQ(a.networkOutput(content), output);
+}
+
 }  // namespace
 }  // namespace motionstyle
