@@ -5,9 +5,9 @@
 // any change drops it. How many: lookAheadStyles(), every shipped style for a clip of a few hundred
 // frames, two for a long one (each costs a job on both cores and keeps its result and prepared network).
 #include <QComboBox>
+#include <QTimer>
 
 #include <algorithm>
-#include <QTimer>
 
 #include "app_log.h"
 #include "result_panel.h"
@@ -41,8 +41,9 @@ int ResultPanel::lookAheadStyles() const {
 void ResultPanel::lookAhead() {
   if (busy_ || !result_ || resultIsStale() || given_stylized_ || !canStylize() || look_ahead_->isBusy()) return;
   const int current = network_choice_->currentIndex(), count = network_choice_->count();
+  const int styles = lookAheadStyles();
   int candidates = 0;
-  for (int step = 0; step < 2 * count && candidates < lookAheadStyles(); ++step) {
+  for (int step = 0; step < 2 * count && candidates < styles; ++step) {
     const int index = current + (step % 2 == 0 ? 1 + step / 2 : -(1 + step / 2));  // +1, -1, +2, -2, ...
     if (index < 0 || index >= count) continue;
     const QString file = network_choice_->itemData(index).toString();

@@ -103,7 +103,7 @@ class Stylizer {
   template <typename Run>
   auto withNetwork(Run run) const;
 
-  std::shared_ptr<const nn::FastStylizer> projection_;  // its loss network's, shared (sharedProjection)
+  std::shared_ptr<const nn::FastStylizer> projection_;  // its loss network's, shared (sharedProjection); never run
   std::unique_ptr<const nn::FastStylizer> prototype_;   // prepared once, never run: copied
   mutable std::mutex mutex_;                           // guards idle_
   mutable std::vector<std::unique_ptr<nn::FastStylizer>> idle_;
