@@ -28,6 +28,17 @@ bool RecentResults::contains(const ResultInputs& inputs) const {
   return std::any_of(entries_.begin(), entries_.end(), [&](const Entry& e) { return e.inputs == inputs; });
 }
 
+std::shared_ptr<style::StylizeCleanupMemory> RecentResults::memoryFor(
+    std::uint64_t content_id, const std::shared_ptr<const style::Stylizer>& stylizer) const {
+  for (const Entry& e : entries_)
+    if (e.inputs.content_id == content_id && e.inputs.stylizer == stylizer) return e.memory;
+  return nullptr;
+}
+
+bool RecentResults::holds(const std::shared_ptr<style::StylizeCleanupMemory>& memory) const {
+  return std::any_of(entries_.begin(), entries_.end(), [&](const Entry& e) { return e.memory == memory; });
+}
+
 void RecentResults::renameNetwork(const QString& old_name, const QString& new_name) {
   for (Entry& entry : entries_)
     if (entry.network_name == old_name) entry.network_name = new_name;

@@ -51,6 +51,12 @@ class RecentResults {
   const Entry* find(const ResultInputs& inputs);
   // Whether there is one, without making it the most recently used (a look, not a use).
   bool contains(const ResultInputs& inputs) const;
+  // The job memory of `stylizer`'s result on clip `content_id`, whatever its strength, path and
+  // contacts (its network output serves them all), else null. A look, not a use.
+  std::shared_ptr<style::StylizeCleanupMemory> memoryFor(std::uint64_t content_id,
+                                                         const std::shared_ptr<const style::Stylizer>& stylizer) const;
+  // Whether an entry holds `memory` (a job on another network would overwrite its network output).
+  bool holds(const std::shared_ptr<style::StylizeCleanupMemory>& memory) const;
   void clear() { entries_.clear(); }
   // The network called `old_name` is now `new_name` (ResultPanel::renameNetwork).
   void renameNetwork(const QString& old_name, const QString& new_name);

@@ -242,6 +242,19 @@ void ResultPanel::runStylize() {
     report(tr("No style network"), tr("Open a style network file (.net) first, or train one."));
     return;
   }
+  std::shared_ptr<const style::StylizeCleanupMemory> seed;
+  if (stylizer_ && !given_stylized_) {
+    // This style's own job memory when a result of it on this clip is remembered (its network output
+    // serves any strength, path and contacts: a switch back after an edit runs only the clean-up);
+    // else, rather than another style's remembered one (which keeps its network output), a new one
+    // seeded from it on the worker (its features and clean-up solutions).
+    if (auto kept = recent_.memoryFor(content_->id, stylizer_)) {
+      memory_ = std::move(kept);
+    } else if (recent_.holds(memory_)) {
+      seed = memory_;
+      memory_ = std::make_shared<style::StylizeCleanupMemory>();
+    }
+  }
   style::StylizeCleanupJob job;
   job_network_name_ = network_name_;
   job.content = content_->motion;
@@ -252,6 +265,7 @@ void ResultPanel::runStylize() {
   job.stylized = given_stylized_;
   job.contact_overrides = overrides_;
   job.memory = memory_;
+  job.seed = std::move(seed);
   job_change_ms_ = last_change_ms_ >= 0 ? last_change_ms_ : clock_.elapsed();
   job_change_ = last_change_ms_ >= 0 ? last_change_ : tr("Stylize");
   job_strength_ = job.strength;
@@ -303,7 +317,10 @@ void ResultPanel::onFinished(std::shared_ptr<const style::StylizeCleanupResult> 
   const CleanupReport& report = result_->report;
   logResultOnScreen(job_change_, on_screen - job_change_ms_, std::lround(result_->seconds * 1000.0),
                     on_screen - figures_start, job_strength_, report.chunks - report.chunks_reused,
-                    QStringLiteral("%1 from the last solution").arg(report.chunks_warm));
+                    QStringLiteral("%1 from the last solution, %2")
+                        .arg(report.chunks_warm)
+                        .arg(result_->network_output_kept ? QStringLiteral("network output kept")
+                                                          : QStringLiteral("network run")));
   emit jobEnded(true);
   if (pending_) {
     pending_ = false;

@@ -173,6 +173,9 @@ class CleanupMemory {
   ~CleanupMemory();
   CleanupMemory(const CleanupMemory&) = delete;
   CleanupMemory& operator=(const CleanupMemory&) = delete;
+  // This memory's solutions replaced by copies of `other`'s (about 1 KB a frame): a clean-up of other
+  // targets on the same clip then starts from them, and `other` keeps its own.
+  void copySolutionsFrom(const CleanupMemory& other);
   struct Chunks;
   Chunks& chunks() { return *chunks_; }  // ik/cleanup_solver.cpp's
 

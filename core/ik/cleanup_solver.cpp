@@ -106,6 +106,9 @@ struct CleanupMemory::Chunks {
 };
 CleanupMemory::CleanupMemory() : chunks_(std::make_unique<Chunks>()) {}
 CleanupMemory::~CleanupMemory() = default;
+void CleanupMemory::copySolutionsFrom(const CleanupMemory& other) {
+  if (&other != this) chunks_->chunks = other.chunks_->chunks;
+}
 }  // namespace motionstyle
 
 namespace motionstyle::ik_detail {

@@ -53,8 +53,20 @@ void StylizeCleanupJob::validate() const {
     throw std::invalid_argument("the contact overrides must be content frames x 4");
 }
 
+void StylizeCleanupMemory::seedFrom(const StylizeCleanupMemory& other) {
+  if (&other == this) return;
+  cleanup.copySolutionsFrom(other.cleanup);
+  content = other.content;
+  mapping = other.mapping;
+  content_features = other.content_features;
+  stylizer = nullptr;
+  features.resize(0, 0);
+  network_output.resize(0, 0);
+}
+
 StylizeCleanupResult StylizeCleanupJob::run(const std::atomic<bool>* cancel) const {
   validate();
+  if (memory && seed && !memory->content_features && !memory->stylizer) memory->seedFrom(*seed);
   const auto start = std::chrono::steady_clock::now();
   StylizeCleanupResult result;
   std::optional<MotionFeatures> own_features;  // the features when there is no memory to keep them
@@ -66,8 +78,10 @@ StylizeCleanupResult StylizeCleanupJob::run(const std::atomic<bool>* cancel) con
     if (!memory) {
       result.stylized = stylizer->stylize(features, strength, path);
     } else {
-      if (memory->stylizer != stylizer || memory->features.rows() != features.values.rows() ||
-          memory->features.cols() != features.values.cols() || memory->features != features.values) {
+      result.network_output_kept = memory->stylizer == stylizer && memory->features.rows() == features.values.rows() &&
+                                   memory->features.cols() == features.values.cols() &&
+                                   memory->features == features.values;
+      if (!result.network_output_kept) {
         memory->stylizer = nullptr;  // an exception below leaves no stale pairing
         memory->network_output = stylizer->networkOutput(features.values);
         memory->features = features.values;

@@ -33,6 +33,7 @@ struct StylizeCleanupResult {
   Eigen::MatrixXi contacts;      // frames x 4 at cleanup_fps: the labels the clean-up locked
   double cleanup_fps = 0.0;      // the clean-up's rate (stylized_cleanup.h): of contacts and cleaned_metrics
   double seconds = 0.0;          // wall clock of the whole job
+  bool network_output_kept = false;  // the memory's network output served: the network did not run
 };
 
 // What a job keeps for the next one on the same content, so that a live edit redoes only what it
@@ -49,6 +50,11 @@ struct StylizeCleanupMemory {
   std::shared_ptr<const Stylizer> stylizer;  // whose output network_output is
   Eigen::MatrixXd features;                  // the content's features it was computed from
   Eigen::MatrixXd network_output;
+
+  // Starts from `other`'s clip, features and clean-up solutions (another network's memory on the same
+  // clip), without its network output: a job on another network is as warm as one on `other` and
+  // leaves `other` as it was.
+  void seedFrom(const StylizeCleanupMemory& other);
 };
 
 struct StylizeCleanupJob {
@@ -67,6 +73,10 @@ struct StylizeCleanupJob {
   // network not at all for a strength or path change, the clean-up only where its inputs moved, from
   // the last solution). Null: compute everything.
   std::shared_ptr<StylizeCleanupMemory> memory;
+  // When `memory` has nothing yet (new), it is first seeded from this one (StylizeCleanupMemory::
+  // seedFrom): the app keeps each style's memory apart and starts a new style's from the last one's.
+  // Read on the job's thread; no other job may use it meanwhile.
+  std::shared_ptr<const StylizeCleanupMemory> seed;
 
   // std::invalid_argument: neither a network nor a stylized clip, a strength outside [0, 1], overrides
   // whose shape is not content frames x 4.

@@ -50,6 +50,7 @@ struct LogEntry {
   double strength = 0.0;
   int chunks_solved = 0, chunks = 0;
   bool remembered = false;  // shown again from the Result panel's recent results: no job ran
+  bool network_kept = false;  // a job that ran only the clean-up: the network output was kept
 };
 
 std::vector<LogEntry> readLiveLog(const QString& path) {
@@ -65,7 +66,8 @@ std::vector<LogEntry> readLiveLog(const QString& path) {
     if (match.hasMatch())
       entries.push_back({match.captured(1), match.captured(2).toInt(), match.captured(3).toInt(),
                          match.captured(4).toInt(), match.captured(5).toDouble(), match.captured(6).toInt(),
-                         match.captured(7).toInt(), line.contains(QStringLiteral("remembered"))});
+                         match.captured(7).toInt(), line.contains(QStringLiteral("remembered")),
+                         line.contains(QStringLiteral("network output kept"))});
   }
   return entries;
 }
@@ -266,11 +268,12 @@ class LiveTest : public QObject {
     auto* choice = panel->findChild<QComboBox*>(QStringLiteral("NetworkChoice"));
     auto* slider = panel->findChild<QSlider*>(QStringLiteral("StrengthSlider"));
     QVERIFY(choice != nullptr && choice->count() >= 3 && slider != nullptr);
-    std::vector<int> wall_computed, wall_remembered;
-    std::vector<LogEntry> computed, remembered;
+    std::vector<int> wall_computed, wall_remembered, wall_run;
+    std::vector<LogEntry> computed, remembered, run;
     for (int step = 0; step < 8; ++step) {
       // Odd steps first move the strength by one notch (and wait for its result), so that neither
-      // style has a result for the new inputs: the switch that follows is computed.
+      // style has a result for the new inputs: the switch that follows is a job, which keeps the
+      // other style's network output (shown on this clip before) and runs only the clean-up.
       const bool fresh_inputs = step % 2 == 1 && step > 1;
       if (fresh_inputs) {
         const size_t before = readLiveLog(log_).size();
@@ -293,17 +296,39 @@ class LiveTest : public QObject {
       // Back and forth with nothing else changed, each style's result is remembered; after a strength
       // change, the other style's is not.
       QVERIFY2(entry.remembered == !fresh_inputs, qPrintable(QStringLiteral("step %1").arg(step)));
+      QVERIFY2(entry.remembered || entry.network_kept, qPrintable(QStringLiteral("step %1: the network ran").arg(step)));
       (entry.remembered ? remembered : computed).push_back(entry);
       (entry.remembered ? wall_remembered : wall_computed).push_back(wall);
     }
+    // Further down the list: styles never shown on this clip, the network runs (the first one's file
+    // is read first: not timed).
+    for (int step = 0; step < 4; ++step) {
+      const size_t before = readLiveLog(log_).size();
+      QElapsedTimer timer;
+      timer.start();
+      QTest::keyClick(choice, Qt::Key_Down);
+      QVERIFY(QTest::qWaitFor([&] { return readLiveLog(log_).size() > before && !panel->isBusy(); }, kJobTimeoutMs));
+      const int wall = static_cast<int>(timer.elapsed());
+      const LogEntry entry = readLiveLog(log_).back();
+      if (step == 0) {
+        QVERIFY(entry.remembered);  // back to the style shown last, at these inputs
+        continue;
+      }
+      QVERIFY(!entry.remembered && !entry.network_kept);
+      if (step == 1) continue;  // its file read on the GUI thread
+      run.push_back(entry);
+      wall_run.push_back(wall);
+    }
     QVERIFY(!computed.empty() && !remembered.empty());
     qInfo("%s, 500 frames:", qPrintable(fixture));
-    printLatencies("style switch to a style not computed for these inputs", computed);
+    printLatencies("style switch after a strength change, to a style shown on this clip (only the clean-up runs)",
+                   computed);
+    printLatencies("style switch to a style never shown on this clip (the network runs)", run);
     printLatencies("style switch back to a style shown for the same inputs", remembered);
-    qInfo("style switch: key press -> new result painted, wall clock: computed median %d ms, max %d ms; remembered "
-          "median %d ms, max %d ms",
+    qInfo("style switch: key press -> new result painted, wall clock: after a change %d ms, max %d ms; remembered "
+          "median %d ms, max %d ms; network run (its file read first) median %d ms",
           median(wall_computed), *std::max_element(wall_computed.begin(), wall_computed.end()), median(wall_remembered),
-          *std::max_element(wall_remembered.begin(), wall_remembered.end()));
+          *std::max_element(wall_remembered.begin(), wall_remembered.end()), median(wall_run));
   }
 
   // While the user looks at a result, the styles near it in the chooser (for a 500-frame clip, every

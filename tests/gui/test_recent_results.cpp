@@ -20,6 +20,21 @@ class RecentResultsTest : public QObject {
   }
 
  private slots:
+  // A network's job memory on a clip is found whatever the strength, path and contacts (its network
+  // output serves them all); another clip or network has none.
+  void aNetworksMemoryIsFoundForAnyStrength() {
+    RecentResults recent;
+    const ResultInputs inputs{7, network(), 0.5, style::PathMode::Content, Eigen::MatrixXi()};
+    QVERIFY(recent.memoryFor(7, inputs.stylizer) == nullptr);
+    const RecentResults::Entry kept = entry(inputs);
+    recent.remember(kept);
+    QCOMPARE(recent.memoryFor(7, inputs.stylizer), kept.memory);
+    QVERIFY(recent.holds(kept.memory));
+    QVERIFY(!recent.holds(std::make_shared<style::StylizeCleanupMemory>()));
+    QVERIFY(recent.memoryFor(8, inputs.stylizer) == nullptr);
+    QVERIFY(recent.memoryFor(7, network()) == nullptr);
+  }
+
   void findsOnlyTheExactInputs() {
     RecentResults recent;
     const ResultInputs inputs{7, network(), 0.5, style::PathMode::Content, Eigen::MatrixXi::Constant(10, 4, -1)};

@@ -100,6 +100,37 @@ TEST(StylizeCleanupJob, ItsMemoryReusesTheNetworkOutputOnlyForTheSameNetworkAndC
   EXPECT_EQ(job.memory->features.cols(), job.run().stylized.frameCount());
 }
 
+// A new memory seeded from another network's (the app's style switch): the job starts from the
+// seed's features and clean-up solutions, its stylized clip is the memory-less job's, and the seed
+// keeps its own network output.
+TEST(StylizeCleanupJob, ASeededMemoryStartsFromAnotherNetworksAndLeavesItAsItWas) {
+  style::StylizeCleanupJob first = cleanupJobOnFixture(90);
+  first.memory = std::make_shared<style::StylizeCleanupMemory>();
+  first.run();
+  const Eigen::MatrixXd first_output = first.memory->network_output;
+
+  nn::StyleModel other_model = test::tinyStyleModel();
+  for (nn::Parameter<float>* p : other_model.transformation.parameters()) p->value *= 1.5f;
+  style::StylizeCleanupJob second = first;
+  second.stylizer = std::make_shared<const style::Stylizer>(std::move(other_model));
+  second.memory = std::make_shared<style::StylizeCleanupMemory>();
+  second.seed = first.memory;
+  style::StylizeCleanupJob fresh = second;
+  fresh.memory = nullptr;
+  fresh.seed = nullptr;
+  const style::StylizeCleanupResult seeded = second.run();
+  EXPECT_EQ(seeded.stylized.features, fresh.run().stylized.features);
+  EXPECT_GT(seeded.report.chunks_warm, 0);  // from the seed's solutions
+  EXPECT_FALSE(seeded.network_output_kept);
+  EXPECT_EQ(second.memory->stylizer, second.stylizer);
+  ASSERT_TRUE(second.memory->content_features.has_value());
+  EXPECT_EQ(second.memory->content_features->values, first.memory->content_features->values);
+  EXPECT_EQ(first.memory->stylizer, first.stylizer);  // the seed as it was
+  EXPECT_EQ(first.memory->network_output, first_output);
+  second.strength = 0.5;  // the second network's own output, kept
+  EXPECT_TRUE(second.run().network_output_kept);
+}
+
 // The content's features are extracted once per clip: a strength step keeps them (the same object),
 // and a clip that differs by one value, or the same clip under another mapping, gets its own, so that
 // the stylized clip stays the memory-less job's bit for bit.
