@@ -84,7 +84,8 @@ class ResultPanel : public QWidget {
   // from files. Choosing one loads it.
   QComboBox* networkChoice() const { return network_choice_; }
   // How long the inputs must rest after a result before the styles nearest the chosen one in the
-  // chooser are computed ahead (result_panel_look_ahead.cpp); negative: never. Default kLookAheadDelayMs.
+  // chooser are computed ahead, one after the other (result_panel_look_ahead.cpp); negative: never.
+  // Default kLookAheadDelayMs.
   static constexpr int kLookAheadDelayMs = 400;
   // How many: kLookAheadFrames / the clip's frames, between kLookAheadMinStyles and kLookAheadMaxStyles
   // (all eight other shipped styles of a 500-frame clip, two of a clip over 2,000 frames).

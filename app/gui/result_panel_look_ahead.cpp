@@ -89,7 +89,9 @@ void ResultPanel::onLookedAhead(RecentResults::Entry entry, const QString& file,
   if (!stylizers_.find(file)) stylizers_.store(file, entry.inputs.stylizer);
   app_log::write(QStringLiteral("look-ahead: %1 computed for the current inputs in %2 ms").arg(entry.network_name).arg(milliseconds));
   recent_.remember(std::move(entry));
-  scheduleLookAhead();  // the next nearest
+  // The inputs still rest: the next nearest at once. A change drops it within a few ms (a job checks
+  // its cancel flag before every refinement step and clean-up frame), so it never holds an edit back.
+  if (look_ahead_delay_ms_ >= 0) look_ahead_timer_->start(0);
 }
 
 }  // namespace motionstyle

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "nn/losses.h"
+#include "style/cancellation.h"
 #include "style/hidden_style_descent.h"
 
 namespace motionstyle::style {
@@ -38,7 +39,7 @@ int nearestStyleTarget(const std::vector<nn::StyleTarget>& targets, const nn::Ma
 }
 
 void refineHiddenUnits(nn::Mat<float>& hidden, const nn::Mat<float>& content_hidden, const nn::Mat<float>& target,
-                       const StyleRefinement& refinement) {
+                       const StyleRefinement& refinement, const std::atomic<bool>* cancel) {
   refinement.validate();
   if (content_hidden.rows() != hidden.rows() || content_hidden.cols() != hidden.cols() ||
       target.rows() != hidden.rows() || target.cols() != hidden.rows())
@@ -46,7 +47,10 @@ void refineHiddenUnits(nn::Mat<float>& hidden, const nn::Mat<float>& content_hid
   if (refinement.iterations == 0) return;
   HiddenStyleDescent descent(hidden, content_hidden, target, refinement.content_weight, refinement.style_weight,
                              refinement.learning_rate);
-  for (int i = 0; i < refinement.iterations; ++i) descent.step();
+  for (int i = 0; i < refinement.iterations; ++i) {
+    throwIfCancelled(cancel);
+    descent.step();
+  }
   hidden = descent.value();
 }
 

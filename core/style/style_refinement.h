@@ -9,6 +9,7 @@
 // style target nearest to Gram(H0). Zero iterations give decode(H0), the network's output as it was. Why here and not in the
 // training: augmenting one actor's content did not close the gap to other studios (docs/decisions.md).
 
+#include <atomic>
 #include <vector>
 
 #include "nn/network_file.h"
@@ -32,8 +33,9 @@ struct StyleRefinement {
 int nearestStyleTarget(const std::vector<nn::StyleTarget>& targets, const nn::Mat<float>& hidden);
 
 // Refines `hidden` (hidden x frames, T's output encoded) in place toward `target` with content
-// `content_hidden` (the same shape). Throws std::invalid_argument for mismatched shapes.
+// `content_hidden` (the same shape). Throws std::invalid_argument for mismatched shapes and
+// OperationCancelled when `cancel` is set before a step (a step is about 1 ms on 500 frames).
 void refineHiddenUnits(nn::Mat<float>& hidden, const nn::Mat<float>& content_hidden, const nn::Mat<float>& target,
-                       const StyleRefinement& refinement);
+                       const StyleRefinement& refinement, const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace motionstyle::style

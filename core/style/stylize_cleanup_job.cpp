@@ -83,7 +83,7 @@ StylizeCleanupResult StylizeCleanupJob::run(const std::atomic<bool>* cancel) con
                                    memory->features == features.values;
       if (!result.network_output_kept) {
         memory->stylizer = nullptr;  // an exception below leaves no stale pairing
-        memory->network_output = stylizer->networkOutput(features.values);
+        memory->network_output = stylizer->networkOutput(features.values, cancel);
         memory->features = features.values;
         memory->stylizer = stylizer;
       }

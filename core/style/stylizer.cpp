@@ -70,7 +70,7 @@ void Stylizer::releaseIdleNetworks() const {
   }  // freed outside the lock
 }
 
-Eigen::MatrixXd Stylizer::networkOutput(const Eigen::MatrixXd& features) const {
+Eigen::MatrixXd Stylizer::networkOutput(const Eigen::MatrixXd& features, const std::atomic<bool>* cancel) const {
   requireFeatures(features, "Stylizer::networkOutput");
   const nn::Mat<float> input = model_.normalisation.normalized(padEdges(features));
   const bool refine = refinementSteps() > 0;
@@ -83,7 +83,8 @@ Eigen::MatrixXd Stylizer::networkOutput(const Eigen::MatrixXd& features) const {
     network.stylize(input, styled_padded, [&](nn::Mat<float>& hidden) {
       nn::Mat<float> clip = hidden.middleCols(first, count);
       const int target = nearestStyleTarget(model_.style_targets, clip);
-      refineHiddenUnits(clip, content_hidden, model_.style_targets[static_cast<std::size_t>(target)].gram, refinement_);
+      refineHiddenUnits(clip, content_hidden, model_.style_targets[static_cast<std::size_t>(target)].gram, refinement_,
+                        cancel);
       hidden.middleCols(first, count) = clip;
     });
     return styled_padded;

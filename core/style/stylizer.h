@@ -16,6 +16,7 @@
 // reference lengths exactly (enforceBoneLengths: every target is reachable by the character's limbs).
 
 #include <Eigen/Core>
+#include <atomic>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -77,7 +78,9 @@ class Stylizer {
   // finishFeatures, the blend by strength, the path mode and the bone lengths, which
   // stylizeFeatures(x, s, p) == finishFeatures(x, networkOutput(x), s, p) (bit for bit). Same throws
   // as stylizeFeatures; finishFeatures also when network_output's shape is not the features'.
-  Eigen::MatrixXd networkOutput(const Eigen::MatrixXd& features) const;
+  // `cancel`: OperationCancelled when it is set before a refinement step, so that a dropped job stops
+  // within a few ms instead of finishing the network.
+  Eigen::MatrixXd networkOutput(const Eigen::MatrixXd& features, const std::atomic<bool>* cancel = nullptr) const;
   Eigen::MatrixXd finishFeatures(const Eigen::MatrixXd& features, const Eigen::MatrixXd& network_output,
                                  double strength, PathMode path = PathMode::Content) const;
   StylizedClip stylize(const MotionFeatures& content, const Eigen::MatrixXd& network_output, double strength,

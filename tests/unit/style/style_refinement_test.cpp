@@ -3,10 +3,12 @@
 // style target, and that the Stylizer runs it only where asked and where the network has targets.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <limits>
 #include <random>
 #include <stdexcept>
 
+#include "common/errors.h"
 #include "nn/losses.h"
 #include "nn/transformation_objective.h"
 #include "style/evaluation.h"
@@ -111,6 +113,25 @@ TEST(StyleRefinement, StepsLowerTheObjectiveAndZeroStepsChangeNothing) {
     EXPECT_LT(now, previous) << steps << " steps";
     previous = now;
   }
+}
+
+// A set cancel flag stops the refinement before its next step (a dropped job stops within a step),
+// inside the Stylizer too; a network that does not refine has nothing to stop.
+TEST(StyleRefinement, ASetCancelFlagStopsIt) {
+  const nn::Mat<float> content = randomHidden(8, 40, 8);
+  const nn::Mat<float> target = nn::gramMatrix(randomHidden(8, 60, 10));
+  nn::Mat<float> hidden = content;
+  const std::atomic<bool> cancel{true};
+  EXPECT_THROW(style::refineHiddenUnits(hidden, content, target, style::StyleRefinement{}, &cancel), OperationCancelled);
+  const std::atomic<bool> go{false};
+  EXPECT_NO_THROW(style::refineHiddenUnits(hidden, content, target, style::StyleRefinement{}, &go));
+
+  const Eigen::MatrixXd& clip = test::fixtureClips()[0].features.values;
+  const style::Stylizer refining(tinyModelWithTarget(), "tiny");
+  EXPECT_THROW(refining.networkOutput(clip, &cancel), OperationCancelled);
+  EXPECT_EQ(refining.networkOutput(clip, &go), refining.networkOutput(clip));
+  const style::Stylizer plain(test::tinyStyleModel(), "tiny");  // no style targets: no refinement
+  EXPECT_NO_THROW(plain.networkOutput(clip, &cancel));
 }
 
 TEST(StyleRefinement, TheStylizerRunsItOnlyWithTargetsAndItAddsStyle) {
