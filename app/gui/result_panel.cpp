@@ -306,39 +306,47 @@ void ResultPanel::onFinished(std::shared_ptr<const style::StylizeCleanupResult> 
   last_job_ms_ = std::lround(result_->seconds * 1000.0);
   dropped_previous_ = false;
   result_network_name_ = job_network_name_;
-  if (!pending_) {  // else the inputs moved on while it ran: shown, out of date
+  // What the finished job was for, for its log line: the next job's start takes these fields.
+  const QString change = job_change_;
+  const qint64 change_ms = job_change_ms_;
+  const double job_strength = job_strength_;
+  const bool inputs_moved_on = pending_;
+  if (inputs_moved_on) {
+    // The job for the latest inputs starts first: the worker solves it while this result, out of
+    // date, is painted (the paint no longer delays the next result).
+    pending_ = false;
+    runStylize();
+  } else {
     stale_reason_.clear();
     if (!given_stylized_) recent_.remember({currentInputs(), result_, result_network_name_, memory_});
   }
   const qint64 figures_start = clock_.elapsed();
   const qint64 on_screen = showResult(tr("Stylized and cleaned up %1 frames in %2 s.")
                                           .arg(result_->cleaned.frameCount())
-                                          .arg(result_->seconds, 0, 'f', 2));
+                                          .arg(result_->seconds, 0, 'f', 2),
+                                      inputs_moved_on);
   const CleanupReport& report = result_->report;
-  logResultOnScreen(job_change_, on_screen - job_change_ms_, std::lround(result_->seconds * 1000.0),
-                    on_screen - figures_start, job_strength_, report.chunks - report.chunks_reused,
+  logResultOnScreen(change, on_screen - change_ms, std::lround(result_->seconds * 1000.0), on_screen - figures_start,
+                    job_strength, report.chunks - report.chunks_reused,
                     QStringLiteral("%1 from the last solution, %2")
                         .arg(report.chunks_warm)
                         .arg(result_->network_output_kept ? QStringLiteral("network output kept")
                                                           : QStringLiteral("network run")));
   emit jobEnded(true);
-  if (pending_) {
-    pending_ = false;
-    stylize();
-  } else {
-    scheduleLookAhead();
-  }
+  if (!inputs_moved_on) scheduleLookAhead();
 }
 
-qint64 ResultPanel::showResult(const QString& status) {
+qint64 ResultPanel::showResult(const QString& status, bool next_job_running) {
   // The figures first, painted at once and alone (MainWindow::rebuildFigures); the rows, status and
   // buttons set below follow at the event loop's next pass (painted with the figures: 3-5 ms more).
   emit resultChanged();
   const qint64 on_screen = clock_.elapsed();
-  setBusy(false, status);
+  if (!next_job_running) {  // else that job's "Updating" stays up
+    setBusy(false, status);
+    emit statusMessage(status);
+  }
   refreshMetrics();
   refreshControls();
-  emit statusMessage(status);
   return on_screen;
 }
 

@@ -179,7 +179,8 @@ class ResultPanel : public QWidget {
   void onLookedAhead(RecentResults::Entry entry, const QString& file, qint64 milliseconds);
   // Shows result_: the figures first, then the rows, `status` and the buttons. Returns when (clock_)
   // the figures were on the screen: what the live latencies in the log are measured to.
-  qint64 showResult(const QString& status);
+  // next_job_running: a job for newer inputs already runs; the panel stays busy with its status.
+  qint64 showResult(const QString& status, bool next_job_running = false);
   // The app log's line for result_ on the screen (app_log.h; test_gui_live and user_drag_test.sh
   // read it): the latency from the change, the job's and the figures' share, and `how` it was made.
   void logResultOnScreen(const QString& change, qint64 latency_ms, qint64 job_ms, qint64 figures_ms, double strength,
