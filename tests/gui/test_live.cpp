@@ -236,6 +236,7 @@ class LiveTest : public QObject {
     auto* slider = panel->findChild<QSlider*>(QStringLiteral("StrengthSlider"));
     QVERIFY(slider != nullptr);
     const size_t before = readLiveLog(log_).size();
+    QSignalSpy busy(panel, &ResultPanel::busyChanged);
     slider->setValue(90);  // starts a job
     slider->setValue(80);  // at once: that job is replaced
     slider->setValue(70);  // the replacement is young too, but is not replaced twice in a row: waits
@@ -244,6 +245,11 @@ class LiveTest : public QObject {
     std::vector<double> shown;
     for (size_t i = before; i < all.size(); ++i) shown.push_back(all[i].strength);
     QCOMPARE(shown, (std::vector<double>{0.8, 0.7}));
+    // 0.7's job started before 0.8's (out-of-date) result was painted: the panel never went idle in
+    // between, it went busy once and idle once.
+    QCOMPARE(busy.count(), 2);
+    QCOMPARE(busy.at(0).at(0).toBool(), true);
+    QCOMPARE(busy.at(1).at(0).toBool(), false);
   }
 
   // Another style picked in the Result panel's list with the keyboard, as a user does: the network
