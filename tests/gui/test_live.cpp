@@ -138,6 +138,12 @@ class LiveTest : public QObject {
     return QTest::qWaitFor([&] { return panel->result() != nullptr && !panel->isBusy(); }, kJobTimeoutMs);
   }
 
+  // After a change: until the log has a line past its first `lines` (a result on screen) and the
+  // panel is idle.
+  bool waitForNewResult(const ResultPanel* panel, size_t lines) const {
+    return QTest::qWaitFor([&] { return readLiveLog(log_).size() > lines && !panel->isBusy(); }, kJobTimeoutMs);
+  }
+
  private slots:
   void initTestCase() {
     QVERIFY(scratch_.isValid());
@@ -284,7 +290,7 @@ class LiveTest : public QObject {
       if (fresh_inputs) {
         const size_t before = readLiveLog(log_).size();
         slider->setValue(slider->value() - 1);
-        QVERIFY(QTest::qWaitFor([&] { return readLiveLog(log_).size() > before && !panel->isBusy(); }, kJobTimeoutMs));
+        QVERIFY(waitForNewResult(panel, before));
       }
       const size_t before = readLiveLog(log_).size();
       const QString from = choice->currentText();
@@ -293,7 +299,7 @@ class LiveTest : public QObject {
       timer.start();
       QTest::keyClick(choice, step % 2 == 0 ? Qt::Key_Down : Qt::Key_Up);
       QVERIFY(choice->currentText() != from);
-      QVERIFY(QTest::qWaitFor([&] { return readLiveLog(log_).size() > before && !panel->isBusy(); }, kJobTimeoutMs));
+      QVERIFY(waitForNewResult(panel, before));
       const int wall = static_cast<int>(timer.elapsed());
       const LogEntry entry = readLiveLog(log_).back();
       QVERIFY(entry.change.contains(QStringLiteral("style")));
@@ -313,7 +319,7 @@ class LiveTest : public QObject {
       QElapsedTimer timer;
       timer.start();
       QTest::keyClick(choice, Qt::Key_Down);
-      QVERIFY(QTest::qWaitFor([&] { return readLiveLog(log_).size() > before && !panel->isBusy(); }, kJobTimeoutMs));
+      QVERIFY(waitForNewResult(panel, before));
       const int wall = static_cast<int>(timer.elapsed());
       const LogEntry entry = readLiveLog(log_).back();
       if (step == 0) {
@@ -363,7 +369,7 @@ class LiveTest : public QObject {
       timer.start();
       QTest::keyClick(choice, Qt::Key_Down);
       QVERIFY(choice->currentText() != from);
-      QVERIFY(QTest::qWaitFor([&] { return readLiveLog(log_).size() > before && !panel->isBusy(); }, kJobTimeoutMs));
+      QVERIFY(waitForNewResult(panel, before));
       const LogEntry entry = readLiveLog(log_).back();
       QVERIFY2(entry.remembered, qPrintable(QStringLiteral("%1 was not computed ahead").arg(QLatin1String(which))));
       QVERIFY(!panel->resultIsStale());
@@ -376,10 +382,10 @@ class LiveTest : public QObject {
     auto* slider = panel->findChild<QSlider*>(QStringLiteral("StrengthSlider"));
     const size_t before_strength = readLiveLog(log_).size();
     slider->setValue(slider->value() - 5);
-    QVERIFY(QTest::qWaitFor([&] { return readLiveLog(log_).size() > before_strength && !panel->isBusy(); }, kJobTimeoutMs));
+    QVERIFY(waitForNewResult(panel, before_strength));
     const size_t before_back = readLiveLog(log_).size();
     QTest::keyClick(choice, Qt::Key_Up);
-    QVERIFY(QTest::qWaitFor([&] { return readLiveLog(log_).size() > before_back && !panel->isBusy(); }, kJobTimeoutMs));
+    QVERIFY(waitForNewResult(panel, before_back));
     QVERIFY(!readLiveLog(log_).back().remembered);
   }
 
