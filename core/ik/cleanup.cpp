@@ -69,11 +69,24 @@ ContentFootHeights contentFootHeights(const CleanupInput& input, const Eigen::Ma
 // The height above the floor of one lock: the content's own height of that joint over the segment
 // where the content has it planted, else the clip's rest height. Why per segment: captured floors are
 // not flat (CMU 07_01's left ankle rests 6.0 cm up in one step and 8.9 in the next); one clip-wide
-// height lifted or sank every step by the difference.
+// height lifted or sank every step by the difference. But where the targets hold the joint more than
+// kLockHeightToleranceCm from the content's height over the segment, the content's foot was not
+// standing on its sole there (a kneel: CMU 131_01's ankle planted 15 cm up on its instep, while a style
+// network stands the character up), so the content's height says nothing of the floor under the
+// target's foot, and the lock takes the rest height (docs/decisions.md).
+constexpr double kLockHeightToleranceCm = 5.0;
+
 double lockHeight(const ContentFootHeights& feet, const CleanupInput& input, const Eigen::MatrixXd& feet_world, int label,
                   const ContactSegment& range) {
-  return plantedHeight(feet.planted, input, feet_world, label, range.first, range.last)
-      .value_or(feet.rest[static_cast<size_t>(label)]);
+  const double rest = feet.rest[static_cast<size_t>(label)];
+  const std::optional<double> planted = plantedHeight(feet.planted, input, feet_world, label, range.first, range.last);
+  if (!planted) return rest;
+  const int column = 3 * index(kContactJoint[static_cast<size_t>(label)]);
+  std::vector<double> heights;
+  for (int f = range.first; f <= range.last; ++f)
+    heights.push_back(input.up.dot(input.targets.block<1, 3>(f, column).transpose()) - input.floor_height);
+  const double target_height = median(std::move(heights));
+  return std::abs(target_height - *planted) * input.cm_per_unit > kLockHeightToleranceCm ? rest : *planted;
 }
 
 double smoothstep(double x) {

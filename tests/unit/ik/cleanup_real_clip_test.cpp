@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -150,6 +151,50 @@ TEST_P(CleanupRealClip, StretchedLegWarnsAndStaysBounded) {
   EXPECT_TRUE(found);
   EXPECT_LT(report.seconds, 30.0);
   EXPECT_EQ(report.frames_unsolved, 0);
+}
+
+// CMU 131_01 kneels (about 2.8-3.5 s in): the left ankle is planted 15 cm up, the foot on its instep.
+// A style network stands the character up through it, its left foot on the floor under the knee. The
+// lock must not hold that standing foot at the kneel's height: more than 5 cm from the target's height
+// over the contact, the content's height says nothing of the floor, and the lock takes the rest height.
+TEST(CleanupLockHeight, AKneelDoesNotHoldAStandingTargetFootAtItsHeight) {
+  const Motion clip = readBvh(test::fixture("cmu_131_01.bvh"));
+  const JointMapping mapping = mapJoints(clip.skeleton, clip.source);
+  const Eigen::Vector3d up = Eigen::Vector3d::UnitY();
+  const double cm = 2.54 / 0.45;
+  const Eigen::MatrixXd world = worldPositions(clip);
+  const std::array<int, kContactCount> feet = contactJoints(mapping);
+  const double floor = estimateFloorHeight(world, feet, up);
+  const Eigen::MatrixXi contacts = detectContacts(world, feet, up, floor, clip.fps(), restPoseBodyHeight(clip.skeleton, up));
+  const int heel = static_cast<int>(ContactLabel::LeftHeel);
+  const int ankle = feet[static_cast<size_t>(heel)];
+  const auto heightCm = [&](const Eigen::MatrixXd& positions, int column, int f) {
+    return (up.dot(positions.block<1, 3>(f, 3 * column).transpose()) - floor) * cm;
+  };
+  std::optional<ContactSegment> kneel;
+  double kneel_cm = 0.0;
+  for (const ContactSegment& segment : contactSegments(contacts, heel)) {
+    std::vector<double> heights;
+    for (int f = segment.first; f <= segment.last; ++f) heights.push_back(heightCm(world, ankle, f));
+    std::sort(heights.begin(), heights.end());
+    if (heights[heights.size() / 2] >= 10.0) {
+      kneel = segment;
+      kneel_cm = heights[heights.size() / 2];
+    }
+  }
+  ASSERT_TRUE(kneel.has_value()) << "the fixture's kneel (a left-heel contact 10 cm or more above the floor)";
+  // The targets: the clip itself, but the left foot 8 cm lower over the kneel, as a standing foot.
+  Eigen::MatrixXd targets = test::canonicalPositions(world, mapping);
+  const int target_ankle = index(CanonicalJoint::LeftAnkle), target_toe = index(CanonicalJoint::LeftToe);
+  for (int f = kneel->first; f <= kneel->last; ++f)
+    for (int joint : {target_ankle, target_toe}) targets.block<1, 3>(f, 3 * joint) -= (8.0 / cm) * up.transpose();
+  const Motion result = cleanupMotion(CleanupInput{clip, mapping, targets, contacts, up, floor, cm}, {}, nullptr);
+  const Eigen::MatrixXd result_world = worldPositions(result);
+  for (int f = kneel->first; f <= kneel->last; ++f) {
+    const double cleaned = heightCm(result_world, ankle, f), target = heightCm(targets, target_ankle, f);
+    ASSERT_LT(cleaned, kneel_cm - 5.0) << "frame " << f << ": the ankle held at the kneel's " << kneel_cm << " cm";
+    ASSERT_NEAR(cleaned, target, 4.0) << "frame " << f << " of the kneel's contact " << kneel->first << "-" << kneel->last;
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Fixtures, CleanupRealClip,
