@@ -292,6 +292,11 @@ void cleanupMotionInBlocks(const CleanupInput& input, const CleanupOptions& opti
   std::vector<Eigen::Vector3d> block_roots;
   std::vector<Eigen::Quaterniond> block_rotations;
   Eigen::RowVectorXd seed = content.values.row(0);  // frame 0 continues from the content's own angles
+  // The joints whose channels the solve changes (their rotations, and the root's translation); every
+  // other channel keeps the content's own value.
+  std::vector<int> solved_joints = model.unknown_joints;
+  if (model.root_translation_free && std::find(solved_joints.begin(), solved_joints.end(), 0) == solved_joints.end())
+    solved_joints.push_back(0);
   auto flushBlock = [&]() {
     const int count = static_cast<int>(block_roots.size());
     const LocalPoses content_block = localPoses(content, block_first, count);
@@ -302,7 +307,8 @@ void cleanupMotionInBlocks(const CleanupInput& input, const CleanupOptions& opti
         poses.rotation(f, model.unknown_joints[static_cast<size_t>(u)]) =
             block_rotations[static_cast<size_t>(f) * static_cast<size_t>(unknowns) + static_cast<size_t>(u)];
     }
-    const MatrixRowMajor values = channelValues(content.skeleton, poses, seed.data());
+    MatrixRowMajor values = content.values.middleRows(block_first, count);
+    writeChannelValues(content.skeleton, poses, solved_joints, seed.data(), values);
     const Eigen::MatrixXd world = worldPositions(content.skeleton, poses);
     warnings.add(block_first, content_block, world);
     sink(CleanedBlock{block_first, values, world});

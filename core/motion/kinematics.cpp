@@ -262,42 +262,62 @@ void setLocalPoses(const LocalPoses& poses, Motion& motion) {
   motion.values = std::move(values);
 }
 
+namespace {
+
+// Joint j's channels of frame f of `poses` into `row`, continuing from previous_row (may be null).
+void writeJointChannels(const Skeleton& skeleton, const std::vector<JointChannels>& channels, const LocalPoses& poses,
+                        int f, int j, const double* previous_row, double* row) {
+  const Joint& joint = skeleton.joints[static_cast<size_t>(j)];
+  const JointChannels& resolved = channels[static_cast<size_t>(j)];
+  const Eigen::Quaterniond& rotation = poses.rotation(f, j);
+  const Eigen::Vector3d& translation = poses.translation(f, j);
+  if (!rotation.coeffs().allFinite() || !(rotation.norm() > 0.5) || !translation.allFinite())
+    throw std::invalid_argument("setLocalPoses: joint '" + joint.name + "' frame " + std::to_string(f) +
+                                " has a non-finite or zero pose");
+  if (resolved.rotation_axes.count == 0) {
+    if (rotationDistance(rotation, Eigen::Quaterniond::Identity()) > 1e-6)
+      throw std::invalid_argument("setLocalPoses: joint '" + joint.name + "' frame " + std::to_string(f) +
+                                  " is rotated but has no rotation channels");
+  } else {
+    const Eigen::Vector3d degrees = previous_row
+                                        ? quaternionToEuler(rotation, resolved.rotation_axes, readAngles(previous_row, resolved))
+                                        : quaternionToEuler(rotation, resolved.rotation_axes);
+    for (int n = 0; n < resolved.rotation_axes.count; ++n) row[resolved.rotation_column[static_cast<size_t>(n)]] = degrees[n];
+  }
+  checkFixedTranslation(joint, resolved, translation, f);
+  for (int axis = 0; axis < 3; ++axis) {
+    const int column = resolved.position_column[static_cast<size_t>(axis)];
+    if (column >= 0) row[column] = translation[axis];
+  }
+}
+
+}  // namespace
+
 MatrixRowMajor channelValues(const Skeleton& skeleton, const LocalPoses& poses, const double* seed_row) {
   skeleton.validate();
   checkPoses(skeleton, poses);
   const std::vector<JointChannels> channels = resolveChannels(skeleton);
-  const int channel_count = skeleton.channelCount();
-  MatrixRowMajor values(poses.frames, channel_count);
+  MatrixRowMajor values(poses.frames, skeleton.channelCount());
   for (int f = 0; f < poses.frames; ++f) {
-    double* row = values.row(f).data();
     const double* previous_row = f > 0 ? values.row(f - 1).data() : seed_row;
-    for (int j = 0; j < poses.joints; ++j) {
-      const Joint& joint = skeleton.joints[static_cast<size_t>(j)];
-      const JointChannels& resolved = channels[static_cast<size_t>(j)];
-      const Eigen::Quaterniond& rotation = poses.rotation(f, j);
-      const Eigen::Vector3d& translation = poses.translation(f, j);
-      if (!rotation.coeffs().allFinite() || !(rotation.norm() > 0.5) || !translation.allFinite())
-        throw std::invalid_argument("setLocalPoses: joint '" + joint.name + "' frame " + std::to_string(f) +
-                                    " has a non-finite or zero pose");
-      if (resolved.rotation_axes.count == 0) {
-        if (rotationDistance(rotation, Eigen::Quaterniond::Identity()) > 1e-6)
-          throw std::invalid_argument("setLocalPoses: joint '" + joint.name + "' frame " + std::to_string(f) +
-                                      " is rotated but has no rotation channels");
-      } else {
-        const Eigen::Vector3d degrees =
-            previous_row ? quaternionToEuler(rotation, resolved.rotation_axes, readAngles(previous_row, resolved))
-                         : quaternionToEuler(rotation, resolved.rotation_axes);
-        for (int n = 0; n < resolved.rotation_axes.count; ++n)
-          row[resolved.rotation_column[static_cast<size_t>(n)]] = degrees[n];
-      }
-      checkFixedTranslation(joint, resolved, translation, f);
-      for (int axis = 0; axis < 3; ++axis) {
-        const int column = resolved.position_column[static_cast<size_t>(axis)];
-        if (column >= 0) row[column] = translation[axis];
-      }
-    }
+    for (int j = 0; j < poses.joints; ++j) writeJointChannels(skeleton, channels, poses, f, j, previous_row, values.row(f).data());
   }
   return values;
+}
+
+void writeChannelValues(const Skeleton& skeleton, const LocalPoses& poses, std::span<const int> joints,
+                        const double* seed_row, MatrixRowMajor& values) {
+  skeleton.validate();
+  checkPoses(skeleton, poses);
+  if (values.rows() != poses.frames || values.cols() != skeleton.channelCount())
+    throw std::invalid_argument("writeChannelValues: the values are not frames x channels");
+  for (const int joint : joints)
+    if (joint < 0 || joint >= poses.joints) throw std::invalid_argument("writeChannelValues: a joint outside the skeleton");
+  const std::vector<JointChannels> channels = resolveChannels(skeleton);
+  for (int f = 0; f < poses.frames; ++f) {
+    const double* previous_row = f > 0 ? values.row(f - 1).data() : seed_row;
+    for (const int j : joints) writeJointChannels(skeleton, channels, poses, f, j, previous_row, values.row(f).data());
+  }
 }
 
 Eigen::MatrixXd worldPositions(const Skeleton& skeleton, const LocalPoses& poses) {

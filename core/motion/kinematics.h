@@ -59,6 +59,14 @@ void setLocalPoses(const LocalPoses& poses, Motion& motion);
 // it is not null. Why: a clip converted block by block gets the same Euler branches as in one piece.
 MatrixRowMajor channelValues(const Skeleton& skeleton, const LocalPoses& poses, const double* seed_row);
 
+// channelValues for the listed joints only, written into `values` (poses.frames x channelCount); every
+// other column is left as it is. Why: the clean-up changes the poses of the joints it solves and keeps
+// the content's own values for the rest (converting those back from quaternions was half its final
+// pass). Same checks for the listed joints; std::invalid_argument also for a joint index outside the
+// skeleton or values of another shape.
+void writeChannelValues(const Skeleton& skeleton, const LocalPoses& poses, std::span<const int> joints,
+                        const double* seed_row, MatrixRowMajor& values);
+
 // World positions of every joint (file units, file axes), frames x (3 * jointCount):
 // row f = x0 y0 z0 x1 y1 z1 ... Rotations must be unit quaternions. std::invalid_argument when the
 // poses do not match the skeleton or a parent does not precede its child. Allocates only the result

@@ -349,5 +349,40 @@ TEST(BlockKinematics, ChannelValuesInBlocksSeededByThePreviousBlockEqualSetLocal
   EXPECT_EQ(tail, whole.values.bottomRows(15));
 }
 
+
+TEST(BlockKinematics, WriteChannelValuesRefusesAJointOutsideTheSkeletonOrValuesOfAnotherShape) {
+  const Motion motion = test::randomMotion(test::mixedSkeleton(), 10, 3);
+  const LocalPoses poses = localPoses(motion);
+  MatrixRowMajor values = motion.values;
+  const std::vector<int> outside = {motion.skeleton.jointCount()};
+  EXPECT_THROW(writeChannelValues(motion.skeleton, poses, outside, nullptr, values), std::invalid_argument);
+  const std::vector<int> negative = {-1};
+  EXPECT_THROW(writeChannelValues(motion.skeleton, poses, negative, nullptr, values), std::invalid_argument);
+  MatrixRowMajor short_values = motion.values.topRows(9);
+  const std::vector<int> first = {0};
+  EXPECT_THROW(writeChannelValues(motion.skeleton, poses, first, nullptr, short_values), std::invalid_argument);
+  EXPECT_EQ(values, motion.values);
+}
+
+TEST(BlockKinematics, WriteChannelValuesWritesTheListedJointsAsChannelValuesAndLeavesTheRest) {
+  const Motion original = test::randomMotion(test::mixedSkeleton(), 30, 11);
+  const Motion other = test::randomMotion(test::mixedSkeleton(), 30, 12);
+  const LocalPoses poses = localPoses(other);
+  const MatrixRowMajor expected = channelValues(other.skeleton, poses, original.values.row(0).data());
+  std::vector<int> listed;
+  for (int j = 0; j < original.skeleton.jointCount(); j += 2) listed.push_back(j);
+  MatrixRowMajor values = original.values;
+  writeChannelValues(original.skeleton, poses, listed, original.values.row(0).data(), values);
+  std::vector<bool> written(static_cast<size_t>(original.skeleton.channelCount()), false);
+  int column = 0;
+  for (int j = 0; j < original.skeleton.jointCount(); ++j) {
+    const int count = static_cast<int>(original.skeleton.joints[static_cast<size_t>(j)].channels.size());
+    for (int c = 0; c < count; ++c) written[static_cast<size_t>(column + c)] = j % 2 == 0;
+    column += count;
+  }
+  for (int c = 0; c < original.skeleton.channelCount(); ++c)
+    EXPECT_EQ(values.col(c), written[static_cast<size_t>(c)] ? expected.col(c) : original.values.col(c)) << "channel " << c;
+}
+
 }  // namespace
 }  // namespace motionstyle
