@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <memory>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -293,18 +294,6 @@ void writeJointChannels(const Skeleton& skeleton, const std::vector<JointChannel
 
 }  // namespace
 
-MatrixRowMajor channelValues(const Skeleton& skeleton, const LocalPoses& poses, const double* seed_row) {
-  skeleton.validate();
-  checkPoses(skeleton, poses);
-  const std::vector<JointChannels> channels = resolveChannels(skeleton);
-  MatrixRowMajor values(poses.frames, skeleton.channelCount());
-  for (int f = 0; f < poses.frames; ++f) {
-    const double* previous_row = f > 0 ? values.row(f - 1).data() : seed_row;
-    for (int j = 0; j < poses.joints; ++j) writeJointChannels(skeleton, channels, poses, f, j, previous_row, values.row(f).data());
-  }
-  return values;
-}
-
 void writeChannelValues(const Skeleton& skeleton, const LocalPoses& poses, std::span<const int> joints,
                         const double* seed_row, MatrixRowMajor& values) {
   skeleton.validate();
@@ -318,6 +307,14 @@ void writeChannelValues(const Skeleton& skeleton, const LocalPoses& poses, std::
     const double* previous_row = f > 0 ? values.row(f - 1).data() : seed_row;
     for (const int j : joints) writeJointChannels(skeleton, channels, poses, f, j, previous_row, values.row(f).data());
   }
+}
+
+MatrixRowMajor channelValues(const Skeleton& skeleton, const LocalPoses& poses, const double* seed_row) {
+  MatrixRowMajor values(poses.frames, skeleton.channelCount());
+  std::vector<int> every_joint(static_cast<size_t>(std::max(poses.joints, 0)));
+  std::iota(every_joint.begin(), every_joint.end(), 0);
+  writeChannelValues(skeleton, poses, every_joint, seed_row, values);
+  return values;
 }
 
 Eigen::MatrixXd worldPositions(const Skeleton& skeleton, const LocalPoses& poses) {

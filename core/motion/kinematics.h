@@ -60,10 +60,10 @@ void setLocalPoses(const LocalPoses& poses, Motion& motion);
 MatrixRowMajor channelValues(const Skeleton& skeleton, const LocalPoses& poses, const double* seed_row);
 
 // channelValues for the listed joints only, written into `values` (poses.frames x channelCount); every
-// other column is left as it is. Why: the clean-up changes the poses of the joints it solves and keeps
-// the content's own values for the rest (converting those back from quaternions was half its final
-// pass). Same checks for the listed joints; std::invalid_argument also for a joint index outside the
-// skeleton or values of another shape.
+// other column is left as it is. Why: the clean-up changes only the joints it solves; the others keep
+// the content's own values exactly, without a round trip through quaternions. Same checks for the
+// listed joints; std::invalid_argument also for a joint index outside the skeleton or values of
+// another shape.
 void writeChannelValues(const Skeleton& skeleton, const LocalPoses& poses, std::span<const int> joints,
                         const double* seed_row, MatrixRowMajor& values);
 
