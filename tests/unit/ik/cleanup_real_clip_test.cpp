@@ -153,7 +153,7 @@ TEST_P(CleanupRealClip, StretchedLegWarnsAndStaysBounded) {
   EXPECT_EQ(report.frames_unsolved, 0);
 }
 
-// CMU 131_01 kneels (about 2.8-3.5 s in): the left ankle is planted 15 cm up, the foot on its instep.
+// CMU 131_01 kneels (about 2.8-3.5 s in): the left ankle is planted 13 cm up, the foot on its instep.
 // A style network stands the character up through it, its left foot on the floor under the knee. The
 // lock must not hold that standing foot at the kneel's height: more than 5 cm from the target's height
 // over the contact, the content's height says nothing of the floor, and the lock takes the rest height.
