@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "nn/compute_pool.h"
+
 namespace motionstyle::nn {
 
 void AdamOptions::validate() const {
@@ -70,20 +72,33 @@ void Adam<S>::step() {
     if (p.grad.rows() != p.value.rows() || p.grad.cols() != p.value.cols() ||
         first_moment_[i].rows() != p.value.rows() || first_moment_[i].cols() != p.value.cols())
       throw std::invalid_argument("Adam: parameter " + p.name + " changed shape");
+    Mat<S>& first = first_moment_[i];
+    Mat<S>& second = second_moment_[i];
+    const long block = std::max<long>(1, kMinValuesPerPart / std::max<Eigen::Index>(1, p.value.rows()));
     S scale = S(1);
     if (clipping) {
-      const double expected = std::sqrt(static_cast<double>(second_moment_[i].sum()) / previous_correction2);
-      const double norm = static_cast<double>(p.grad.norm());
+      const double second_sum = parallelSum(second.cols(), block, [&](int begin, int end) {
+        return static_cast<double>(second.middleCols(begin, end - begin).sum());
+      });
+      const double grad_squares = parallelSum(p.grad.cols(), block, [&](int begin, int end) {
+        return static_cast<double>(p.grad.middleCols(begin, end - begin).squaredNorm());
+      });
+      const double expected = std::sqrt(second_sum / previous_correction2);
+      const double norm = std::sqrt(grad_squares);
       const double bound = options_.gradient_clip * expected;
       if (expected > 0.0 && norm > bound) {
         scale = static_cast<S>(bound / norm);
         ++clipped_in_last_step_;
       }
     }
-    first_moment_[i] = b1 * first_moment_[i] + ((S(1) - b1) * scale) * p.grad;
-    second_moment_[i] = b2 * second_moment_[i] + ((S(1) - b2) * scale * scale) * p.grad.cwiseAbs2();
-    p.value.array() -= step_size * first_moment_[i].array() /
-                       (second_moment_[i].array().sqrt() * inv_sqrt_c2 + eps);
+    parallelItems(p.value.cols(), p.value.rows(), [&](int begin, int end) {
+      auto m = first.middleCols(begin, end - begin);
+      auto v = second.middleCols(begin, end - begin);
+      const auto g = p.grad.middleCols(begin, end - begin);
+      m = b1 * m + ((S(1) - b1) * scale) * g;
+      v = b2 * v + ((S(1) - b2) * scale * scale) * g.cwiseAbs2();
+      p.value.middleCols(begin, end - begin).array() -= step_size * m.array() / (v.array().sqrt() * inv_sqrt_c2 + eps);
+    });
   }
 }
 

@@ -144,6 +144,27 @@ void ComputePool::parallelRanges(int count, int align, int min_chunk,
   });
 }
 
+void parallelItems(long items, long item_size, const std::function<void(int, int)>& range) {
+  if (items <= 0) return;
+  const long min_items = std::max(1L, kMinValuesPerPart / std::max(1L, item_size));
+  computePool().parallelRanges(static_cast<int>(items), 1, static_cast<int>(std::min(items, min_items)), range);
+}
+
+double parallelSum(long items, long block, const std::function<double(int, int)>& part) {
+  if (items <= 0) return 0.0;
+  block = std::max(1L, block);
+  const int blocks = static_cast<int>((items + block - 1) / block);
+  std::vector<double> sums(static_cast<std::size_t>(blocks), 0.0);
+  computePool().parallelRanges(blocks, 1, 1, [&](int first, int last) {
+    for (int b = first; b < last; ++b)
+      sums[static_cast<std::size_t>(b)] =
+          part(static_cast<int>(b * block), static_cast<int>(std::min(items, (b + 1) * block)));
+  });
+  double total = 0.0;
+  for (double s : sums) total += s;
+  return total;
+}
+
 ComputePool& computePool() {
   static ComputePool pool([] {
     int threads = static_cast<int>(std::thread::hardware_concurrency());

@@ -82,4 +82,17 @@ class SerialComputeScope {
 // MOTIONSTYLE_NN_THREADS=<n> in the environment overrides the count (n >= 1), read once.
 ComputePool& computePool();
 
+// An element-wise job over `items` items of `item_size` values each (the columns of a matrix, the
+// windows of a batch): range(begin, end) on computePool(), split only where each part moves at least
+// kMinValuesPerPart values (a smaller copy costs less than waking a worker). Parts never overlap, so
+// the result does not depend on the thread count. Why: between a training step's products, these
+// copies, masks and maxima ran on one core and took a third of the step's wall time.
+constexpr long kMinValuesPerPart = 1L << 15;
+void parallelItems(long items, long item_size, const std::function<void(int, int)>& range);
+
+// The sum of part(begin, end) over the consecutive blocks of `block` items (>= 1) that cover [0, items),
+// blocks spread over computePool() and their sums added in block order: the same value on any thread
+// count. part(begin, end) returns the sum over its own items (and may write to them).
+double parallelSum(long items, long block, const std::function<double(int, int)>& part);
+
 }  // namespace motionstyle::nn

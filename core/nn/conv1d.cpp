@@ -1,5 +1,6 @@
 #include "nn/conv1d.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "nn/compute_pool.h"
@@ -11,15 +12,29 @@ namespace {
 constexpr int kMinColumnsPerThread = 48;
 
 // Copies the valid outputs (window b, frame t at padded-output column b*(frames+pad) + t) into a
-// compact out x (B*frames) matrix.
+// compact out x (B*frames) matrix, adding `bias` (out x 1) to every column when it is not null.
 template <typename S>
-Mat<S> compactWindows(const Eigen::Ref<const Mat<S>>& full, int windows, int frames, int pad) {
-  if (windows == 1) return full.leftCols(frames);
+Mat<S> compactWindows(const Eigen::Ref<const Mat<S>>& full, int windows, int frames, int pad,
+                      const Mat<S>* bias = nullptr) {
   Mat<S> out(full.rows(), static_cast<Eigen::Index>(windows) * frames);
-  for (int b = 0; b < windows; ++b)
-    out.middleCols(static_cast<Eigen::Index>(b) * frames, frames) =
-        full.middleCols(static_cast<Eigen::Index>(b) * (frames + pad), frames);
+  parallelItems(windows, full.rows() * frames, [&](int begin, int end) {
+    for (Eigen::Index b = begin; b < end; ++b) {
+      auto window = out.middleCols(b * frames, frames);
+      window = full.middleCols(b * (frames + pad), frames);
+      if (bias != nullptr) window.colwise() += bias->col(0);
+    }
+  });
   return out;
+}
+
+// Adds the sum over columns of `grad` (rows x cols) into `sum` (rows x 1), rows split over the pool.
+template <typename S>
+void addRowSums(const Mat<S>& grad, Mat<S>& sum) {
+  const long min_rows = std::max(1L, kMinValuesPerPart / std::max<long>(1, grad.cols()));
+  computePool().parallelRanges(static_cast<int>(grad.rows()), 1, static_cast<int>(std::min<long>(grad.rows(), min_rows)),
+                               [&](int begin, int end) {
+                                 sum.col(0).segment(begin, end - begin) += grad.middleRows(begin, end - begin).rowwise().sum();
+                               });
 }
 
 }  // namespace
@@ -53,9 +68,14 @@ void correlatePadded(const Mat<S>& weight, const S* padded, Eigen::Index channel
 template <typename S>
 void padWindows(const Mat<S>& x, int frames, int pad, Mat<S>& padded) {
   const Eigen::Index windows = x.cols() / frames;
-  padded.setZero(x.rows(), pad + windows * (frames + pad));
-  for (Eigen::Index b = 0; b < windows; ++b)
-    padded.middleCols(pad + b * (frames + pad), frames) = x.middleCols(b * frames, frames);
+  padded.resize(x.rows(), pad + windows * (frames + pad));
+  padded.leftCols(pad).setZero();
+  parallelItems(windows, x.rows() * (frames + pad), [&](int begin, int end) {
+    for (Eigen::Index b = begin; b < end; ++b) {
+      padded.middleCols(pad + b * (frames + pad), frames) = x.middleCols(b * frames, frames);
+      padded.middleCols(pad + b * (frames + pad) + frames, pad).setZero();
+    }
+  });
 }
 
 template <typename S>
@@ -93,9 +113,7 @@ Mat<S> Conv1d<S>::run(const Mat<S>& padded, int windows, int frames, SpectralCor
   } else {
     correlatePadded(weight.value, padded.data(), in_, width_, full.data(), count);
   }
-  Mat<S> y = compactWindows<S>(full, windows, frames, pad);
-  if (has_bias_) y.colwise() += bias.value.col(0);
-  return y;
+  return compactWindows<S>(full, windows, frames, pad, has_bias_ ? &bias.value : nullptr);
 }
 
 template <typename S>
@@ -137,11 +155,16 @@ Mat<S> Conv1d<S>::backward(const Mat<S>& grad_out, Gradients wanted) {
     // dY at every output position of the padded sequence starts `pad` columns into padded_grad; the
     // input gradient comes back at every position of the padded input.
     Mat<S> padded_input_grad;
-    if (wanted != Gradients::ParametersOnly) padded_input_grad.setZero(in_, count + width_ - 1);
+    if (wanted != Gradients::ParametersOnly) {
+      padded_input_grad.resize(in_, count + width_ - 1);
+      parallelItems(padded_input_grad.cols(), in_, [&](int begin, int end) {
+        padded_input_grad.middleCols(begin, end - begin).setZero();
+      });
+    }
     spectral_->backward(padded_grad.data() + static_cast<Eigen::Index>(pad) * out_, count,
                         wanted != Gradients::InputOnly ? &weight.grad : nullptr,
                         wanted != Gradients::ParametersOnly ? padded_input_grad.data() : nullptr);
-    if (wanted != Gradients::InputOnly && has_bias_) bias.grad.col(0) += grad_out.rowwise().sum();
+    if (wanted != Gradients::InputOnly && has_bias_) addRowSums(grad_out, bias.grad);
     if (wanted == Gradients::ParametersOnly) return Mat<S>();
     return compactWindows<S>(padded_input_grad.middleCols(pad, count), windows_, frames_, pad);
   }
@@ -154,7 +177,7 @@ Mat<S> Conv1d<S>::backward(const Mat<S>& grad_out, Gradients wanted) {
       dw.middleCols(begin, end - begin).noalias() +=
           dy * columns.middleRows(begin, end - begin).transpose();
     });
-    if (has_bias_) bias.grad.col(0) += grad_out.rowwise().sum();
+    if (has_bias_) addRowSums(grad_out, bias.grad);
   }
   if (wanted == Gradients::ParametersOnly) return Mat<S>();
 

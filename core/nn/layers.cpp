@@ -3,6 +3,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "nn/compute_pool.h"
+
 namespace motionstyle::nn {
 namespace {
 
@@ -24,22 +26,43 @@ void requireSameShape(const char* what, Eigen::Index rows, Eigen::Index cols, Ei
 }  // namespace
 
 template <typename S>
+Mat<S> Relu<S>::apply(const Mat<S>& x) {
+  Mat<S> y(x.rows(), x.cols());
+  parallelItems(x.cols(), x.rows(), [&](int begin, int end) {
+    y.middleCols(begin, end - begin) = x.middleCols(begin, end - begin).cwiseMax(S(0));
+  });
+  return y;
+}
+
+template <typename S>
 Mat<S> Relu<S>::forward(const Mat<S>& x) {
-  output_ = apply(x);
-  return output_;
+  Mat<S> y(x.rows(), x.cols());
+  output_.resize(x.rows(), x.cols());
+  parallelItems(x.cols(), x.rows(), [&](int begin, int end) {
+    y.middleCols(begin, end - begin) = x.middleCols(begin, end - begin).cwiseMax(S(0));
+    output_.middleCols(begin, end - begin) = y.middleCols(begin, end - begin);
+  });
+  return y;
 }
 
 template <typename S>
 Mat<S> Relu<S>::backward(const Mat<S>& grad_out) const {
   requireSameShape("Relu", grad_out.rows(), grad_out.cols(), output_.rows(), output_.cols());
-  return (output_.array() > S(0)).select(grad_out, S(0));
+  Mat<S> dx(grad_out.rows(), grad_out.cols());
+  parallelItems(dx.cols(), dx.rows(), [&](int begin, int end) {
+    dx.middleCols(begin, end - begin) = (output_.middleCols(begin, end - begin).array() > S(0))
+                                            .select(grad_out.middleCols(begin, end - begin), S(0));
+  });
+  return dx;
 }
 
 template <typename S>
 Mat<S> MaxPool2<S>::apply(const Mat<S>& x, int frames) {
   requireEvenFrames("MaxPool2", x.cols(), frames);
   Mat<S> y(x.rows(), x.cols() / 2);
-  for (Eigen::Index s = 0; s < y.cols(); ++s) y.col(s) = x.col(2 * s).cwiseMax(x.col(2 * s + 1));
+  parallelItems(y.cols(), 2 * y.rows(), [&](int begin, int end) {
+    for (Eigen::Index s = begin; s < end; ++s) y.col(s) = x.col(2 * s).cwiseMax(x.col(2 * s + 1));
+  });
   return y;
 }
 
@@ -48,34 +71,44 @@ Mat<S> MaxPool2<S>::forward(const Mat<S>& x, int frames) {
   requireEvenFrames("MaxPool2", x.cols(), frames);
   Mat<S> y(x.rows(), x.cols() / 2);
   second_.resize(x.rows(), x.cols() / 2);
-  for (Eigen::Index s = 0; s < y.cols(); ++s) {
-    for (Eigen::Index c = 0; c < x.rows(); ++c) {
-      const S first = x(c, 2 * s);
-      const S second = x(c, 2 * s + 1);
-      const bool second_wins = second > first;
-      second_(c, s) = second_wins ? 1 : 0;
-      y(c, s) = second_wins ? second : first;
+  parallelItems(y.cols(), 2 * y.rows(), [&](int begin, int end) {
+    for (Eigen::Index s = begin; s < end; ++s) {
+      for (Eigen::Index c = 0; c < x.rows(); ++c) {
+        const S first = x(c, 2 * s);
+        const S second = x(c, 2 * s + 1);
+        const bool second_wins = second > first;
+        second_(c, s) = second_wins ? 1 : 0;
+        y(c, s) = second_wins ? second : first;
+      }
     }
-  }
+  });
   return y;
 }
 
 template <typename S>
 Mat<S> MaxPool2<S>::backward(const Mat<S>& grad_out) const {
   requireSameShape("MaxPool2", grad_out.rows(), grad_out.cols(), second_.rows(), second_.cols());
-  Mat<S> dx = Mat<S>::Zero(grad_out.rows(), grad_out.cols() * 2);
-  for (Eigen::Index s = 0; s < grad_out.cols(); ++s)
-    for (Eigen::Index c = 0; c < grad_out.rows(); ++c) dx(c, 2 * s + second_(c, s)) = grad_out(c, s);
+  Mat<S> dx(grad_out.rows(), grad_out.cols() * 2);
+  parallelItems(grad_out.cols(), 2 * grad_out.rows(), [&](int begin, int end) {
+    for (Eigen::Index s = begin; s < end; ++s)
+      for (Eigen::Index c = 0; c < grad_out.rows(); ++c) {
+        const bool second_won = second_(c, s) != 0;
+        dx(c, 2 * s) = second_won ? S(0) : grad_out(c, s);
+        dx(c, 2 * s + 1) = second_won ? grad_out(c, s) : S(0);
+      }
+  });
   return dx;
 }
 
 template <typename S>
 Mat<S> AverageDepool2<S>::apply(const Mat<S>& x) {
   Mat<S> y(x.rows(), x.cols() * 2);
-  for (Eigen::Index s = 0; s < x.cols(); ++s) {
-    y.col(2 * s) = x.col(s);
-    y.col(2 * s + 1) = x.col(s);
-  }
+  parallelItems(x.cols(), 2 * x.rows(), [&](int begin, int end) {
+    for (Eigen::Index s = begin; s < end; ++s) {
+      y.col(2 * s) = x.col(s);
+      y.col(2 * s + 1) = x.col(s);
+    }
+  });
   return y;
 }
 
@@ -84,7 +117,9 @@ Mat<S> AverageDepool2<S>::backward(const Mat<S>& grad_out) {
   if (grad_out.cols() % 2 != 0)
     throw std::invalid_argument("AverageDepool2: gradient has an odd number of frames");
   Mat<S> dx(grad_out.rows(), grad_out.cols() / 2);
-  for (Eigen::Index s = 0; s < dx.cols(); ++s) dx.col(s) = grad_out.col(2 * s) + grad_out.col(2 * s + 1);
+  parallelItems(dx.cols(), 2 * dx.rows(), [&](int begin, int end) {
+    for (Eigen::Index s = begin; s < end; ++s) dx.col(s) = grad_out.col(2 * s) + grad_out.col(2 * s + 1);
+  });
   return dx;
 }
 

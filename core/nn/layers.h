@@ -13,7 +13,7 @@ namespace motionstyle::nn {
 template <typename S>
 class Relu {
  public:
-  static Mat<S> apply(const Mat<S>& x) { return x.cwiseMax(S(0)); }
+  static Mat<S> apply(const Mat<S>& x);
   Mat<S> forward(const Mat<S>& x);
   Mat<S> backward(const Mat<S>& grad_out) const;
 

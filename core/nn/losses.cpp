@@ -1,5 +1,6 @@
 #include "nn/losses.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -21,6 +22,9 @@ template <typename S>
 void requireGrad(const char* what, const Mat<S>* grad, const Mat<S>& input) {
   if (grad != nullptr) requireShape(what, grad->rows(), grad->cols(), input.rows(), input.cols());
 }
+
+// Frames per block of the per-frame constraint terms' parallel sums (a few hundred operations each).
+constexpr long kFramesPerBlock = 512;
 
 int windowCount(const char* what, const Mat<double>::Index cols, int frames) {
   if (frames < 1 || cols % frames != 0)
@@ -61,9 +65,13 @@ S meanSquaredError(const Mat<S>& output, const Mat<S>& target, S weight, Mat<S>*
   requireGrad("meanSquaredError grad", grad, output);
   if (output.size() == 0) return S(0);
   const S count = static_cast<S>(output.size());
-  const Mat<S> diff = output - target;
-  if (grad != nullptr) *grad += (S(2) * weight / count) * diff;
-  return diff.squaredNorm() / count;
+  const S scale = S(2) * weight / count;
+  const double total = parallelSum(output.cols(), std::max<long>(1, kMinValuesPerPart / output.rows()), [&](int begin, int end) {
+    const auto diff = output.middleCols(begin, end - begin) - target.middleCols(begin, end - begin);
+    if (grad != nullptr) grad->middleCols(begin, end - begin) += scale * diff;
+    return static_cast<double>(diff.squaredNorm());
+  });
+  return static_cast<S>(total / static_cast<double>(output.size()));
 }
 
 template <typename S>
@@ -194,23 +202,27 @@ S boneLengthLoss(const Mat<S>& x_normalised, int frames, const Mat<S>& bone_leng
   const S count = static_cast<S>(kBoneCount) * static_cast<S>(x_normalised.cols());
   const S scale = S(2) * weight / count;
   const S min_length = S(1e-6);
-  S total = 0;
-  for (Eigen::Index t = 0; t < x_normalised.cols(); ++t) {
-    const Eigen::Index window = t / frames;
-    for (int b = 0; b < kBoneCount; ++b) {
-      const int child = b + 1;
-      const int parent = kCanonicalParent[static_cast<std::size_t>(child)];
-      const V3 u = d.position(x_normalised, child, t) - d.position(x_normalised, parent, t);
-      const S length = u.norm();
-      const S error = length - bone_lengths(b, window);
-      total += error * error;
-      if (grad == nullptr || length < min_length) continue;
-      const V3 g = (scale * error / length) * u;
-      addPositionGrad<S>(*grad, d.std, child, t, g);
-      addPositionGrad<S>(*grad, d.std, parent, t, -g);
+  // Frames are independent (each writes only its own gradient column): blocks of them on the pool.
+  const double total = parallelSum(x_normalised.cols(), kFramesPerBlock, [&](int begin, int end) {
+    S sum = 0;
+    for (Eigen::Index t = begin; t < end; ++t) {
+      const Eigen::Index window = t / frames;
+      for (int b = 0; b < kBoneCount; ++b) {
+        const int child = b + 1;
+        const int parent = kCanonicalParent[static_cast<std::size_t>(child)];
+        const V3 u = d.position(x_normalised, child, t) - d.position(x_normalised, parent, t);
+        const S length = u.norm();
+        const S error = length - bone_lengths(b, window);
+        sum += error * error;
+        if (grad == nullptr || length < min_length) continue;
+        const V3 g = (scale * error / length) * u;
+        addPositionGrad<S>(*grad, d.std, child, t, g);
+        addPositionGrad<S>(*grad, d.std, parent, t, -g);
+      }
     }
-  }
-  return total / count;
+    return static_cast<double>(sum);
+  });
+  return static_cast<S>(total / static_cast<double>(count));
 }
 
 template <typename S>

@@ -1,6 +1,7 @@
 #include "nn/spectral_correlation.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdlib>
 #include <stdexcept>
@@ -19,6 +20,18 @@ constexpr int kMinRowsPerThread = 256;
 
 // True for the frequencies whose spectrum of a real signal is real: DC and, for even N, Nyquist.
 bool isRealBin(int f, int points) { return f == 0 || 2 * f == points; }
+
+// a == b (same shape), compared by column ranges on the pool: a frozen network's kernels are
+// compared at every forward pass.
+template <typename S>
+bool sameValues(const Mat<S>& a, const Mat<S>& b) {
+  std::atomic<bool> same = true;
+  parallelItems(a.cols(), a.rows(), [&](int begin, int end) {
+    if (same.load(std::memory_order_relaxed) && a.middleCols(begin, end - begin) != b.middleCols(begin, end - begin))
+      same = false;
+  });
+  return same;
+}
 
 template <typename S>
 using ConstMap = Eigen::Map<const Mat<S>>;
@@ -84,10 +97,14 @@ void SpectralCorrelation<S>::setKernel(const Mat<S>& weight) {
     throw std::invalid_argument("SpectralCorrelation: kernel is " + std::to_string(weight.rows()) + " x " +
                                 std::to_string(weight.cols()) + ", expected " + std::to_string(out_) + " x " +
                                 std::to_string(in_ * width_));
-  if (kernel_ && kernel_->weight.size() == weight.size() && kernel_->weight == weight) return;
+  if (kernel_ && kernel_->weight.size() == weight.size() && sameValues(kernel_->weight, weight)) return;
   if (!kernel_ || kernel_.use_count() > 1) kernel_ = std::make_shared<Kernel>();  // copies keep theirs
   Mat<S>& spectra = kernel_->spectra;
-  kernel_->weight = weight;
+  Mat<S>& kept = kernel_->weight;
+  kept.resize(weight.rows(), weight.cols());
+  parallelItems(weight.cols(), weight.rows(), [&](int begin, int end) {
+    kept.middleCols(begin, end - begin) = weight.middleCols(begin, end - begin);
+  });
   // Tap-major storage makes the weight an (out*in) x K matrix whose row o + c*out holds w[o][c][.].
   const ConstMap<S> taps(weight.data(), static_cast<Eigen::Index>(out_) * in_, width_);
   spectra.resize(taps.rows(), 4 * bins_);
@@ -210,7 +227,10 @@ void SpectralCorrelation<S>::backward(const S* grad_out, Eigen::Index count, Mat
     });
     taps_.resize(product_spectra_.rows(), width_);
     fft_.inverse(product_spectra_.data(), product_spectra_.rows(), taps_.rows(), width_, taps_.data(), taps_.rows());
-    MutableMap<S>(weight_grad->data(), taps_.rows(), width_) += taps_;
+    MutableMap<S> weight_taps(weight_grad->data(), taps_.rows(), width_);
+    parallelItems(width_, taps_.rows(), [&](int begin, int end) {
+      weight_taps.middleCols(begin, end - begin) += taps_.middleCols(begin, end - begin);
+    });
   }
 
   if (padded_grad != nullptr) {
@@ -239,13 +259,18 @@ void SpectralCorrelation<S>::backward(const S* grad_out, Eigen::Index count, Mat
     });
     frames_.resize(in_ * segments, points_);
     fft_.inverse(product_spectra_.data(), product_spectra_.rows(), frames_.rows(), points_, frames_.data(), frames_.rows());
-    // Overlap-add; serial because neighbouring segments share K - 1 frames (and it is cheap).
+    // Overlap-add. Neighbouring segments share K - 1 frames, so the pool splits the channels: each
+    // part adds every segment of its own rows, in segment order.
     const Eigen::Index total = count + width_ - 1;
-    for (Eigen::Index j = 0; j < segments; ++j) {
-      const Eigen::Index start = j * block_;
-      const Eigen::Index length = std::min<Eigen::Index>(points_, total - start);
-      MutableMap<S>(padded_grad + start * in_, in_, length) += frames_.block(j * in_, 0, in_, length);
-    }
+    const long min_rows = std::max(1L, kMinValuesPerPart / std::max<long>(1, total));
+    computePool().parallelRanges(in_, 1, static_cast<int>(std::min<long>(in_, min_rows)), [&](int begin, int end) {
+      MutableMap<S> grad(padded_grad, in_, total);
+      for (Eigen::Index j = 0; j < segments; ++j) {
+        const Eigen::Index start = j * block_;
+        const Eigen::Index length = std::min<Eigen::Index>(points_, total - start);
+        grad.block(begin, start, end - begin, length) += frames_.block(j * in_ + begin, 0, end - begin, length);
+      }
+    });
   }
 }
 

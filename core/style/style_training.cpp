@@ -1,4 +1,5 @@
 // trainStyleNetwork: one transformation network T per style (eq. 4-10) against a frozen loss network.
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <map>
@@ -225,11 +226,17 @@ StyleTrainingResult trainStyleNetwork(const StyleTrainingConfig& config, const T
     batch.contacts = gatherWindows(windows.contacts, frames, indices);
     batch.content_hidden = gatherWindows(content_hidden, pooled, indices);
     batch.bone_lengths.resize(windows.bone_lengths.rows(), static_cast<Eigen::Index>(indices.size()));
+    std::vector<std::size_t> gram_of_window;
     for (std::size_t i = 0; i < indices.size(); ++i) {
       batch.bone_lengths.col(static_cast<Eigen::Index>(i)) = windows.bone_lengths.col(indices[i]);
       const int clip = windows.clip_index[static_cast<std::size_t>(indices[i])];
-      batch.style_grams.push_back(style_grams[static_cast<std::size_t>(result.pairing[static_cast<std::size_t>(clip)])]);
+      gram_of_window.push_back(static_cast<std::size_t>(result.pairing[static_cast<std::size_t>(clip)]));
     }
+    // One shared target when every window has the same (a single style clip): no per-window copies.
+    const bool shared = std::all_of(gram_of_window.begin(), gram_of_window.end(),
+                                    [&](std::size_t g) { return g == gram_of_window.front(); });
+    if (shared) gram_of_window.resize(1);
+    for (std::size_t g : gram_of_window) batch.style_grams.push_back(style_grams[g]);
     const nn::ObjectiveTerms terms = nn::accumulateObjective(model.transformation, loss_network, batch, normalisation, config.weights);
     return StepLosses{terms.total,
                       {{"content", terms.content}, {"style", terms.style}, {"foot", terms.foot}, {"bone", terms.bone},

@@ -1,6 +1,7 @@
 #include "style/training_loop.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <optional>
@@ -33,28 +34,51 @@ GradientAccumulator::GradientAccumulator(std::vector<nn::Parameter<float>*> para
   for (const nn::Parameter<float>* p : parameters_) sum_.push_back(nn::Mat<float>::Zero(p->value.rows(), p->value.cols()));
 }
 
+namespace {
+
+// f(begin, end) over column ranges of parameter i's matrices, on the compute pool.
+template <typename Range>
+void forColumns(const nn::Parameter<float>& p, const Range& f) {
+  nn::parallelItems(p.value.cols(), p.value.rows(), f);
+}
+
+}  // namespace
+
 void GradientAccumulator::begin() {
   for (std::size_t i = 0; i < parameters_.size(); ++i) {
-    sum_[i].setZero();
-    parameters_[i]->zeroGrad();
+    nn::Parameter<float>& p = *parameters_[i];
+    p.grad.resize(p.value.rows(), p.value.cols());
+    forColumns(p, [&](int begin, int end) {
+      sum_[i].middleCols(begin, end - begin).setZero();
+      p.grad.middleCols(begin, end - begin).setZero();
+    });
   }
 }
 
 void GradientAccumulator::add(float fraction) {
   for (std::size_t i = 0; i < parameters_.size(); ++i) {
-    sum_[i] += fraction * parameters_[i]->grad;
-    parameters_[i]->zeroGrad();
+    nn::Parameter<float>& p = *parameters_[i];
+    forColumns(p, [&](int begin, int end) {
+      sum_[i].middleCols(begin, end - begin) += fraction * p.grad.middleCols(begin, end - begin);
+      p.grad.middleCols(begin, end - begin).setZero();
+    });
   }
 }
 
 void GradientAccumulator::finish() {
-  for (std::size_t i = 0; i < parameters_.size(); ++i) parameters_[i]->grad = sum_[i];
+  for (std::size_t i = 0; i < parameters_.size(); ++i) {
+    nn::Parameter<float>& p = *parameters_[i];
+    forColumns(p, [&](int begin, int end) { p.grad.middleCols(begin, end - begin) = sum_[i].middleCols(begin, end - begin); });
+  }
 }
 
 bool parametersFinite(const std::vector<nn::Parameter<float>*>& parameters) {
+  std::atomic<bool> finite = true;
   for (const nn::Parameter<float>* p : parameters)
-    if (!p->value.allFinite()) return false;
-  return true;
+    forColumns(*p, [&](int begin, int end) {
+      if (!p->value.middleCols(begin, end - begin).allFinite()) finite = false;
+    });
+  return finite;
 }
 
 double secondsSince(std::chrono::steady_clock::time_point start) {

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "features/feature_layout.h"
+#include "nn/compute_pool.h"
 
 namespace motionstyle::style {
 
@@ -73,9 +74,11 @@ WindowSet makeWindows(const std::vector<MotionClip>& clips, const FeatureStatist
 
 nn::Mat<float> gatherWindows(const nn::Mat<float>& source, int frames, const std::vector<int>& indices) {
   nn::Mat<float> batch(source.rows(), static_cast<Eigen::Index>(indices.size()) * frames);
-  for (std::size_t i = 0; i < indices.size(); ++i)
-    batch.middleCols(static_cast<Eigen::Index>(i) * frames, frames) =
-        source.middleCols(static_cast<Eigen::Index>(indices[i]) * frames, frames);
+  nn::parallelItems(static_cast<long>(indices.size()), source.rows() * frames, [&](int begin, int end) {
+    for (Eigen::Index i = begin; i < end; ++i)
+      batch.middleCols(i * frames, frames) =
+          source.middleCols(static_cast<Eigen::Index>(indices[static_cast<std::size_t>(i)]) * frames, frames);
+  });
   return batch;
 }
 
