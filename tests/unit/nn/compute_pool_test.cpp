@@ -1,9 +1,12 @@
-// The compute pool: parts really run on distinct threads, errors propagate, nesting stays safe.
+// The compute pool: parts really run on distinct threads, errors propagate, nesting stays safe; its
+// element-wise and sum helpers cover every item once and sum in an order no thread count changes.
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <mutex>
 #include <set>
 #include <stdexcept>
@@ -79,4 +82,43 @@ TEST(ComputePool, RegionsAfterSpinningAndAfterSleepingSeeEachOthersWrites) {
 }
 
 }  // namespace
+TEST(ComputePoolHelpers, ParallelItemsCoversEveryItemOnceAndNothingForNoItems) {
+  int calls = 0;
+  parallelItems(0, 100, [&](int, int) { ++calls; });
+  EXPECT_EQ(calls, 0);
+  for (long item_size : {1L, 64L, kMinValuesPerPart, 10 * kMinValuesPerPart}) {
+    std::vector<std::atomic<int>> hits(777);
+    parallelItems(777, item_size, [&](int begin, int end) {
+      for (int i = begin; i < end; ++i) ++hits[static_cast<std::size_t>(i)];
+    });
+    for (const auto& h : hits) EXPECT_EQ(h.load(), 1) << "item size " << item_size;
+  }
+}
+
+TEST(ComputePoolHelpers, ParallelSumAddsBlocksInOrderWhateverRunsThem) {
+  EXPECT_EQ(parallelSum(0, 8, [](int, int) { return 1.0; }), 0.0);
+  // Terms whose floating-point sum depends on the order: 1e16 then many 1s then -1e16.
+  std::vector<double> values(10001, 1.0);
+  values.front() = 1e16;
+  values.back() = -1e16;
+  const auto part = [&](int begin, int end) {
+    double s = 0;
+    for (int i = begin; i < end; ++i) s += values[static_cast<std::size_t>(i)];
+    return s;
+  };
+  for (long block : {0L, 1L, 7L, 1000L, 20000L}) {
+    double expected = 0;  // the blocks' sums, added in block order
+    const long b = std::max(1L, block);
+    for (long first = 0; first < 10001; first += b) expected += part(static_cast<int>(first), static_cast<int>(std::min(10001L, first + b)));
+    const double pooled = parallelSum(10001, block, part);
+    double serial = 0;
+    {
+      SerialComputeScope one_thread;
+      serial = parallelSum(10001, block, part);
+    }
+    EXPECT_EQ(pooled, expected) << "block " << block;
+    EXPECT_EQ(serial, expected) << "block " << block;
+  }
+}
+
 }  // namespace motionstyle::nn
