@@ -300,13 +300,20 @@ void addOutput(SolverOutput& total, const SolverOutput& part) {
   total.frames_unsolved += part.frames_unsolved;
 }
 
+constexpr int kBalancedChunks = 4;
+
 // The chunks' frame ranges: about chunk_frames long, at least two when the clip is six lead-ins long
 // (so that short clips use two cores too), and of equal work: the first, which has no lead-in, is
 // longer by one lead-in. Depends on the clip's length and the options only, never on the thread count.
+
 std::vector<std::pair<int, int>> chunkRanges(int frames, const CleanupOptions& options) {
   const int lead_in = options.chunk_lead_in;
   if (frames < 6 * lead_in) return {{0, frames}};
-  const int count = std::max(2, static_cast<int>(std::lround(frames / static_cast<double>(options.chunk_frames))));
+  // At least kBalancedChunks where each can still be three lead-ins long. With two chunks on two cores
+  // a live edit's job waited for whichever chunk the window's paint had preempted (a 500-frame drag:
+  // 3-6 of 30 results over 50 ms); with four, the other core takes the next one (docs/decisions.md).
+  const int balanced = lead_in > 0 ? std::min(kBalancedChunks, frames / (3 * lead_in)) : kBalancedChunks;
+  const int count = std::max({2, balanced, static_cast<int>(std::lround(frames / static_cast<double>(options.chunk_frames)))});
   const int length = (frames - lead_in) / count;  // the others; the first: length + lead_in
   if (length < 1) return {{0, frames}};
   std::vector<std::pair<int, int>> ranges;

@@ -262,6 +262,27 @@ TEST_F(CleanupSolvers, ThreadCountNeverChangesTheResult) {
   EXPECT_EQ(a.values, b.values);
 }
 
+// A live edit's clip (a few hundred frames) comes in four chunks, so that one core can take the next
+// while the other is preempted; a clip too short for four chunks of three lead-ins gets as many as fit,
+// and a long clip chunks of about chunk_frames.
+TEST_F(CleanupSolvers, ShortClipsComeInFourChunksWhereEachIsThreeLeadInsLong) {
+  const auto chunksOf = [&](int frames, const CleanupOptions& options) {
+    Motion part = clip;
+    part.values = clip.values.topRows(frames);
+    CleanupReport report;
+    cleanupMotion(CleanupInput{part, mapping, targets.topRows(frames), contacts.topRows(frames), up, floor, cm},
+                  options, &report);
+    return report.chunks;
+  };
+  const CleanupOptions defaults;  // chunk_frames 480, lead-in 40
+  EXPECT_EQ(chunksOf(clip.frameCount(), defaults), 4);  // 720 frames: four, not round(720 / 480) = 2
+  EXPECT_EQ(chunksOf(300, defaults), 2);                // 300 / (3 x 40): two
+  EXPECT_EQ(chunksOf(200, defaults), 1);                // under six lead-ins: one sweep
+  CleanupOptions short_chunks;
+  short_chunks.chunk_frames = 100;
+  EXPECT_EQ(chunksOf(clip.frameCount(), short_chunks), 7);  // round(720 / 100)
+}
+
 TEST_F(CleanupSolvers, ChunksJoinWhereOneSweepWouldBe) {
   CleanupOptions chunked, whole;
   chunked.chunk_frames = 50;
