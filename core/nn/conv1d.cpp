@@ -27,13 +27,16 @@ Mat<S> compactWindows(const Eigen::Ref<const Mat<S>>& full, int windows, int fra
   return out;
 }
 
-// Adds the sum over columns of `grad` (rows x cols) into `sum` (rows x 1), rows split over the pool.
+// Adds the sum over columns of `grad` (rows x cols) into `sum` (rows x 1), rows split over the pool;
+// each row's columns are added in column order, so no split changes a bit.
 template <typename S>
 void addRowSums(const Mat<S>& grad, Mat<S>& sum) {
   const long min_rows = std::max(1L, kMinValuesPerPart / std::max<long>(1, grad.cols()));
   computePool().parallelRanges(static_cast<int>(grad.rows()), 1, static_cast<int>(std::min<long>(grad.rows(), min_rows)),
                                [&](int begin, int end) {
-                                 sum.col(0).segment(begin, end - begin) += grad.middleRows(begin, end - begin).rowwise().sum();
+                                 Vec<S> rows = Vec<S>::Zero(end - begin);
+                                 for (Eigen::Index c = 0; c < grad.cols(); ++c) rows += grad.col(c).segment(begin, end - begin);
+                                 sum.col(0).segment(begin, end - begin) += rows;
                                });
 }
 

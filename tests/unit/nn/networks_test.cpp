@@ -8,6 +8,7 @@
 #include "gradient_check.h"
 #include "loss_fixtures.h"
 #include "nn/adam.h"
+#include "nn/compute_pool.h"
 #include "nn/loss_network.h"
 #include "nn/transformation_objective.h"
 #include "nn/transformation_network.h"
@@ -184,6 +185,43 @@ TEST(TransformerGradient, TotalStyleLossWrtEveryParameter) {
       EXPECT_LT(result.max_error, kGradientTolerance) << p->name << (residual ? " residual" : " plain");
     }
   }
+}
+
+// A training step at its real size (16 windows of 240 frames, float, the spectral layers) gives the same
+// terms and the same gradients, bit for bit, whether its parts run on the pool's threads or all on the
+// calling thread (SerialComputeScope: the same split): no part writes another's values or reads them
+// before they are done.
+TEST(TransformerGradient, ATrainingStepIsTheSameWhicheverThreadsRunItsParts) {
+  std::mt19937 rng(11);
+  LossNetwork<float> loss_network;
+  loss_network.initialise(12);
+  TransformationNetwork<float> t;
+  t.initialise(13);
+  const FeatureStatistics norm = test::randomNormalisation(rng);
+  StyleBatch<float> batch;
+  batch.frames = 240;
+  batch.content = randomMatrix(kFeatureCount, 16 * 240, rng).cast<float>();
+  batch.contacts = test::randomContacts(batch.content.cols(), rng).cast<float>();
+  batch.bone_lengths = test::randomBoneLengths(16, rng).cast<float>();
+  batch.content_hidden = contentHidden(loss_network, batch.content, 240);
+  batch.style_grams.push_back(styleGram(loss_network, Mat<float>(randomMatrix(kFeatureCount, 300, rng).cast<float>())));
+  const auto step = [&] {
+    t.zeroGrad();
+    const ObjectiveTerms terms = accumulateObjective(t, loss_network, batch, norm, LossWeights{});
+    std::vector<Mat<float>> grads;
+    for (Parameter<float>* p : t.parameters()) grads.push_back(p->grad);
+    return std::pair{terms, grads};
+  };
+  const auto [pooled_terms, pooled] = step();
+  std::pair<ObjectiveTerms, std::vector<Mat<float>>> serial;
+  {
+    SerialComputeScope one_thread;
+    serial = step();
+  }
+  EXPECT_EQ(pooled_terms.total, serial.first.total);
+  EXPECT_EQ(pooled_terms.style, serial.first.style);
+  EXPECT_EQ(pooled_terms.bone, serial.first.bone);
+  for (std::size_t i = 0; i < pooled.size(); ++i) EXPECT_EQ(pooled[i], serial.second[i]) << t.parameters()[i]->name;
 }
 
 TEST(TransformationNetwork, OutputHasTheInputLengthAndResidualStartsNearIdentity) {
