@@ -36,7 +36,7 @@ GradientAccumulator::GradientAccumulator(std::vector<nn::Parameter<float>*> para
 
 namespace {
 
-// f(begin, end) over column ranges of parameter i's matrices, on the compute pool.
+// f(begin, end) over ranges of a parameter's columns (its value, gradient and sums alike), on the pool.
 template <typename Range>
 void forColumns(const nn::Parameter<float>& p, const Range& f) {
   nn::parallelItems(p.value.cols(), p.value.rows(), f);
