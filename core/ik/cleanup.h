@@ -74,9 +74,10 @@ struct CleanupOptions {
   // lead-ins long, and up to four of at least three lead-ins each for a clip of a few hundred frames,
   // so that two cores stay balanced when one is preempted; of equal work), each starting
   // chunk_lead_in frames early from the content's pose (those frames are solved and dropped), so that
-  // chunks are independent and run on `threads` cores at once. The result depends on the chunk size, never on the thread count. 40 frames of lead-in leave
-  // a chunk within 0.5 mm of one sweep over the whole clip (the smoothness terms' memory of a
-  // different start decays per frame, whatever the frame rate).
+  // chunks are independent and run on `threads` cores at once. The result depends on the chunk size,
+  // never on the thread count. 40 frames of lead-in leave a chunk within 0.5 mm of one sweep over the
+  // whole clip (the smoothness terms' memory of a different start decays per frame, whatever the
+  // frame rate).
   int chunk_frames = 480;
   int chunk_lead_in = 40;
   int threads = 0;               // chunks solved at once; 0: one per hardware thread

@@ -300,12 +300,12 @@ void addOutput(SolverOutput& total, const SolverOutput& part) {
   total.frames_unsolved += part.frames_unsolved;
 }
 
+// The fewest chunks of a clip at least twelve lead-ins long (see chunkRanges).
 constexpr int kBalancedChunks = 4;
 
 // The chunks' frame ranges: about chunk_frames long, at least two when the clip is six lead-ins long
 // (so that short clips use two cores too), and of equal work: the first, which has no lead-in, is
 // longer by one lead-in. Depends on the clip's length and the options only, never on the thread count.
-
 std::vector<std::pair<int, int>> chunkRanges(int frames, const CleanupOptions& options) {
   const int lead_in = options.chunk_lead_in;
   if (frames < 6 * lead_in) return {{0, frames}};

@@ -1,6 +1,5 @@
 #include "nn/conv1d.h"
 
-#include <algorithm>
 #include <stdexcept>
 
 #include "nn/compute_pool.h"
@@ -31,13 +30,11 @@ Mat<S> compactWindows(const Eigen::Ref<const Mat<S>>& full, int windows, int fra
 // each row's columns are added in column order, so no split changes a bit.
 template <typename S>
 void addRowSums(const Mat<S>& grad, Mat<S>& sum) {
-  const long min_rows = std::max(1L, kMinValuesPerPart / std::max<long>(1, grad.cols()));
-  computePool().parallelRanges(static_cast<int>(grad.rows()), 1, static_cast<int>(std::min<long>(grad.rows(), min_rows)),
-                               [&](int begin, int end) {
-                                 Vec<S> rows = Vec<S>::Zero(end - begin);
-                                 for (Eigen::Index c = 0; c < grad.cols(); ++c) rows += grad.col(c).segment(begin, end - begin);
-                                 sum.col(0).segment(begin, end - begin) += rows;
-                               });
+  parallelItems(grad.rows(), grad.cols(), [&](int begin, int end) {
+    Vec<S> rows = Vec<S>::Zero(end - begin);
+    for (Eigen::Index c = 0; c < grad.cols(); ++c) rows += grad.col(c).segment(begin, end - begin);
+    sum.col(0).segment(begin, end - begin) += rows;
+  });
 }
 
 }  // namespace

@@ -262,8 +262,7 @@ void SpectralCorrelation<S>::backward(const S* grad_out, Eigen::Index count, Mat
     // Overlap-add. Neighbouring segments share K - 1 frames, so the pool splits the channels: each
     // part adds every segment of its own rows, in segment order.
     const Eigen::Index total = count + width_ - 1;
-    const long min_rows = std::max(1L, kMinValuesPerPart / std::max<long>(1, total));
-    computePool().parallelRanges(in_, 1, static_cast<int>(std::min<long>(in_, min_rows)), [&](int begin, int end) {
+    parallelItems(in_, total, [&](int begin, int end) {
       MutableMap<S> grad(padded_grad, in_, total);
       for (Eigen::Index j = 0; j < segments; ++j) {
         const Eigen::Index start = j * block_;
