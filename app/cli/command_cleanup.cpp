@@ -24,6 +24,7 @@
 #include "common/output_paths.h"
 #include "features/foot_contacts.h"
 #include "features/representation.h"
+#include "features/rest_pose_frames.h"
 #include "ik/cleanup.h"
 #include "ik/contact_file.h"
 #include "ik/metrics.h"
@@ -81,10 +82,19 @@ std::string cleanUpFile(const CleanupRequest& request) {
   const double output_fps = request.output_fps;
   const std::optional<std::string>& unit = request.unit;
   std::ostringstream log;
-  const Motion motion = readBvh(input_file, /*minimum_frames=*/1);
+  Motion motion = readBvh(input_file, /*minimum_frames=*/1);
   if (output_fps > 0.0) requireResampleableTo(motion, output_fps);
   const JointMapping mapping = mapJoints(motion.skeleton, input_file.string(), request.mapping);
   requireMeasurableRestPose(motion, mapping);
+  // A leading rest-pose frame (CMU's T-pose frame 0) is solved as the motion's first frame and written
+  // back as it was (rest_pose_frames.h). Replaced in place: a long clip is not copied.
+  const int rest_pose_frames = leadingRestPoseFrames(motion, mapping);
+  Motion rest_pose;  // the rest-pose frames as they were
+  rest_pose.skeleton = motion.skeleton;
+  rest_pose.frame_time = motion.frame_time;
+  rest_pose.values = motion.values.topRows(rest_pose_frames);
+  replaceRestPoseFrames(motion, rest_pose_frames);
+  if (rest_pose_frames > 0) log << "frame 0 is the rig's rest pose, not motion: solved as the motion continued, written as it was\n";
   // The clip's own canonical joints are the targets, and all the planning needs (up axis, floor,
   // contacts): the world positions of every joint are only ever computed a block at a time.
   Eigen::MatrixXd targets = canonicalJointPositions(motion, mapping);
@@ -130,7 +140,8 @@ std::string cleanUpFile(const CleanupRequest& request) {
       cleaned.values.middleRows(block.first_frame, block.values.rows()) = block.values;
       measureBlock(block);
     }, &report);
-    const Motion exported = resampleMotion(cleaned, output_fps);
+    Motion exported = resampleMotion(cleaned, output_fps);
+    restoreRestPoseFrames(exported, rest_pose, rest_pose_frames);
     exported_frames = exported.frameCount();
     exported_fps = exported.fps();
     files.stage(output, formatBvh(exported));
@@ -138,7 +149,14 @@ std::string cleanUpFile(const CleanupRequest& request) {
     files.stage(output, [&](std::ostream& out) {
       BvhStreamWriter writer(out, motion.skeleton, motion.frameCount(), motion.frame_time);
       cleanupMotionInBlocks(input, options, [&](const CleanedBlock& block) {
-        writer.writeFrames(block.values);
+        if (block.first_frame < rest_pose_frames) {
+          MatrixRowMajor values = block.values;
+          const int rows = std::min<int>(rest_pose_frames - block.first_frame, static_cast<int>(values.rows()));
+          values.topRows(rows) = rest_pose.values.middleRows(block.first_frame, rows);
+          writer.writeFrames(values);
+        } else {
+          writer.writeFrames(block.values);
+        }
         measureBlock(block);
       }, &report);
       writer.finish();

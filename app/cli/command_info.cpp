@@ -105,6 +105,7 @@ nlohmann::ordered_json describeClip(const std::string& path, const std::optional
   info["up_axis"] = convention.up_axis;
   info["unit"] = {{"name", convention.unit}, {"cm_per_unit", convention.cm_per_unit}, {"guessed", convention.unit_guessed}};
   info["skeletal_height_cm"] = skeletalHeight(motion.skeleton, mapping) * convention.cm_per_unit;
+  info["rest_pose_frames"] = features.anchor.rest_pose_frames;
   nlohmann::ordered_json contacts = nlohmann::ordered_json::object();
   for (int label = 0; label < kContactCount; ++label) {
     const ContactSummary summary = summarize(features.contacts.row(label));
@@ -149,6 +150,9 @@ void printText(const nlohmann::ordered_json& info) {
   for (const auto& [canonical, joint] : mapping["joints"].items()) {
     std::printf("%s%s=%s", column++ % 4 == 0 ? "\n               " : "  ", canonical.c_str(), text(joint).c_str());
   }
+  if (info["rest_pose_frames"].get<int>() > 0)
+    std::printf("\n  rest pose    frame 0 is the rig's rest pose, not motion: stylizing and clean-up see the motion"
+                "\n               continued over it and write it back as it is");
   std::printf("\n  contacts     at %.4g fps:", info["contacts"]["fps"].get<double>());
   for (const auto& [name, summary] : info["contacts"]["labels"].items())
     std::printf(" %s %.0f%% (%d)", name.c_str(), 100.0 * summary["fraction"].get<double>(), summary["segments"].get<int>());

@@ -20,9 +20,12 @@ FamiliarityLabel::FamiliarityLabel(QWidget* parent) : QLabel(parent) {
 
 void FamiliarityLabel::measure(const LoadedClip* clip, const style::Stylizer* network) {
   familiarity_.reset();
+  int rest_pose_frames = 0;
   if (clip != nullptr && clip->mapping && network != nullptr) {
     try {
-      familiarity_ = style::measureFamiliarity(*network, extractFeatures(clip->motion, *clip->mapping).values);
+      const MotionFeatures features = extractFeatures(clip->motion, *clip->mapping);
+      rest_pose_frames = features.anchor.rest_pose_frames;
+      familiarity_ = style::measureFamiliarity(*network, features.values);
     } catch (const std::exception&) {
       familiarity_.reset();
     }
@@ -36,6 +39,8 @@ void FamiliarityLabel::measure(const LoadedClip* clip, const style::Stylizer* ne
                      .arg(QLatin1String(kColours[static_cast<int>(familiarity_->level)]),
                           QString::fromStdString(style::familiaritySummary(*familiarity_)).toHtmlEscaped());
   if (familiarity_->level != style::FamiliarityLevel::Familiar) text += tr(" <a href=\"adapt\">Adapt...</a>");
+  // features/rest_pose_frames.h: a CMU file's T-pose frame 0.
+  if (rest_pose_frames > 0) text += tr("<br>Frame 0 is the rig's rest pose, not motion: it is kept as it is.");
   setText(text);
 }
 

@@ -4,10 +4,12 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <vector>
 
 #include "common/errors.h"
 #include "features/foot_contacts.h"
+#include "features/rest_pose_frames.h"
 #include "features/signal_filters.h"
 #include "motion/kinematics.h"
 #include "motion/resample.h"
@@ -75,8 +77,15 @@ Eigen::MatrixXd canonicalJointPositions(const Motion& motion, const JointMapping
   return worldPositions(motion, mapping.joints);
 }
 
-MotionFeatures extractFeatures(const Motion& motion, const JointMapping& mapping, const FeatureOptions& options) {
+MotionFeatures extractFeatures(const Motion& clip, const JointMapping& mapping, const FeatureOptions& options) {
   if (!(options.fps > 0.0)) throw std::invalid_argument("extractFeatures: fps must be positive");
+  const int rest_pose_frames = leadingRestPoseFrames(clip, mapping);
+  std::optional<Motion> replaced;
+  if (rest_pose_frames > 0) {
+    replaced = clip;
+    replaceRestPoseFrames(*replaced, rest_pose_frames);
+  }
+  const Motion& motion = replaced ? *replaced : clip;
   const bool same_rate = sameFrameRate(motion.fps(), options.fps);
   // Resampled as local transforms (what resampleMotion does before it returns to Euler angles), so that
   // the only Euler -> quaternion conversion is the vectorised one in localPoses.
@@ -91,6 +100,7 @@ MotionFeatures extractFeatures(const Motion& motion, const JointMapping& mapping
   result.mapping = mapping;
   FeatureAnchor& anchor = result.anchor;
   anchor.fps = options.fps;
+  anchor.rest_pose_frames = rest_pose_frames;
   Eigen::MatrixXd world = worldPositions(motion.skeleton, poses, mapping.joints);  // file space for now
   anchor.convention = detectSpaceConvention(motion.skeleton, world, mapping, options.unit);
   anchor.scale = kReferenceSkeletalHeightCm / (skeletalHeight(motion.skeleton, mapping) * anchor.convention.cm_per_unit);

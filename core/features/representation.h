@@ -1,6 +1,8 @@
 #pragma once
 // The paper's motion representation ("Data Representation"), computed from a clip and inverted back.
 // Layout of the 66 values: see feature_layout.h. Pipeline of extractFeatures():
+//   0. a leading rest-pose frame (CMU's T-pose frame 0) replaced by the motion continued backward
+//      (rest_pose_frames.h),
 //   1. resample to `fps` (default 60; slerp rotations, linear positions),
 //   2. forward kinematics, canonical joints only, converted to canonical space (Y-up, cm),
 //   3. scaled by kReferenceSkeletalHeightCm / the character's skeletal height, so that characters of
@@ -63,6 +65,9 @@ struct FeatureAnchor {
   // where a capture's floor lies under the feet differs by studio. The inverse subtracts it before
   // undoing 7 and 8.
   double retarget_height_shift = 0.0;
+  // Leading frames of the clip that are its rig's rest pose, not motion (rest_pose_frames.h): the
+  // features see the motion continued backward over them, and the clean-up puts them back.
+  int rest_pose_frames = 0;
 };
 
 // Step 9's target: the planted toes' height above the floor in the reference actor's clips, reference

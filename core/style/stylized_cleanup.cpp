@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include "features/foot_contacts.h"
+#include "features/rest_pose_frames.h"
 #include "ik/contacts.h"
 #include "motion/kinematics.h"
 #include "motion/resample.h"
@@ -74,10 +76,22 @@ double fileFloorHeight(const FeatureAnchor& anchor) {
   return anchor.floor_height / anchor.scale / anchor.convention.cm_per_unit;
 }
 
-StylizedCleanup cleanUpStylizedClip(const Motion& content, const JointMapping& mapping, const StylizedClip& stylized,
+StylizedCleanup cleanUpStylizedClip(const Motion& clip, const JointMapping& mapping, const StylizedClip& stylized,
                                     const CleanupOptions& options, double output_fps,
                                     const Eigen::MatrixXi& contact_overrides,
                                     const CleanupControl& control) {
+  // The features saw the motion continued backward over the clip's rest-pose frames: so does the
+  // solve, and the output gets the clip's own back at the end.
+  const int rest_pose_frames = stylized.anchor.rest_pose_frames;
+  if (rest_pose_frames < 0 || rest_pose_frames >= clip.frameCount())
+    throw std::invalid_argument("cleanUpStylizedClip: the stylized clip replaced " + std::to_string(rest_pose_frames) +
+                                " rest-pose frames of a content of " + std::to_string(clip.frameCount()));
+  std::optional<Motion> replaced;
+  if (rest_pose_frames > 0) {
+    replaced = clip;
+    replaceRestPoseFrames(*replaced, rest_pose_frames);
+  }
+  const Motion& content = replaced ? *replaced : clip;
   if (contact_overrides.size() > 0 &&
       (contact_overrides.rows() != content.frameCount() || contact_overrides.cols() != kContactCount))
     throw std::invalid_argument("cleanUpStylizedClip: contact overrides are " + std::to_string(contact_overrides.rows()) +
@@ -156,6 +170,7 @@ StylizedCleanup cleanUpStylizedClip(const Motion& content, const JointMapping& m
   // They hold that pose, as resampling does past the end, so that the export has the content's count.
   if (sameFrameRate(target_fps, content.fps()) && result.motion.values.rows() < content.frameCount())
     result.motion.values = fitRows(std::move(result.motion.values), content.frameCount());
+  restoreRestPoseFrames(result.motion, clip, rest_pose_frames);
   result.motion.source = content.source;
   return result;
 }

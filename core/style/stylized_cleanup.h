@@ -28,7 +28,8 @@ struct StylizedCleanup {
 };
 
 // content: the user's clip at its own rate (the one whose features were stylized); mapping: its
-// canonical joints. output_fps <= 0 keeps the content's rate, and then the frame count too (frames
+// canonical joints. Its leading rest-pose frames (stylized.anchor.rest_pose_frames: a CMU T-pose frame
+// 0) are solved as the motion continued backward and come out as they went in (rest_pose_frames.h). output_fps <= 0 keeps the content's rate, and then the frame count too (frames
 // past the last solved one hold its pose). contact_overrides: the user's per-frame overrides at the
 // content's rate (frames x 4, -1 automatic / 0 off / 1 on; ik/contacts.h), or empty; they win over
 // the labels the locks would use. control: the clean-up's cancel flag and memory (ik/cleanup.h). Throws std::invalid_argument when the stylized clip does not belong

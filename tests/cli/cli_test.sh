@@ -89,6 +89,20 @@ grep -q '"network_path"' "$work/eval.json" || { echo "FAIL: no network_path in e
 expect 0 "style distance" "$cli" transfer --loss-network "$work/ae.net" --style "$data/cmu_131_01.bvh" "$data/zombie.bvh" \
   --out "$work/transfer.bvh" --iterations 2 --constraint-iterations 1 --metrics "$work/transfer.json"
 grep -q '"style_distance"' "$work/transfer.json" || { echo "FAIL: no style distance in transfer's metrics"; failures=$((failures + 1)); }
+# A clip that opens with its rig's rest pose, as CMU's files do: frame 0 kept as it was in what cleanup
+# and stylize write, and named by info.
+awk '/^Frames:/ { print "Frames: " $2 + 1; next }
+     /^Frame Time/ { print; rest = 1; next }
+     rest == 1 { line = $1 " " $2 " " $3; for (i = 4; i <= NF; i++) line = line " 0"; print line; rest = 2 }
+     { print }' "$data/cmu_131_01.bvh" >"$work/rest_pose.bvh"
+first_frame() { awk '/^Frame Time/ { getline; for (i = 1; i <= NF; i++) printf "%.4f ", $i; exit }' "$1"; }
+expect 0 "rest pose    frame 0" "$cli" info "$work/rest_pose.bvh"
+expect 0 "721 frames" "$cli" cleanup "$work/rest_pose.bvh" --out "$work/rest_clean.bvh"
+[ "$(first_frame "$work/rest_clean.bvh")" = "$(first_frame "$work/rest_pose.bvh")" ] || fail "cleanup changed the rest-pose frame"
+expect 0 "721 frames" "$cli" stylize --net "$work/style.net" "$work/rest_pose.bvh" --out "$work/rest_styled.bvh"
+[ "$(first_frame "$work/rest_styled.bvh")" = "$(first_frame "$work/rest_pose.bvh")" ] || fail "stylize changed the rest-pose frame"
+[ "$(first_frame "$work/rest_styled.bvh")" != "$(first_frame "$data/cmu_131_01.bvh")" ] || fail "the test clip has no rest pose"
+
 expect 2 "no-such" "$cli" adapt --loss-network "$work/ae.net" --data "$work/no-such" --out "$work/adapted.net" --threads 1
 expect 2 "--out" "$cli" adapt --loss-network "$work/ae.net" --data "$data/cmu_131_01.bvh"
 expect 0 "before -> after" "$cli" adapt --loss-network "$work/ae.net" --data "$data/cmu_131_01.bvh" --out "$work/adapted.net" \

@@ -17,6 +17,8 @@
 #include <filesystem>
 
 #include "adapt_tab.h"
+#include "bvh/bvh_reader.h"
+#include "bvh/bvh_writer.h"
 #include "common/resource_paths.h"
 #include "contact_tracks.h"
 #include "features/feature_statistics.h"
@@ -132,6 +134,38 @@ class FamiliarityTest : public QObject {
     for (int i = 0; i < styles->count(); ++i)
       if (styles->item(i)->checkState() == Qt::Checked) checked << styles->item(i)->text();
     QCOMPARE(checked, QStringList{QStringLiteral("masculine")});
+  }
+
+  // A CMU file as published opens with its rig's rest pose (features/rest_pose_frames.h): the panel
+  // says so, and the cleaned result keeps that frame as it was while the motion after it is styled.
+  void aClipThatOpensWithItsRestPoseKeepsIt() {
+    Motion motion = readBvh(test::fixture(QStringLiteral("cmu_131_01.bvh")).toStdString());
+    const Eigen::Index frames = motion.values.rows();
+    MatrixRowMajor values(frames + 1, motion.values.cols());
+    values.bottomRows(frames) = motion.values;
+    values.row(0).setZero();
+    values.row(0).head<3>() = motion.values.row(0).head<3>();  // the root's position; every rotation zero
+    motion.values = values;
+    const QString file = scratch_.filePath(QStringLiteral("rest_pose.bvh"));
+    writeBvh(motion, file.toStdString());
+
+    MainWindow window(false);
+    window.setErrorReporter([](const QString& title, const QString& message) { QFAIL(qPrintable(title + ": " + message)); });
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    QCOMPARE(window.openFiles({file}), 1);
+    ResultPanel* panel = window.resultPanel();
+    QVERIFY(panel->loadNetworkFile(QString::fromStdString(network_.string())));
+    auto* label = panel->findChild<QLabel*>(QStringLiteral("FamiliarityLabel"));
+    QVERIFY2(label->text().contains(QStringLiteral("rest pose")), qPrintable(label->text()));
+    QSignalSpy ended(panel, &ResultPanel::jobEnded);
+    QTest::mouseClick(panel->findChild<QPushButton*>(QStringLiteral("StylizeButton")), Qt::LeftButton);
+    QVERIFY(QTest::qWaitFor([&] { return ended.count() >= 1; }, kJobTimeoutMs));
+    QVERIFY(panel->result() != nullptr);
+    const Motion& cleaned = panel->result()->cleaned;
+    QCOMPARE(cleaned.frameCount(), motion.frameCount());
+    QVERIFY(cleaned.values.row(0) == motion.values.row(0));
+    QVERIFY(cleaned.values.row(1) != motion.values.row(1));  // the motion is styled
   }
 
   void theAdaptTabAdaptsTheNetworksToTheUsersClips() {

@@ -5,7 +5,7 @@
 //   bench_adaptation [--models DIR] [--style elderly] [--fixtures SHARED_FIXTURES] [--data BANDAI_ROOT]
 //                    [--loss-epochs N] [--style-epochs N]
 //
-// The ten clips: the five ../shared/fixtures/cmu_walks clips (without their rest-pose frame 0) and
+// The ten clips: the five ../shared/fixtures/cmu_walks clips as published (rest-pose frame 0 held) and
 // ../shared/fixtures/cmu/131_01.bvh cut into five pieces: CMU's studio, skeleton and 120 fps, other
 // actors than the networks trained on. Runs style::AdaptNetworksJob, the job the app's Adapt tab and
 // the CLI run.
@@ -50,7 +50,7 @@ std::vector<style::MotionClip> newStudioClips(const fs::path& fixtures) {
   std::sort(walks.begin(), walks.end());
   for (const fs::path& file : walks) {
     const Motion motion = readBvh(file);
-    clips.push_back(clipOf(framesOf(motion, 1, motion.values.rows() - 1), file.filename().string()));
+    clips.push_back(clipOf(motion, file.filename().string()));  // frame 0 a rest pose: the features replace it
   }
   const Motion long_clip = readBvh(fixtures / "cmu" / "131_01.bvh");
   const Eigen::Index piece = long_clip.values.rows() / 5;

@@ -11,7 +11,8 @@
 //   bandai-ae-heldout     every 10th file of dataset-1 then dataset-2 (train_models.sh's train-loss-network split)
 //   bandai-style-heldout  every 5th dataset-2 normal-style walk, run or turn (train_models.sh's train-style split)
 //   other-studios         the two samples (CMU 131_01 trimmed, the zombie) and ../shared/fixtures/
-//                         cmu_walks/*.bvh without their rest-pose frame 0 (their README)
+//                         cmu_walks/*.bvh as published (frame 0 a rest pose, which the features replace:
+//                         features/rest_pose_frames.h)
 // The networks run as `stylize` runs them, with the style refinement's defaults (style_refinement.h)
 // unless the --refine* options change them (--refine 0: the network's output as it is).
 // Per network and clip: style distance ratio and content distance (eval's definitions), familiarity
@@ -54,14 +55,9 @@ struct ClipSet {
   std::vector<EvalClip> clips;
 };
 
-EvalClip loadClip(const fs::path& file, bool drop_first_frame, const std::string& label) {
+EvalClip loadClip(const fs::path& file, const std::string& label) {
   EvalClip e;
   e.motion = readBvh(file);
-  if (drop_first_frame) {
-    const Eigen::Index frames = e.motion.values.rows() - 1;
-    MatrixRowMajor rest = e.motion.values.bottomRows(frames);
-    e.motion.values = rest;
-  }
   e.mapping = mapJoints(e.motion.skeleton, file.string());
   e.clip = style::makeMotionClip(e.motion, e.mapping, file);
   e.label = label.empty() ? e.clip.labels.content : label;
@@ -82,7 +78,7 @@ std::vector<ClipSet> loadClipSets(const fs::path& data, const fs::path& fixtures
   if (fs::is_directory(d1) && fs::is_directory(d2)) {
     ClipSet loss_network{"bandai-ae-heldout", {}};
     for (const fs::path& f : style::splitHoldout(style::findBvhFiles({d1, d2}), 10).held_out)
-      loss_network.clips.push_back(loadClip(f, false, ""));
+      loss_network.clips.push_back(loadClip(f, ""));
     sets.push_back(std::move(loss_network));
     // train_models.sh's style content: the dataset-2 normal-style locomotion clips, every 5th held out.
     std::vector<fs::path> normal;
@@ -93,20 +89,20 @@ std::vector<ClipSet> loadClipSets(const fs::path& data, const fs::path& fixtures
         normal.push_back(f);
     }
     ClipSet st{"bandai-style-heldout", {}};
-    for (const fs::path& f : style::splitHoldout(normal, 5).held_out) st.clips.push_back(loadClip(f, false, ""));
+    for (const fs::path& f : style::splitHoldout(normal, 5).held_out) st.clips.push_back(loadClip(f, ""));
     sets.push_back(std::move(st));
   } else {
     std::printf("note: no Bandai data at %s: Bandai sets skipped\n", data.string().c_str());
   }
   ClipSet other{"other-studios", {}};
   for (const char* name : {"cmu_131_01_walk.bvh", "zombie_walk.bvh"})
-    if (fs::exists(samples / name)) other.clips.push_back(loadClip(samples / name, false, otherStudioLabel(fs::path(name).stem())));
+    if (fs::exists(samples / name)) other.clips.push_back(loadClip(samples / name, otherStudioLabel(fs::path(name).stem())));
   if (fs::is_directory(fixtures / "cmu_walks")) {
     std::vector<fs::path> walks;
     for (const auto& entry : fs::directory_iterator(fixtures / "cmu_walks"))
       if (entry.path().extension() == ".bvh") walks.push_back(entry.path());
     std::sort(walks.begin(), walks.end());
-    for (const fs::path& f : walks) other.clips.push_back(loadClip(f, true, otherStudioLabel(f.stem().string())));
+    for (const fs::path& f : walks) other.clips.push_back(loadClip(f, otherStudioLabel(f.stem().string())));
   }
   sets.push_back(std::move(other));
   return sets;
