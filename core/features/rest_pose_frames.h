@@ -16,16 +16,19 @@
 // skeletal height (space_convention.h), the step s_t = mean_j |p_{t+1,j} - p_{t,j}| / h. Frame 0 is a
 // rest-pose frame when s_0 > kRestPoseJump and s_0 > kRestPoseJumpRatio x the median of s_1..s_m over
 // the next half second: a pose change no captured motion makes in one frame. Measured: the T-pose
-// frames of the five CMU walks and runs 0.20-0.35 and 26-40x their clip's median step; none of the
-// 1,357 Bandai clips above 0.064 or 5.4x, nor the samples (CMU 131_01 trimmed, the zombie) above 0.004.
+// frames of the five CMU walks and runs 0.20-0.35 and 26-40x their clip's median step at 120 fps (07_01
+// at 30 / 24 fps: 10.1x / 8.6x; at 15 fps 4.9x, not found), the zero-rotation pose put before the
+// committed 131_01 (another conversion, standing closer to it) 0.088 and 65x; the 1,357 Bandai clips at
+// most 0.064 (a dash, 1.3x; none over 0.035 with more than 1.7x) and 5.4x (a hand raised from rest,
+// 0.028); the samples (CMU 131_01 trimmed, the zombie) at most 0.004 and 2x.
 
 #include "mapping/joint_mapping.h"
 #include "motion/motion.h"
 
 namespace motionstyle {
 
-constexpr double kRestPoseJump = 0.08;       // of the skeletal height (about 10 cm for an adult)
-constexpr double kRestPoseJumpRatio = 10.0;  // times the median step over the next half second
+constexpr double kRestPoseJump = 0.05;      // of the skeletal height (about 6 cm for an adult)
+constexpr double kRestPoseJumpRatio = 6.0;  // times the median step over the next half second
 
 // The number of leading frames that are a rest pose and not motion: 0 or 1. A clip of fewer than 3
 // frames has none. The mapping must index the motion's skeleton.

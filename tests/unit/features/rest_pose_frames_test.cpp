@@ -2,11 +2,16 @@
 // motion continued backward for the features and the clean-up, and written back as it was.
 #include <gtest/gtest.h>
 
+#include <string>
+#include <utility>
+#include <vector>
+
 #include "bvh/bvh_reader.h"
 #include "features/representation.h"
 #include "features/rest_pose_frames.h"
 #include "mapping/joint_mapping.h"
 #include "motion/kinematics.h"
+#include "motion/resample.h"
 #include "style/stylized_cleanup.h"
 #include "test_paths.h"
 
@@ -67,9 +72,11 @@ TEST(RestPoseFrames, ClipsThatOpenWithMotionHaveNone) {
 }
 
 TEST(RestPoseFrames, AFrameOfTheRigsRestPoseIsFoundAndReplacedForTheFeatures) {
-  for (const char* name : {"zombie.bvh", "cmu_131_01.bvh"}) {
-    const Motion motion = readBvh(test::fixture(name));
-    const JointMapping mapping = mapJoints(motion.skeleton, name);
+  const Motion cmu = readBvh(test::fixture("cmu_131_01.bvh"));
+  const std::vector<std::pair<std::string, Motion>> clips = {
+      {"zombie.bvh", readBvh(test::fixture("zombie.bvh"))}, {"cmu_131_01.bvh", cmu}, {"at 24 fps", resampleMotion(cmu, 24.0)}};
+  for (const auto& [name, motion] : clips) {
+    const JointMapping mapping = mapJoints(motion.skeleton, name == "zombie.bvh" ? name : "cmu_131_01.bvh");
     const Motion with_rest = withRestPoseFrame(motion);
     ASSERT_EQ(leadingRestPoseFrames(with_rest, mapping), 1) << name;
 
