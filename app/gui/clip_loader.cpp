@@ -5,9 +5,12 @@
 
 #include <algorithm>
 #include <atomic>
+#include <optional>
 
 #include "bvh/bvh_reader.h"
 #include "features/foot_contacts.h"
+#include "features/representation.h"
+#include "features/rest_pose_frames.h"
 #include "common/errors.h"
 #include "mapping/canonical_joints.h"
 #include "mapping/mapping_file.h"
@@ -36,11 +39,22 @@ void prepare(LoadedClip& clip) {
   clip.contact_overrides.resize(0, 0);
   if (clip.mapping) {
     requireMeasurableRestPose(clip.motion, *clip.mapping);  // InputError: a flat skeleton is not loaded
-    // The convention, floor and contacts as every clean-up front end finds them (foot_contacts.h).
+    // The convention, floor and contacts as every clean-up front end finds them (foot_contacts.h), on
+    // the motion continued over a leading rest pose, as the features and the clean-up see it.
+    clip.rest_pose_frames = leadingRestPoseFrames(clip.motion, *clip.mapping);
+    std::optional<Motion> replaced;
+    if (clip.rest_pose_frames > 0) {
+      replaced = clip.motion;
+      replaceRestPoseFrames(*replaced, clip.rest_pose_frames);
+    }
     Eigen::MatrixXd canonical(world.rows(), 3 * kCanonicalJointCount);
-    for (int c = 0; c < kCanonicalJointCount; ++c)
-      canonical.middleCols<3>(3 * c) = world.middleCols<3>(3 * clip.mapping->joints[static_cast<size_t>(c)]);
-    FileSpaceGround ground = detectFileSpaceGround(clip.motion, *clip.mapping, canonical);
+    if (replaced) {
+      canonical = canonicalJointPositions(*replaced, *clip.mapping);
+    } else {
+      for (int c = 0; c < kCanonicalJointCount; ++c)
+        canonical.middleCols<3>(3 * c) = world.middleCols<3>(3 * clip.mapping->joints[static_cast<size_t>(c)]);
+    }
+    FileSpaceGround ground = detectFileSpaceGround(replaced ? *replaced : clip.motion, *clip.mapping, canonical);
     clip.display_space.convention = ground.convention;
     clip.display_space.floor_height = ground.floor_height;
     clip.detected_contacts = std::move(ground.contacts);
@@ -62,9 +76,10 @@ int LoadedClip::animatedJointCount() const {
 QString LoadedClip::mappingStatus() const {
   if (!mapping) return QStringLiteral("unmapped: ") + mapping_problem;
   const SpaceConvention& c = display_space.convention;
-  return QStringLiteral("%1 rig, %2%3, %4 up")
+  return QStringLiteral("%1 rig, %2%3, %4 up%5")
       .arg(QString::fromStdString(mapping->convention), QString::fromStdString(c.unit),
-           c.unit_guessed ? QStringLiteral(" (guessed)") : QString(), QString::fromStdString(c.up_axis));
+           c.unit_guessed ? QStringLiteral(" (guessed)") : QString(), QString::fromStdString(c.up_axis),
+           rest_pose_frames > 0 ? QStringLiteral(", frame 0 rest pose") : QString());
 }
 
 ContactLabels LoadedClip::effectiveContacts() const {

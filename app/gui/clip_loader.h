@@ -37,13 +37,16 @@ struct LoadedClip {
   // and speed; empty when unmapped. Overrides: same shape, -1 automatic / 0 off / 1 on (user edits).
   ContactLabels detected_contacts;
   Eigen::MatrixXi contact_overrides;
+  // Leading frames that are the rig's rest pose, not motion (a CMU file's T-pose frame 0): the features,
+  // the contacts and the clean-up see the motion continued over them (features/rest_pose_frames.h).
+  int rest_pose_frames = 0;
 
   int frameCount() const { return motion.frameCount(); }
   double fps() const { return motion.fps(); }
   int animatedJointCount() const;  // joints excluding End Sites
   bool isMapped() const { return mapping.has_value(); }
-  // For the clips list: "cmu rig, cmu (guessed), +Y up" (convention, length unit, file's up axis) or
-  // "unmapped: missing LeftToe, RightToe".
+  // For the clips list: "cmu rig, cmu (guessed), +Y up" (convention, length unit, file's up axis; and
+  // ", frame 0 rest pose" for a clip that opens with one) or "unmapped: missing LeftToe, RightToe".
   QString mappingStatus() const;
   // Detected contacts with the overrides applied (frames x 4); empty when unmapped.
   ContactLabels effectiveContacts() const;

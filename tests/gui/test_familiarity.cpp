@@ -154,6 +154,9 @@ class FamiliarityTest : public QObject {
     window.show();
     QVERIFY(QTest::qWaitForWindowExposed(&window));
     QCOMPARE(window.openFiles({file}), 1);
+    QCOMPARE(window.clip(0).rest_pose_frames, 1);
+    QVERIFY2(window.clip(0).mappingStatus().contains(QStringLiteral("frame 0 rest pose")),
+             qPrintable(window.clip(0).mappingStatus()));
     ResultPanel* panel = window.resultPanel();
     QVERIFY(panel->loadNetworkFile(QString::fromStdString(network_.string())));
     auto* label = panel->findChild<QLabel*>(QStringLiteral("FamiliarityLabel"));
