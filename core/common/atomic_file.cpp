@@ -121,7 +121,7 @@ void AtomicFileBatch::stage(const std::filesystem::path& requested,
       if (out.fail()) throw WriteError(requested.string(), "close failed (disk full?)");
     }
     keepPermissions(temporary, destination);
-    syncToDisk(temporary, requested);
+    if (durability_ == FileDurability::Synced) syncToDisk(temporary, requested);
   } catch (...) {
     std::error_code ignored;
     std::filesystem::remove(temporary, ignored);
@@ -153,8 +153,9 @@ void writeFileAtomically(const std::filesystem::path& destination,
   batch.commit();
 }
 
-void writeFileAtomically(const std::filesystem::path& destination, std::string_view content) {
-  AtomicFileBatch batch;
+void writeFileAtomically(const std::filesystem::path& destination, std::string_view content,
+                         FileDurability durability) {
+  AtomicFileBatch batch(durability);
   batch.stage(destination, content);
   batch.commit();
 }

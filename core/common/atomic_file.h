@@ -20,6 +20,14 @@
 
 namespace motionstyle {
 
+// Whether a write reaches the disk before it replaces the destination.
+//   Synced   (the default): fsync'ed first, so a power cut leaves the old file or the new one.
+//   Unsynced: no fsync: the swap is still atomic for every reader while the system runs, but a power
+//             cut may leave an empty file. For scratch files no later boot reads (the app's training
+//             checkpoints): under heavy disk writeback one fsync can take seconds, and a cancel would
+//             wait for it.
+enum class FileDurability { Synced, Unsynced };
+
 // Calls `write` with a stream on a temporary file, then commits it to `destination`.
 // Throws WriteError if the stream fails or the commit fails; rethrows whatever `write` throws.
 // In both cases the temporary file is removed and `destination` is untouched.
@@ -27,15 +35,16 @@ void writeFileAtomically(const std::filesystem::path& destination,
                          const std::function<void(std::ostream&)>& write);
 
 // Convenience for content already in memory.
-void writeFileAtomically(const std::filesystem::path& destination, std::string_view content);
+void writeFileAtomically(const std::filesystem::path& destination, std::string_view content,
+                         FileDurability durability = FileDurability::Synced);
 
 // Several files written all or none (a clip and its metrics, say): stage() writes each to its
-// temporary and fsyncs it; commit() then renames them all. A failure while staging, or destroying the
+// temporary and fsyncs it (unless Unsynced); commit() then renames them all. A failure while staging, or destroying the
 // batch before commit(), removes every temporary and leaves every destination untouched. Why: a
 // command that fails half-way must not leave half of what was asked.
 class AtomicFileBatch {
  public:
-  AtomicFileBatch() = default;
+  explicit AtomicFileBatch(FileDurability durability = FileDurability::Synced) : durability_(durability) {}
   AtomicFileBatch(const AtomicFileBatch&) = delete;
   AtomicFileBatch& operator=(const AtomicFileBatch&) = delete;
   ~AtomicFileBatch();
@@ -52,6 +61,7 @@ class AtomicFileBatch {
     std::filesystem::path destination;  // symlinks resolved
     std::filesystem::path temporary;
   };
+  FileDurability durability_;
   std::vector<Staged> staged_;
 };
 

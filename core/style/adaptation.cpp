@@ -98,6 +98,7 @@ AdaptationResult AdaptationJob::run(const TrainingCallbacks& callbacks) const {
   training.learning_rate = settings.learning_rate;
   training.seed = settings.seed;
   training.checkpoint = settings.checkpointPath();
+  training.sync_checkpoints = settings.sync_checkpoints;
   config.clips = clips;
   const std::vector<MotionClip> mixed = replayToMix();
   config.clips.insert(config.clips.end(), mixed.begin(), mixed.end());
@@ -180,6 +181,7 @@ AdaptNetworksJob::Result AdaptNetworksJob::run(const TrainingCallbacks& callback
     settings.learning_rate = style_learning_rate;
     settings.seed = loss.settings.seed;
     settings.checkpoint = scratch / (styles[i].name + ".adapting.checkpoint");
+    settings.sync_checkpoints = loss.settings.sync_checkpoints;
     config.loss_network_model = result.loss.model;
     config.content_clips = loss.clips;
     const std::vector<MotionClip> mixed = loss.replayToMix();

@@ -35,6 +35,7 @@ struct AdaptationSettings {
   std::filesystem::path output;     // the adapted network file (written at the end); may be empty
   std::filesystem::path checkpoint; // default: output + ".checkpoint"
   bool keep_checkpoint = false;     // as TrainingSettings::keep_checkpoint
+  bool sync_checkpoints = true;     // as TrainingSettings::sync_checkpoints; the style stages' too
 
   void validate() const;  // std::invalid_argument naming the field
   std::filesystem::path checkpointPath() const;  // `checkpoint`, or output + ".checkpoint"

@@ -109,11 +109,12 @@ std::filesystem::path statePath(const std::filesystem::path& checkpoint) {
   return sidecar;
 }
 
-void writeCheckpoint(const std::filesystem::path& checkpoint, const std::string& network_bytes, TrainingState state) {
+void writeCheckpoint(const std::filesystem::path& checkpoint, const std::string& network_bytes, TrainingState state,
+                     FileDurability durability) {
   state.network_hash = fingerprint({network_bytes});
   const std::string state_bytes = serialiseTrainingState(state);
-  writeFileAtomically(checkpoint, network_bytes);
-  writeFileAtomically(statePath(checkpoint), state_bytes);
+  writeFileAtomically(checkpoint, network_bytes, durability);
+  writeFileAtomically(statePath(checkpoint), state_bytes, durability);
 }
 
 void removeCheckpoint(const std::filesystem::path& checkpoint) {

@@ -21,6 +21,7 @@
 #include <string_view>
 #include <vector>
 
+#include "common/atomic_file.h"
 #include "nn/adam.h"
 #include "nn/network_file.h"
 #include "style/training.h"
@@ -48,7 +49,9 @@ std::filesystem::path statePath(const std::filesystem::path& checkpoint);
 // Writes the network bytes to `checkpoint`, then the state (with network_hash set from those bytes) to
 // statePath(checkpoint), each atomically. WriteError on failure: the previous files stay intact (if the
 // state write fails after the network was replaced, the pair no longer matches and resume says so).
-void writeCheckpoint(const std::filesystem::path& checkpoint, const std::string& network_bytes, TrainingState state);
+// `durability`: whether both files are fsync'ed first (common/atomic_file.h).
+void writeCheckpoint(const std::filesystem::path& checkpoint, const std::string& network_bytes, TrainingState state,
+                     FileDurability durability = FileDurability::Synced);
 
 // Removes a checkpoint's network file and its state sidecar (the ones that exist). Never throws: a
 // checkpoint left behind costs disk space, not correctness.

@@ -102,6 +102,17 @@ TEST_F(AtomicFileTest, ABatchWritesEveryFileOnCommit) {
   EXPECT_EQ(entriesBesides({"clip.bvh", "metrics.json"}), 0);
 }
 
+// Unsynced skips only the fsync: the old file is replaced whole, its permissions kept, no temporary left.
+TEST_F(AtomicFileTest, AnUnsyncedWriteIsStillAWholeSwap) {
+  write(folder_ / "run.checkpoint", "old");
+  fs::permissions(folder_ / "run.checkpoint", fs::perms::owner_read | fs::perms::owner_write);
+  writeFileAtomically(folder_ / "run.checkpoint", "new", FileDurability::Unsynced);
+  EXPECT_EQ(read(folder_ / "run.checkpoint"), "new");
+  EXPECT_EQ(fs::status(folder_ / "run.checkpoint").permissions() & fs::perms::all,
+            fs::perms::owner_read | fs::perms::owner_write);
+  EXPECT_EQ(entriesBesides({"run.checkpoint"}), 0);
+}
+
 TEST_F(AtomicFileTest, KeepsTheExistingFilesPermissions) {
   write(folder_ / "private.bvh", "old");
   fs::permissions(folder_ / "private.bvh", fs::perms::owner_read | fs::perms::owner_write);

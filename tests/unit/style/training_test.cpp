@@ -152,6 +152,15 @@ TEST(TrainLossNetwork, ResumeAfterAnEpochOrACancelledStepEqualsUninterruptedTrai
   config.settings.resume = true;
   const auto finished = style::trainLossNetwork(config);
   EXPECT_EQ(test::weightsOf(straight.model.network), test::weightsOf(finished.model.network));
+
+  // The same from checkpoints written without fsync (the app's scratch checkpoints).
+  config.settings.output = dir / "unsynced.net";
+  config.settings.resume = false;
+  config.settings.sync_checkpoints = false;
+  ASSERT_EQ(style::trainLossNetwork(config, test::cancelAtEndOfEpoch(2)).status, style::TrainingStatus::Cancelled);
+  config.settings.resume = true;
+  const auto from_unsynced = style::trainLossNetwork(config);
+  EXPECT_EQ(test::weightsOf(straight.model.network), test::weightsOf(from_unsynced.model.network));
 }
 
 // A completed run's checkpoint (network + state, megabytes) goes once the output is written, unless
