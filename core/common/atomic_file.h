@@ -1,7 +1,8 @@
 #pragma once
 // Atomic file writes: the content goes to a temporary file beside the destination, is flushed and
-// fsync'ed, and only then renamed over the destination. A failure at any point (disk full, a throwing
-// writer, a crash) leaves the destination as it was, never truncated or half-written.
+// fsync'ed (FileDurability below), and only then renamed over the destination. A failure at any
+// point (disk full, a throwing writer, a crash) leaves the destination as it was, never truncated or
+// half-written.
 //
 // What the user owns is kept as it was, apart from the content:
 // - a symlink is written through: the temporary goes beside the link's final target and replaces the
@@ -39,9 +40,9 @@ void writeFileAtomically(const std::filesystem::path& destination, std::string_v
                          FileDurability durability = FileDurability::Synced);
 
 // Several files written all or none (a clip and its metrics, say): stage() writes each to its
-// temporary and fsyncs it (unless Unsynced); commit() then renames them all. A failure while staging, or destroying the
-// batch before commit(), removes every temporary and leaves every destination untouched. Why: a
-// command that fails half-way must not leave half of what was asked.
+// temporary and fsyncs it (unless Unsynced); commit() then renames them all. A failure while staging,
+// or destroying the batch before commit(), removes every temporary and leaves every destination
+// untouched. Why: a command that fails half-way must not leave half of what was asked.
 class AtomicFileBatch {
  public:
   explicit AtomicFileBatch(FileDurability durability = FileDurability::Synced) : durability_(durability) {}
