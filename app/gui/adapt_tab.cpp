@@ -278,7 +278,8 @@ bool AdaptTab::start() {
   job.loss.settings.output = scratch_ / "adapted-loss-network.net";
   job.style_epochs = style_epochs_->value();
   job.scratch = scratch_;
-  job.loss.settings.sync_checkpoints = false;  // the session's scratch folder: Cancel never waits for the disk
+  // The session's scratch folder: Cancel never waits for the disk.
+  job.loss.settings.checkpoint_durability = FileDurability::Unsynced;
   table_->setRowCount(0);
   progress_->setRange(0, 0);
   status_->setText(tr("Reading your clips..."));

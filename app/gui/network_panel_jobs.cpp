@@ -154,7 +154,7 @@ bool NetworkPanel::startTraining(bool retrain) {
   config.settings.checkpoint = checkpoint;
   // The scratch folder goes with the session: a checkpoint that survives a power cut buys nothing, and
   // an fsync in flight would hold up Cancel and closing the window.
-  config.settings.sync_checkpoints = false;
+  config.settings.checkpoint_durability = FileDurability::Unsynced;
   last_checkpoint_ = QString::fromStdString(checkpoint.string());
   if (const LoadedClip* content = roles_.content()) job.preview_content = content->path.toStdString();
   capturePreviewTarget();

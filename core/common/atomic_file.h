@@ -25,7 +25,7 @@ namespace motionstyle {
 //   Synced   (the default): fsync'ed first, so a power cut leaves the old file or the new one.
 //   Unsynced: no fsync: the swap is still atomic for every reader while the system runs, but a power
 //             cut may leave an empty file. For scratch files no later boot reads (the app's training
-//             checkpoints): under heavy disk writeback one fsync can take seconds, and a cancel would
+//             checkpoints): an fsync waits for the disk's journal, however busy, and a cancel would
 //             wait for it.
 enum class FileDurability { Synced, Unsynced };
 

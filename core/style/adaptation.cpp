@@ -98,7 +98,7 @@ AdaptationResult AdaptationJob::run(const TrainingCallbacks& callbacks) const {
   training.learning_rate = settings.learning_rate;
   training.seed = settings.seed;
   training.checkpoint = settings.checkpointPath();
-  training.sync_checkpoints = settings.sync_checkpoints;
+  training.checkpoint_durability = settings.checkpoint_durability;
   config.clips = clips;
   const std::vector<MotionClip> mixed = replayToMix();
   config.clips.insert(config.clips.end(), mixed.begin(), mixed.end());
@@ -181,7 +181,7 @@ AdaptNetworksJob::Result AdaptNetworksJob::run(const TrainingCallbacks& callback
     settings.learning_rate = style_learning_rate;
     settings.seed = loss.settings.seed;
     settings.checkpoint = scratch / (styles[i].name + ".adapting.checkpoint");
-    settings.sync_checkpoints = loss.settings.sync_checkpoints;
+    settings.checkpoint_durability = loss.settings.checkpoint_durability;
     config.loss_network_model = result.loss.model;
     config.content_clips = loss.clips;
     const std::vector<MotionClip> mixed = loss.replayToMix();

@@ -35,7 +35,8 @@ struct AdaptationSettings {
   std::filesystem::path output;     // the adapted network file (written at the end); may be empty
   std::filesystem::path checkpoint; // default: output + ".checkpoint"
   bool keep_checkpoint = false;     // as TrainingSettings::keep_checkpoint
-  bool sync_checkpoints = true;     // as TrainingSettings::sync_checkpoints; the style stages' too
+  // As TrainingSettings::checkpoint_durability; the style stages' checkpoints too.
+  FileDurability checkpoint_durability = FileDurability::Synced;
 
   void validate() const;  // std::invalid_argument naming the field
   std::filesystem::path checkpointPath() const;  // `checkpoint`, or output + ".checkpoint"

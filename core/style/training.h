@@ -36,6 +36,7 @@
 #include <string>
 #include <vector>
 
+#include "common/atomic_file.h"
 #include "common/errors.h"
 #include "nn/adam.h"
 #include "nn/network_file.h"
@@ -117,11 +118,11 @@ struct TrainingSettings {
   // false: a completed run that wrote `output` removes its checkpoint (the network file and its .state
   // sidecar, megabytes the user did not ask for); a cancelled or failed run always keeps it.
   bool keep_checkpoint = false;
-  // false: each checkpoint is still swapped in atomically (a reader never sees half of one) but not
+  // Unsynced: each checkpoint is still swapped in atomically (a reader never sees half of one) but not
   // fsync'ed, so a power cut may lose it. For checkpoints no later boot reads (the app's, in its
-  // temporary folder): a cancel waits for the write in flight, and under heavy disk writeback one
-  // fsync took 1.7 s (docs/decisions.md).
-  bool sync_checkpoints = true;
+  // temporary folder): a cancel waits for the write in flight, and a CI run's close during training
+  // once took 1.7 s, most likely waiting on an fsync (docs/decisions.md).
+  FileDurability checkpoint_durability = FileDurability::Synced;
   bool resume = false;               // continue from `checkpoint` (its epoch count must be < epochs)
   std::filesystem::path init;        // warm start from this network file (not with resume)
   WindowOptions windows;

@@ -400,8 +400,7 @@ void saveCheckpoint(const TrainingSettings& settings, const std::string& network
   state.first_moments = optimiser.firstMoments();
   state.second_moments = optimiser.secondMoments();
   state.history = history;
-  writeCheckpoint(settings.checkpointPath(), network_bytes, std::move(state),
-                  settings.sync_checkpoints ? FileDurability::Synced : FileDurability::Unsynced);
+  writeCheckpoint(settings.checkpointPath(), network_bytes, std::move(state), settings.checkpoint_durability);
 }
 
 int restoreFromState(const TrainingState& state, nn::NetworkKind kind, std::uint64_t data_fingerprint,

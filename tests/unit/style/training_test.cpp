@@ -156,7 +156,7 @@ TEST(TrainLossNetwork, ResumeAfterAnEpochOrACancelledStepEqualsUninterruptedTrai
   // The same from checkpoints written without fsync (the app's scratch checkpoints).
   config.settings.output = dir / "unsynced.net";
   config.settings.resume = false;
-  config.settings.sync_checkpoints = false;
+  config.settings.checkpoint_durability = FileDurability::Unsynced;
   ASSERT_EQ(style::trainLossNetwork(config, test::cancelAtEndOfEpoch(2)).status, style::TrainingStatus::Cancelled);
   config.settings.resume = true;
   const auto from_unsynced = style::trainLossNetwork(config);
@@ -194,7 +194,7 @@ TEST(TrainLossNetwork, CancellationTakesEffectWithinOneSecond) {
   config.settings.batch_size = 16;
   // The loop's latency, not the disk's: a cancel waits for a checkpoint write in flight, and a synced
   // one waits for the disk's journal, however busy (docs/decisions.md, "A cancel that waited for the disk").
-  config.settings.sync_checkpoints = false;
+  config.settings.checkpoint_durability = FileDurability::Unsynced;
   config.clips = test::fixtureClips();
   std::atomic<bool> cancel{false};
   std::atomic<int> steps{0};
