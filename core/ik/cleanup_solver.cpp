@@ -224,12 +224,22 @@ class ChunkSweep {
     return &rotations_[static_cast<size_t>(frame - start_) * static_cast<size_t>(unknowns_)];
   }
 
-  // The next frame's warm start (frames are warmed once each, in order): the last clean-up's solution
-  // of the frame when the memory has one, else as the header says.
+  // The next frame's warm start (frames are warmed once each, in order). With a memory: the sweep's
+  // first frame from its last solution, every later one from the previous frame's new solution moved
+  // by the last solution's own step between the two (root: + its step; rotation: q_new(f-1) q_last(f-1)^-1
+  // q_last(f)), which carries both the motion and the correction the edit needed on the frame before.
+  // Without: as the header says.
   void warmStartNext() {
     const int frame = start_ + warmed_++;
     const int hips = input_.hips_joint;
-    if (warm_) {
+    if (warm_ && frame > start_) {
+      const auto row = static_cast<size_t>(frame - start_);
+      root(frame) = root(frame - 1) + (warm_->roots[row] - warm_->roots[row - 1]);
+      const Eigen::Quaterniond* last = &warm_->rotations[(row - 1) * static_cast<size_t>(unknowns_)];
+      const Eigen::Quaterniond* next = &warm_->rotations[row * static_cast<size_t>(unknowns_)];
+      for (int u = 0; u < unknowns_; ++u)
+        rotations(frame)[u] = (rotations(frame - 1)[u] * (last[u].conjugate() * next[u])).normalized();
+    } else if (warm_) {
       const auto row = static_cast<size_t>(frame - start_);
       root(frame) = warm_->roots[row];
       std::copy_n(&warm_->rotations[row * static_cast<size_t>(unknowns_)], unknowns_, rotations(frame));

@@ -116,6 +116,37 @@ int main(int argc, char** argv) {
     std::printf("whole job: %.1f ms with the memory of the previous step (network output, clean-up), %.1f ms without\n",
                 median(whole_ms), median(cold_ms));
 
+    // A switch to a style never computed on the clip, as the Result panel runs it: the new style's
+    // memory seeded from elderly's (StylizeCleanupMemory::seedFrom), against a memory of its own.
+    {
+      std::vector<double> seeded_ms, seeded_cleanup_ms, seeded_iterations, own_ms, own_iterations;
+      for (const char* name : {"sad", "proud", "angry", "happy", "feminine", "masculine", "youthful", "exhausted"}) {
+        const auto file = shippedNetworkFile(*resources, name);
+        if (!file) continue;
+        style::StylizeCleanupJob other = job;
+        other.strength = 1.0;
+        other.stylizer = std::make_shared<const style::Stylizer>(nn::loadStyleModel(*file), file->string());
+        other.stylizer->networkOutput(extractFeatures(content, mapping).values);  // its first run's page faults: untimed
+        other.memory = std::make_shared<style::StylizeCleanupMemory>();
+        other.seed = job.memory;
+        auto start = Clock::now();
+        const style::StylizeCleanupResult seeded = other.run();
+        seeded_ms.push_back(msSince(start));
+        seeded_cleanup_ms.push_back(seeded.report.seconds * 1000.0);
+        seeded_iterations.push_back(static_cast<double>(seeded.report.total_iterations) / std::max(1, seeded.report.solves));
+        other.memory = std::make_shared<style::StylizeCleanupMemory>();
+        other.seed = nullptr;
+        start = Clock::now();
+        const style::StylizeCleanupResult own = other.run();
+        own_ms.push_back(msSince(start));
+        own_iterations.push_back(static_cast<double>(own.report.total_iterations) / std::max(1, own.report.solves));
+      }
+      std::printf("style switch from elderly (median over %zu styles): job %.1f ms (the clean-up's solve %.1f ms, %.1f "
+                  "iterations per frame) seeded from elderly's memory; %.1f ms (%.1f iterations) with a memory of its own\n",
+                  seeded_ms.size(), median(seeded_ms), median(seeded_cleanup_ms), median(seeded_iterations), median(own_ms),
+                  median(own_iterations));
+    }
+
     // Steps solved with at most K iterations per frame from the last solution, against a full solve.
     const MotionFeatures features = extractFeatures(content, mapping);
     for (int cap : {1, 3, 25}) {
