@@ -12,7 +12,6 @@
 #include <QApplication>
 #include <QComboBox>
 #include <QCommandLineParser>
-#include <QStatusBar>
 #include <QTimer>
 
 #include <cstdio>
@@ -88,7 +87,7 @@ int main(int argc, char** argv) {
   if (!files.isEmpty()) window.openFiles(files);
   if (parser.isSet(demo)) {
     const motionstyle::DemoOutcome outcome = motionstyle::openDemo(window, *window.resultPanel());
-    window.statusBar()->showMessage(outcome.message);
+    window.showStatus(outcome.message);
     std::fprintf(stderr, "motionstyle: %s\n", qPrintable(outcome.message));
   }
 

@@ -25,6 +25,7 @@
 #include <exception>
 #include <new>
 
+#include "app_log.h"
 #include "common/errors.h"
 #include "contact_tracks.h"
 #include "error_text.h"
@@ -136,7 +137,7 @@ void MainWindow::createResultDock() {
   connect(result_panel_, &ResultPanel::resultChanged, this, &MainWindow::rebuildFigures);
   connect(result_panel_, &ResultPanel::resultRenamed, this, &MainWindow::renameResultFigures);
   connect(result_panel_, &ResultPanel::sourceChanged, this, &MainWindow::rebuildFigures);
-  connect(result_panel_, &ResultPanel::statusMessage, this, [this](const QString& text) { status_label_->setText(text); });
+  connect(result_panel_, &ResultPanel::statusMessage, this, &MainWindow::showStatus);
   const auto content = [this]() -> LoadedClip* { return content_ >= 0 ? &clips_[static_cast<size_t>(content_)] : nullptr; };
   contact_tracks_ = new ContactTrackController(timeline_->trackView(), content,
                                                [this](const QString& title, const QString& message) { report(title, message); }, this);
@@ -237,9 +238,8 @@ int MainWindow::loadClips(const QStringList& paths, QProgressDialog* progress) {
     refreshClipList();
     rebuildFigures();
   }
-  status_label_->setText((loaded.size() == 1 ? tr("Loaded 1 clip") : tr("Loaded %1 clips").arg(loaded.size())) +
-                         (failures.isEmpty() ? QString() : tr(", %1 failed").arg(failures.size())) +
-                         (cancelled ? tr("; cancelled") : QString()));
+  showStatus((loaded.size() == 1 ? tr("Loaded 1 clip") : tr("Loaded %1 clips").arg(loaded.size())) +
+             (failures.isEmpty() ? QString() : tr(", %1 failed").arg(failures.size())) + (cancelled ? tr("; cancelled") : QString()));
   if (!failures.isEmpty())
     report(failures.size() == 1 ? tr("Could not open the clip") : tr("Could not open %1 clips").arg(failures.size()),
            failures.join(QStringLiteral("\n\n")));
@@ -470,8 +470,14 @@ bool MainWindow::openDemoScene() {
                      "Your clips stay open but lose their roles, and the current result is replaced.")))
     return false;
   const DemoOutcome outcome = openDemo(*this, *result_panel_);
-  status_label_->setText(outcome.message);
+  showStatus(outcome.message);
   return true;
+}
+
+void MainWindow::showStatus(const QString& text) {
+  statusBar()->clearMessage();  // a temporary message would hide the line
+  status_label_->setText(text);
+  if (app_log::enabled()) app_log::write(QStringLiteral("status: ") + text);
 }
 
 }  // namespace motionstyle

@@ -56,6 +56,9 @@ class MainWindow : public QMainWindow {
   // With clips or a result already there it asks first (the roles and the result change); false when
   // declined. Samples already open are reused, never added twice.
   bool openDemoScene();
+  // The status bar's line, shown (a temporary QStatusBar message, which hides it, is cleared) and
+  // written to the app's log as "status: TEXT". Every message of the window goes here.
+  void showStatus(const QString& text);
 
   SkeletonViewport* viewport() const { return viewport_; }
   TimelineWidget* timeline() const { return timeline_; }

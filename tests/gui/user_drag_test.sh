@@ -39,6 +39,8 @@ wait_for "control: StrengthSlider at" 120 || fail "the window did not come up (n
 read -r bx by bw bh <<< "$(control StylizeButton)"
 xdotool mousemove $(( bx + bw / 2 )) $(( by + bh / 2 )) click 1
 wait_for "live: Stylize -> cleaned result" 120 || fail "no result after clicking Stylize & Clean Up"
+# The status bar reports the result (the demo's "press Stylize" hint once stayed up and hid it).
+wait_for "status: Stylized and cleaned up" 10 || fail "the status bar does not report the result"
 
 # The slider starts at 1.0: its handle at the right end. Press there, move left for about a second.
 read -r sx sy sw sh <<< "$(control StrengthSlider)"
