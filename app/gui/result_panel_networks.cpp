@@ -68,7 +68,10 @@ void ResultPanel::showNetworkInChoice(const QString& label, const QString& file)
 }
 
 bool ResultPanel::loadNetworkFile(const QString& file) {
-  const QString name = QFileInfo(file).completeBaseName(), path = QFileInfo(file).absoluteFilePath();
+  // A listed network goes by its label in the list (the shipped "Elderly"), as the look-ahead names it.
+  const QString path = QFileInfo(file).absoluteFilePath();
+  const int listed = network_choice_->findData(path);
+  const QString name = listed >= 0 ? network_choice_->itemText(listed) : QFileInfo(file).completeBaseName();
   if (auto prepared = stylizers_.find(file)) {
     useStylizer(std::move(prepared), name, path);
     return true;

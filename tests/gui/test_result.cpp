@@ -2,6 +2,7 @@
 // statistics) stylizes the CMU fixture, the IK clean-up runs in the worker thread, the metrics table
 // fills, the output figures appear, and the export round-trips through the BVH reader. Bad input
 // first: corrupt clips and networks, nothing to stylize or export, an existing export target.
+#include <QComboBox>
 #include <QFile>
 #include <QPushButton>
 #include <QSettings>
@@ -588,6 +589,10 @@ class ResultTest : public QObject {
     QVERIFY(!outcome.message.isEmpty());
     QVERIFY(reports.empty());
     if (!bundled) return;
+    // The network goes by its label in the style list ("Elderly"), as one chosen there or computed ahead.
+    const auto* choice = window.resultPanel()->findChild<QComboBox*>(QStringLiteral("NetworkChoice"));
+    QVERIFY(choice != nullptr);
+    QCOMPARE(window.resultPanel()->networkName(), choice->currentText());
     // One click gives a result with the shipped network.
     window.show();
     QVERIFY(QTest::qWaitForWindowExposed(&window));
