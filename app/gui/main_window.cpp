@@ -239,7 +239,8 @@ int MainWindow::loadClips(const QStringList& paths, QProgressDialog* progress) {
     rebuildFigures();
   }
   showStatus((loaded.size() == 1 ? tr("Loaded 1 clip") : tr("Loaded %1 clips").arg(loaded.size())) +
-             (failures.isEmpty() ? QString() : tr(", %1 failed").arg(failures.size())) + (cancelled ? tr("; cancelled") : QString()));
+             (failures.isEmpty() ? QString() : tr(", %1 failed").arg(failures.size())) +
+             (cancelled ? tr("; cancelled") : QString()));
   if (!failures.isEmpty())
     report(failures.size() == 1 ? tr("Could not open the clip") : tr("Could not open %1 clips").arg(failures.size()),
            failures.join(QStringLiteral("\n\n")));

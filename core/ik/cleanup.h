@@ -162,9 +162,10 @@ struct CleanupReport {
 // (CleanupOptions::chunk_frames) a digest of everything its solve reads (content, targets, contact
 // locks, options) and its solution. The next clean-up given the same memory
 //   - reuses a chunk whose digest is unchanged as it is (what a full solve would give, exactly);
-//   - re-solves a changed chunk of the same clip and options starting every frame from the frame
-//     before's new solution moved by the last solution's step between the two (a strength step moves
-//     every frame a little, and neighbouring frames alike; another style's solution brings its motion);
+//   - re-solves a changed chunk of the same clip and options from its last solution: the sweep's
+//     first frame there, every later frame at the frame before's new solution moved by the last
+//     solution's step between the two (a strength step moves every frame a little, and neighbouring
+//     frames alike; another style's solution brings its motion, not its pose);
 //   - solves anything else (another clip, other options, another length) from scratch.
 // It holds every solved frame (about 1 KB each on a 24-joint rig): for interactive clips, not for
 // streaming a long clip. A chunk's slot is written whole once its solve ends, so a cancelled clean-up

@@ -232,17 +232,18 @@ class ChunkSweep {
   void warmStartNext() {
     const int frame = start_ + warmed_++;
     const int hips = input_.hips_joint;
-    if (warm_ && frame > start_) {
+    if (warm_) {
       const auto row = static_cast<size_t>(frame - start_);
-      root(frame) = root(frame - 1) + (warm_->roots[row] - warm_->roots[row - 1]);
-      const Eigen::Quaterniond* last = &warm_->rotations[(row - 1) * static_cast<size_t>(unknowns_)];
-      const Eigen::Quaterniond* next = &warm_->rotations[row * static_cast<size_t>(unknowns_)];
-      for (int u = 0; u < unknowns_; ++u)
-        rotations(frame)[u] = (rotations(frame - 1)[u] * (last[u].conjugate() * next[u])).normalized();
-    } else if (warm_) {
-      const auto row = static_cast<size_t>(frame - start_);
-      root(frame) = warm_->roots[row];
-      std::copy_n(&warm_->rotations[row * static_cast<size_t>(unknowns_)], unknowns_, rotations(frame));
+      const Eigen::Quaterniond* last = &warm_->rotations[row * static_cast<size_t>(unknowns_)];
+      if (frame == start_) {
+        root(frame) = warm_->roots[row];
+        std::copy_n(last, unknowns_, rotations(frame));
+      } else {
+        root(frame) = root(frame - 1) + (warm_->roots[row] - warm_->roots[row - 1]);
+        const Eigen::Quaterniond* before = last - unknowns_;
+        for (int u = 0; u < unknowns_; ++u)
+          rotations(frame)[u] = (rotations(frame - 1)[u] * (before[u].conjugate() * last[u])).normalized();
+      }
     } else if (frame == start_) {
       const Eigen::Vector3d content_hips =
           worldPositions(input_.content.skeleton, localPoses(input_.content, frame, 1), std::span<const int>(&hips, 1))

@@ -327,10 +327,10 @@ TEST_F(CleanupSolvers, MemoryReusesWhatDidNotChangeAndMatchesAFullSolve) {
   EXPECT_EQ(c.values.topRows(frame - 120 - options.chunk_lead_in), full.values.topRows(frame - 120 - options.chunk_lead_in));
 }
 
-// Every target moved by 2 cm along the floor (a strength step moves every frame a
-// little, and neighbouring frames alike): the solution moves with them, and from the frame before's
-// new solution each frame starts almost where it ends: 1.04 iterations a frame here, where starting
-// every frame from its own last solution (the memory's first scheme) took 2.0 and no memory 3.2.
+// Every target moved by 2 cm along the floor (a strength step moves every frame a little, and
+// neighbouring frames alike): the solution moves with them, and from the frame before's new solution
+// each frame starts almost where it ends: 1.04 iterations a frame here, where starting every frame
+// from its own last solution (the memory's first scheme) took 2.0 and no memory 3.2.
 TEST_F(CleanupSolvers, AWarmSolveCarriesTheFrameBeforesCorrection) {
   CleanupOptions options;
   options.chunk_frames = 120;
