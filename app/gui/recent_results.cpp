@@ -17,7 +17,7 @@ void RecentResults::remember(Entry entry) {
   if (static_cast<int>(entries_.size()) > kCapacity) entries_.erase(entries_.begin());
 }
 
-const RecentResults::Entry* RecentResults::find(const ResultInputs& inputs) {
+RecentResults::Entry* RecentResults::find(const ResultInputs& inputs) {
   const auto found = std::find_if(entries_.begin(), entries_.end(), [&](const Entry& e) { return e.inputs == inputs; });
   if (found == entries_.end()) return nullptr;
   std::rotate(found, found + 1, entries_.end());  // now the most recently used

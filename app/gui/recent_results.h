@@ -44,12 +44,13 @@ class RecentResults {
     QString network_name;
     // The job memory that made it: the next live edit of this style starts from its solution.
     std::shared_ptr<style::StylizeCleanupMemory> memory;
+    bool computed_ahead = false;  // by the look-ahead, and not shown yet
   };
 
   // Keeps `entry`, replacing the one of the same network.
   void remember(Entry entry);
   // The entry made from exactly `inputs` (and now the most recently used), else null.
-  const Entry* find(const ResultInputs& inputs);
+  Entry* find(const ResultInputs& inputs);
   // Whether there is one, without making it the most recently used (a look, not a use).
   bool contains(const ResultInputs& inputs) const;
   // The job memory of `stylizer`'s result on clip `content_id`, whatever its strength, path and

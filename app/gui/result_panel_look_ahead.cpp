@@ -88,6 +88,7 @@ void ResultPanel::onLookedAhead(RecentResults::Entry entry, const QString& file,
   if (!(now == entry.inputs)) return;  // the inputs moved on while it ran
   if (!stylizers_.find(file)) stylizers_.store(file, entry.inputs.stylizer);
   app_log::write(QStringLiteral("look-ahead: %1 computed for the current inputs in %2 ms").arg(entry.network_name).arg(milliseconds));
+  entry.computed_ahead = true;
   recent_.remember(std::move(entry));
   // The inputs still rest: the next nearest at once. A change drops it within a few ms (a job checks
   // its cancel flag before every refinement step and clean-up frame), so it never holds an edit back.

@@ -1,6 +1,8 @@
-// The Result panel's remembered results (recent_results.h): a style shown before with the same inputs
-// is shown again without a job.
+// The Result panel's remembered results (recent_results.h): a style shown before, or computed ahead,
+// for the same inputs is shown without a job, and the status says which.
 #include "result_panel.h"
+
+#include <utility>
 
 namespace motionstyle {
 
@@ -10,8 +12,9 @@ ResultInputs ResultPanel::currentInputs() const {
 
 bool ResultPanel::showRememberedResult() {
   if (given_stylized_ || !canStylize()) return false;
-  const RecentResults::Entry* remembered = recent_.find(currentInputs());
+  RecentResults::Entry* remembered = recent_.find(currentInputs());
   if (remembered == nullptr) return false;
+  const bool computed_ahead = std::exchange(remembered->computed_ahead, false);  // shown from now on
   if (busy_) cancel();  // the running job answers other inputs
   result_ = remembered->result;
   memory_ = remembered->memory;  // the next edit of this style starts from its solution
@@ -19,9 +22,12 @@ bool ResultPanel::showRememberedResult() {
   stale_reason_.clear();
   const qint64 figures_start = clock_.elapsed();
   const qint64 on_screen =
-      showResult(tr("Shown again: made earlier for the same clip, style, strength, path and contacts."));
+      showResult(computed_ahead
+                     ? tr("Computed ahead while the last result was shown, for the same clip, strength, path and contacts.")
+                     : tr("Shown again: made earlier for the same clip, style, strength, path and contacts."));
   logResultOnScreen(last_change_, on_screen - last_change_ms_, 0, on_screen - figures_start, strength(), 0,
-                    QStringLiteral("remembered: made earlier for these inputs"));
+                    computed_ahead ? QStringLiteral("remembered: computed ahead for these inputs")
+                                   : QStringLiteral("remembered: made earlier for these inputs"));
   last_change_ms_ = -1;
   scheduleLookAhead();
   return true;

@@ -77,6 +77,14 @@ QString readLogText(const QString& path) {
   return file.open(QIODevice::ReadOnly | QIODevice::Text) ? QString::fromUtf8(file.readAll()) : QString();
 }
 
+// The status bar's last line, from the log ("status: TEXT", MainWindow::showStatus).
+QString lastStatus(const QString& path) {
+  const QString text = readLogText(path);
+  const QString marker = QStringLiteral("status: ");
+  const qsizetype at = text.lastIndexOf(marker);
+  return at < 0 ? QString() : text.mid(at + marker.size()).section(QLatin1Char('\n'), 0, 0);
+}
+
 // A clip of `frames` frames from a fixture: its first frames, or played forward then backward (no jump).
 QString writeClip(const QTemporaryDir& dir, const QString& fixture, const QString& name, int frames = 500) {
   Motion clip = readBvh(test::fixture(fixture).toStdString());
@@ -308,6 +316,7 @@ class LiveTest : public QObject {
       // Back and forth with nothing else changed, each style's result is remembered; after a strength
       // change, the other style's is not.
       QVERIFY2(entry.remembered == !fresh_inputs, qPrintable(QStringLiteral("step %1").arg(step)));
+      if (entry.remembered) QVERIFY(lastStatus(log_).startsWith(QStringLiteral("Shown again")));
       QVERIFY2(entry.remembered || entry.network_kept, qPrintable(QStringLiteral("step %1: the network ran").arg(step)));
       (entry.remembered ? remembered : computed).push_back(entry);
       (entry.remembered ? wall_remembered : wall_computed).push_back(wall);
@@ -373,6 +382,7 @@ class LiveTest : public QObject {
       const LogEntry entry = readLiveLog(log_).back();
       QVERIFY2(entry.remembered, qPrintable(QStringLiteral("%1 was not computed ahead").arg(QLatin1String(which))));
       QVERIFY(!panel->resultIsStale());
+      QVERIFY(lastStatus(log_).startsWith(QStringLiteral("Computed ahead")));  // never shown before: not "again"
       qInfo("style switch to %s, computed ahead: key press -> new result painted %d ms (figures %d ms)", which,
             static_cast<int>(timer.elapsed()), entry.figures_ms);
     }
