@@ -12,6 +12,7 @@
 #include <QListWidget>
 #include <QProgressBar>
 #include <QPushButton>
+#include <QSignalBlocker>
 #include <QSpinBox>
 #include <QTableWidget>
 #include <QVBoxLayout>
@@ -123,6 +124,8 @@ AdaptTab::AdaptTab(ClipsProvider clips, NetworksProvider networks, QWidget* pare
   layout->addWidget(status_);
   layout->addWidget(table_, 1);
 
+  // Only a user's toggle reaches this: the lists are rebuilt and focused with the signals blocked.
+  connect(style_list_, &QListWidget::itemChanged, this, [this] { styles_chosen_here_ = true; });
   connect(runner_, &JobRunner::failed, this, &AdaptTab::errorOccurred);
   connect(runner_, &JobRunner::busyChanged, this, [this](bool busy) {
     adapt_button_->setEnabled(!busy);
@@ -170,6 +173,7 @@ void AdaptTab::refresh() {
   }
   for (auto it = folders.rbegin(); it != folders.rend(); ++it) clip_list_->addItem(*it);
 
+  const QSignalBlocker listing(style_list_);
   style_list_->clear();
   const auto addStyle = [&](const QString& name, const QString& key, const QString& problem = {}) {
     auto* item = new QListWidgetItem(name, style_list_);
@@ -193,6 +197,7 @@ void AdaptTab::focus(const QString& clip_path, const QString& style) {
       QListWidgetItem* item = clip_list_->item(i);
       item->setCheckState(item->data(kPathRole).toString() == clip_path ? Qt::Checked : Qt::Unchecked);
     }
+  const QSignalBlocker focusing(style_list_);
   const auto matches = [&](int i) { return style_list_->item(i)->text().compare(style, Qt::CaseInsensitive) == 0; };
   bool listed = false;
   for (int i = 0; i < style_list_->count() && !style.isEmpty(); ++i) listed = listed || matches(i);
@@ -201,6 +206,10 @@ void AdaptTab::focus(const QString& clip_path, const QString& style) {
     style_list_->item(i)->setCheckState(matches(i) ? Qt::Checked : Qt::Unchecked);
     if (matches(i)) style_list_->scrollToItem(style_list_->item(i));
   }
+}
+
+void AdaptTab::followStyle(const QString& style) {
+  if (!styles_chosen_here_) focus(QString(), style);
 }
 
 void AdaptTab::setStyleChecked(const QString& name, bool checked) {

@@ -53,6 +53,8 @@ class AdaptTab : public QWidget {
   // Checks just this clip (by path) among the listed ones and, when `style` names a listed network
   // (case aside), just that style: the Result panel's "Adapt..." link adapts what is on screen.
   void focus(const QString& clip_path, const QString& style);
+  // The style chosen in the Result panel: checked alone, as long as the user has not chosen styles here.
+  void followStyle(const QString& style);
   void setStyleChecked(const QString& name, bool checked);
   void setEpochs(int loss_epochs, int style_epochs);
   bool start();  // false and a report when it cannot start
@@ -77,6 +79,7 @@ class AdaptTab : public QWidget {
   std::filesystem::path scratch_;
   QListWidget* clip_list_ = nullptr;
   QListWidget* style_list_ = nullptr;
+  bool styles_chosen_here_ = false;  // the user toggled a style: followStyle leaves the checks alone
   QSpinBox* loss_epochs_ = nullptr;
   QSpinBox* style_epochs_ = nullptr;
   QPushButton* adapt_button_ = nullptr;

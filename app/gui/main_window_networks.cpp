@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "adapt_tab.h"
 #include "main_window.h"
 #include "network_panel.h"
 #include "result_panel.h"
@@ -51,6 +52,8 @@ void MainWindow::createNetworkDock() {
           });
   connect(network_panel_, &NetworkPanel::stylizedClipReady, result_panel_, &ResultPanel::setStylizedClip);
   connect(network_panel_->networkList(), &NetworkList::networkRenamed, result_panel_, &ResultPanel::renameNetwork);
+  // The Adapt tab checks the style chosen for the result until the user chooses styles there.
+  connect(result_panel_, &ResultPanel::networkChosen, network_panel_->adaptTab(), &AdaptTab::followStyle);
   // The familiarity row's "Adapt..." link: the Adapt tab with the content clip and the chosen style
   // checked.
   connect(result_panel_, &ResultPanel::adaptRequested, this, [this] {

@@ -149,6 +149,7 @@ class ResultPanel : public QWidget {
   void familiarityChanged();      // the content or the network changed: familiarity() is new
   // The user asked to adapt the networks to clips like the content (the familiarity row's link).
   void adaptRequested();
+  void networkChosen(const QString& name);  // another style network to stylize with (networkName())
   void busyChanged(bool busy);
   void jobEnded(bool succeeded);  // after finished, failed or cancelled
   void statusMessage(const QString& message);

@@ -136,6 +136,37 @@ class FamiliarityTest : public QObject {
     QCOMPARE(checked, QStringList{QStringLiteral("masculine")});
   }
 
+  // The Adapt tab retrains the style the user works with: it checks the one chosen in the Result panel,
+  // until the user checks or unchecks a style there; then it keeps the user's choice.
+  void theAdaptTabFollowsTheChosenStyleUntilTheUserChooses() {
+    MainWindow window(false);
+    ResultPanel* panel = window.resultPanel();
+    const auto resources = resourceDirectory();
+    QVERIFY2(resources.has_value(), "the repository's resources/ (shipped networks) were not found");
+    auto* styles = window.networkPanel()->adaptTab()->findChild<QListWidget*>(QStringLiteral("AdaptStyles"));
+    QVERIFY(styles != nullptr && styles->count() >= 9);
+    const auto checked = [&] {
+      QStringList names;
+      for (int i = 0; i < styles->count(); ++i)
+        if (styles->item(i)->checkState() == Qt::Checked) names << styles->item(i)->text();
+      return names;
+    };
+    const auto choose = [&](const char* name) {
+      const auto file = shippedNetworkFile(*resources, name);
+      return file && panel->loadNetworkFile(QString::fromStdString(file->string()));
+    };
+    QVERIFY(choose("sad"));
+    QCOMPARE(checked(), QStringList{QStringLiteral("sad")});
+    QVERIFY(choose("elderly"));
+    QCOMPARE(checked(), QStringList{QStringLiteral("elderly")});
+    window.networkPanel()->adaptTab()->refresh();  // a rebuild of the lists is not the user's choice
+    QVERIFY(choose("proud"));
+    QCOMPARE(checked(), QStringList{QStringLiteral("proud")});
+    styles->findItems(QStringLiteral("angry"), Qt::MatchExactly).front()->setCheckState(Qt::Checked);  // the user's
+    QVERIFY(choose("happy"));
+    QCOMPARE(checked(), (QStringList{QStringLiteral("angry"), QStringLiteral("proud")}));
+  }
+
   // A CMU file as published opens with its rig's rest pose (features/rest_pose_frames.h): the panel
   // says so, and the cleaned result keeps that frame as it was while the motion after it is styled.
   void aClipThatOpensWithItsRestPoseKeepsIt() {
