@@ -40,8 +40,10 @@ void ResultPanel::useStylizer(std::shared_ptr<const style::Stylizer> stylizer, c
   refreshFamiliarity();
   // One network for another draws the same figures (rebuilding them cost a style switch 18-28 ms).
   if (resultComesFromNetwork() != came_from_network) emit sourceChanged();
-  if (stylizer_ != previous && hasNetwork()) emit networkChosen(network_name_);
-  if (stylizer_ != previous) inputsChanged(tr("the style changed"));
+  if (stylizer_ != previous) {
+    if (hasNetwork()) emit networkChosen(network_name_);
+    inputsChanged(tr("the style changed"));
+  }
 }
 
 void ResultPanel::renameNetwork(const QString& old_name, const QString& new_name) {

@@ -116,6 +116,7 @@ int main(int argc, char** argv) {
     std::printf("whole job: %.1f ms with the memory of the previous step (network output, clean-up), %.1f ms without\n",
                 median(whole_ms), median(cold_ms));
 
+    const MotionFeatures features = extractFeatures(content, mapping);
     // A switch to a style never computed on the clip, as the Result panel runs it: the new style's
     // memory seeded from elderly's (StylizeCleanupMemory::seedFrom), against a memory of its own.
     {
@@ -126,7 +127,7 @@ int main(int argc, char** argv) {
         style::StylizeCleanupJob other = job;
         other.strength = 1.0;
         other.stylizer = std::make_shared<const style::Stylizer>(nn::loadStyleModel(*file), file->string());
-        other.stylizer->networkOutput(extractFeatures(content, mapping).values);  // its first run's page faults: untimed
+        other.stylizer->networkOutput(features.values);  // its first run's page faults: untimed
         other.memory = std::make_shared<style::StylizeCleanupMemory>();
         other.seed = job.memory;
         auto start = Clock::now();
@@ -148,7 +149,6 @@ int main(int argc, char** argv) {
     }
 
     // Steps solved with at most K iterations per frame from the last solution, against a full solve.
-    const MotionFeatures features = extractFeatures(content, mapping);
     for (int cap : {1, 3, 25}) {
       CleanupMemory memory;
       CleanupOptions capped;
