@@ -226,6 +226,8 @@ void CleanupOptions::validate() const {
     throw std::invalid_argument("cleanup options: max_total_seconds must be positive");
   if (threads < 0) throw std::invalid_argument("cleanup options: threads must be >= 0 (0: every hardware thread)");
   if (block_frames < 1) throw std::invalid_argument("cleanup options: block_frames must be >= 1");
+  if (!std::isfinite(warning_fps) || warning_fps < 0.0)
+    throw std::invalid_argument("cleanup options: warning_fps must be finite and >= 0 (0: the solve's own frames)");
 }
 
 void CleanupInput::validate() const {

@@ -94,10 +94,17 @@ struct CleanupOptions {
   // --- Warnings.
   double unreachable_warning_cm = 1.0;  // a limb whose targets are further apart than it can reach
   double residual_warning_cm = 10.0;    // a mapped joint left further than this from its target
+  // The frame rate whose frame numbers the warnings name: the clip the user sees or exports, when the
+  // solve runs at another rate (style/stylized_cleanup.h solves 120 fps content at 60 fps). A run of
+  // solve frames a..b is named by the frames of this rate it overlaps in time:
+  //   floor(a * r) .. ceil((b + 1) * r) - 1,  r = warning_fps / the solve's fps.
+  // 0 (the default): the solve's own frames.
+  double warning_fps = 0.0;
 
   // Throws std::invalid_argument for a negative or non-finite weight, an empty window, an overlap not
   // smaller than the window, a window over 1 frame for the tree solver, max_iterations < 1, a
-  // non-positive budget, chunk_frames < 1, chunk_lead_in < 0, threads < 0 or block_frames < 1.
+  // non-positive budget, chunk_frames < 1, chunk_lead_in < 0, threads < 0, block_frames < 1 or a
+  // negative or non-finite warning_fps.
   void validate() const;
 };
 

@@ -1,6 +1,7 @@
 #include "ik/cleanup_warnings.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <utility>
 #include <vector>
@@ -62,9 +63,11 @@ void RunReporter::add(int frame, double value) {
 void RunReporter::closeRun() {
   if (run_first_ < 0) return;
   if (static_cast<size_t>(runs_) < kMaxRunsPerWarning) {
-    const std::string span = run_last_ > run_first_
-                                 ? "frames " + std::to_string(run_first_) + "-" + std::to_string(run_last_)
-                                 : "frame " + std::to_string(run_first_);
+    // The named frames overlapping the run in time (1e-9: 2 x 67 stays 134 whatever the rounding).
+    const int first = static_cast<int>(std::floor(run_first_ * frame_scale_ + 1e-9));
+    const int last = std::max(first, static_cast<int>(std::ceil((run_last_ + 1) * frame_scale_ - 1e-9)) - 1);
+    const std::string span = last > first ? "frames " + std::to_string(first) + "-" + std::to_string(last)
+                                          : "frame " + std::to_string(first);
     messages_.push_back(prefix_ + " " + verb_ + " " + formatFixed(run_peak_, 1) + " cm at " + span);
   }
   ++runs_;
@@ -80,13 +83,14 @@ void RunReporter::finish(std::vector<std::string>& warnings) {
 }
 
 CleanupWarnings::CleanupWarnings(const CleanupInput& input, const CleanupOptions& options) : input_(input) {
+  const double frame_scale = options.warning_fps > 0.0 ? options.warning_fps * input.content.frame_time : 1.0;
   for (const Limb& limb : kLimbs)
     limb_stretch_.emplace_back(options.unreachable_warning_cm, std::string("targets unreachable: ") + limb.name,
-                               "stretched by");
+                               "stretched by", frame_scale);
   for (int c = 0; c < kCanonicalJointCount; ++c)
     joint_residual_.emplace_back(options.residual_warning_cm,
                                  "large residual: " + std::string(canonicalJointName(static_cast<CanonicalJoint>(c))),
-                                 "off target by");
+                                 "off target by", frame_scale);
 }
 
 void CleanupWarnings::add(int first, const LocalPoses& content_block, const Eigen::MatrixXd& result_world) {

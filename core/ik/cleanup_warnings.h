@@ -18,10 +18,12 @@ namespace motionstyle::ik_detail {
 // Runs of consecutive frames where a value exceeds a threshold, reported as
 // "<prefix> <verb> X cm at frames a-b" with each run's largest value; after kMaxRunsPerWarning runs the
 // rest are counted ("<prefix>: N more such frame ranges"). Fed one frame at a time, in order.
+// frame_scale r names a run of frames a..b by floor(a r) .. ceil((b + 1) r) - 1 (CleanupOptions::
+// warning_fps: r = the named rate / the fed frames' rate; 1 names the fed frames).
 class RunReporter {
  public:
-  RunReporter(double threshold, std::string prefix, std::string verb)
-      : threshold_(threshold), prefix_(std::move(prefix)), verb_(std::move(verb)) {}
+  RunReporter(double threshold, std::string prefix, std::string verb, double frame_scale = 1.0)
+      : threshold_(threshold), prefix_(std::move(prefix)), verb_(std::move(verb)), frame_scale_(frame_scale) {}
   void add(int frame, double value);
   void finish(std::vector<std::string>& warnings);  // closes an open run, appends the messages
 
@@ -29,6 +31,7 @@ class RunReporter {
   void closeRun();
   double threshold_;
   std::string prefix_, verb_;
+  double frame_scale_;
   int run_first_ = -1, run_last_ = -1;
   double run_peak_ = 0.0;
   int runs_ = 0;

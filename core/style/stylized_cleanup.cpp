@@ -141,7 +141,11 @@ StylizedCleanup cleanUpStylizedClip(const Motion& clip, const JointMapping& mapp
   // The clean-up's own world positions serve the metrics below (computing them again from the channel
   // values cost a live edit 1-1.5 ms for a 500-frame clip).
   Eigen::MatrixXd cleaned_world;
-  Motion cleaned = cleanupMotion(input, options, &result.report, control, &cleaned_world);
+  // Its warnings name the frames of the clip that comes out (a 120 fps clip is solved at 60 fps).
+  const double target_fps = output_fps > 0.0 ? output_fps : content.fps();
+  CleanupOptions named_options = options;
+  if (named_options.warning_fps <= 0.0) named_options.warning_fps = target_fps;
+  Motion cleaned = cleanupMotion(input, named_options, &result.report, control, &cleaned_world);
 
   // Raw output: canonical joints only, at the network's rate, judged against the content's own
   // canonical bone lengths.
@@ -163,7 +167,6 @@ StylizedCleanup cleanUpStylizedClip(const Motion& clip, const JointMapping& mapp
   after.fps = solve_fps;
   result.cleaned = computeMetrics(after);
 
-  const double target_fps = output_fps > 0.0 ? output_fps : content.fps();
   result.motion = sameFrameRate(cleaned.fps(), target_fps) ? std::move(cleaned) : resampleMotion(cleaned, target_fps);
   // Back at the content's rate the clip can come out a frame or two short (720 frames at 120 fps are
   // 360 at 60 fps, which give 719 at 120 fps): the content's last frames lie past the last solved one.

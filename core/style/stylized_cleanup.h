@@ -8,7 +8,8 @@
 // a 60 fps solve whose every other frame the export drops), else at 60 fps with the content resampled
 // to it (its rotations warm-start and prior each frame). The cleaned clip is then resampled to
 // `output_fps` (default: the content's own rate) for export. The raw output's metrics are at 60 fps,
-// the cleaned clip's at the solve's rate; all in cm.
+// the cleaned clip's at the solve's rate; all in cm. The clean-up's warnings name the frames of the
+// clip that comes out (output_fps, else the content's; CleanupOptions::warning_fps unless set).
 
 #include "ik/cleanup.h"
 #include "ik/metrics.h"

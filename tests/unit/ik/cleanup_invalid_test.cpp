@@ -104,6 +104,12 @@ TEST_F(CleanupInvalidInput, RejectsBadOptions) {
   options.block_frames = 0;
   EXPECT_NE(failure(mapping, targets, contacts, Eigen::Vector3d::UnitY(), 1.0, options).find("block_frames"),
             std::string::npos);
+  for (const double fps : {-30.0, std::numeric_limits<double>::infinity()}) {
+    options = {};
+    options.warning_fps = fps;
+    EXPECT_NE(failure(mapping, targets, contacts, Eigen::Vector3d::UnitY(), 1.0, options).find("warning_fps"),
+              std::string::npos);
+  }
 }
 
 TEST_F(CleanupInvalidInput, RejectsAnEmptyClip) {

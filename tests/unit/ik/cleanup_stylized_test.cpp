@@ -16,6 +16,8 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <tuple>
+#include <utility>
 
 #include "bvh/bvh_reader.h"
 #include "features/feature_statistics.h"
@@ -131,6 +133,43 @@ TEST_F(CleanupStylized, RawOutputMeetsTheCleanUpGoals) {
     EXPECT_NEAR(run.motion.frameCount(), content.frameCount(), 1);
     EXPECT_DOUBLE_EQ(run.motion.fps(), content.fps());
   }
+}
+
+// A 120 fps clip is solved at 60 fps: the clean-up's warnings still name the clip's own frames, the
+// ones on the timeline and in the exported file. A contact forced on the left foot for half a second
+// where the content's left ankle travels furthest holds it far from its targets there.
+TEST_F(CleanupStylized, WarningsNameTheContentsFramesWhenSolvedAtAnotherRate) {
+  ASSERT_NEAR(content.fps(), 120.0, 0.01);
+  constexpr int kSpan = 60;
+  const Eigen::MatrixXd world = worldPositions(content);
+  const int ankle = mapping[CanonicalJoint::LeftAnkle];
+  int kFirst = 0;
+  double travel = 0.0;
+  for (int start = 0; start + kSpan <= content.frameCount(); start += 10) {
+    const double moved = (world.block(start + kSpan - 1, 3 * ankle, 1, 3) - world.block(start, 3 * ankle, 1, 3)).norm() *
+                         features.anchor.convention.cm_per_unit;
+    if (moved > travel) std::tie(kFirst, travel) = std::pair{start, moved};
+  }
+  const int kLast = kFirst + kSpan - 1;
+  ASSERT_GT(travel, 30.0) << "the content walks";  // cm
+  Eigen::MatrixXi overrides = Eigen::MatrixXi::Constant(content.frameCount(), kContactCount, -1);
+  overrides.block(kFirst, 0, kSpan, 2).setOnes();  // left heel and toe (ContactLabel order)
+  const style::StylizedClip stylized = style::Stylizer(networkLikeModel(features, 11, kDamage)).stylize(features, 1.0);
+  const style::StylizedCleanup run = style::cleanUpStylizedClip(content, mapping, stylized, {}, 0.0, overrides);
+  ASSERT_NEAR(run.fps, 60.0, 0.01);
+  int named = 0;
+  for (const std::string& warning : run.report.warnings) {
+    std::printf("[ warning  ] %s\n", warning.c_str());
+    int first = 0, last = 0;
+    const std::size_t at = warning.find(" at frames ");
+    if (warning.find("large residual: Left") == std::string::npos || at == std::string::npos) continue;
+    ASSERT_EQ(std::sscanf(warning.c_str() + at, " at frames %d-%d", &first, &last), 2) << warning;
+    // Within the forced contact, give or take its blend (0.06 s: 8 frames at 120 fps).
+    EXPECT_GE(first, kFirst - 8) << warning;
+    EXPECT_LE(last, kLast + 8) << warning;
+    ++named;
+  }
+  EXPECT_GT(named, 0) << "a foot held still for half a second of walking leaves its targets";
 }
 
 // A clip below the network's 60 fps is solved on its own frames (the targets taken at its times), at

@@ -129,6 +129,32 @@ TEST_F(CleanupHumanoid, UnreachableTargetsGiveAWarningAndABestEffortResult) {
   EXPECT_GT((hand - base).norm(), 52.0);  // upper arm 28 + forearm 25 = 53 cm
 }
 
+// The user's clip may be at another rate than the solve (120 fps content is solved at 60 fps): a
+// warning names the frames of the rate it is asked for, all those that overlap the run in time.
+TEST_F(CleanupHumanoid, WarningsNameTheFramesOfTheRateAskedFor) {
+  Eigen::MatrixXd stretched = targets;
+  const int wrist = index(CanonicalJoint::LeftWrist), shoulder = index(CanonicalJoint::LeftUpperArm);
+  for (int f = 10; f <= 20; ++f) {
+    const Eigen::Vector3d direction =
+        (stretched.block<1, 3>(f, 3 * wrist) - stretched.block<1, 3>(f, 3 * shoulder)).transpose().normalized();
+    stretched.block<1, 3>(f, 3 * wrist) += 30.0 * direction.transpose();
+  }
+  const auto namedSpan = [&](double warning_fps) {
+    CleanupOptions options;
+    options.warning_fps = warning_fps;
+    CleanupReport report;
+    cleanupMotion(input(stretched, no_contacts), options, &report);
+    for (const std::string& warning : report.warnings)
+      if (warning.find("targets unreachable: left arm stretched by") != std::string::npos)
+        return warning.substr(warning.find(" at ") + 4);
+    return std::string("no warning");
+  };
+  EXPECT_EQ(namedSpan(0.0), "frames 10-20");                // the solve's own frames (60 fps)
+  EXPECT_EQ(namedSpan(clip.fps()), "frames 10-20");
+  EXPECT_EQ(namedSpan(2.0 * clip.fps()), "frames 20-41");   // 120 fps: each solve frame is two
+  EXPECT_EQ(namedSpan(0.5 * clip.fps()), "frames 5-10");    // 30 fps: 10/2 .. ceil(21/2) - 1
+}
+
 TEST_F(CleanupHumanoid, ByDefaultEveryFrameIsSolvedHoweverLong) {
   EXPECT_FALSE(std::isfinite(CleanupOptions{}.max_total_seconds));  // a budget is the caller's choice
   CleanupReport report;
