@@ -422,11 +422,14 @@ class LiveTest : public QObject {
     std::vector<LogEntry> latencies;
     for (size_t i = before; i < all.size(); ++i) {
       QVERIFY(all[i].change.contains(QStringLiteral("contacts")));
+      // The release repeats the stroke's last step: no new inputs, so no result "shown again" for them.
+      QVERIFY2(!all[i].remembered, "a stroke's release changed nothing, yet counted as an edit");
       QVERIFY2(all[i].chunks_solved < all[i].chunks,
                qPrintable(QStringLiteral("a late stroke re-solved %1 of %2 chunks").arg(all[i].chunks_solved).arg(all[i].chunks)));
       latencies.push_back(all[i]);
     }
     QVERIFY(!latencies.empty());
+    QVERIFY2(lastStatus(log_).startsWith(QStringLiteral("Stylized and cleaned up")), qPrintable(lastStatus(log_)));
     printLatencies("contact stroke, 500 frames at 120 fps", latencies);
   }
 };
