@@ -5,11 +5,13 @@
 #include <QGridLayout>
 #include <QHBoxLayout>
 #include <QLabel>
+#include <QMouseEvent>
 #include <QShortcut>
 #include <QSignalBlocker>
 #include <QSlider>
 #include <QSpinBox>
 #include <QStyle>
+#include <QStyleOptionSlider>
 #include <QTimer>
 #include <QToolButton>
 
@@ -25,6 +27,29 @@ namespace {
 
 constexpr std::array<double, 7> kSpeeds = {0.25, 0.5, 0.75, 1.0, 1.25, 1.5, 2.0};
 constexpr int kTickMilliseconds = 8;  // faster than any display; the clock decides the frame
+
+// The scrub bar: a click beside the handle jumps the handle there and starts dragging it, as a
+// timeline's does (QSlider's own click moves it one page towards the click: ten frames at a time).
+class ScrubSlider : public QSlider {
+ public:
+  using QSlider::QSlider;
+
+ protected:
+  void mousePressEvent(QMouseEvent* event) override {
+    if (event->button() == Qt::LeftButton && maximum() > minimum()) {
+      QStyleOptionSlider option;
+      initStyleOption(&option);
+      const QRect handle = style()->subControlRect(QStyle::CC_Slider, &option, QStyle::SC_SliderHandle, this);
+      const QPoint at = event->position().toPoint();
+      if (!handle.contains(at)) {
+        const QRect groove = style()->subControlRect(QStyle::CC_Slider, &option, QStyle::SC_SliderGroove, this);
+        setValue(QStyle::sliderValueFromPosition(minimum(), maximum(), at.x() - groove.x() - handle.width() / 2,
+                                                 groove.width() - handle.width(), option.upsideDown));
+      }
+    }
+    QSlider::mousePressEvent(event);  // the handle is under the pointer now: a drag follows
+  }
+};
 
 QToolButton* makeButton(QWidget* parent, QStyle::StandardPixmap icon, const QString& tip) {
   auto* button = new QToolButton(parent);
@@ -111,7 +136,8 @@ TimelineWidget::TimelineWidget(QWidget* parent) : QWidget(parent), impl_(std::ma
   d.frame_total->setMinimumWidth(metrics.horizontalAdvance(QStringLiteral("/ 9999999")));
   d.time_label->setMinimumWidth(metrics.horizontalAdvance(QStringLiteral("000:00.000 / 000:00.000  120.00 fps")));
 
-  d.slider = new QSlider(Qt::Horizontal, this);
+  d.slider = new ScrubSlider(Qt::Horizontal, this);
+  d.slider->setObjectName(QStringLiteral("ScrubSlider"));
   d.slider->setRange(0, 0);
   d.slider->setFocusPolicy(Qt::NoFocus);
   d.slider->setToolTip(tr("Scrub"));

@@ -2,8 +2,11 @@
 // looping, track painting and scrubbing.
 #include <QElapsedTimer>
 #include <QSignalSpy>
+#include <QSlider>
 #include <QTest>
 
+#include <cmath>
+#include <cstdlib>
 #include <stdexcept>
 
 #include "gui_test_support.h"
@@ -262,6 +265,28 @@ class TimelineTest : public QObject {
     QTest::mouseClick(tracks, Qt::LeftButton, Qt::NoModifier, target);
     QCOMPARE(timeline.frame(), 150);
     QCOMPARE(tracks->playhead(), 150);
+  }
+
+  // A click on the scrub bar beside its handle jumps there (QSlider's own click steps one page, ten
+  // frames, towards it), and the same press drags on from there.
+  void clickingTheScrubBarJumpsToThatFrame() {
+    TimelineWidget timeline;
+    timeline.setFrameCount(401);
+    timeline.resize(1000, 180);
+    timeline.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&timeline));
+    auto* slider = timeline.findChild<QSlider*>(QStringLiteral("ScrubSlider"));
+    QVERIFY(slider != nullptr);
+    const int y = slider->height() / 2;
+    // The handle's centre runs from half a handle in from the left end to half a handle from the right.
+    const auto x = [&](double share) { return static_cast<int>(std::lround(8 + share * (slider->width() - 16))); };
+    QTest::mouseClick(slider, Qt::LeftButton, Qt::NoModifier, QPoint(x(0.75), y));
+    QVERIFY2(std::abs(timeline.frame() - 300) <= 8, qPrintable(QString::number(timeline.frame())));
+    QTest::mousePress(slider, Qt::LeftButton, Qt::NoModifier, QPoint(x(0.25), y));
+    QVERIFY2(std::abs(timeline.frame() - 100) <= 8, qPrintable(QString::number(timeline.frame())));
+    QTest::mouseMove(slider, QPoint(x(0.5), y));
+    QTest::mouseRelease(slider, Qt::LeftButton, Qt::NoModifier, QPoint(x(0.5), y));
+    QVERIFY2(std::abs(timeline.frame() - 200) <= 8, qPrintable(QString::number(timeline.frame())));
   }
 
   void screenshot() {
