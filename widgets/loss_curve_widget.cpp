@@ -26,7 +26,13 @@ QString decadeLabel(int exponent) {
 LossCurveWidget::LossCurveWidget(QWidget* parent) : QWidget(parent) {
   setObjectName(QStringLiteral("LossCurve"));
   setAttribute(Qt::WA_OpaquePaintEvent);
-  setToolTip(tr("Loss per term (unweighted), log scale, against epochs"));
+  setXAxisName(tr("epochs"));
+}
+
+void LossCurveWidget::setXAxisName(const QString& name) {
+  x_axis_name_ = name;
+  setToolTip(tr("Loss per term (unweighted), log scale, against %1").arg(name));
+  update();
 }
 
 void LossCurveWidget::clear() {
@@ -145,7 +151,7 @@ void LossCurveWidget::paintEvent(QPaintEvent*) {
   painter.drawText(QRectF(plot.left(), plot.bottom() + 2, plot.width(), kBottomMargin - 2), Qt::AlignLeft | Qt::AlignTop,
                    QString::number(x_min, 'g', 3));
   painter.drawText(QRectF(plot.left(), plot.bottom() + 2, plot.width(), kBottomMargin - 2), Qt::AlignHCenter | Qt::AlignTop,
-                   tr("epochs"));
+                   x_axis_name_);
   painter.drawText(QRectF(plot.left(), plot.bottom() + 2, plot.width(), kBottomMargin - 2), Qt::AlignRight | Qt::AlignTop,
                    QString::number(x_max, 'g', 4));
 

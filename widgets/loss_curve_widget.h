@@ -1,7 +1,8 @@
 #pragma once
 // LossCurveWidget: live training loss curves, one per term, painted with QPainter (no VTK, no core
 // types). The y axis is logarithmic because the terms span decades (a style term of 1e-4 next to a
-// content term of 1); the x axis is in epochs (fractional while an epoch runs: epoch - 1 + step/steps).
+// content term of 1); the x axis is in epochs (fractional while an epoch runs: epoch - 1 + step/steps),
+// or in the optimisation method's iterations (setXAxisName).
 //
 // Non-positive and non-finite values cannot be drawn on a log axis: they are counted (skippedPoints)
 // but not stored, so a diverging run does not break the plot.
@@ -29,6 +30,11 @@ class LossCurveWidget : public QWidget {
   // (nn::LossHistory's layout). Rows shorter than `terms` are tolerated (missing values skipped).
   void setHistory(const QStringList& terms, const std::vector<std::vector<double>>& values);
 
+  // What x counts, named under the axis: "epochs" (the default, training) or "iterations" (the
+  // optimisation method). clear() keeps it.
+  void setXAxisName(const QString& name);
+  const QString& xAxisName() const { return x_axis_name_; }
+
   QStringList terms() const;
   int pointCount(const QString& term) const;  // 0 for an unknown term
   int skippedPoints() const { return skipped_; }
@@ -53,6 +59,7 @@ class LossCurveWidget : public QWidget {
 
   std::vector<Series> series_;
   int skipped_ = 0;
+  QString x_axis_name_;
 };
 
 }  // namespace motionstyle

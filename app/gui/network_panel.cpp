@@ -155,6 +155,7 @@ void NetworkPanel::showLossHistory() {
   }
   QStringList terms;
   for (const std::string& term : model->metadata.loss_history.terms) terms << QString::fromStdString(term);
+  loss_curve_->setXAxisName(tr("epochs"));
   loss_curve_->setHistory(terms, model->metadata.loss_history.epochs);
 }
 

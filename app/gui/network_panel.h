@@ -146,7 +146,7 @@ class NetworkPanel : public QWidget {
   void onTrainingProgress(const style::TrainingProgress& progress);
   void onTrainingFinished(const style::StyleTrainingJob::Result& outcome);
   void onPreview(const std::shared_ptr<const style::StylizedClip>& clip);
-  void onJobDone();
+  void onJobDone(bool completed);  // JobRunner::finished: false when cancelled or failed
   void capturePreviewTarget();
   std::filesystem::path scratchFile(const QString& name);
 

@@ -209,6 +209,7 @@ bool NetworkPanel::runTraining(style::StyleTrainingJob job, const QString& statu
   resumable_->preview_content.clear();
   resumable_name_ = training_name_;
   loss_curve_->clear();
+  loss_curve_->setXAxisName(tr("epochs"));
   emit previewCleared();
   progress_bar_->setRange(0, 0);
   progress_bar_->setFormat(tr("Loading clips..."));
@@ -293,6 +294,9 @@ bool NetworkPanel::startTransfer(int iterations) {
   if (!started) return false;
   running_ = Running::Transfer;
   loss_curve_->clear();
+  loss_curve_->setXAxisName(tr("iterations"));
+  progress_bar_->setRange(0, 0);  // busy until the first iteration reports (not the last run's bar)
+  progress_bar_->setFormat(tr("Starting..."));
   status_label_->setText(tr("Optimising %1 towards %2...").arg(content->name, style->name));
   updateButtons();
   return true;
@@ -306,10 +310,13 @@ void NetworkPanel::cancelJob() {
                                                        : tr("Cancelling..."));
 }
 
-void NetworkPanel::onJobDone() {
+void NetworkPanel::onJobDone(bool completed) {
   running_ = Running::None;
-  if (progress_bar_->maximum() == 0) progress_bar_->setRange(0, 1000);
-  progress_bar_->setFormat(tr("Idle"));
+  // A run that reached its end leaves a full bar saying so; any other (cancelled, failed) an empty
+  // one: a full bar once said "Idle" after every run. The status line says how it ended.
+  progress_bar_->setRange(0, 1000);
+  progress_bar_->setValue(completed ? progress_bar_->maximum() : progress_bar_->minimum());
+  progress_bar_->setFormat(completed ? tr("Done") : tr("Idle"));
   updateButtons();
   emit jobFinished();
 }

@@ -324,6 +324,7 @@ class TrainingTest : public QObject {
     QVERIFY(viewport_has_output);
     QTRY_VERIFY_WITH_TIMEOUT(panel->lossCurve()->pointCount(QStringLiteral("content")) >= 2, kJobTimeoutMs);
     QVERIFY(panel->lossCurve()->terms().contains(QStringLiteral("trajectory")));
+    QCOMPARE(panel->lossCurve()->xAxisName(), QStringLiteral("epochs"));
     QVERIFY(panel->progressBar()->maximum() > 0);
     QVERIFY(QFile::exists(panel->lastCheckpointFile()));
     QVERIFY(!test::saveScreenshot(window->grab().toImage(), QStringLiteral("during_training")).isEmpty());
@@ -595,6 +596,7 @@ class TrainingTest : public QObject {
     QCOMPARE(panel->networkList()->network(0)->metadata.loss_history.epochs.size(), std::size_t{3});
     QVERIFY2(panel->statusText().startsWith(QStringLiteral("Trained")), qPrintable(panel->statusText()));
     QCOMPARE(panel->progressBar()->value(), panel->progressBar()->maximum());
+    QCOMPARE(panel->progressBar()->format(), QStringLiteral("Done"));
 
     // Issue 14: a second run from the same clips gets a name of its own, and the Result panel offers both.
     setTinyForm(panel, 1);
@@ -639,6 +641,9 @@ class TrainingTest : public QObject {
     QCOMPARE(panel->lossCurve()->pointCount(QStringLiteral("total")), 0);  // the plot is this run's
     QVERIFY(finished.wait(kJobTimeoutMs));
     QVERIFY(panel->lossCurve()->pointCount(QStringLiteral("style")) > 0);
+    QCOMPARE(panel->lossCurve()->xAxisName(), QStringLiteral("iterations"));  // not "epochs": none here
+    QCOMPARE(panel->progressBar()->value(), panel->progressBar()->maximum());  // a run that ended, said so
+    QCOMPARE(panel->progressBar()->format(), QStringLiteral("Done"));
     QVERIFY2(reports_.empty(), reports_.empty() ? "" : qPrintable(reports_.front().message));
     QCOMPARE(ready.count(), 1);
     const auto clip = ready.front().at(0).value<style::StylizedClip>();
@@ -678,6 +683,8 @@ class TrainingTest : public QObject {
     QCOMPARE(ready.count(), 3);
     QVERIFY(!panel->isBusy());
     QVERIFY(reports_.empty());
+    QCOMPARE(panel->progressBar()->value(), panel->progressBar()->minimum());  // not a full bar after a cancel
+    QCOMPARE(panel->progressBar()->format(), QStringLiteral("Idle"));
   }
 
   void closingDuringTrainingAsksAndStopsCleanly() {
