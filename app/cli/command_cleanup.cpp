@@ -167,11 +167,11 @@ std::string cleanUpFile(const CleanupRequest& request) {
     nlohmann::ordered_json json;
     json["input"] = nlohmann::json::parse(metricsToJson(before));
     json["cleaned"] = nlohmann::json::parse(metricsToJson(cleaned_metrics));
-    json["cleanup"] = {{"seconds", report.seconds}, {"iterations", report.total_iterations}, {"warnings", report.warnings}};
+    json["cleanup"] = {{"seconds", report.seconds}, {"iterations", report.total_iterations}, {"warnings", warningTexts(report)}};
     files.stage(*metrics_file, json.dump(2) + "\n");
   }
   files.commit();
-  for (const std::string& warning : report.warnings) log << "warning: " << warning << "\n";
+  for (const CleanupWarning& warning : report.warnings) log << "warning: " << warning.text << "\n";
   char figures[512];
   std::snprintf(figures, sizeof figures,
                 "wrote %s: %d frames at %.4g fps in %.2f s\n  foot skate %.2f -> %.2f cm/s, floor penetration %.2f -> "

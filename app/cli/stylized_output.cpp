@@ -107,13 +107,13 @@ void writeStylizedOutput(const std::filesystem::path& content_file, const style:
                     {"end_error_fraction", path.end_error_fraction}};
     json["cleanup"] = {{"seconds", cleaned.report.seconds},
                        {"iterations", cleaned.report.total_iterations},
-                       {"warnings", cleaned.report.warnings}};
+                       {"warnings", warningTexts(cleaned.report)}};
     if (familiarity) json["familiarity"] = familiarityJson(*familiarity, /*per_frame=*/true);
     for (const auto& [key, value] : options.extra_metrics.items()) json[key] = value;
     outputs.stage(*options.metrics, json.dump(2) + "\n");
   }
   outputs.commit();
-  for (const std::string& warning : cleaned.report.warnings) log << "warning: " << warning << "\n";
+  for (const CleanupWarning& warning : cleaned.report.warnings) log << "warning: " << warning.text << "\n";
   char figures[256];
   std::snprintf(figures, sizeof figures,
                 "foot skate %.2f -> %.2f cm/s, floor penetration %.2f -> %.2f cm, bone error %.3f -> %.1e cm",

@@ -138,6 +138,7 @@ void MainWindow::createResultDock() {
   connect(result_panel_, &ResultPanel::resultRenamed, this, &MainWindow::renameResultFigures);
   connect(result_panel_, &ResultPanel::sourceChanged, this, &MainWindow::rebuildFigures);
   connect(result_panel_, &ResultPanel::statusMessage, this, &MainWindow::showStatus);
+  connect(result_panel_, &ResultPanel::frameRequested, timeline_, &TimelineWidget::setFrame);
   const auto content = [this]() -> LoadedClip* { return content_ >= 0 ? &clips_[static_cast<size_t>(content_)] : nullptr; };
   contact_tracks_ = new ContactTrackController(timeline_->trackView(), content,
                                                [this](const QString& title, const QString& message) { report(title, message); }, this);

@@ -6,6 +6,9 @@
 #include <QTableWidget>
 #include <QVBoxLayout>
 
+#include <vector>
+
+#include "ik/cleanup.h"
 #include "style/stylize_cleanup_job.h"
 
 namespace motionstyle {
@@ -33,8 +36,16 @@ ResultMetricsView::ResultMetricsView(QWidget* parent) : QWidget(parent) {
   table_->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
   table_->setSizeAdjustPolicy(QAbstractScrollArea::AdjustToContents);
   warnings_label_ = new QLabel(this);
+  warnings_label_->setObjectName(QStringLiteral("CleanupWarnings"));
   warnings_label_->setWordWrap(true);
+  warnings_label_->setTextFormat(Qt::RichText);
+  warnings_label_->setTextInteractionFlags(Qt::LinksAccessibleByMouse | Qt::LinksAccessibleByKeyboard);
   warnings_label_->setStyleSheet(QStringLiteral("color: #d08a2a"));
+  connect(warnings_label_, &QLabel::linkActivated, this, [this](const QString& link) {
+    bool ok = false;
+    const int frame = link.toInt(&ok);
+    if (ok) emit frameRequested(frame);
+  });
   auto* layout = new QVBoxLayout(this);
   layout->setContentsMargins(0, 0, 0, 0);
   layout->addWidget(table_);
@@ -75,13 +86,22 @@ void ResultMetricsView::showResult(const style::StylizeCleanupResult* result) {
   put(kResidualRow, kRawColumn, raw.has_residual ? cm(raw.residual_mean_cm) : QStringLiteral("0 (target)"));
   put(kResidualRow, kCleanedColumn, cleaned.has_residual ? cm(cleaned.residual_mean_cm) : none);
   // A few lines in the panel, all of them in the tooltip: a long list would push the table away.
+  // A warning that names frames links to its first one (the link keeps the warnings' colour).
   constexpr qsizetype kShownWarnings = 3;
-  QStringList warnings;
-  for (const std::string& warning : result->report.warnings) warnings << QString::fromStdString(warning);
-  QStringList shown = warnings.mid(0, kShownWarnings);
-  if (warnings.size() > kShownWarnings) shown << tr("... and %1 more (hover to see them)").arg(warnings.size() - kShownWarnings);
-  warnings_label_->setText(shown.join(QStringLiteral("\n")));
-  warnings_label_->setToolTip(warnings.join(QStringLiteral("\n")));
+  const std::vector<CleanupWarning>& warnings = result->report.warnings;
+  QStringList shown, all;
+  for (const CleanupWarning& warning : warnings) {
+    const QString text = QString::fromStdString(warning.text);
+    all << text;
+    if (shown.size() == kShownWarnings) continue;
+    shown << (warning.first_frame < 0 ? text.toHtmlEscaped()
+                                      : QStringLiteral("<a href=\"%1\" style=\"color:#d08a2a\">%2</a>")
+                                            .arg(warning.first_frame)
+                                            .arg(text.toHtmlEscaped()));
+  }
+  if (all.size() > kShownWarnings) shown << tr("... and %1 more (hover to see them)").arg(all.size() - kShownWarnings);
+  warnings_label_->setText(shown.join(QStringLiteral("<br>")));
+  warnings_label_->setToolTip(all.isEmpty() ? QString() : tr("Click a warning to go to its first frame.\n\n") + all.join(QStringLiteral("\n")));
 }
 
 }  // namespace motionstyle

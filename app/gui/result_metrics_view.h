@@ -1,7 +1,8 @@
 #pragma once
 // The Result panel's quality figures of one result: a table of foot skate, floor penetration, bone
 // error and residual for the raw network output and the cleaned clip, and the clean-up's warnings
-// below it (the first few; all of them in the tooltip). Shows "-" without a result.
+// below it (the first few; all of them in the tooltip), each one that names frames a link to its
+// first frame (frameRequested: the timeline goes there). Shows "-" without a result.
 
 #include <QWidget>
 
@@ -24,6 +25,12 @@ class ResultMetricsView : public QWidget {
 
   void showResult(const style::StylizeCleanupResult* result);  // nullptr: no result
   QTableWidget* table() const { return table_; }
+  QLabel* warningsLabel() const { return warnings_label_; }
+
+ signals:
+  // A warning's link was clicked: show this frame of the content (the clean-up names the frames of the
+  // clip it gives back, CleanupOptions::warning_fps).
+  void frameRequested(int frame);
 
  private:
   QTableWidget* table_ = nullptr;

@@ -97,6 +97,7 @@ ResultPanel::ResultPanel(QWidget* parent) : QWidget(parent), memory_(std::make_s
   status_label_->setWordWrap(true);
 
   metrics_ = new ResultMetricsView(this);
+  connect(metrics_, &ResultMetricsView::frameRequested, this, &ResultPanel::frameRequested);
 
   export_button_ = new QPushButton(tr("Export BVH..."), this);
   export_button_->setObjectName(QStringLiteral("ExportButton"));

@@ -153,6 +153,7 @@ class ResultPanel : public QWidget {
   void busyChanged(bool busy);
   void jobEnded(bool succeeded);  // after finished, failed or cancelled
   void statusMessage(const QString& message);
+  void frameRequested(int frame);  // a clean-up warning's link: show this frame of the content
 
  private:
   void startJob(style::StylizeCleanupJob job);

@@ -345,9 +345,9 @@ void cleanupMotionInBlocks(const CleanupInput& input, const CleanupOptions& opti
   summary.contact_rest_heights = rest;
   warnings.finish(summary);
   if (solved.frames_unsolved > 0)
-    summary.warnings.push_back("time budget of " + ik_detail::formatFixed(options.max_total_seconds, 2) +
-                               " s exhausted: the last " + std::to_string(solved.frames_unsolved) +
-                               " frames were not optimised (warm start only)");
+    summary.warnings.push_back({"time budget of " + ik_detail::formatFixed(options.max_total_seconds, 2) +
+                                " s exhausted: the last " + std::to_string(solved.frames_unsolved) +
+                                " frames were not optimised (warm start only)"});
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
   if (report) *report = std::move(summary);
 }

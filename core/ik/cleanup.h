@@ -141,6 +141,13 @@ struct CleanupTermCosts {  // 0.5 x sum of squared residuals over all frames (Ce
   double total() const { return position + contact + floor + smoothness + prior; }
 };
 
+// One warning of a clean-up: its text and the frames it names, so that a front end can show them.
+struct CleanupWarning {
+  std::string text;     // e.g. "targets unreachable: left arm stretched by 12.0 cm at frames 40-60"
+  int first_frame = -1;  // the frames it names, inclusive (CleanupOptions::warning_fps); -1: none
+  int last_frame = -1;
+};
+
 struct CleanupReport {
   CleanupTermCosts final_costs;
   int frames = 0;
@@ -161,9 +168,15 @@ struct CleanupReport {
   // Residual of the result on the mapped joints vs the targets, cm.
   double mean_position_residual_cm = 0.0;
   double max_position_residual_cm = 0.0;
-  // Human-readable, e.g. "targets unreachable: left arm stretched by 12.0 cm at frames 40-60".
-  std::vector<std::string> warnings;
+  std::vector<CleanupWarning> warnings;
 };
+
+// The warnings' texts, in order (for a log or a metrics file).
+inline std::vector<std::string> warningTexts(const CleanupReport& report) {
+  std::vector<std::string> texts;
+  for (const CleanupWarning& warning : report.warnings) texts.push_back(warning.text);
+  return texts;
+}
 
 // What a clean-up keeps for the next one of the same clip, for re-solving after a small edit: per chunk
 // (CleanupOptions::chunk_frames) a digest of everything its solve reads (content, targets, contact

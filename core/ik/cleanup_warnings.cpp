@@ -68,18 +68,18 @@ void RunReporter::closeRun() {
     const int last = std::max(first, static_cast<int>(std::ceil((run_last_ + 1) * frame_scale_ - 1e-9)) - 1);
     const std::string span = last > first ? "frames " + std::to_string(first) + "-" + std::to_string(last)
                                           : "frame " + std::to_string(first);
-    messages_.push_back(prefix_ + " " + verb_ + " " + formatFixed(run_peak_, 1) + " cm at " + span);
+    messages_.push_back({prefix_ + " " + verb_ + " " + formatFixed(run_peak_, 1) + " cm at " + span, first, last});
   }
   ++runs_;
   run_first_ = run_last_ = -1;
 }
 
-void RunReporter::finish(std::vector<std::string>& warnings) {
+void RunReporter::finish(std::vector<CleanupWarning>& warnings) {
   closeRun();
   warnings.insert(warnings.end(), messages_.begin(), messages_.end());
   if (static_cast<size_t>(runs_) > kMaxRunsPerWarning)
-    warnings.push_back(prefix_ + ": " + std::to_string(runs_ - static_cast<int>(kMaxRunsPerWarning)) +
-                       " more such frame ranges");
+    warnings.push_back({prefix_ + ": " + std::to_string(runs_ - static_cast<int>(kMaxRunsPerWarning)) +
+                        " more such frame ranges"});
 }
 
 CleanupWarnings::CleanupWarnings(const CleanupInput& input, const CleanupOptions& options) : input_(input) {

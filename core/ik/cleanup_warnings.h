@@ -25,7 +25,7 @@ class RunReporter {
   RunReporter(double threshold, std::string prefix, std::string verb, double frame_scale = 1.0)
       : threshold_(threshold), prefix_(std::move(prefix)), verb_(std::move(verb)), frame_scale_(frame_scale) {}
   void add(int frame, double value);
-  void finish(std::vector<std::string>& warnings);  // closes an open run, appends the messages
+  void finish(std::vector<CleanupWarning>& warnings);  // closes an open run, appends the messages
 
  private:
   void closeRun();
@@ -35,7 +35,7 @@ class RunReporter {
   int run_first_ = -1, run_last_ = -1;
   double run_peak_ = 0.0;
   int runs_ = 0;
-  std::vector<std::string> messages_;
+  std::vector<CleanupWarning> messages_;
 };
 
 // The report's residual figures and warnings, fed the cleaned clip block by block in frame order.

@@ -111,7 +111,7 @@ void runOnce(const Scenario& s, const Eigen::MatrixXd& targets, const CleanupOpt
               report.final_costs.position, report.final_costs.contact, report.final_costs.floor,
               report.final_costs.smoothness, report.final_costs.prior);
   for (size_t i = 0; i < std::min<size_t>(3, report.warnings.size()); ++i)
-    std::printf("           warning: %s\n", report.warnings[i].c_str());
+    std::printf("           warning: %s\n", report.warnings[i].text.c_str());
 }
 
 }  // namespace

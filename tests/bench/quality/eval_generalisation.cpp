@@ -247,7 +247,7 @@ nlohmann::json evaluateNetwork(const nn::StyleModel& model, const nn::LossNetwor
       const style::StylizedClip stylized = stylizer.stylize(e.clip.features, 1.0, path);
       const style::StylizedCleanup cleaned = style::cleanUpStylizedClip(e.motion, e.mapping, stylized, cleanup_options);
       int unreachable = 0;
-      for (const std::string& w : cleaned.report.warnings) unreachable += w.find("unreachable") != std::string::npos;
+      for (const std::string& w : warningTexts(cleaned.report)) unreachable += w.find("unreachable") != std::string::npos;
       const RootPathComparison travelled =
           compareClipPaths(e.motion, cleaned.motion, e.mapping, e.clip.features.anchor.convention);
       c["residual_mean_cm"] = cleaned.cleaned.residual_mean_cm;

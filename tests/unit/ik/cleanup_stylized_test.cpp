@@ -158,7 +158,7 @@ TEST_F(CleanupStylized, WarningsNameTheContentsFramesWhenSolvedAtAnotherRate) {
   const style::StylizedCleanup run = style::cleanUpStylizedClip(content, mapping, stylized, {}, 0.0, overrides);
   ASSERT_NEAR(run.fps, 60.0, 0.01);
   int named = 0;
-  for (const std::string& warning : run.report.warnings) {
+  for (const std::string& warning : warningTexts(run.report)) {
     std::printf("[ warning  ] %s\n", warning.c_str());
     int first = 0, last = 0;
     const std::size_t at = warning.find(" at frames ");

@@ -116,7 +116,7 @@ TEST_F(CleanupHumanoid, UnreachableTargetsGiveAWarningAndABestEffortResult) {
   const Motion result = cleanupMotion(input(stretched, no_contacts), {}, &report);
   EXPECT_TRUE(result.values.allFinite());
   bool found = false;
-  for (const std::string& warning : report.warnings)
+  for (const std::string& warning : warningTexts(report))
     found = found || (warning.find("targets unreachable: left arm stretched by") != std::string::npos &&
                       warning.find("frames 10-20") != std::string::npos);
   EXPECT_TRUE(found);
@@ -139,20 +139,28 @@ TEST_F(CleanupHumanoid, WarningsNameTheFramesOfTheRateAskedFor) {
         (stretched.block<1, 3>(f, 3 * wrist) - stretched.block<1, 3>(f, 3 * shoulder)).transpose().normalized();
     stretched.block<1, 3>(f, 3 * wrist) += 30.0 * direction.transpose();
   }
-  const auto namedSpan = [&](double warning_fps) {
+  const auto named = [&](double warning_fps) {
     CleanupOptions options;
     options.warning_fps = warning_fps;
     CleanupReport report;
     cleanupMotion(input(stretched, no_contacts), options, &report);
-    for (const std::string& warning : report.warnings)
-      if (warning.find("targets unreachable: left arm stretched by") != std::string::npos)
-        return warning.substr(warning.find(" at ") + 4);
-    return std::string("no warning");
+    for (const CleanupWarning& warning : report.warnings)
+      if (warning.text.find("targets unreachable: left arm stretched by") != std::string::npos) return warning;
+    return CleanupWarning{"no warning"};
   };
-  EXPECT_EQ(namedSpan(0.0), "frames 10-20");                // the solve's own frames (60 fps)
-  EXPECT_EQ(namedSpan(clip.fps()), "frames 10-20");
-  EXPECT_EQ(namedSpan(2.0 * clip.fps()), "frames 20-41");   // 120 fps: each solve frame is two
-  EXPECT_EQ(namedSpan(0.5 * clip.fps()), "frames 5-10");    // 30 fps: 10/2 .. ceil(21/2) - 1
+  // The text and the frames a front end shows (first, last) agree.
+  const auto expectFrames = [&](double warning_fps, int first, int last) {
+    const CleanupWarning warning = named(warning_fps);
+    ASSERT_NE(warning.text.find(" at "), std::string::npos) << warning.text;
+    EXPECT_EQ(warning.text.substr(warning.text.find(" at ") + 4),
+              "frames " + std::to_string(first) + "-" + std::to_string(last));
+    EXPECT_EQ(warning.first_frame, first);
+    EXPECT_EQ(warning.last_frame, last);
+  };
+  expectFrames(0.0, 10, 20);               // the solve's own frames (60 fps)
+  expectFrames(clip.fps(), 10, 20);
+  expectFrames(2.0 * clip.fps(), 20, 41);  // 120 fps: each solve frame is two
+  expectFrames(0.5 * clip.fps(), 5, 10);   // 30 fps: 10/2 .. ceil(21/2) - 1
 }
 
 TEST_F(CleanupHumanoid, ByDefaultEveryFrameIsSolvedHoweverLong) {
@@ -171,7 +179,7 @@ TEST_F(CleanupHumanoid, TheTimeBudgetBoundsTheSolve) {
   EXPECT_TRUE(result.values.allFinite());
   EXPECT_GT(report.frames_unsolved, 0);
   ASSERT_FALSE(report.warnings.empty());
-  EXPECT_NE(report.warnings.back().find("time budget"), std::string::npos);
+  EXPECT_NE(report.warnings.back().text.find("time budget"), std::string::npos);
 }
 
 TEST_F(CleanupHumanoid, ZUpFileGivesTheSameClip) {
