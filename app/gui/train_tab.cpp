@@ -6,6 +6,7 @@
 #include <QFileInfo>
 #include <QFormLayout>
 #include <QGroupBox>
+#include <QHeaderView>
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QLineEdit>
@@ -70,6 +71,8 @@ TrainTab::TrainTab(ClipRoles roles, QWidget* parent)
   style_list_->setHeaderLabels({tr("For content labelled"), tr("Style clip")});
   style_list_->setRootIsDecorated(false);
   style_list_->setMaximumHeight(80);
+  // The label column as wide as its title ("For content labe" was cut off at the dock's width).
+  style_list_->header()->setSectionResizeMode(0, QHeaderView::ResizeToContents);
   style_list_->setToolTip(tr("Double-click a label to edit it. An empty label pairs by file name and is the "
                              "default for labels nothing else matches. With no clip listed, the clip with the "
                              "Style role is used."));
