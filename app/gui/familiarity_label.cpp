@@ -1,7 +1,9 @@
 #include "familiarity_label.h"
 
 #include <exception>
+#include <optional>
 
+#include "common/resource_paths.h"
 #include "features/representation.h"
 
 namespace motionstyle {
@@ -18,14 +20,34 @@ FamiliarityLabel::FamiliarityLabel(QWidget* parent) : QLabel(parent) {
   setText(QStringLiteral("-"));
 }
 
+namespace {
+
+// The shipped loss network (every shipped style learnt against it), read once; null without one.
+const nn::LossNetworkModel* shippedLossNetwork() {
+  static const std::optional<nn::LossNetworkModel> model = []() -> std::optional<nn::LossNetworkModel> {
+    try {
+      const auto resources = resourceDirectory();
+      const auto file = resources ? shippedNetworkFile(*resources, kShippedLossNetworkName) : std::nullopt;
+      if (file) return nn::loadLossNetwork(*file);
+    } catch (const std::exception&) {  // a damaged file: the row reads "-" until a style is chosen
+    }
+    return std::nullopt;
+  }();
+  return model ? &*model : nullptr;
+}
+
+}  // namespace
+
 void FamiliarityLabel::measure(const LoadedClip* clip, const style::Stylizer* network) {
   familiarity_.reset();
   int rest_pose_frames = 0;
-  if (clip != nullptr && clip->mapping && network != nullptr) {
+  const nn::LossNetworkModel* shipped = network == nullptr ? shippedLossNetwork() : nullptr;
+  if (clip != nullptr && clip->mapping && (network != nullptr || shipped != nullptr)) {
     try {
       const MotionFeatures features = extractFeatures(clip->motion, *clip->mapping);
       rest_pose_frames = features.anchor.rest_pose_frames;
-      familiarity_ = style::measureFamiliarity(*network, features.values);
+      familiarity_ = network != nullptr ? style::measureFamiliarity(*network, features.values)
+                                        : style::measureFamiliarity(*shipped, features.values);
     } catch (const std::exception&) {
       familiarity_.reset();
     }

@@ -1,7 +1,8 @@
 #pragma once
 // FamiliarityLabel: the Result panel's "Familiarity" row: how close the content clip is to the motion
-// the chosen style network's loss network learnt from (style/familiarity.h), as a coloured reading
-// with the next step ("Adapt...", which emits adaptRequested()) when the clip is not familiar.
+// the chosen style network's loss network (before one is chosen: the shipped one) learnt from
+// (style/familiarity.h), as a coloured reading with the next step ("Adapt...", which emits
+// adaptRequested()) when the clip is not familiar.
 // Computed on the GUI thread when the clip or the network changes: a projection of the clip, a few
 // milliseconds for a minute of motion.
 
@@ -23,8 +24,10 @@ class FamiliarityLabel : public QLabel {
   explicit FamiliarityLabel(QWidget* parent = nullptr);
 
   // Measures `clip` (its content features) with `network`'s loss network, as the network prepared it
-  // (no layer set up again); either may be null (then "-"). A clip that cannot be featurised reads
-  // "-" too (Stylize says why).
+  // (no layer set up again); before a style is chosen (null `network`) with the shipped loss network,
+  // the one every shipped style learnt against (its layers prepared at each call: about 0.1 s). No
+  // clip, or no network of either kind, reads "-"; so does a clip that cannot be featurised (Stylize
+  // says why).
   void measure(const LoadedClip* clip, const style::Stylizer* network);
   const std::optional<style::Familiarity>& familiarity() const { return familiarity_; }
 
