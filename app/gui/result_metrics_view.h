@@ -25,7 +25,6 @@ class ResultMetricsView : public QWidget {
 
   void showResult(const style::StylizeCleanupResult* result);  // nullptr: no result
   QTableWidget* table() const { return table_; }
-  QLabel* warningsLabel() const { return warnings_label_; }
 
  signals:
   // A warning's link was clicked: show this frame of the content (the clean-up names the frames of the
