@@ -25,6 +25,17 @@ class CleanupHumanoid : public ::testing::Test {
   CleanupInput input(const Eigen::MatrixXd& t, const Eigen::MatrixXi& c, double floor = -50.0) const {
     return CleanupInput{clip, mapping, t, c, Eigen::Vector3d::UnitY(), floor, 1.0};
   }
+  // The targets with the left wrist 30 cm further from the shoulder over frames 10-20: out of reach.
+  Eigen::MatrixXd leftWristPulledAway() const {
+    Eigen::MatrixXd stretched = targets;
+    const int wrist = index(CanonicalJoint::LeftWrist), shoulder = index(CanonicalJoint::LeftUpperArm);
+    for (int f = 10; f <= 20; ++f) {
+      const Eigen::Vector3d direction =
+          (stretched.block<1, 3>(f, 3 * wrist) - stretched.block<1, 3>(f, 3 * shoulder)).transpose().normalized();
+      stretched.block<1, 3>(f, 3 * wrist) += 30.0 * direction.transpose();
+    }
+    return stretched;
+  }
   static double meanDistanceCm(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
     double sum = 0.0;
     for (Eigen::Index f = 0; f < a.rows(); ++f)
@@ -105,13 +116,7 @@ TEST_F(CleanupHumanoid, FeetStayAboveTheFloor) {
 }
 
 TEST_F(CleanupHumanoid, UnreachableTargetsGiveAWarningAndABestEffortResult) {
-  Eigen::MatrixXd stretched = targets;
-  const int wrist = index(CanonicalJoint::LeftWrist), shoulder = index(CanonicalJoint::LeftUpperArm);
-  for (int f = 10; f <= 20; ++f) {
-    const Eigen::Vector3d direction =
-        (stretched.block<1, 3>(f, 3 * wrist) - stretched.block<1, 3>(f, 3 * shoulder)).transpose().normalized();
-    stretched.block<1, 3>(f, 3 * wrist) += 30.0 * direction.transpose();
-  }
+  const Eigen::MatrixXd stretched = leftWristPulledAway();
   CleanupReport report;
   const Motion result = cleanupMotion(input(stretched, no_contacts), {}, &report);
   EXPECT_TRUE(result.values.allFinite());
@@ -132,13 +137,7 @@ TEST_F(CleanupHumanoid, UnreachableTargetsGiveAWarningAndABestEffortResult) {
 // The user's clip may be at another rate than the solve (120 fps content is solved at 60 fps): a
 // warning names the frames of the rate it is asked for, all those that overlap the run in time.
 TEST_F(CleanupHumanoid, WarningsNameTheFramesOfTheRateAskedFor) {
-  Eigen::MatrixXd stretched = targets;
-  const int wrist = index(CanonicalJoint::LeftWrist), shoulder = index(CanonicalJoint::LeftUpperArm);
-  for (int f = 10; f <= 20; ++f) {
-    const Eigen::Vector3d direction =
-        (stretched.block<1, 3>(f, 3 * wrist) - stretched.block<1, 3>(f, 3 * shoulder)).transpose().normalized();
-    stretched.block<1, 3>(f, 3 * wrist) += 30.0 * direction.transpose();
-  }
+  const Eigen::MatrixXd stretched = leftWristPulledAway();
   const auto named = [&](double warning_fps) {
     CleanupOptions options;
     options.warning_fps = warning_fps;
