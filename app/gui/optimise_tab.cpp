@@ -15,7 +15,7 @@ namespace motionstyle {
 OptimiseTab::OptimiseTab(QWidget* parent) : QWidget(parent) {
   auto* text = new QLabel(tr("The optimisation method (Holden et al. 2016): no trained network; the content clip's "
                              "hidden units are optimised towards the style clip's Gram matrix with the loss "
-                             "network above, then the foot, bone and trajectory constraints. Slower than a "
+                             "network chosen on the Train tab, then the foot, bone and trajectory constraints. Slower than a "
                              "trained network, for one style clip."),
                           this);
   text->setWordWrap(true);
