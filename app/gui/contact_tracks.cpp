@@ -72,17 +72,10 @@ void ContactTrackController::overrideFoot(int foot, int first_frame, int last_fr
     return;
   }
   const int last = std::min(last_frame, clip->frameCount() - 1);
-  const int value = in_contact ? 1 : 0;
-  bool changed = false;
   for (int f = std::max(first_frame, 0); f <= last; ++f)
-    for (int label : footLabels(foot)) {
-      changed = changed || clip->contact_overrides(f, label) != value;
-      clip->contact_overrides(f, label) = value;
-    }
+    for (int label : footLabels(foot)) clip->contact_overrides(f, label) = in_contact ? 1 : 0;
   refresh();
-  // A stroke's release repeats its last step: no change, so no new result ("Shown again ..." once
-  // followed every stroke).
-  if (changed) emit overridesChanged(clip->contact_overrides);
+  emit overridesChanged(clip->contact_overrides);
 }
 
 void ContactTrackController::resetOverrides() {

@@ -161,6 +161,9 @@ void ResultPanel::setContentClip(const LoadedClip* clip) {
 }
 
 void ResultPanel::setContactOverrides(const Eigen::MatrixXi& overrides) {
+  // Overrides as they were are no edit: a stroke's release repeats its last step, and each such
+  // repeat once showed the last result again ("Shown again: made earlier ...").
+  if (overrides.rows() == overrides_.rows() && overrides.cols() == overrides_.cols() && overrides == overrides_) return;
   overrides_ = overrides;
   inputsChanged(tr("the contacts were edited"));
 }
