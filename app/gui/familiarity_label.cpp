@@ -3,8 +3,8 @@
 #include <exception>
 #include <optional>
 
-#include "common/resource_paths.h"
 #include "features/representation.h"
+#include "shipped_networks.h"
 
 namespace motionstyle {
 
@@ -26,9 +26,8 @@ namespace {
 const nn::LossNetworkModel* shippedLossNetwork() {
   static const std::optional<nn::LossNetworkModel> model = []() -> std::optional<nn::LossNetworkModel> {
     try {
-      const auto resources = resourceDirectory();
-      const auto file = resources ? shippedNetworkFile(*resources, kShippedLossNetworkName) : std::nullopt;
-      if (file) return nn::loadLossNetwork(*file);
+      const QString file = shippedLossNetworkFile();
+      if (!file.isEmpty()) return nn::loadLossNetwork(file.toStdString());
     } catch (const std::exception&) {  // a damaged file: the row reads "-" until a style is chosen
     }
     return std::nullopt;

@@ -16,22 +16,15 @@
 #include <QTemporaryDir>
 #include <QVBoxLayout>
 
-#include "common/resource_paths.h"
 #include "adapt_tab.h"
 #include "loss_curve_widget.h"
 #include "job_runner.h"
+#include "shipped_networks.h"
 
 namespace motionstyle {
 namespace {
 
 const char* const kLossNetworkKey = "networks/lossNetwork";
-
-// <resources>/models/loss_network.net when installed (resource_paths.h), else empty.
-QString shippedLossNetworkFile() {
-  const auto resources = resourceDirectory();
-  const auto file = resources ? shippedNetworkFile(*resources, kShippedLossNetworkName) : std::nullopt;
-  return file ? QString::fromStdString(file->string()) : QString();
-}
 
 }  // namespace
 

@@ -40,6 +40,12 @@ QString styleNetworkProblem(const std::filesystem::path& file, const QString& sh
 
 }  // namespace
 
+QString shippedLossNetworkFile() {
+  const auto resources = resourceDirectory();
+  const auto file = resources ? shippedNetworkFile(*resources, kShippedLossNetworkName) : std::nullopt;
+  return file ? QString::fromStdString(file->string()) : QString();
+}
+
 std::vector<ShippedStyleNetwork> shippedStyleNetworks() {
   std::vector<ShippedStyleNetwork> networks;
   const std::optional<std::filesystem::path> resources = resourceDirectory();

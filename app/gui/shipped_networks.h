@@ -20,6 +20,10 @@ struct ShippedStyleNetwork {
 // The resources folder's style networks (not the loss network), sorted by name; empty without one.
 std::vector<ShippedStyleNetwork> shippedStyleNetworks();
 
+// <resources>/models/loss_network.net when installed (resource_paths.h), else empty: the loss network
+// every shipped style learnt against.
+QString shippedLossNetworkFile();
+
 // Appends them to `choice` with the file as item data: "Elderly", or "Broken (cannot be read)"
 // disabled with the problem as tooltip.
 void addShippedStyleNetworks(QComboBox* choice);
