@@ -22,31 +22,68 @@ FamiliarityLabel::FamiliarityLabel(QWidget* parent) : QLabel(parent) {
 
 namespace {
 
-// The shipped loss network (every shipped style learnt against it), read once; null without one.
-const nn::LossNetworkModel* shippedLossNetwork() {
-  static const std::optional<nn::LossNetworkModel> model = []() -> std::optional<nn::LossNetworkModel> {
+// The shipped loss network (every shipped style learnt against it), read and prepared once; null
+// without one. Its projection shares its kernel spectra with the shipped styles' (sharedProjection).
+struct ShippedReader {
+  nn::LossNetworkModel model;
+  std::shared_ptr<const nn::FastStylizer> prepared;  // kept: the shared spectra outlive any style
+  nn::FastStylizer projection;                       // a copy to run (GUI thread only)
+};
+
+ShippedReader* shippedReader() {
+  static const std::unique_ptr<ShippedReader> reader = []() -> std::unique_ptr<ShippedReader> {
     try {
       const QString file = shippedLossNetworkFile();
-      if (!file.isEmpty()) return nn::loadLossNetwork(file.toStdString());
+      if (file.isEmpty()) return nullptr;
+      nn::LossNetworkModel model = nn::loadLossNetwork(file.toStdString());
+      auto prepared = style::sharedProjection(model.network);
+      nn::FastStylizer projection = *prepared;
+      return std::make_unique<ShippedReader>(ShippedReader{std::move(model), std::move(prepared), std::move(projection)});
     } catch (const std::exception&) {  // a damaged file: the row reads "-" until a style is chosen
     }
-    return std::nullopt;
+    return nullptr;
   }();
-  return model ? &*model : nullptr;
+  return reader.get();
+}
+
+// Whether `a` and `b` (null: the shipped loss network) read a clip alike: the same loss network
+// weights and normalisation.
+bool readAlike(const style::Stylizer* a, const style::Stylizer* b) {
+  if (a == b) return true;
+  const ShippedReader* shipped = shippedReader();
+  if ((a == nullptr || b == nullptr) && shipped == nullptr) return false;
+  const nn::LossNetwork<float>& network_a = a ? a->model().loss_network : shipped->model.network;
+  const nn::LossNetwork<float>& network_b = b ? b->model().loss_network : shipped->model.network;
+  const FeatureStatistics& statistics_a = a ? a->model().normalisation : shipped->model.normalisation;
+  const FeatureStatistics& statistics_b = b ? b->model().normalisation : shipped->model.normalisation;
+  return statistics_a.mean == statistics_b.mean && statistics_a.std == statistics_b.std &&
+         nn::sameWeights(network_a, network_b);
 }
 
 }  // namespace
 
-void FamiliarityLabel::measure(const LoadedClip* clip, const style::Stylizer* network) {
+void FamiliarityLabel::measure(const LoadedClip* clip, std::shared_ptr<const style::Stylizer> network) {
+  ShippedReader* shipped = network == nullptr ? shippedReader() : nullptr;
+  const bool readable = clip != nullptr && clip->mapping && (network != nullptr || shipped != nullptr);
+  if (readable && familiarity_ && clip->id == measured_clip_ && readAlike(network.get(), measured_with_.get())) {
+    measured_with_ = std::move(network);  // the same reading: the text stays
+    return;
+  }
   familiarity_.reset();
+  measured_clip_ = 0;
+  measured_with_.reset();
   int rest_pose_frames = 0;
-  const nn::LossNetworkModel* shipped = network == nullptr ? shippedLossNetwork() : nullptr;
-  if (clip != nullptr && clip->mapping && (network != nullptr || shipped != nullptr)) {
+  if (readable) {
     try {
       const MotionFeatures features = extractFeatures(clip->motion, *clip->mapping);
       rest_pose_frames = features.anchor.rest_pose_frames;
-      familiarity_ = network != nullptr ? style::measureFamiliarity(*network, features.values)
-                                        : style::measureFamiliarity(*shipped, features.values);
+      familiarity_ = network != nullptr
+                         ? style::measureFamiliarity(*network, features.values)
+                         : style::familiarityFromReconstruction(
+                               features.values, style::projectFeatures(shipped->projection, shipped->model.normalisation,
+                                                                       features.values));
+      measured_clip_ = clip->id;
+      measured_with_ = std::move(network);
     } catch (const std::exception&) {
       familiarity_.reset();
     }

@@ -3,11 +3,14 @@
 // the chosen style network's loss network (before one is chosen: the shipped one) learnt from
 // (style/familiarity.h), as a coloured reading with the next step ("Adapt...", which emits
 // adaptRequested()) when the clip is not familiar.
-// Computed on the GUI thread when the clip or the network changes: a projection of the clip, a few
-// milliseconds for a minute of motion.
+// Computed on the GUI thread when the clip or the loss network changes: a projection of the clip, a
+// few milliseconds for a minute of motion. A switch between styles trained against one loss network
+// (every shipped style) reads nothing again: their readings of a clip are the same.
 
 #include <QLabel>
 
+#include <cstdint>
+#include <memory>
 #include <optional>
 
 #include "clip_loader.h"
@@ -25,10 +28,11 @@ class FamiliarityLabel : public QLabel {
 
   // Measures `clip` (its content features) with `network`'s loss network, as the network prepared it
   // (no layer set up again); before a style is chosen (null `network`) with the shipped loss network,
-  // the one every shipped style learnt against (its layers prepared at each call: about 0.1 s). No
-  // clip, or no network of either kind, reads "-"; so does a clip that cannot be featurised (Stylize
-  // says why).
-  void measure(const LoadedClip* clip, const style::Stylizer* network);
+  // the one every shipped style learnt against (prepared once, sharing its layers with the shipped
+  // styles). The reading is kept when the clip (LoadedClip::id) and the loss network (weights and
+  // normalisation) are those of the last one. No clip, or no network of either kind, reads "-"; so
+  // does a clip that cannot be featurised (Stylize says why).
+  void measure(const LoadedClip* clip, std::shared_ptr<const style::Stylizer> network);
   const std::optional<style::Familiarity>& familiarity() const { return familiarity_; }
 
  signals:
@@ -36,6 +40,8 @@ class FamiliarityLabel : public QLabel {
 
  private:
   std::optional<style::Familiarity> familiarity_;
+  std::uint64_t measured_clip_ = 0;                       // the clip familiarity_ reads, 0: none
+  std::shared_ptr<const style::Stylizer> measured_with_;  // its network, null: the shipped loss network
 };
 
 }  // namespace motionstyle

@@ -2,9 +2,6 @@
 
 #include <QCheckBox>
 #include <QComboBox>
-#include <QDir>
-#include <QFileDialog>
-#include <QFileInfo>
 #include <QFormLayout>
 #include <QHBoxLayout>
 #include <QLabel>
@@ -17,14 +14,11 @@
 #include <cmath>
 #include <exception>
 
-#include "bvh/bvh_writer.h"
 #include "common/errors.h"
-#include "common/output_paths.h"
 #include "common/resource_paths.h"
 #include "app_log.h"
 #include "busy_indicator.h"
 #include "display_space.h"
-#include "error_text.h"
 #include "familiarity_label.h"
 #include "result_figures.h"
 #include "result_metrics_view.h"
@@ -158,6 +152,7 @@ void ResultPanel::setContentClip(const LoadedClip* clip) {
   clearResult();
   refreshControls();
   refreshFamiliarity();
+  scheduleLookAhead();  // the chosen style (if any) and its neighbours, before Stylize is pressed
 }
 
 void ResultPanel::setContactOverrides(const Eigen::MatrixXi& overrides) {
@@ -193,7 +188,10 @@ bool ResultPanel::canStylize() const { return content_ && content_->mapping && (
 
 void ResultPanel::inputsChanged(const QString& what) {
   stopLookAhead();
-  if (!result_ && !busy_) return;  // nothing shown or on its way: the next Stylize uses the new inputs
+  if (!result_ && !busy_) {  // nothing shown or on its way: the next Stylize uses the new inputs
+    scheduleLookAhead();      // ... computed ahead once they rest
+    return;
+  }
   const bool was_stale = resultIsStale();
   last_change_ms_ = clock_.elapsed();
   last_change_ = what;
@@ -209,7 +207,7 @@ void ResultPanel::inputsChanged(const QString& what) {
     }
   } else {
     if (busy_) cancel();
-    if (rerun) stylize();
+    if (rerun) runStylize();
   }
   if (resultIsStale()) {
     status_label_->setText(tr("Out of date: %1. %2").arg(what, rerun ? tr("Updating...") : tr("Stylize again to update it.")));
@@ -219,7 +217,7 @@ void ResultPanel::inputsChanged(const QString& what) {
 }
 
 void ResultPanel::refreshFamiliarity() {
-  familiarity_label_->measure(content_.get(), stylizer_.get());
+  familiarity_label_->measure(content_.get(), stylizer_);
   emit familiarityChanged();
 }
 
@@ -228,7 +226,11 @@ void ResultPanel::setStrength(double strength) {
 }
 
 void ResultPanel::stylize() {
-  if (!busy_) runStylize();
+  if (busy_) return;
+  last_change_ms_ = clock_.elapsed();
+  last_change_ = tr("Stylize");
+  if (!result_ && showRememberedResult(true)) return;  // computed ahead since the clip opened
+  runStylize();
 }
 
 void ResultPanel::runStylize() {
@@ -442,50 +444,6 @@ QualityTracks ResultPanel::qualityTracks() const {
   tracks.raw_bone_error_cm =
       trackAtRate(result_->raw_metrics.bone_error_track_cm, result_->stylized.fps, content_->fps());
   return tracks;
-}
-
-bool ResultPanel::exportResult(const QString& file, bool overwrite) {
-  const QString title = tr("Could not export the clip");
-  if (!result_) {
-    report(title, tr("There is no result to export yet: Stylize first."));
-    return false;
-  }
-  if (resultIsStale()) {
-    report(title, tr("The result shown is out of date (%1 since it was made with %2): wait for the update or "
-                     "Stylize again, then export.")
-                      .arg(stale_reason_, result_network_name_));
-    return false;
-  }
-  if (QFileInfo::exists(file) && !overwrite) {
-    report(title, tr("%1 already exists; it was not overwritten.").arg(file));
-    return false;
-  }
-  try {  // the content clip itself is never overwritten, even when the user confirmed the file dialog
-    if (content_) checkOutputPaths({{content_->path.toStdString(), "the content clip"}}, {{file.toStdString(), "the export"}});
-    writeBvh(result_->cleaned, file.toStdString());
-  } catch (...) {
-    report(title, errorText(std::current_exception(), file));
-    return false;
-  }
-  last_export_folder_ = QFileInfo(file).absolutePath();
-  emit statusMessage(tr("Exported %1").arg(file));
-  return true;
-}
-
-void ResultPanel::browseExport() {
-  if (!result_ || !content_) return;
-  if (resultIsStale()) {  // says why, without a file dialog first
-    exportResult(QString(), false);
-    return;
-  }
-  const QString folder = last_export_folder_.isEmpty() ? QFileInfo(content_->path).absolutePath() : last_export_folder_;
-  const QString suggestion = QFileInfo(content_->path).completeBaseName() + QLatin1Char('_') +
-                             (result_network_name_.isEmpty() ? QStringLiteral("styled") : result_network_name_) +
-                             QStringLiteral(".bvh");
-  // QFileDialog asks before replacing an existing file, so the choice to overwrite is the user's.
-  const QString file = QFileDialog::getSaveFileName(this, tr("Export the cleaned clip"), QDir(folder).filePath(suggestion),
-                                                    tr("BVH motion (*.bvh)"));
-  if (!file.isEmpty()) exportResult(file, /*overwrite=*/true);
 }
 
 }  // namespace motionstyle

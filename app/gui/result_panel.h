@@ -83,8 +83,9 @@ class ResultPanel : public QWidget {
   // The style chooser: the shipped style networks (resources/models, by name), then networks opened
   // from files. Choosing one loads it.
   QComboBox* networkChoice() const { return network_choice_; }
-  // How long the inputs must rest after a result before the styles nearest the chosen one in the
-  // chooser are computed ahead, one after the other (result_panel_look_ahead.cpp); negative: never.
+  // How long the inputs must rest after a result (or, before the first, after a clip opens or an input
+  // changes) before the chosen style and the styles nearest it in the chooser are computed ahead, one
+  // after the other (result_panel_look_ahead.cpp); negative: never.
   // Default kLookAheadDelayMs.
   static constexpr int kLookAheadDelayMs = 400;
   // How many: kLookAheadFrames / the clip's frames, between kLookAheadMinStyles and kLookAheadMaxStyles
@@ -171,9 +172,11 @@ class ResultPanel : public QWidget {
   // The inputs a network's result depends on, as they are now (recent_results.h).
   ResultInputs currentInputs() const;
   // Shows the result remembered for the current inputs, if any (a style shown before with the same
-  // clip, strength, path and contacts): no job. Returns whether it did.
-  bool showRememberedResult();
-  // The look-ahead (result_panel_look_ahead.cpp): scheduled after a result, stopped by any change.
+  // clip, strength, path and contacts, or computed ahead): no job. Returns whether it did.
+  // stylize_pressed: it answers Stylize (the status says the clip was stylized), not a change.
+  bool showRememberedResult(bool stylize_pressed = false);
+  // The look-ahead (result_panel_look_ahead.cpp): scheduled after a result and, before the first
+  // one, when a mapped clip opens or an input changes; stopped by any change and any job.
   void scheduleLookAhead();
   void stopLookAhead();
   void lookAhead();

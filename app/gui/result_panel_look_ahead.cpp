@@ -1,8 +1,9 @@
 // The Result panel's look-ahead: while the user looks at a result, the styles near it in the chooser
 // (+1, -1, +2, -2, ...: the nearest first) are computed for the same inputs on a second worker and
-// remembered (recent_results.h), so that a switch to any of them is shown at once. It starts only
-// after the inputs have rested for a moment (a drag's steps never start it), one style at a time, and
-// any change drops it. How many: lookAheadStyles(), every shipped style for a clip of a few hundred
+// remembered (recent_results.h), so that a switch to any of them is shown at once. Before the first
+// result too (a clip just opened, a style just chosen), the chosen style first: Stylize then shows it
+// at once. It starts only after the inputs have rested for a moment (a drag's steps never start it),
+// one style at a time, and any change drops it. How many: lookAheadStyles(), every shipped style for a clip of a few hundred
 // frames, two for a long one (each costs a job on both cores and keeps its result and prepared network).
 #include <QComboBox>
 #include <QTimer>
@@ -39,20 +40,20 @@ int ResultPanel::lookAheadStyles() const {
 }
 
 void ResultPanel::lookAhead() {
-  if (busy_ || !result_ || resultIsStale() || given_stylized_ || !canStylize() || look_ahead_->isBusy()) return;
+  if (busy_ || resultIsStale() || given_stylized_ || !content_ || !content_->mapping || look_ahead_->isBusy()) return;
   const int current = network_choice_->currentIndex(), count = network_choice_->count();
-  const int styles = lookAheadStyles();
+  const int styles = 1 + lookAheadStyles();  // the chosen one (shown, or not yet: it comes first) and its neighbours
   int candidates = 0;
-  for (int step = 0; step < 2 * count && candidates < styles; ++step) {
-    const int index = current + (step % 2 == 0 ? 1 + step / 2 : -(1 + step / 2));  // +1, -1, +2, -2, ...
+  for (int step = 0; step < 2 * count + 1 && candidates < styles; ++step) {
+    const int index = current + (step % 2 == 1 ? (step + 1) / 2 : -(step / 2));  // 0, +1, -1, +2, -2, ...
     if (index < 0 || index >= count) continue;
     const QString file = network_choice_->itemData(index).toString();
-    if (file.isEmpty()) continue;  // a network without a file: nothing to read ahead
+    const bool chosen = index == current && hasNetwork();
+    if (file.isEmpty() && !chosen) continue;  // a network without a file: nothing to read ahead
     ++candidates;
-    std::shared_ptr<const style::Stylizer> prepared = stylizers_.find(file);
     ResultInputs inputs = currentInputs();
-    inputs.stylizer = prepared;
-    if (prepared && recent_.contains(inputs)) continue;  // already there
+    if (!chosen) inputs.stylizer = stylizers_.find(file);  // prepared already, or read on the worker
+    if (inputs.stylizer && recent_.contains(inputs)) continue;  // already there
     startLookAhead(std::move(inputs), file, network_choice_->itemText(index));
     return;  // one at a time: its completion looks for the next
   }
@@ -67,15 +68,16 @@ void ResultPanel::startLookAhead(ResultInputs inputs, const QString& file, const
   job.contact_overrides = inputs.contact_overrides;
   job.memory = std::make_shared<style::StylizeCleanupMemory>();  // the shown style's is in use: its own
   const qint64 started = clock_.elapsed();
+  const bool chosen = inputs.stylizer && inputs.stylizer == stylizer_;  // its next job reuses the scratch
   look_ahead_->restart(tr("Could not compute a neighbouring style"),
-                       [this, job = std::move(job), inputs = std::move(inputs), file, name,
-                        started](const JobRunner::Context& context) mutable -> JobRunner::Completion {
+                       [this, job = std::move(job), inputs = std::move(inputs), file, name, started,
+                        chosen](const JobRunner::Context& context) mutable -> JobRunner::Completion {
                          if (!inputs.stylizer)
                            inputs.stylizer = std::make_shared<const style::Stylizer>(
                                style::loadCompatibleStyleModel(file.toStdString()), file.toStdString());
                          job.stylizer = inputs.stylizer;
                          auto result = std::make_shared<const style::StylizeCleanupResult>(job.run(context.cancelFlag()));
-                         inputs.stylizer->releaseIdleNetworks();  // its scratch: it may never be chosen
+                         if (!chosen) inputs.stylizer->releaseIdleNetworks();  // its scratch: it may never be chosen
                          return [this, result, inputs, memory = job.memory, file, name, started] {
                            onLookedAhead({inputs, result, name, memory}, file, clock_.elapsed() - started);
                          };
@@ -86,7 +88,7 @@ void ResultPanel::onLookedAhead(RecentResults::Entry entry, const QString& file,
   ResultInputs now = currentInputs();
   now.stylizer = entry.inputs.stylizer;
   if (!(now == entry.inputs)) return;  // the inputs moved on while it ran
-  if (!stylizers_.find(file)) stylizers_.store(file, entry.inputs.stylizer);
+  if (!file.isEmpty() && !stylizers_.find(file)) stylizers_.store(file, entry.inputs.stylizer);
   app_log::write(QStringLiteral("look-ahead: %1 computed for the current inputs in %2 ms").arg(entry.network_name).arg(milliseconds));
   entry.computed_ahead = true;
   recent_.remember(std::move(entry));

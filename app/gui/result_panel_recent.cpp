@@ -10,7 +10,7 @@ ResultInputs ResultPanel::currentInputs() const {
   return {content_ ? content_->id : 0, stylizer_, strength(), pathMode(), overrides_};
 }
 
-bool ResultPanel::showRememberedResult() {
+bool ResultPanel::showRememberedResult(bool stylize_pressed) {
   if (given_stylized_ || !canStylize()) return false;
   RecentResults::Entry* remembered = recent_.find(currentInputs());
   if (remembered == nullptr) return false;
@@ -21,10 +21,12 @@ bool ResultPanel::showRememberedResult() {
   result_network_name_ = remembered->network_name;
   stale_reason_.clear();
   const qint64 figures_start = clock_.elapsed();
-  const qint64 on_screen =
-      showResult(computed_ahead
-                     ? tr("Computed ahead while the last result was shown, for the same clip, strength, path and contacts.")
-                     : tr("Shown again: made earlier for the same clip, style, strength, path and contacts."));
+  QString status = tr("Shown again: made earlier for the same clip, style, strength, path and contacts.");
+  if (computed_ahead)
+    status = stylize_pressed ? tr("Stylized and cleaned up %1 frames ahead, while the clip was open.")
+                                   .arg(result_->cleaned.frameCount())
+                             : tr("Computed ahead while you looked, for the same clip, strength, path and contacts.");
+  const qint64 on_screen = showResult(status);
   logResultOnScreen(last_change_, on_screen - last_change_ms_, 0, on_screen - figures_start, strength(), 0,
                     computed_ahead ? QStringLiteral("remembered: computed ahead for these inputs")
                                    : QStringLiteral("remembered: made earlier for these inputs"));

@@ -168,8 +168,13 @@ std::shared_ptr<const nn::FastStylizer> sharedProjection(const nn::LossNetwork<f
 Eigen::MatrixXd projectFeatures(const nn::LossNetworkModel& loss_network, const Eigen::MatrixXd& features) {
   requireFeatures(features, "projectFeatures");
   nn::FastStylizer fast(loss_network.network);
-  const FeatureStatistics& normalisation = loss_network.normalisation;
-  return cropEdges(normalisation.denormalized(fast.project(normalisation.normalized(padEdges(features)))));
+  return projectFeatures(fast, loss_network.normalisation, features);
+}
+
+Eigen::MatrixXd projectFeatures(nn::FastStylizer& projection, const FeatureStatistics& normalisation,
+                                const Eigen::MatrixXd& features) {
+  requireFeatures(features, "projectFeatures");
+  return cropEdges(normalisation.denormalized(projection.project(normalisation.normalized(padEdges(features)))));
 }
 
 }  // namespace motionstyle::style

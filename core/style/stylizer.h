@@ -120,5 +120,10 @@ std::shared_ptr<const nn::FastStylizer> sharedProjection(const nn::LossNetwork<f
 // L(x) = decode(encode(x)) of a clip in representation units (66 x frames): the loss network's
 // reconstruction, used by eval and as the "projection only" preview. float32 fast path.
 Eigen::MatrixXd projectFeatures(const nn::LossNetworkModel& loss_network, const Eigen::MatrixXd& features);
+// The same on a projection prepared before (nn::FastStylizer(loss_network), or a copy of
+// sharedProjection's) with that loss network's normalisation: no layer set up again (the line above
+// prepares them at every call, about 0.1 s). Not thread-safe for one `projection` (its scratch).
+Eigen::MatrixXd projectFeatures(nn::FastStylizer& projection, const FeatureStatistics& normalisation,
+                                const Eigen::MatrixXd& features);
 
 }  // namespace motionstyle::style

@@ -30,6 +30,7 @@
 #include "result_panel.h"
 #include "style/familiarity.h"
 #include "style/motion_dataset.h"
+#include "style/stylizer.h"
 #include "style/training.h"
 #include "timeline_widget.h"
 #include "track_view.h"
@@ -138,6 +139,39 @@ class FamiliarityTest : public QObject {
     for (int i = 0; i < styles->count(); ++i)
       if (styles->item(i)->checkState() == Qt::Checked) checked << styles->item(i)->text();
     QCOMPARE(checked, QStringList{QStringLiteral("masculine")});
+  }
+
+  // The reading follows the loss network, not the style: every shipped style (trained against the
+  // shipped loss network) reads the clip as it is read before a style is chosen, and is not measured
+  // again on a switch; a network with another loss network reads it anew, and so does another clip.
+  void stylesOfOneLossNetworkReadTheClipAlike() {
+    MainWindow window(false);
+    window.setErrorReporter([](const QString& title, const QString& message) { QFAIL(qPrintable(title + ": " + message)); });
+    QCOMPARE(window.openFiles({test::fixture(QStringLiteral("cmu_131_01.bvh"))}), 1);
+    ResultPanel* panel = window.resultPanel();
+    panel->setLookAheadDelay(-1);
+    QVERIFY(panel->familiarity().has_value());
+    const std::vector<double> shipped = panel->familiarity()->per_frame_cm;
+    const auto resources = resourceDirectory();
+    QVERIFY2(resources.has_value(), "the repository's resources/ (shipped networks) were not found");
+    for (const char* name : {"elderly", "sad", "elderly"}) {
+      const auto file = shippedNetworkFile(*resources, name);
+      QVERIFY(file.has_value());
+      QVERIFY(panel->loadNetworkFile(QString::fromStdString(file->string())));
+      QVERIFY(panel->familiarity().has_value());
+      QVERIFY2(panel->familiarity()->per_frame_cm == shipped, name);
+      // Measured afresh through this network's own projection: the same figures.
+      const MotionFeatures features = extractFeatures(window.clip(0).motion, *window.clip(0).mapping);
+      const style::Stylizer stylizer(style::loadCompatibleStyleModel(*file));
+      QVERIFY(style::measureFamiliarity(stylizer, features.values).per_frame_cm == shipped);
+    }
+    QVERIFY(panel->loadNetworkFile(QString::fromStdString(network_.string())));  // another loss network
+    QVERIFY(panel->familiarity().has_value() && panel->familiarity()->per_frame_cm != shipped);
+    QVERIFY(panel->familiarity()->level == style::FamiliarityLevel::Far);
+    QCOMPARE(window.openFiles({test::fixture(QStringLiteral("zombie.bvh"))}), 1);
+    window.setContentClip(1);
+    QVERIFY(panel->familiarity().has_value());
+    QVERIFY(panel->familiarity()->per_frame_cm.size() != shipped.size());
   }
 
   // The Adapt tab retrains the style the user works with: it checks the one chosen in the Result panel,

@@ -9,6 +9,7 @@
 #include <QComboBox>
 #include <QElapsedTimer>
 #include <QFile>
+#include <QPushButton>
 #include <QRegularExpression>
 #include <QSignalSpy>
 #include <QSlider>
@@ -397,6 +398,71 @@ class LiveTest : public QObject {
     QTest::keyClick(choice, Qt::Key_Up);
     QVERIFY(waitForNewResult(panel, before_back));
     QVERIFY(!readLiveLog(log_).back().remembered);
+  }
+
+  // A style chosen before the first result: while the user looks at the clip, the chosen style and
+  // then its neighbours are computed ahead, so the Stylize button shows the result at once (the user
+  // never waits for the first one) and a switch right after it too. An input changed before Stylize
+  // drops them (anInputChangedBeforeStylizeIsComputedAheadAgain): the press then shows the new inputs'
+  // result, never one made for the old.
+  void theChosenStyleIsComputedBeforeStylizeIsPressed() {
+    const QString clip = writeClip(scratch_, QStringLiteral("cmu_131_01.bvh"), QStringLiteral("clip_first.bvh"));
+    MainWindow window(false);
+    window.resize(1400, 900);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    ResultPanel* panel = window.resultPanel();
+    panel->setLookAheadDelay(0);
+    QCOMPARE(window.openFiles({clip}), 1);
+    QVERIFY(panel->loadNetworkFile(QString::fromStdString(network_.string())));
+    auto* choice = panel->findChild<QComboBox*>(QStringLiteral("NetworkChoice"));
+    QVERIFY(choice != nullptr && choice->count() >= 3);
+    const int ahead = std::min(1 + panel->lookAheadStyles(), choice->count());
+    QVERIFY(QTest::qWaitFor([&] { return panel->recentResults().size() == ahead; }, kJobTimeoutMs));
+    QVERIFY(panel->result() == nullptr);  // nothing is shown before the user asks
+
+    auto* button = panel->findChild<QPushButton*>(QStringLiteral("StylizeButton"));
+    QVERIFY(button != nullptr);
+    size_t before = readLiveLog(log_).size();
+    QTest::mouseClick(button, Qt::LeftButton);
+    QVERIFY(waitForNewResult(panel, before));
+    LogEntry entry = readLiveLog(log_).back();
+    QCOMPARE(entry.change, QStringLiteral("Stylize"));
+    QVERIFY2(entry.remembered, "Stylize ran a job: the chosen style was not computed ahead");
+    QVERIFY(panel->result() != nullptr && !panel->resultIsStale());
+    QVERIFY(lastStatus(log_).startsWith(QStringLiteral("Stylized and cleaned up 500 frames")));
+    qInfo("Stylize with the chosen style computed ahead: click -> result on screen %d ms", entry.latency_ms);
+
+    before = readLiveLog(log_).size();
+    choice->setFocus();
+    QTest::keyClick(choice, Qt::Key_Down);
+    QVERIFY(waitForNewResult(panel, before));
+    QVERIFY2(readLiveLog(log_).back().remembered, "the next style was not computed ahead");
+
+  }
+
+  void anInputChangedBeforeStylizeIsComputedAheadAgain() {
+    const QString clip = writeClip(scratch_, QStringLiteral("zombie.bvh"), QStringLiteral("clip_first_other.bvh"), 300);
+    MainWindow window(false);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    ResultPanel* panel = window.resultPanel();
+    panel->setLookAheadDelay(0);
+    QCOMPARE(window.openFiles({clip}), 1);
+    QVERIFY(panel->loadNetworkFile(QString::fromStdString(network_.string())));
+    auto* button = panel->findChild<QPushButton*>(QStringLiteral("StylizeButton"));
+    QVERIFY(button != nullptr);
+    const qsizetype looked_ahead = readLogText(log_).count(QStringLiteral("look-ahead: "));
+    panel->setStrength(0.6);  // a result computed ahead is logged only while its inputs are the panel's
+    QVERIFY(QTest::qWaitFor([&] { return readLogText(log_).count(QStringLiteral("look-ahead: ")) > looked_ahead; },
+                            kJobTimeoutMs));
+    const size_t before = readLiveLog(log_).size();
+    QTest::mouseClick(button, Qt::LeftButton);
+    QVERIFY(waitForNewResult(panel, before));
+    const LogEntry entry = readLiveLog(log_).back();
+    QVERIFY(entry.remembered);
+    QCOMPARE(entry.strength, 0.6);
+    QCOMPARE(panel->result()->cleaned.frameCount(), 300);
   }
 
   void paintingAContactReSolvesOnlyWhatItTouches() {
