@@ -51,6 +51,8 @@ void MainWindow::createNetworkDock() {
             result_panel_->setStyleNetwork(std::move(model), network_panel_->networkList()->currentNetworkName());
           });
   connect(network_panel_, &NetworkPanel::stylizedClipReady, result_panel_, &ResultPanel::setStylizedClip);
+  // A training, optimisation or adaptation has the cores: nothing is computed ahead meanwhile.
+  connect(network_panel_, &NetworkPanel::busyChanged, result_panel_, &ResultPanel::holdLookAhead);
   connect(network_panel_->networkList(), &NetworkList::networkRenamed, result_panel_, &ResultPanel::renameNetwork);
   // The Adapt tab checks the style chosen for the result until the user chooses styles there.
   connect(result_panel_, &ResultPanel::networkChosen, network_panel_->adaptTab(), &AdaptTab::followStyle);

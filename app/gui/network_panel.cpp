@@ -191,6 +191,10 @@ void NetworkPanel::updateButtons() {
   cancel_button_->setEnabled(running_ == Running::Training);
   resume_button_->setEnabled(!busy && canResumeTraining());
   optimise_tab_->setRunState(!busy, running_ == Running::Transfer);
+  if (busy != busy_) {
+    busy_ = busy;
+    emit busyChanged(busy);
+  }
 }
 
 QString NetworkPanel::statusText() const { return status_label_->text(); }

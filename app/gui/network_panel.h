@@ -130,6 +130,8 @@ class NetworkPanel : public QWidget {
   void errorOccurred(const QString& title, const QString& message);
   void trainingProgress(const motionstyle::style::TrainingProgress& progress);
   void jobFinished();  // any job ended (its completion has run)
+  // A training, optimisation or adaptation job started (true) or ended (false): isBusy() changed.
+  void busyChanged(bool busy);
 
  private:
   AdaptTab* createAdaptTab();
@@ -177,6 +179,7 @@ class NetworkPanel : public QWidget {
   PreviewTarget preview_target_;
   std::uint64_t preview_content_id_ = 0;  // LoadedClip::id the shown preview was made from
   bool preview_shown_ = false;
+  bool busy_ = false;  // isBusy() as busyChanged() last said
 
   QTabWidget* tabs_ = nullptr;
   NetworkList* network_list_ = nullptr;

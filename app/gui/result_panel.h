@@ -95,6 +95,9 @@ class ResultPanel : public QWidget {
   static constexpr int kLookAheadMaxStyles = 8;
   int lookAheadStyles() const;
   void setLookAheadDelay(int milliseconds);
+  // held: another job has the cores (the Style networks panel trains, optimises or adapts): what is
+  // computed ahead stops, and nothing more is until it is released. Edits and Stylize still run.
+  void holdLookAhead(bool held);
   // The results remembered for switching back or ahead (recent_results.h).
   const RecentResults& recentResults() const { return recent_; }
 
@@ -229,6 +232,7 @@ class ResultPanel : public QWidget {
   JobRunner* look_ahead_ = nullptr;     // computes the nearby styles while the user looks
   QTimer* look_ahead_timer_ = nullptr;  // the inputs' rest before it starts
   int look_ahead_delay_ms_ = kLookAheadDelayMs;
+  bool look_ahead_held_ = false;
   std::shared_ptr<style::StylizeCleanupMemory> memory_;  // the last job on the content: an edit redoes what changed
   QElapsedTimer clock_;                    // for the log's latencies (app_log.h)
   qint64 last_change_ms_ = -1;             // when the inputs last changed, and what changed

@@ -3,8 +3,10 @@
 // remembered (recent_results.h), so that a switch to any of them is shown at once. Before the first
 // result too (a clip just opened, a style just chosen), the chosen style first: Stylize then shows it
 // at once. It starts only after the inputs have rested for a moment (a drag's steps never start it),
-// one style at a time, and any change drops it. How many: lookAheadStyles(), every shipped style for a clip of a few hundred
-// frames, two for a long one (each costs a job on both cores and keeps its result and prepared network).
+// one style at a time; any change drops it, and so does a job of the Style networks panel
+// (holdLookAhead) until it ends. How many: lookAheadStyles(), every shipped style for a clip of a few
+// hundred frames, two for a long one (each costs a job on both cores and keeps its result and
+// prepared network).
 #include <QComboBox>
 #include <QTimer>
 
@@ -25,8 +27,14 @@ void ResultPanel::setLookAheadDelay(int milliseconds) {
   if (milliseconds < 0) stopLookAhead();
 }
 
+void ResultPanel::holdLookAhead(bool held) {
+  look_ahead_held_ = held;
+  if (held) stopLookAhead();
+  else scheduleLookAhead();
+}
+
 void ResultPanel::scheduleLookAhead() {
-  if (look_ahead_delay_ms_ >= 0) look_ahead_timer_->start(look_ahead_delay_ms_);
+  if (look_ahead_delay_ms_ >= 0 && !look_ahead_held_) look_ahead_timer_->start(look_ahead_delay_ms_);
 }
 
 void ResultPanel::stopLookAhead() {
@@ -94,7 +102,7 @@ void ResultPanel::onLookedAhead(RecentResults::Entry entry, const QString& file,
   recent_.remember(std::move(entry));
   // The inputs still rest: the next nearest at once. A change drops it within a few ms (a job checks
   // its cancel flag before every refinement step and clean-up frame), so it never holds an edit back.
-  if (look_ahead_delay_ms_ >= 0) look_ahead_timer_->start(0);
+  if (look_ahead_delay_ms_ >= 0 && !look_ahead_held_) look_ahead_timer_->start(0);
 }
 
 }  // namespace motionstyle

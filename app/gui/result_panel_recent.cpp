@@ -23,7 +23,7 @@ bool ResultPanel::showRememberedResult(bool stylize_pressed) {
   const qint64 figures_start = clock_.elapsed();
   QString status = tr("Shown again: made earlier for the same clip, style, strength, path and contacts.");
   if (computed_ahead)
-    status = stylize_pressed ? tr("Stylized and cleaned up %1 frames ahead, while the clip was open.")
+    status = stylize_pressed ? tr("Stylized and cleaned up %1 frames (computed ahead while the clip was open).")
                                    .arg(result_->cleaned.frameCount())
                              : tr("Computed ahead while you looked, for the same clip, strength, path and contacts.");
   const qint64 on_screen = showResult(status);

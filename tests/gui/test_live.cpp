@@ -31,6 +31,7 @@
 #include "demo_scene.h"
 #include "gui_test_support.h"
 #include "main_window.h"
+#include "network_panel.h"
 #include "result_panel.h"
 #include "shipped_networks.h"
 #include "skeleton_viewport.h"
@@ -463,6 +464,33 @@ class LiveTest : public QObject {
     QVERIFY(entry.remembered);
     QCOMPARE(entry.strength, 0.6);
     QCOMPARE(panel->result()->cleaned.frameCount(), 300);
+  }
+
+  // While the Style networks panel has the cores (here the optimisation method), nothing is computed
+  // ahead, even after a change with the look-ahead's delay at zero; when its job ends, it resumes.
+  void aJobOfTheStyleNetworksPanelHoldsTheLookAhead() {
+    const QString clip = writeClip(scratch_, QStringLiteral("cmu_131_01.bvh"), QStringLiteral("clip_held.bvh"));
+    const QString style_clip = writeClip(scratch_, QStringLiteral("zombie.bvh"), QStringLiteral("clip_held_style.bvh"), 200);
+    MainWindow window(false);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    ResultPanel* panel = window.resultPanel();
+    panel->setLookAheadDelay(-1);
+    QCOMPARE(window.openFiles({clip, style_clip}), 2);  // the content, then the style clip
+    QVERIFY(panel->loadNetworkFile(QString::fromStdString(network_.string())));
+    NetworkPanel* networks = window.networkPanel();
+    networks->setLossNetworkFile(shippedLossNetworkFile());
+    QSignalSpy finished(networks, &NetworkPanel::jobFinished);
+    QVERIFY(networks->startTransfer(100000));
+    const qsizetype looked_ahead = readLogText(log_).count(QStringLiteral("look-ahead: "));
+    panel->setLookAheadDelay(0);
+    panel->setStrength(0.9);  // a change: with the delay at zero the look-ahead would start at once
+    QTest::qWait(800);
+    QCOMPARE(panel->recentResults().size(), 0);
+    QCOMPARE(readLogText(log_).count(QStringLiteral("look-ahead: ")), looked_ahead);
+    networks->cancelJob();
+    QVERIFY(finished.wait(kJobTimeoutMs));
+    QVERIFY(QTest::qWaitFor([&] { return panel->recentResults().size() >= 1; }, kJobTimeoutMs));
   }
 
   void paintingAContactReSolvesOnlyWhatItTouches() {
