@@ -136,14 +136,20 @@ class LiveTest : public QObject {
   QString log_;
   std::filesystem::path network_;
 
+  // The window shown, `clips` opened (the first is the content, a second the style clip) and the
+  // elderly network chosen; nothing stylized yet.
+  bool openWithNetwork(MainWindow& window, const QStringList& clips) {
+    window.resize(1400, 900);
+    window.show();
+    return QTest::qWaitForWindowExposed(&window) && window.openFiles(clips) == clips.size() &&
+           window.resultPanel()->loadNetworkFile(QString::fromStdString(network_.string()));
+  }
+
   // The user's path to a first result: the window shown, `clip` opened as the content, the elderly
   // network chosen, Stylize, and the result in.
   bool showStylized(MainWindow& window, const QString& clip) {
-    window.resize(1400, 900);
-    window.show();
-    if (!QTest::qWaitForWindowExposed(&window) || window.openFiles({clip}) != 1) return false;
+    if (!openWithNetwork(window, {clip})) return false;
     ResultPanel* panel = window.resultPanel();
-    if (!panel->loadNetworkFile(QString::fromStdString(network_.string()))) return false;
     panel->stylize();
     return QTest::qWaitFor([&] { return panel->result() != nullptr && !panel->isBusy(); }, kJobTimeoutMs);
   }
@@ -409,13 +415,9 @@ class LiveTest : public QObject {
   void theChosenStyleIsComputedBeforeStylizeIsPressed() {
     const QString clip = writeClip(scratch_, QStringLiteral("cmu_131_01.bvh"), QStringLiteral("clip_first.bvh"));
     MainWindow window(false);
-    window.resize(1400, 900);
-    window.show();
-    QVERIFY(QTest::qWaitForWindowExposed(&window));
     ResultPanel* panel = window.resultPanel();
     panel->setLookAheadDelay(0);
-    QCOMPARE(window.openFiles({clip}), 1);
-    QVERIFY(panel->loadNetworkFile(QString::fromStdString(network_.string())));
+    QVERIFY(openWithNetwork(window, {clip}));
     auto* choice = panel->findChild<QComboBox*>(QStringLiteral("NetworkChoice"));
     QVERIFY(choice != nullptr && choice->count() >= 3);
     const int ahead = std::min(1 + panel->lookAheadStyles(), choice->count());
@@ -439,18 +441,14 @@ class LiveTest : public QObject {
     QTest::keyClick(choice, Qt::Key_Down);
     QVERIFY(waitForNewResult(panel, before));
     QVERIFY2(readLiveLog(log_).back().remembered, "the next style was not computed ahead");
-
   }
 
   void anInputChangedBeforeStylizeIsComputedAheadAgain() {
     const QString clip = writeClip(scratch_, QStringLiteral("zombie.bvh"), QStringLiteral("clip_first_other.bvh"), 300);
     MainWindow window(false);
-    window.show();
-    QVERIFY(QTest::qWaitForWindowExposed(&window));
     ResultPanel* panel = window.resultPanel();
     panel->setLookAheadDelay(0);
-    QCOMPARE(window.openFiles({clip}), 1);
-    QVERIFY(panel->loadNetworkFile(QString::fromStdString(network_.string())));
+    QVERIFY(openWithNetwork(window, {clip}));
     auto* button = panel->findChild<QPushButton*>(QStringLiteral("StylizeButton"));
     QVERIFY(button != nullptr);
     const qsizetype looked_ahead = readLogText(log_).count(QStringLiteral("look-ahead: "));
@@ -472,12 +470,9 @@ class LiveTest : public QObject {
     const QString clip = writeClip(scratch_, QStringLiteral("cmu_131_01.bvh"), QStringLiteral("clip_held.bvh"));
     const QString style_clip = writeClip(scratch_, QStringLiteral("zombie.bvh"), QStringLiteral("clip_held_style.bvh"), 200);
     MainWindow window(false);
-    window.show();
-    QVERIFY(QTest::qWaitForWindowExposed(&window));
     ResultPanel* panel = window.resultPanel();
     panel->setLookAheadDelay(-1);
-    QCOMPARE(window.openFiles({clip, style_clip}), 2);  // the content, then the style clip
-    QVERIFY(panel->loadNetworkFile(QString::fromStdString(network_.string())));
+    QVERIFY(openWithNetwork(window, {clip, style_clip}));
     NetworkPanel* networks = window.networkPanel();
     networks->setLossNetworkFile(shippedLossNetworkFile());
     QSignalSpy finished(networks, &NetworkPanel::jobFinished);
