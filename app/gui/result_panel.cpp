@@ -39,10 +39,7 @@ ResultPanel::ResultPanel(QWidget* parent) : QWidget(parent), memory_(std::make_s
   network_choice_->setToolTip(tr("The style to apply: the styles shipped with MotionStyle, and networks you opened"));
   network_choice_->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
   listShippedNetworks();
-  connect(network_choice_, &QComboBox::activated, this, [this](int index) {
-    const QString file = network_choice_->itemData(index).toString();
-    if (!file.isEmpty()) loadNetworkFile(file);
-  });
+  connect(network_choice_, &QComboBox::activated, this, &ResultPanel::chooseNetwork);
   auto* open_network = new QPushButton(tr("Open..."), this);
   open_network->setToolTip(tr("Load a style network file (.net)"));
   connect(open_network, &QPushButton::clicked, this, &ResultPanel::browseNetwork);
@@ -115,6 +112,8 @@ ResultPanel::ResultPanel(QWidget* parent) : QWidget(parent), memory_(std::make_s
 
   runner_ = new JobRunner(this);
   look_ahead_ = new JobRunner(this);  // its failures are not the user's: not reported
+  reader_ = new JobRunner(this);
+  connect(reader_, &JobRunner::failed, this, &ResultPanel::onNetworkReadFailed);
   look_ahead_timer_ = new QTimer(this);
   look_ahead_timer_->setSingleShot(true);
   connect(look_ahead_timer_, &QTimer::timeout, this, &ResultPanel::lookAhead);
@@ -186,16 +185,23 @@ const std::optional<style::Familiarity>& ResultPanel::familiarity() const { retu
 
 bool ResultPanel::canStylize() const { return content_ && content_->mapping && (hasNetwork() || given_stylized_); }
 
-void ResultPanel::inputsChanged(const QString& what) {
+void ResultPanel::inputsChanged(const QString& what, qint64 changed_ms) {
   stopLookAhead();
   if (!result_ && !busy_) {  // nothing shown or on its way: the next Stylize uses the new inputs
     scheduleLookAhead();      // ... computed ahead once they rest
     return;
   }
   const bool was_stale = resultIsStale();
-  last_change_ms_ = clock_.elapsed();
+  last_change_ms_ = changed_ms >= 0 ? changed_ms : clock_.elapsed();
   last_change_ = what;
   if (result_) stale_reason_ = what;
+  if (!reading_file_.isEmpty()) {  // the chooser shows a style whose file is being read: its job follows the read
+    if (busy_) cancel();
+    if (result_) status_label_->setText(tr("Out of date: %1. Reading the chosen style...").arg(what));
+    refreshControls();
+    if (result_ && !was_stale) emit resultRenamed();
+    return;
+  }
   if (showRememberedResult()) return;
   const bool rerun = canStylize();
   if (busy_ && rerun) {

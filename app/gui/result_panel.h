@@ -170,7 +170,8 @@ class ResultPanel : public QWidget {
   // An input of the result changed (`what`, e.g. "the style changed"): a shown result becomes stale
   // and is replaced by a new run when one is possible; while a job runs, one run for the latest inputs
   // follows it (see pending_). Called for every step of a slider drag or a contact stroke.
-  void inputsChanged(const QString& what);
+  // changed_ms: when it changed (clock_), if before now (a style picked before its file was read).
+  void inputsChanged(const QString& what, qint64 changed_ms = -1);
   void runStylize();  // stylize() without its "already busy" check: startJob drops a running job
   // The inputs a network's result depends on, as they are now (recent_results.h).
   ResultInputs currentInputs() const;
@@ -198,7 +199,15 @@ class ResultPanel : public QWidget {
   void listShippedNetworks();
   // setStyleNetwork / loadNetworkFile: `file` is the network's file ("" when it has none).
   void useNetwork(std::shared_ptr<const nn::StyleModel> model, const QString& name, const QString& file);
-  void useStylizer(std::shared_ptr<const style::Stylizer> stylizer, const QString& name, const QString& file);
+  void useStylizer(std::shared_ptr<const style::Stylizer> stylizer, const QString& name, const QString& file,
+                   qint64 chosen_ms = -1);
+  // The chooser's entry `index` picked by the user. A network prepared before is used at once; one not
+  // yet read is read and prepared on reader_ (the GUI never waits for a file: 20-180 ms), the shown
+  // result marked out of date and no job run meanwhile, and it is used when ready unless another entry
+  // was picked since (result_panel_networks.cpp). The log's latency counts from the pick.
+  void chooseNetwork(int index);
+  void onNetworkRead(std::shared_ptr<const style::Stylizer> stylizer, const QString& file);
+  void onNetworkReadFailed(const QString& title, const QString& message);
   // Selects (adding it if needed) the chooser entry for `file` ("" for a network without a file, e.g.
   // one from the Networks panel or a stylized clip), showing `label`.
   void showNetworkInChoice(const QString& label, const QString& file);
@@ -206,6 +215,7 @@ class ResultPanel : public QWidget {
   ErrorReporter reporter_;
   std::shared_ptr<const style::Stylizer> stylizer_;
   QString network_name_;
+  QString network_file_;  // stylizer_'s file, "" when it has none
   std::shared_ptr<const LoadedClip> content_;
   Eigen::MatrixXi overrides_;
   std::optional<style::StylizedClip> given_stylized_;
@@ -233,6 +243,10 @@ class ResultPanel : public QWidget {
   QTimer* look_ahead_timer_ = nullptr;  // the inputs' rest before it starts
   int look_ahead_delay_ms_ = kLookAheadDelayMs;
   bool look_ahead_held_ = false;
+  JobRunner* reader_ = nullptr;  // reads the file of a network picked in the chooser
+  QString reading_file_;         // the file it reads for the chooser's current entry, "" when none
+  bool reading_made_stale_ = false;  // the pick marked the shown result out of date
+  qint64 chosen_ms_ = -1;        // when the entry being read was picked (clock_)
   std::shared_ptr<style::StylizeCleanupMemory> memory_;  // the last job on the content: an edit redoes what changed
   QElapsedTimer clock_;                    // for the log's latencies (app_log.h)
   qint64 last_change_ms_ = -1;             // when the inputs last changed, and what changed

@@ -48,7 +48,9 @@ int ResultPanel::lookAheadStyles() const {
 }
 
 void ResultPanel::lookAhead() {
-  if (busy_ || resultIsStale() || given_stylized_ || !content_ || !content_->mapping || look_ahead_->isBusy()) return;
+  if (busy_ || resultIsStale() || given_stylized_ || !content_ || !content_->mapping || look_ahead_->isBusy() ||
+      !reading_file_.isEmpty())
+    return;
   const int current = network_choice_->currentIndex(), count = network_choice_->count();
   const int styles = 1 + lookAheadStyles();  // the chosen one (shown, or not yet: it comes first) and its neighbours
   int candidates = 0;

@@ -5,6 +5,7 @@
 #include <QFileInfo>
 
 #include <exception>
+#include <utility>
 
 #include "error_text.h"
 #include "result_panel.h"
@@ -29,11 +30,13 @@ void ResultPanel::useNetwork(std::shared_ptr<const nn::StyleModel> model, const 
   useStylizer(std::move(stylizer), name, file);
 }
 
-void ResultPanel::useStylizer(std::shared_ptr<const style::Stylizer> stylizer, const QString& name, const QString& file) {
+void ResultPanel::useStylizer(std::shared_ptr<const style::Stylizer> stylizer, const QString& name, const QString& file,
+                              qint64 chosen_ms) {
   const auto previous = stylizer_;
   const bool came_from_network = resultComesFromNetwork();
   stylizer_ = std::move(stylizer);
   network_name_ = stylizer_ ? (name.isEmpty() ? tr("style network") : name) : QString();
+  network_file_ = stylizer_ ? file : QString();
   given_stylized_.reset();
   if (hasNetwork()) showNetworkInChoice(network_name_, file);  // a listed file keeps its entry's label
   refreshControls();
@@ -42,7 +45,7 @@ void ResultPanel::useStylizer(std::shared_ptr<const style::Stylizer> stylizer, c
   if (resultComesFromNetwork() != came_from_network) emit sourceChanged();
   if (stylizer_ != previous) {
     if (hasNetwork()) emit networkChosen(network_name_);
-    inputsChanged(tr("the style changed"));
+    inputsChanged(tr("the style changed"), chosen_ms);
   }
 }
 
@@ -88,6 +91,64 @@ bool ResultPanel::loadNetworkFile(const QString& file) {
     report(tr("Could not open the style network"), errorText(std::current_exception(), file));
   }
   return false;
+}
+
+void ResultPanel::chooseNetwork(int index) {
+  const QString file = network_choice_->itemData(index).toString();
+  if (file.isEmpty()) return;
+  if (stylizers_.find(file)) {
+    reading_file_.clear();  // a read in flight only fills the cache now
+    reading_made_stale_ = false;
+    loadNetworkFile(file);
+    return;
+  }
+  const bool reading_already = reading_file_ == file;
+  reading_file_ = file;
+  if (reading_already) return;
+  chosen_ms_ = clock_.elapsed();
+  stopLookAhead();
+  if (busy_) cancel();  // a job for the style being left: its result would be shown as the chosen one's
+  reading_made_stale_ = reading_made_stale_ || (result_ && !resultIsStale());  // an earlier pick's read may be in flight
+  const QString name = network_choice_->itemText(index);
+  if (result_) {
+    stale_reason_ = tr("the style changed");
+    status_label_->setText(tr("Out of date: %1. Reading %2...").arg(stale_reason_, name));
+    refreshControls();
+    emit resultRenamed();
+  } else {
+    status_label_->setText(tr("Reading %1...").arg(name));
+  }
+  reader_->restart(tr("Could not open the style network"), [this, file](const JobRunner::Context&) -> JobRunner::Completion {
+    auto stylizer = std::make_shared<const style::Stylizer>(style::loadCompatibleStyleModel(file.toStdString()),
+                                                            file.toStdString());
+    return [this, stylizer, file] { onNetworkRead(stylizer, file); };
+  });
+}
+
+void ResultPanel::onNetworkRead(std::shared_ptr<const style::Stylizer> stylizer, const QString& file) {
+  if (!stylizers_.find(file)) stylizers_.store(file, stylizer);
+  if (reading_file_ != file) return;  // another entry was picked since
+  reading_file_.clear();
+  reading_made_stale_ = false;
+  const int listed = network_choice_->findData(file);
+  const QString name = listed >= 0 ? network_choice_->itemText(listed) : QFileInfo(file).completeBaseName();
+  if (!result_ && !busy_) status_label_->clear();  // "Reading ...": done
+  useStylizer(std::move(stylizer), name, file, chosen_ms_);  // the change counts from the pick
+}
+
+void ResultPanel::onNetworkReadFailed(const QString& title, const QString& message) {
+  reading_file_.clear();
+  // The chooser and the result go back to the network in use.
+  if (hasNetwork()) showNetworkInChoice(network_name_, network_file_);
+  else network_choice_->setCurrentIndex(-1);
+  if (std::exchange(reading_made_stale_, false)) {
+    stale_reason_.clear();
+    refreshControls();
+    emit resultRenamed();
+  }
+  status_label_->setText(title);
+  report(title, message);
+  scheduleLookAhead();
 }
 
 void ResultPanel::browseNetwork() {

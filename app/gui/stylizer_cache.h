@@ -1,7 +1,8 @@
 #pragma once
 // The style networks the Result panel has prepared, by file, so that switching back to a style skips
 // reading its file and preparing its layers (a shipped network: 14-16 ms to read, 13-14 ms to prepare,
-// on the GUI thread, measured by test_gui_live's style switch). A file whose size or modification
+// measured by test_gui_live's style switch; a style picked in the chooser is read on a worker,
+// ResultPanel::chooseNetwork). A file whose size or modification
 // time changed since is read again. At most kCapacity networks, the least recently used going first:
 // a prepared shipped network holds about 38 MB (its model and its transformation network's kernel
 // spectra; the loss network's, about 40 MB, are shared: style::sharedProjection), so the cache keeps

@@ -9,6 +9,7 @@
 #include <QComboBox>
 #include <QElapsedTimer>
 #include <QFile>
+#include <QFileInfo>
 #include <QPushButton>
 #include <QRegularExpression>
 #include <QSignalSpy>
@@ -486,6 +487,62 @@ class LiveTest : public QObject {
     networks->cancelJob();
     QVERIFY(finished.wait(kJobTimeoutMs));
     QVERIFY(QTest::qWaitFor([&] { return panel->recentResults().size() >= 1; }, kJobTimeoutMs));
+  }
+
+  // A style picked in the chooser whose file was never read is read on a worker: the key press
+  // returns at once with the old network still in use and its result marked out of date ("Reading"),
+  // no job runs for the old style meanwhile (a strength change waits too), and the new style's result
+  // follows, its latency counted from the pick. A file that fails to read puts the chooser and the
+  // result back as they were, with a report.
+  void aStylePickedBeforeItsFileIsReadDoesNotBlock() {
+    const QString clip = writeClip(scratch_, QStringLiteral("cmu_131_01.bvh"), QStringLiteral("clip_reading.bvh"));
+    MainWindow window(false);
+    QStringList reports;
+    window.setErrorReporter([&reports](const QString& title, const QString&) { reports << title; });
+    ResultPanel* panel = window.resultPanel();
+    panel->setLookAheadDelay(-1);
+    QVERIFY(showStylized(window, clip));
+    auto* choice = panel->findChild<QComboBox*>(QStringLiteral("NetworkChoice"));
+    auto* slider = panel->findChild<QSlider*>(QStringLiteral("StrengthSlider"));
+    QVERIFY(choice != nullptr && slider != nullptr && choice->currentIndex() + 1 < choice->count());
+    const QString before_name = panel->networkName();
+    const size_t before = readLiveLog(log_).size();
+    choice->setFocus();
+    QTest::keyClick(choice, Qt::Key_Down);  // the next shipped style, never read in this window
+    QCOMPARE(panel->networkName(), before_name);  // not used yet: its file is being read
+    QVERIFY(panel->resultIsStale());
+    QVERIFY(!panel->isBusy());
+    slider->setValue(slider->value() - 1);  // no job for the style being left
+    QVERIFY(!panel->isBusy());
+    QVERIFY(waitForNewResult(panel, before));
+    const LogEntry entry = readLiveLog(log_).back();
+    QVERIFY2(entry.change.contains(QStringLiteral("style")), qPrintable(entry.change));
+    QVERIFY(panel->networkName() != before_name && panel->networkName() == choice->currentText());
+    QCOMPARE(entry.strength, slider->value() / 100.0);
+    QVERIFY(!panel->resultIsStale());
+
+    // A network file damaged since it was prepared is read again, and fails.
+    const QString copy = scratch_.filePath(QStringLiteral("copied_style.net"));
+    QVERIFY(QFile::copy(QString::fromStdString(network_.string()), copy));
+    QVERIFY(panel->loadNetworkFile(copy));
+    QVERIFY(QTest::qWaitFor([&] { return !panel->isBusy(); }, kJobTimeoutMs));
+    QTest::keyClick(choice, Qt::Key_Up);  // another style: the copy's entry is left
+    QVERIFY(QTest::qWaitFor([&] { return !panel->isBusy() && !panel->resultIsStale() &&
+                                         panel->networkName() == choice->currentText(); }, kJobTimeoutMs));
+    const QString in_use = panel->networkName();
+    {
+      QFile damaged(copy);
+      QVERIFY(damaged.open(QIODevice::WriteOnly | QIODevice::Truncate));
+      damaged.write("not a network");
+    }
+    choice->setCurrentIndex(choice->findData(QFileInfo(copy).absoluteFilePath()));
+    emit choice->activated(choice->currentIndex());
+    QVERIFY(panel->resultIsStale());
+    QVERIFY(QTest::qWaitFor([&] { return !reports.isEmpty(); }, kJobTimeoutMs));
+    QCOMPARE(reports.back(), QStringLiteral("Could not open the style network"));
+    QCOMPARE(choice->currentText(), in_use);
+    QCOMPARE(panel->networkName(), in_use);
+    QVERIFY(!panel->resultIsStale());
   }
 
   void paintingAContactReSolvesOnlyWhatItTouches() {
