@@ -64,6 +64,14 @@ void StylizeCleanupMemory::seedFrom(const StylizeCleanupMemory& other) {
   network_output.resize(0, 0);
 }
 
+void StylizeCleanupMemory::copyFrom(const StylizeCleanupMemory& other) {
+  if (&other == this) return;
+  seedFrom(other);
+  stylizer = other.stylizer;
+  features = other.features;
+  network_output = other.network_output;
+}
+
 StylizeCleanupResult StylizeCleanupJob::run(const std::atomic<bool>* cancel) const {
   validate();
   if (memory && seed && !memory->content_features && !memory->stylizer) memory->seedFrom(*seed);

@@ -55,6 +55,10 @@ struct StylizeCleanupMemory {
   // clip), without its network output: a job on another network is as warm as one on `other` and
   // leaves `other` as it was.
   void seedFrom(const StylizeCleanupMemory& other);
+  // seedFrom(other) and other's network output too (the same network on the same clip): a job then
+  // runs only the clean-up, from other's solutions, and `other` stays as it was. Only while no job
+  // writes `other` (it is read here, on the caller's thread).
+  void copyFrom(const StylizeCleanupMemory& other);
 };
 
 struct StylizeCleanupJob {

@@ -545,6 +545,33 @@ class LiveTest : public QObject {
     QVERIFY(!panel->resultIsStale());
   }
 
+  // After a strength change the styles are computed ahead again from their own network output on the
+  // clip (only the clean-up runs): the one a switch then shows kept its network output.
+  void theLookAheadAfterAnEditRunsOnlyTheCleanUp() {
+    const QString clip = writeClip(scratch_, QStringLiteral("cmu_131_01.bvh"), QStringLiteral("clip_ahead_again.bvh"));
+    MainWindow window(false);
+    ResultPanel* panel = window.resultPanel();
+    panel->setLookAheadDelay(0);
+    QVERIFY(showStylized(window, clip));
+    auto* choice = panel->findChild<QComboBox*>(QStringLiteral("NetworkChoice"));
+    auto* slider = panel->findChild<QSlider*>(QStringLiteral("StrengthSlider"));
+    QVERIFY(choice != nullptr && slider != nullptr && choice->currentIndex() + 1 < choice->count());
+    const int ahead = std::min(panel->lookAheadStyles(), choice->count() - 1);
+    QVERIFY(QTest::qWaitFor([&] { return panel->recentResults().size() == 1 + ahead; }, kJobTimeoutMs));
+    const qsizetype looked_ahead = readLogText(log_).count(QStringLiteral("look-ahead: "));
+    size_t before = readLiveLog(log_).size();
+    slider->setValue(slider->value() - 5);
+    QVERIFY(waitForNewResult(panel, before));
+    QVERIFY(QTest::qWaitFor([&] { return readLogText(log_).count(QStringLiteral("look-ahead: ")) >= looked_ahead + ahead; },
+                            kJobTimeoutMs));
+    before = readLiveLog(log_).size();
+    choice->setFocus();
+    QTest::keyClick(choice, Qt::Key_Down);
+    QVERIFY(waitForNewResult(panel, before));
+    QVERIFY(readLiveLog(log_).back().remembered);
+    QVERIFY2(panel->result()->network_output_kept, "the look-ahead ran the network again after a strength change");
+  }
+
   void paintingAContactReSolvesOnlyWhatItTouches() {
     const QString clip = writeClip(scratch_, QStringLiteral("cmu_131_01.bvh"), QStringLiteral("clip_contacts.bvh"));
     MainWindow window(false);

@@ -131,6 +131,31 @@ TEST(StylizeCleanupJob, ASeededMemoryStartsFromAnotherNetworksAndLeavesItAsItWas
   EXPECT_TRUE(second.run().network_output_kept);
 }
 
+// A memory copied from the same network's (the app's look-ahead after a strength change): the job
+// runs only the clean-up, its stylized clip is the memory-less job's, and the original is left as it
+// was. A copy of itself changes nothing.
+TEST(StylizeCleanupJob, ACopiedMemoryKeepsTheNetworkOutputAndLeavesTheOriginal) {
+  style::StylizeCleanupJob first = cleanupJobOnFixture(90);
+  first.memory = std::make_shared<style::StylizeCleanupMemory>();
+  first.run();
+  const Eigen::MatrixXd first_output = first.memory->network_output;
+  first.memory->copyFrom(*first.memory);
+  EXPECT_EQ(first.memory->network_output, first_output);
+
+  style::StylizeCleanupJob copied = first;
+  copied.strength = 0.6;
+  copied.memory = std::make_shared<style::StylizeCleanupMemory>();
+  copied.memory->copyFrom(*first.memory);
+  style::StylizeCleanupJob fresh = copied;
+  fresh.memory = nullptr;
+  const style::StylizeCleanupResult result = copied.run();
+  EXPECT_TRUE(result.network_output_kept);
+  EXPECT_GT(result.report.chunks_warm, 0);
+  EXPECT_EQ(result.stylized.features, fresh.run().stylized.features);
+  EXPECT_EQ(first.memory->network_output, first_output);  // the original as it was
+  EXPECT_EQ(first.memory->stylizer, first.stylizer);
+}
+
 // The content's features are extracted once per clip: a strength step keeps them (the same object),
 // and a clip that differs by one value, or the same clip under another mapping, gets its own, so that
 // the stylized clip stays the memory-less job's bit for bit.
