@@ -233,6 +233,11 @@ void ResultPanel::setStrength(double strength) {
 
 void ResultPanel::stylize() {
   if (busy_) return;
+  if (!reading_file_.isEmpty()) {  // the chosen style's file is being read: Stylize follows the read
+    stylize_when_read_ = true;
+    status_label_->setText(tr("Reading the chosen style..."));
+    return;
+  }
   last_change_ms_ = clock_.elapsed();
   last_change_ = tr("Stylize");
   if (!result_ && showRememberedResult(true)) return;  // computed ahead since the clip opened
@@ -303,6 +308,7 @@ void ResultPanel::startJob(style::StylizeCleanupJob job) {
 
 void ResultPanel::cancel() {
   pending_ = false;
+  stylize_when_read_ = false;
   if (!busy_) return;
   // The job stops at its next check; anything it still sends is dropped.
   {

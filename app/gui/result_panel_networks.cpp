@@ -134,10 +134,12 @@ void ResultPanel::onNetworkRead(std::shared_ptr<const style::Stylizer> stylizer,
   const QString name = listed >= 0 ? network_choice_->itemText(listed) : QFileInfo(file).completeBaseName();
   if (!result_ && !busy_) status_label_->clear();  // "Reading ...": done
   useStylizer(std::move(stylizer), name, file, chosen_ms_);  // the change counts from the pick
+  if (std::exchange(stylize_when_read_, false) && !busy_) stylize();
 }
 
 void ResultPanel::onNetworkReadFailed(const QString& title, const QString& message) {
   reading_file_.clear();
+  stylize_when_read_ = false;
   // The chooser and the result go back to the network in use.
   if (hasNetwork()) showNetworkInChoice(network_name_, network_file_);
   else network_choice_->setCurrentIndex(-1);

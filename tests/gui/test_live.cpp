@@ -543,6 +543,25 @@ class LiveTest : public QObject {
     QCOMPARE(choice->currentText(), in_use);
     QCOMPARE(panel->networkName(), in_use);
     QVERIFY(!panel->resultIsStale());
+
+    // Before any result, Stylize asked for while the chosen style is read follows the read (no "No
+    // style network" report).
+    MainWindow second(false);
+    second.setErrorReporter([&reports](const QString& title, const QString&) { reports << title; });
+    ResultPanel* first_panel = second.resultPanel();
+    first_panel->setLookAheadDelay(-1);
+    second.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&second));
+    QCOMPARE(second.openFiles({clip}), 1);
+    auto* first_choice = first_panel->findChild<QComboBox*>(QStringLiteral("NetworkChoice"));
+    first_choice->setCurrentIndex(1);
+    emit first_choice->activated(1);
+    QVERIFY(!first_panel->hasNetwork());  // being read
+    const qsizetype reported = reports.size();
+    first_panel->stylize();  // (the button itself is enabled once the network is in use)
+    QVERIFY(QTest::qWaitFor([&] { return first_panel->result() != nullptr && !first_panel->isBusy(); }, kJobTimeoutMs));
+    QCOMPARE(first_panel->networkName(), first_choice->itemText(1));
+    QCOMPARE(reports.size(), reported);
   }
 
   // After a strength change the styles are computed ahead again from their own network output on the
