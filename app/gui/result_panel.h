@@ -245,7 +245,6 @@ class ResultPanel : public QWidget {
   bool look_ahead_held_ = false;
   JobRunner* reader_ = nullptr;  // reads the file of a network picked in the chooser
   QString reading_file_;         // the file it reads for the chooser's current entry, "" when none
-  bool reading_made_stale_ = false;  // the pick marked the shown result out of date
   bool stylize_when_read_ = false;   // Stylize was pressed during the read
   qint64 chosen_ms_ = -1;        // when the entry being read was picked (clock_)
   std::shared_ptr<style::StylizeCleanupMemory> memory_;  // the last job on the content: an edit redoes what changed

@@ -97,9 +97,12 @@ void ResultPanel::chooseNetwork(int index) {
   const QString file = network_choice_->itemData(index).toString();
   if (file.isEmpty()) return;
   if (stylizers_.find(file)) {
+    const bool was_reading = !reading_file_.isEmpty();
     reading_file_.clear();  // a read in flight only fills the cache now
-    reading_made_stale_ = false;
     loadNetworkFile(file);
+    // Back to the network in use (no switch, no job): the result, marked out of date by the read, is
+    // brought back to the inputs (shown again, or computed).
+    if (was_reading && resultIsStale() && !busy_) inputsChanged(stale_reason_);
     return;
   }
   const bool reading_already = reading_file_ == file;
@@ -108,7 +111,6 @@ void ResultPanel::chooseNetwork(int index) {
   chosen_ms_ = clock_.elapsed();
   stopLookAhead();
   if (busy_) cancel();  // a job for the style being left: its result would be shown as the chosen one's
-  reading_made_stale_ = reading_made_stale_ || (result_ && !resultIsStale());  // an earlier pick's read may be in flight
   const QString name = network_choice_->itemText(index);
   if (result_) {
     stale_reason_ = tr("the style changed");
@@ -129,7 +131,6 @@ void ResultPanel::onNetworkRead(std::shared_ptr<const style::Stylizer> stylizer,
   if (!stylizers_.find(file)) stylizers_.store(file, stylizer);
   if (reading_file_ != file) return;  // another entry was picked since
   reading_file_.clear();
-  reading_made_stale_ = false;
   const int listed = network_choice_->findData(file);
   const QString name = listed >= 0 ? network_choice_->itemText(listed) : QFileInfo(file).completeBaseName();
   if (!result_ && !busy_) status_label_->clear();  // "Reading ...": done
@@ -140,17 +141,13 @@ void ResultPanel::onNetworkRead(std::shared_ptr<const style::Stylizer> stylizer,
 void ResultPanel::onNetworkReadFailed(const QString& title, const QString& message) {
   reading_file_.clear();
   stylize_when_read_ = false;
-  // The chooser and the result go back to the network in use.
+  // The chooser and the result go back to the network in use (the result shown again, or computed for
+  // what changed during the read).
   if (hasNetwork()) showNetworkInChoice(network_name_, network_file_);
   else network_choice_->setCurrentIndex(-1);
-  if (std::exchange(reading_made_stale_, false)) {
-    stale_reason_.clear();
-    refreshControls();
-    emit resultRenamed();
-  }
-  status_label_->setText(title);
+  if (resultIsStale() && !busy_) inputsChanged(stale_reason_);
+  else scheduleLookAhead();
   report(title, message);
-  scheduleLookAhead();
 }
 
 void ResultPanel::browseNetwork() {

@@ -521,6 +521,17 @@ class LiveTest : public QObject {
     QCOMPARE(entry.strength, slider->value() / 100.0);
     QVERIFY(!panel->resultIsStale());
 
+    // A pick back to the network in use while another entry is read: no switch, the result current again.
+    const QString in_use_before = panel->networkName();
+    QTest::keyClick(choice, Qt::Key_Down);  // never read yet
+    QVERIFY(panel->resultIsStale());
+    QTest::keyClick(choice, Qt::Key_Up);    // the network in use, prepared
+    QCOMPARE(panel->networkName(), in_use_before);
+    QVERIFY(QTest::qWaitFor([&] { return !panel->isBusy() && !panel->resultIsStale(); }, kJobTimeoutMs));
+    QTest::qWait(500);  // the read ends (it only fills the cache): the chooser and the network stay
+    QCOMPARE(panel->networkName(), in_use_before);
+    QCOMPARE(choice->currentText(), in_use_before);
+
     // A network file damaged since it was prepared is read again, and fails.
     const QString copy = scratch_.filePath(QStringLiteral("copied_style.net"));
     QVERIFY(QFile::copy(QString::fromStdString(network_.string()), copy));
