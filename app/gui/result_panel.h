@@ -23,6 +23,7 @@
 
 #include <atomic>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -216,6 +217,9 @@ class ResultPanel : public QWidget {
   std::shared_ptr<const style::Stylizer> stylizer_;
   QString network_name_;
   QString network_file_;  // stylizer_'s file, "" when it has none
+  // The networks without a file in the chooser (from the Networks panel), by their entry's label: picking
+  // the entry again uses the network again.
+  std::map<QString, std::shared_ptr<const style::Stylizer>> unfiled_networks_;
   std::shared_ptr<const LoadedClip> content_;
   Eigen::MatrixXi overrides_;
   std::optional<style::StylizedClip> given_stylized_;

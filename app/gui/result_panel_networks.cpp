@@ -37,6 +37,7 @@ void ResultPanel::useStylizer(std::shared_ptr<const style::Stylizer> stylizer, c
   stylizer_ = std::move(stylizer);
   network_name_ = stylizer_ ? (name.isEmpty() ? tr("style network") : name) : QString();
   network_file_ = stylizer_ ? file : QString();
+  if (stylizer_ && file.isEmpty()) unfiled_networks_[network_name_] = stylizer_;
   given_stylized_.reset();
   if (hasNetwork()) showNetworkInChoice(network_name_, file);  // a listed file keeps its entry's label
   refreshControls();
@@ -55,6 +56,10 @@ void ResultPanel::renameNetwork(const QString& old_name, const QString& new_name
       network_choice_->setItemText(i, new_name);
   for (QString* name : {&network_name_, &job_network_name_, &result_network_name_})
     if (*name == old_name) *name = new_name;
+  if (auto unfiled = unfiled_networks_.extract(old_name)) {
+    unfiled.key() = new_name;
+    unfiled_networks_.insert(std::move(unfiled));
+  }
   recent_.renameNetwork(old_name, new_name);
   if (result_) emit resultChanged();  // the output figures are named after the network
 }
@@ -95,11 +100,19 @@ bool ResultPanel::loadNetworkFile(const QString& file) {
 
 void ResultPanel::chooseNetwork(int index) {
   const QString file = network_choice_->itemData(index).toString();
-  if (file.isEmpty()) return;
-  if (stylizers_.find(file)) {
+  const QString label = network_choice_->itemText(index);
+  std::shared_ptr<const style::Stylizer> prepared;
+  if (file.isEmpty()) {  // a network without a file, used here before
+    const auto unfiled = unfiled_networks_.find(label);
+    if (unfiled != unfiled_networks_.end()) prepared = unfiled->second;
+  } else {
+    prepared = stylizers_.find(file);
+  }
+  if (prepared || file.isEmpty()) {
     const bool was_reading = !reading_file_.isEmpty();
     reading_file_.clear();  // a read in flight only fills the cache now
-    loadNetworkFile(file);
+    if (prepared) useStylizer(std::move(prepared), label, file);
+    else if (hasNetwork()) showNetworkInChoice(network_name_, network_file_);
     // Back to the network in use (no switch, no job): the result, marked out of date by the read, is
     // brought back to the inputs (shown again, or computed).
     if (was_reading && resultIsStale() && !busy_) inputsChanged(stale_reason_);
@@ -111,14 +124,13 @@ void ResultPanel::chooseNetwork(int index) {
   chosen_ms_ = clock_.elapsed();
   stopLookAhead();
   if (busy_) cancel();  // a job for the style being left: its result would be shown as the chosen one's
-  const QString name = network_choice_->itemText(index);
   if (result_) {
     stale_reason_ = tr("the style changed");
-    status_label_->setText(tr("Out of date: %1. Reading %2...").arg(stale_reason_, name));
+    status_label_->setText(tr("Out of date: %1. Reading %2...").arg(stale_reason_, label));
     refreshControls();
     emit resultRenamed();
   } else {
-    status_label_->setText(tr("Reading %1...").arg(name));
+    status_label_->setText(tr("Reading %1...").arg(label));
   }
   reader_->restart(tr("Could not open the style network"), [this, file](const JobRunner::Context&) -> JobRunner::Completion {
     auto stylizer = std::make_shared<const style::Stylizer>(style::loadCompatibleStyleModel(file.toStdString()),

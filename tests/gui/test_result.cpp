@@ -553,6 +553,36 @@ class ResultTest : public QObject {
     QVERIFY(panel->result()->stylized.features != first);
   }
 
+  // A network without a file (trained in the session, from the Networks panel) keeps its entry in the
+  // style chooser: picking that entry again, after another style, uses it again (the chooser once
+  // showed it while the panel went on with the other style).
+  void aNetworkWithoutAFileIsChosenAgainFromTheChooser() {
+    const std::filesystem::path file = writeTinyNetwork(scratch_, QStringLiteral("filed_style"), 5);
+    MainWindow window(false);
+    QCOMPARE(window.openFiles({test::fixture(QStringLiteral("cmu_131_01.bvh"))}), 1);
+    ResultPanel* panel = window.resultPanel();
+    panel->setLookAheadDelay(-1);
+    panel->setStyleNetwork(std::make_shared<const nn::StyleModel>(test::tinyStyleModel(7)), QStringLiteral("trained here"));
+    QCOMPARE(panel->networkName(), QStringLiteral("trained here"));
+    QVERIFY(panel->loadNetworkFile(QString::fromStdString(file.string())));
+    QCOMPARE(panel->networkName(), QStringLiteral("filed_style"));
+    QComboBox* choice = panel->networkChoice();
+    const int entry = choice->findText(QStringLiteral("trained here"));
+    QVERIFY(entry >= 0);
+    choice->setCurrentIndex(entry);
+    emit choice->activated(entry);
+    QCOMPARE(panel->networkName(), QStringLiteral("trained here"));
+    QCOMPARE(choice->currentText(), QStringLiteral("trained here"));
+    // Renamed in the Networks panel: its entry follows, and still chooses it.
+    QVERIFY(panel->loadNetworkFile(QString::fromStdString(file.string())));
+    panel->renameNetwork(QStringLiteral("trained here"), QStringLiteral("my walk"));
+    const int renamed = choice->findText(QStringLiteral("my walk"));
+    QVERIFY(renamed >= 0);
+    choice->setCurrentIndex(renamed);
+    emit choice->activated(renamed);
+    QCOMPARE(panel->networkName(), QStringLiteral("my walk"));
+  }
+
   void cancelDropsTheJobAndClosingStaysClean() {
     MainWindow window(false);
     window.setErrorReporter([](const QString& title, const QString& message) { QFAIL(qPrintable(title + message)); });
