@@ -54,6 +54,7 @@ void MainWindow::createNetworkDock() {
   // A training, optimisation or adaptation has the cores: nothing is computed ahead meanwhile.
   connect(network_panel_, &NetworkPanel::busyChanged, result_panel_, &ResultPanel::holdLookAhead);
   connect(network_panel_->networkList(), &NetworkList::networkRenamed, result_panel_, &ResultPanel::renameNetwork);
+  connect(network_panel_->networkList(), &NetworkList::networkRemoved, result_panel_, &ResultPanel::forgetNetwork);
   // The Adapt tab checks the style chosen for the result until the user chooses styles there.
   connect(result_panel_, &ResultPanel::networkChosen, network_panel_->adaptTab(), &AdaptTab::followStyle);
   // The familiarity row's "Adapt..." link: the Adapt tab with the content clip and the chosen style

@@ -239,6 +239,7 @@ bool NetworkList::confirmDropUnsaved(int index) {
 
 bool NetworkList::removeNetwork(int index) {
   if (index < 0 || index >= networkCount() || !confirmDropUnsaved(index)) return false;
+  const QString name = networkName(index);
   networks_.erase(networks_.begin() + index);
   // The list is rebuilt with its signals blocked, so announce the new selection (or none) here.
   refresh();
@@ -249,6 +250,7 @@ bool NetworkList::removeNetwork(int index) {
   showDetails();
   updateButtons();
   emit currentNetworkChanged(currentNetwork());
+  emit networkRemoved(name);
   return true;
 }
 

@@ -80,6 +80,7 @@ class NetworkList : public QWidget {
  signals:
   void currentNetworkChanged(std::shared_ptr<const motionstyle::nn::StyleModel> network);
   void networkRenamed(const QString& old_name, const QString& new_name);
+  void networkRemoved(const QString& name);  // after currentNetworkChanged() named the new selection
   void lossNetworkFileLoaded(const QString& file);
   void statusMessage(const QString& text);
   void errorOccurred(const QString& title, const QString& message);

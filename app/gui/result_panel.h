@@ -75,6 +75,9 @@ class ResultPanel : public QWidget {
   // The network called `old_name` (one without a file: from the Networks panel) is now `new_name`:
   // the Style choice, the status and the result's figures say the new name.
   void renameNetwork(const QString& old_name, const QString& new_name);
+  // The network called `name` without a file was removed from the Networks panel: its entry leaves the
+  // Style choice (a network with a file stays listed by its file).
+  void forgetNetwork(const QString& name);
   // Loads a style network file (checked against this build's representation). false + report on error.
   bool loadNetworkFile(const QString& file);
   bool hasNetwork() const { return stylizer_ != nullptr; }

@@ -64,6 +64,16 @@ void ResultPanel::renameNetwork(const QString& old_name, const QString& new_name
   if (result_) emit resultChanged();  // the output figures are named after the network
 }
 
+void ResultPanel::forgetNetwork(const QString& name) {
+  unfiled_networks_.erase(name);
+  const int index = network_choice_->findText(name);
+  if (index < 0 || !network_choice_->itemData(index).toString().isEmpty()) return;
+  network_choice_->removeItem(index);
+  // The chooser shows the network in use (removing the current entry moved it to a neighbour).
+  if (hasNetwork()) showNetworkInChoice(network_name_, network_file_);
+  else network_choice_->setCurrentIndex(-1);
+}
+
 void ResultPanel::listShippedNetworks() { addShippedStyleNetworks(network_choice_); }
 
 void ResultPanel::showNetworkInChoice(const QString& label, const QString& file) {

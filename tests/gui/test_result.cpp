@@ -27,6 +27,8 @@
 #include "ik/cleanup.h"
 #include "ik/contact_file.h"
 #include "main_window.h"
+#include "network_panel.h"
+#include "network_list.h"
 #include "mapping/mapping_file.h"
 #include "motion/kinematics.h"
 #include "nn/network_file.h"
@@ -581,6 +583,17 @@ class ResultTest : public QObject {
     choice->setCurrentIndex(renamed);
     emit choice->activated(renamed);
     QCOMPARE(panel->networkName(), QStringLiteral("my walk"));
+
+    // Removed from the Networks panel: its entry leaves the chooser, which shows the network in use.
+    NetworkList* list = window.networkPanel()->networkList();
+    list->setConfirmer([](const QString&, const QString&, QMessageBox::StandardButtons) { return QMessageBox::Discard; });
+    list->addNetwork(std::make_shared<const nn::StyleModel>(test::tinyStyleModel(8)), QStringLiteral("scratch net"));
+    QCOMPARE(panel->networkName(), QStringLiteral("scratch net"));
+    QVERIFY(panel->loadNetworkFile(QString::fromStdString(file.string())));
+    QVERIFY(choice->findText(QStringLiteral("scratch net")) >= 0);
+    QVERIFY(list->removeNetwork(list->currentIndex()));
+    QCOMPARE(choice->findText(QStringLiteral("scratch net")), -1);
+    QCOMPARE(choice->currentText(), panel->networkName());
   }
 
   void cancelDropsTheJobAndClosingStaysClean() {
