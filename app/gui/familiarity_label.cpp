@@ -47,17 +47,16 @@ ShippedReader* shippedReader() {
 }
 
 // Whether `a` and `b` (null: the shipped loss network) read a clip alike: the same loss network
-// weights and normalisation.
+// (one shared prepared projection: sharedProjection compared the weights once) and normalisation.
 bool readAlike(const style::Stylizer* a, const style::Stylizer* b) {
   if (a == b) return true;
   const ShippedReader* shipped = shippedReader();
   if ((a == nullptr || b == nullptr) && shipped == nullptr) return false;
-  const nn::LossNetwork<float>& network_a = a ? a->model().loss_network : shipped->model.network;
-  const nn::LossNetwork<float>& network_b = b ? b->model().loss_network : shipped->model.network;
+  const nn::FastStylizer* projection_a = a ? a->sharedLossProjection().get() : shipped->prepared.get();
+  const nn::FastStylizer* projection_b = b ? b->sharedLossProjection().get() : shipped->prepared.get();
   const FeatureStatistics& statistics_a = a ? a->model().normalisation : shipped->model.normalisation;
   const FeatureStatistics& statistics_b = b ? b->model().normalisation : shipped->model.normalisation;
-  return statistics_a.mean == statistics_b.mean && statistics_a.std == statistics_b.std &&
-         nn::sameWeights(network_a, network_b);
+  return projection_a == projection_b && statistics_a.mean == statistics_b.mean && statistics_a.std == statistics_b.std;
 }
 
 }  // namespace

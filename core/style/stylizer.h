@@ -96,6 +96,11 @@ class Stylizer {
   // ms). For a network that may not run again soon (the app's look-ahead). Thread-safe.
   void releaseIdleNetworks() const;
 
+  // Its loss network's prepared projection, shared with every Stylizer (and sharedProjection caller)
+  // of a loss network with the same weights while any holds it: two Stylizers of one loss network
+  // have the same one, so comparing it tells them apart without comparing weights again. Never run it.
+  const std::shared_ptr<const nn::FastStylizer>& sharedLossProjection() const { return projection_; }
+
  private:
   nn::StyleModel model_;
   std::string source_name_;
