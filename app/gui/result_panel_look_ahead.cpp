@@ -4,8 +4,8 @@
 // result too (a clip just opened, a style just chosen), the chosen style first: Stylize then shows it
 // at once. It starts only after the inputs have rested for a moment (a drag's steps never start it),
 // one style at a time; any change drops it, and so does a job of the Style networks panel
-// (holdLookAhead) until it ends. How many: lookAheadStyles(), every shipped style for a clip of a few
-// hundred frames, two for a long one (each costs a job on both cores and keeps its result and
+// (holdLookAhead) until it ends. How many: lookAheadStyles(), every shipped style for a clip up to
+// 2,000 frames, two for a very long one (each costs a job on both cores and keeps its result and
 // prepared network).
 #include <QComboBox>
 #include <QTimer>

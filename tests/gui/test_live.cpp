@@ -408,6 +408,33 @@ class LiveTest : public QObject {
     QVERIFY(!readLiveLog(log_).back().remembered);
   }
 
+  // A clip of 2,000 frames (17 s at 120 fps, as a capture session delivers them): every shipped style
+  // is computed ahead too, so a pick anywhere in the list is shown without a job, not only the two
+  // nearest (the look-ahead's reach until the seventeenth session).
+  void everyStyleOfA2000FrameClipIsComputedAhead() {
+    const QString clip = writeClip(scratch_, QStringLiteral("cmu_131_01.bvh"), QStringLiteral("clip_2000.bvh"), 2000);
+    MainWindow window(false);
+    ResultPanel* panel = window.resultPanel();
+    panel->setLookAheadDelay(0);
+    QVERIFY(showStylized(window, clip));
+    auto* choice = panel->findChild<QComboBox*>(QStringLiteral("NetworkChoice"));
+    QVERIFY(choice != nullptr && choice->count() >= 5);
+    QCOMPARE(panel->lookAheadStyles(), std::min(ResultPanel::kLookAheadMaxStyles, choice->count() - 1));
+    QVERIFY(QTest::qWaitFor([&] { return panel->recentResults().size() == choice->count(); }, kJobTimeoutMs));
+    // The style at the far end of the list from the chosen one.
+    const bool to_last = choice->currentIndex() < choice->count() / 2;
+    const size_t before = readLiveLog(log_).size();
+    choice->setFocus();
+    QTest::keyClick(choice, to_last ? Qt::Key_End : Qt::Key_Home);
+    QCOMPARE(choice->currentIndex(), to_last ? choice->count() - 1 : 0);
+    QVERIFY(waitForNewResult(panel, before));
+    const LogEntry entry = readLiveLog(log_).back();
+    QVERIFY2(entry.remembered, "the style furthest from the chosen one was not computed ahead");
+    QVERIFY(!panel->resultIsStale());
+    qInfo("style switch to the furthest style of a 2,000-frame clip, computed ahead: %d ms (figures %d ms)",
+          entry.latency_ms, entry.figures_ms);
+  }
+
   // A style chosen before the first result: while the user looks at the clip, the chosen style and
   // then its neighbours are computed ahead, so the Stylize button shows the result at once (the user
   // never waits for the first one) and a switch right after it too. An input changed before Stylize
