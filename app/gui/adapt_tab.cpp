@@ -14,6 +14,7 @@
 #include <QPushButton>
 #include <QSignalBlocker>
 #include <QSpinBox>
+#include <QTemporaryDir>
 #include <QTableWidget>
 #include <QVBoxLayout>
 
@@ -139,7 +140,10 @@ AdaptTab::AdaptTab(ClipsProvider clips, NetworksProvider networks, QWidget* pare
   refresh();
 }
 
-AdaptTab::~AdaptTab() = default;
+AdaptTab::~AdaptTab() {
+  delete runner_;  // cancels the job and waits for its thread before its scratch folder goes
+  runner_ = nullptr;
+}
 
 bool AdaptTab::isBusy() const { return runner_->isBusy(); }
 QString AdaptTab::statusText() const { return status_->text(); }
@@ -276,17 +280,19 @@ bool AdaptTab::start() {
     emit errorOccurred(title, errorText(std::current_exception()));
     return false;
   }
-  if (scratch_.empty()) {
-    scratch_ = std::filesystem::path(QDir(QDir::tempPath()).filePath(QStringLiteral("motionstyle-adapt-%1")
-                                                                          .arg(QCoreApplication::applicationPid()))
-                                         .toStdString());
-    std::error_code ignored;
-    std::filesystem::create_directories(scratch_, ignored);
+  if (!scratch_) {  // the session's checkpoints, removed with the tab
+    scratch_ = std::make_unique<QTemporaryDir>(QDir(QDir::tempPath()).filePath(QStringLiteral("motionstyle-adapt-XXXXXX")));
+    if (!scratch_->isValid()) {
+      scratch_.reset();
+      emit errorOccurred(title, tr("Could not create a folder for the checkpoints in %1.").arg(QDir::tempPath()));
+      return false;
+    }
   }
+  const std::filesystem::path scratch(scratch_->path().toStdString());
   job.loss.settings.epochs = loss_epochs_->value();
-  job.loss.settings.output = scratch_ / "adapted-loss-network.net";
+  job.loss.settings.output = scratch / "adapted-loss-network.net";
   job.style_epochs = style_epochs_->value();
-  job.scratch = scratch_;
+  job.scratch = scratch;
   // The session's scratch folder: Cancel never waits for the disk.
   job.loss.settings.checkpoint_durability = FileDurability::Unsynced;
   table_->setRowCount(0);

@@ -13,6 +13,8 @@
 
 #include <QWidget>
 
+class QTemporaryDir;
+
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -76,7 +78,7 @@ class AdaptTab : public QWidget {
   ClipsProvider clips_;
   NetworksProvider networks_;
   JobRunner* runner_ = nullptr;
-  std::filesystem::path scratch_;
+  std::unique_ptr<QTemporaryDir> scratch_;  // the adaptation's checkpoints, removed with the tab
   QListWidget* clip_list_ = nullptr;
   QListWidget* style_list_ = nullptr;
   bool styles_chosen_here_ = false;  // the user toggled a style: followStyle leaves the checks alone

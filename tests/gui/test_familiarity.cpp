@@ -3,6 +3,7 @@
 // and the Style networks panel's Adapt tab adapts the networks to the user's clips (progress, cancel,
 // a before/after table, the adapted networks listed unsaved). Bad input first: nothing checked.
 #include <QCheckBox>
+#include <QDir>
 #include <QElapsedTimer>
 #include <QLabel>
 #include <QListWidget>
@@ -15,6 +16,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <memory>
 
 #include "adapt_tab.h"
 #include "bvh/bvh_reader.h"
@@ -241,7 +243,13 @@ class FamiliarityTest : public QObject {
   }
 
   void theAdaptTabAdaptsTheNetworksToTheUsersClips() {
-    MainWindow window(false);
+    // The session's temporary folder, to see what the app leaves in it.
+    QTemporaryDir temp;
+    QVERIFY(temp.isValid());
+    const QByteArray tmpdir = qgetenv("TMPDIR");
+    qputenv("TMPDIR", temp.path().toLocal8Bit());
+    auto window_owner = std::make_unique<MainWindow>(false);
+    MainWindow& window = *window_owner;
     std::vector<QString> reports;
     window.setErrorReporter([&](const QString& title, const QString& message) { reports.push_back(title + ": " + message); });
     window.show();
@@ -293,6 +301,14 @@ class FamiliarityTest : public QObject {
     QVERIFY(QTest::qWaitFor([&] { return !tab->isBusy(); }, 5000));
     qInfo("adaptation stopped %lld ms after Cancel", static_cast<long long>(timer.elapsed()));
     QCOMPARE(networks->networkList()->networkCount(), listed + 1);
+
+    // The adaptation's checkpoints go with the window (they piled up in /tmp, one folder per session).
+    QVERIFY(!QDir(temp.path()).entryList({QStringLiteral("motionstyle-adapt-*")}, QDir::Dirs).isEmpty());
+    window_owner.reset();
+    const QStringList left = QDir(temp.path()).entryList(QDir::AllEntries | QDir::NoDotAndDotDot);
+    if (tmpdir.isNull()) qunsetenv("TMPDIR");
+    else qputenv("TMPDIR", tmpdir);
+    QVERIFY2(left.isEmpty(), qPrintable(left.join(QStringLiteral(", "))));
   }
 };
 
