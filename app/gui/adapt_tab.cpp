@@ -1,7 +1,6 @@
 #include "adapt_tab.h"
 #include "shipped_networks.h"
 
-#include <QCoreApplication>
 #include <QDir>
 #include <QFileDialog>
 #include <QFileInfo>

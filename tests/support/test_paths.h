@@ -22,7 +22,7 @@ inline std::filesystem::path bandaiDir() {
 }
 
 // A new, empty directory for one test, unique across processes: ctest runs tests in parallel, so
-// fixed names under /tmp would race. The caller removes it (or leaves it for the OS).
+// fixed names under /tmp would race. The caller removes it (ScopedTempDir does).
 inline std::filesystem::path uniqueTempDir(const std::string& purpose) {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
   std::random_device entropy;
@@ -32,6 +32,22 @@ inline std::filesystem::path uniqueTempDir(const std::string& purpose) {
   std::filesystem::create_directories(dir);
   return dir;
 }
+
+// uniqueTempDir removed with its contents when the test's scope ends.
+class ScopedTempDir {
+ public:
+  explicit ScopedTempDir(const std::string& purpose) : path_(uniqueTempDir(purpose)) {}
+  ~ScopedTempDir() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
+  }
+  ScopedTempDir(const ScopedTempDir&) = delete;
+  ScopedTempDir& operator=(const ScopedTempDir&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
 
 }  // namespace motionstyle::test
 

@@ -12,8 +12,8 @@
 namespace motionstyle {
 namespace {
 
-std::filesystem::path tempFile(const std::string& name, const std::string& content) {
-  const auto path = test::uniqueTempDir("statistics") / name;
+std::filesystem::path tempFile(const test::ScopedTempDir& dir, const std::string& name, const std::string& content) {
+  const auto path = dir.path() / name;
   std::ofstream(path) << content;
   return path;
 }
@@ -26,15 +26,16 @@ TEST(FeatureStatistics, RejectsEmptyAndMisshapenInput) {
 }
 
 TEST(FeatureStatistics, RejectsBadFiles) {
+  const test::ScopedTempDir dir("statistics");
   EXPECT_THROW(loadFeatureStatistics("/nonexistent/stats.json"), InputError);
   try {
-    loadFeatureStatistics(tempFile("stats_bad.json", "{\n  \"format\": \"motionstyle-feature-statistics\",\n  oops\n}"));
+    loadFeatureStatistics(tempFile(dir, "stats_bad.json", "{\n  \"format\": \"motionstyle-feature-statistics\",\n  oops\n}"));
     FAIL() << "invalid JSON accepted";
   } catch (const InputError& error) {
     EXPECT_EQ(error.line(), 3);
   }
-  EXPECT_THROW(loadFeatureStatistics(tempFile("stats_fmt.json", R"({"format": "other", "version": 1})")), InputError);
-  EXPECT_THROW(loadFeatureStatistics(tempFile("stats_len.json",
+  EXPECT_THROW(loadFeatureStatistics(tempFile(dir, "stats_fmt.json", R"({"format": "other", "version": 1})")), InputError);
+  EXPECT_THROW(loadFeatureStatistics(tempFile(dir, "stats_len.json",
                                               R"({"format": "motionstyle-feature-statistics", "version": 1,
                                                   "mean": [1, 2], "std": [1, 2]})")),
                InputError);
@@ -63,7 +64,8 @@ TEST(FeatureStatistics, SaveLoadRoundTrip) {
   FeatureStatistics statistics;
   statistics.mean = Eigen::VectorXd::LinSpaced(kFeatureCount, -3.0, 3.0);
   statistics.std = Eigen::VectorXd::LinSpaced(kFeatureCount, 0.5, 9.0);
-  const auto path = test::uniqueTempDir("statistics") / "stats.json";
+  const test::ScopedTempDir dir("statistics");
+  const auto path = dir.path() / "stats.json";
   saveFeatureStatistics(statistics, path);
   const FeatureStatistics loaded = loadFeatureStatistics(path);
   EXPECT_EQ(loaded.mean, statistics.mean);
