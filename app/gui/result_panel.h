@@ -87,9 +87,10 @@ class ResultPanel : public QWidget {
   // The style chooser: the shipped style networks (resources/models, by name), then networks opened
   // from files. Choosing one loads it.
   QComboBox* networkChoice() const { return network_choice_; }
-  // How long the inputs must rest after a result (or, before the first, after a clip opens or an input
-  // changes) before the chosen style and the styles nearest it in the chooser are computed ahead, one
-  // after the other (result_panel_look_ahead.cpp); negative: never.
+  // How long the inputs must rest after a result (or, before the first, after an input changes) before
+  // the chosen style and the styles nearest it in the chooser are computed ahead, one after the other
+  // (result_panel_look_ahead.cpp; a clip just opened starts them at once); without a clip, before the
+  // shipped networks are read and prepared; negative: never.
   // Default kLookAheadDelayMs.
   static constexpr int kLookAheadDelayMs = 400;
   // How many: kLookAheadFrames / the clip's frames, between kLookAheadMinStyles and kLookAheadMaxStyles:
@@ -189,6 +190,10 @@ class ResultPanel : public QWidget {
   void scheduleLookAhead();
   void stopLookAhead();
   void lookAhead();
+  // Without a mapped clip: reads and prepares the next shipped network not prepared yet, so that the
+  // first clip's look-ahead and a style picked on it skip the read (the first: 150-200 ms).
+  void readAhead();
+  void onReadAhead(std::shared_ptr<const style::Stylizer> stylizer, const QString& file, qint64 milliseconds);
   void startLookAhead(ResultInputs inputs, const QString& file, const QString& name);
   void onLookedAhead(RecentResults::Entry entry, const QString& file, qint64 milliseconds);
   // Shows result_: the figures first, then the rows, `status` and the buttons. Returns when (clock_)
@@ -251,6 +256,8 @@ class ResultPanel : public QWidget {
   QTimer* look_ahead_timer_ = nullptr;  // the inputs' rest before it starts
   int look_ahead_delay_ms_ = kLookAheadDelayMs;
   bool look_ahead_held_ = false;
+  bool look_ahead_reads_ = false;   // its job only reads a network (readAhead): a change lets it finish
+  QStringList unreadable_files_;    // shipped networks readAhead could not read: not tried again
   JobRunner* reader_ = nullptr;  // reads the file of a network picked in the chooser
   QString reading_file_;         // the file it reads for the chooser's current entry, "" when none
   bool stylize_when_read_ = false;   // Stylize was pressed during the read

@@ -8,6 +8,7 @@
 // 2,000 frames, two for a very long one (each costs a job on both cores and keeps its result and
 // prepared network).
 #include <QComboBox>
+#include <QFileInfo>
 #include <QTimer>
 
 #include <algorithm>
@@ -39,7 +40,8 @@ void ResultPanel::scheduleLookAhead() {
 
 void ResultPanel::stopLookAhead() {
   look_ahead_timer_->stop();
-  if (look_ahead_->isBusy()) look_ahead_->abandon();
+  // A read is kept (it depends on no input, and a new job would wait for it on the thread anyway).
+  if (look_ahead_->isBusy() && !look_ahead_reads_) look_ahead_->abandon();
 }
 
 int ResultPanel::lookAheadStyles() const {
@@ -48,9 +50,12 @@ int ResultPanel::lookAheadStyles() const {
 }
 
 void ResultPanel::lookAhead() {
-  if (busy_ || resultIsStale() || given_stylized_ || !content_ || !content_->mapping || look_ahead_->isBusy() ||
-      !reading_file_.isEmpty())
+  if (look_ahead_->isBusy()) return;  // its completion looks for the next
+  if (!content_ || !content_->mapping) {
+    readAhead();
     return;
+  }
+  if (busy_ || resultIsStale() || given_stylized_ || !reading_file_.isEmpty()) return;
   const int current = network_choice_->currentIndex(), count = network_choice_->count();
   const int styles = 1 + lookAheadStyles();  // the chosen one (shown, or not yet: it comes first) and its neighbours
   int candidates = 0;
@@ -69,6 +74,36 @@ void ResultPanel::lookAhead() {
   }
 }
 
+void ResultPanel::readAhead() {
+  for (int index = 0; index < network_choice_->count(); ++index) {
+    const QString file = network_choice_->itemData(index).toString();
+    if (file.isEmpty() || file == reading_file_ || unreadable_files_.contains(file) || stylizers_.find(file)) continue;
+    look_ahead_reads_ = true;
+    const qint64 started = clock_.elapsed();
+    look_ahead_->restart(QString(), [this, file, started](const JobRunner::Context&) -> JobRunner::Completion {
+      std::shared_ptr<const style::Stylizer> stylizer;
+      try {
+        stylizer = std::make_shared<const style::Stylizer>(style::loadCompatibleStyleModel(file.toStdString()),
+                                                           file.toStdString());
+      } catch (...) {  // reported if the user picks it (chooseNetwork reads it again)
+      }
+      return [this, stylizer, file, started] { onReadAhead(stylizer, file, clock_.elapsed() - started); };
+    });
+    return;
+  }
+}
+
+void ResultPanel::onReadAhead(std::shared_ptr<const style::Stylizer> stylizer, const QString& file,
+                              qint64 milliseconds) {
+  look_ahead_reads_ = false;
+  app_log::write(QStringLiteral("look-ahead: %1 %2 in %3 ms")
+                     .arg(QFileInfo(file).fileName(), stylizer ? QStringLiteral("read and prepared") : QStringLiteral("not readable"))
+                     .arg(milliseconds));
+  if (!stylizer) unreadable_files_ << file;
+  else if (!stylizers_.find(file)) stylizers_.store(file, std::move(stylizer));
+  if (look_ahead_delay_ms_ >= 0 && !look_ahead_held_) look_ahead_timer_->start(0);  // the next, or the clip's styles
+}
+
 void ResultPanel::startLookAhead(ResultInputs inputs, const QString& file, const QString& name) {
   style::StylizeCleanupJob job;
   job.content = content_->motion;
@@ -83,6 +118,7 @@ void ResultPanel::startLookAhead(ResultInputs inputs, const QString& file, const
   if (inputs.stylizer)
     if (auto kept = recent_.memoryFor(content_->id, inputs.stylizer)) job.memory->copyFrom(*kept);
   const qint64 started = clock_.elapsed();
+  look_ahead_reads_ = false;
   const bool chosen = inputs.stylizer && inputs.stylizer == stylizer_;  // its next job reuses the scratch
   look_ahead_->restart(tr("Could not compute a neighbouring style"),
                        [this, job = std::move(job), inputs = std::move(inputs), file, name, started,

@@ -435,6 +435,33 @@ class LiveTest : public QObject {
           entry.latency_ms, entry.figures_ms);
   }
 
+  // Before any clip is open, the shipped networks are read and prepared: a style picked in the
+  // chooser is then in use at once (not read on a worker first, its result waiting for the read).
+  // A clip opened starts the look-ahead at once, without the rest an edit waits for.
+  void theShippedNetworksAreReadBeforeAClipOpens() {
+    MainWindow window(false);
+    ResultPanel* panel = window.resultPanel();
+    panel->setLookAheadDelay(0);
+    window.resize(1400, 900);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    auto* choice = panel->findChild<QComboBox*>(QStringLiteral("NetworkChoice"));
+    QVERIFY(choice != nullptr && choice->count() >= 2);
+    const int before = static_cast<int>(readLogText(log_).count(QStringLiteral("read and prepared")));
+    QVERIFY(QTest::qWaitFor([&] {
+      return readLogText(log_).count(QStringLiteral("read and prepared")) == before + choice->count();
+    }, kJobTimeoutMs));
+    choice->setFocus();
+    QTest::keyClick(choice, Qt::Key_End);
+    QCOMPARE(panel->networkName(), choice->itemText(choice->count() - 1));  // in use already
+
+    // A clip opened: its styles are computed although an edit's rest (longer than the wait) never ends.
+    panel->setLookAheadDelay(2 * kJobTimeoutMs);
+    const QString clip = writeClip(scratch_, QStringLiteral("cmu_131_01.bvh"), QStringLiteral("clip_opened.bvh"));
+    QCOMPARE(window.openFiles({clip}), 1);
+    QVERIFY(QTest::qWaitFor([&] { return panel->recentResults().size() >= 1; }, kJobTimeoutMs));
+  }
+
   // A style chosen before the first result: while the user looks at the clip, the chosen style and
   // then its neighbours are computed ahead, so the Stylize button shows the result at once (the user
   // never waits for the first one) and a switch right after it too. An input changed before Stylize
