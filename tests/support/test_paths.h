@@ -22,7 +22,7 @@ inline std::filesystem::path bandaiDir() {
 }
 
 // A new, empty directory for one test, unique across processes: ctest runs tests in parallel, so
-// fixed names under /tmp would race. The caller removes it (ScopedTempDir does).
+// fixed names under /tmp would race. The caller removes it (TempDir does).
 inline std::filesystem::path uniqueTempDir(const std::string& purpose) {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
   std::random_device entropy;
@@ -33,17 +33,18 @@ inline std::filesystem::path uniqueTempDir(const std::string& purpose) {
   return dir;
 }
 
-// uniqueTempDir removed with its contents when the test's scope ends.
-class ScopedTempDir {
+// A uniqueTempDir removed with its contents when the object goes away.
+class TempDir {
  public:
-  explicit ScopedTempDir(const std::string& purpose) : path_(uniqueTempDir(purpose)) {}
-  ~ScopedTempDir() {
+  explicit TempDir(const std::string& purpose = "test") : path_(uniqueTempDir(purpose)) {}
+  ~TempDir() {
     std::error_code ignored;
     std::filesystem::remove_all(path_, ignored);
   }
-  ScopedTempDir(const ScopedTempDir&) = delete;
-  ScopedTempDir& operator=(const ScopedTempDir&) = delete;
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
   const std::filesystem::path& path() const { return path_; }
+  std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
 
  private:
   std::filesystem::path path_;

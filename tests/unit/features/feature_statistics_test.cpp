@@ -12,7 +12,7 @@
 namespace motionstyle {
 namespace {
 
-std::filesystem::path tempFile(const test::ScopedTempDir& dir, const std::string& name, const std::string& content) {
+std::filesystem::path tempFile(const test::TempDir& dir, const std::string& name, const std::string& content) {
   const auto path = dir.path() / name;
   std::ofstream(path) << content;
   return path;
@@ -26,7 +26,7 @@ TEST(FeatureStatistics, RejectsEmptyAndMisshapenInput) {
 }
 
 TEST(FeatureStatistics, RejectsBadFiles) {
-  const test::ScopedTempDir dir("statistics");
+  const test::TempDir dir("statistics");
   EXPECT_THROW(loadFeatureStatistics("/nonexistent/stats.json"), InputError);
   try {
     loadFeatureStatistics(tempFile(dir, "stats_bad.json", "{\n  \"format\": \"motionstyle-feature-statistics\",\n  oops\n}"));
@@ -64,7 +64,7 @@ TEST(FeatureStatistics, SaveLoadRoundTrip) {
   FeatureStatistics statistics;
   statistics.mean = Eigen::VectorXd::LinSpaced(kFeatureCount, -3.0, 3.0);
   statistics.std = Eigen::VectorXd::LinSpaced(kFeatureCount, 0.5, 9.0);
-  const test::ScopedTempDir dir("statistics");
+  const test::TempDir dir("statistics");
   const auto path = dir.path() / "stats.json";
   saveFeatureStatistics(statistics, path);
   const FeatureStatistics loaded = loadFeatureStatistics(path);
