@@ -134,7 +134,9 @@ AdaptTab::AdaptTab(ClipsProvider clips, NetworksProvider networks, QWidget* pare
     emit busyChanged(busy);
   });
   connect(runner_, &JobRunner::finished, this, [this](bool completed) {
-    if (!completed) status_->setText(tr("Stopped: nothing was changed."));
+    if (completed) return;
+    status_->setText(tr("Adaptation stopped: nothing was changed."));
+    emit statusMessage(status_->text());
   });
   refresh();
 }
@@ -352,6 +354,7 @@ void AdaptTab::showResult(const style::AdaptNetworksJob::Result& result) {
                        .arg(duration(result.seconds))
                        .arg(result.loss.mean_before_cm, 0, 'f', 2)
                        .arg(result.loss.mean_after_cm, 0, 'f', 2));
+  emit statusMessage(status_->text());
   emit adapted(std::make_shared<const nn::LossNetworkModel>(result.loss.model), result.styles);
 }
 

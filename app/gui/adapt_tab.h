@@ -70,6 +70,8 @@ class AdaptTab : public QWidget {
                std::vector<motionstyle::style::StyleToRetrain> styles);
   void errorOccurred(const QString& title, const QString& message);
   void busyChanged(bool busy);
+  // How a run ended, as the tab's status line says it (for the window's status bar).
+  void statusMessage(const QString& message);
 
  private:
   void showResult(const style::AdaptNetworksJob::Result& result);

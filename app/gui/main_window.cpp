@@ -70,6 +70,7 @@ MainWindow::MainWindow(bool persist_settings, QWidget* parent)
   createMenus();
 
   status_label_ = new QLabel(tr("Open a BVH clip (Ctrl+O) or drop files here"), this);
+  status_label_->setObjectName(QStringLiteral("StatusLine"));
   statusBar()->addWidget(status_label_, 1);
 
   connect(timeline_, &TimelineWidget::frameChanged, viewport_, &SkeletonViewport::setFrame);

@@ -36,6 +36,7 @@ void MainWindow::createNetworkDock() {
   }
 
   connect(network_panel_, &NetworkPanel::errorOccurred, this, &MainWindow::report);
+  connect(network_panel_, &NetworkPanel::statusMessage, this, &MainWindow::showStatus);
   connect(network_panel_, &NetworkPanel::previewReady, this, [this](const FigureData& figure) {
     training_preview_ = figure;
     rebuildFigures();

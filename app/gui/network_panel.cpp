@@ -41,7 +41,7 @@ NetworkPanel::NetworkPanel(ClipRoles roles, QWidget* parent, bool persist_settin
   network_list_ = new NetworkList(persist_settings_, this);
   network_list_->setConfirmer(confirmer_);
   connect(network_list_, &NetworkList::errorOccurred, this, &NetworkPanel::report);
-  connect(network_list_, &NetworkList::statusMessage, this, [this](const QString& text) { status_label_->setText(text); });
+  connect(network_list_, &NetworkList::statusMessage, this, &NetworkPanel::showOutcome);
   connect(network_list_, &NetworkList::lossNetworkFileLoaded, this, &NetworkPanel::setLossNetworkFile);
   connect(network_list_, &NetworkList::currentNetworkChanged, this, [this] {
     showLossHistory();
@@ -202,6 +202,11 @@ QString NetworkPanel::statusText() const { return status_label_->text(); }
 void NetworkPanel::report(const QString& title, const QString& message) {
   status_label_->setText(title);
   emit errorOccurred(title, message);
+}
+
+void NetworkPanel::showOutcome(const QString& text) {
+  status_label_->setText(text);
+  emit statusMessage(text);
 }
 
 QMessageBox::StandardButton NetworkPanel::ask(const QString& title, const QString& text, QMessageBox::StandardButtons buttons) {

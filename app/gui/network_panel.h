@@ -130,6 +130,9 @@ class NetworkPanel : public QWidget {
   void errorOccurred(const QString& title, const QString& message);
   void trainingProgress(const motionstyle::style::TrainingProgress& progress);
   void jobFinished();  // any job ended (its completion has run)
+  // How a job ended, or a network loaded or saved, as the panel's status line says it (for the
+  // window's status bar, which the user sees whichever tab is up).
+  void statusMessage(const QString& message);
   // A training, optimisation or adaptation job started (true) or ended (false): isBusy() changed.
   void busyChanged(bool busy);
 
@@ -138,6 +141,7 @@ class NetworkPanel : public QWidget {
   void showLossHistory();  // the selected network's, unless a run is drawing its own
   void updateButtons();
   void report(const QString& title, const QString& message);
+  void showOutcome(const QString& text);  // on the panel's status line and statusMessage
   QMessageBox::StandardButton ask(const QString& title, const QString& text, QMessageBox::StandardButtons buttons);
   // Where clips and training folders were last chosen (apart from the networks folder: saving a
   // network never starts among the clips).

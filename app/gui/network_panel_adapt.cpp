@@ -20,6 +20,7 @@ AdaptTab* NetworkPanel::createAdaptTab() {
   };
   adapt_tab_ = new AdaptTab(roles_.clips, networks, this);
   connect(adapt_tab_, &AdaptTab::errorOccurred, this, &NetworkPanel::report);
+  connect(adapt_tab_, &AdaptTab::statusMessage, this, &NetworkPanel::statusMessage);
   connect(adapt_tab_, &AdaptTab::busyChanged, this, [this](bool) { updateButtons(); });
   connect(adapt_tab_, &AdaptTab::adapted, this,
           [this](std::shared_ptr<const nn::LossNetworkModel> loss, std::vector<style::StyleToRetrain> styles) {

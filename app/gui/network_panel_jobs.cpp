@@ -286,8 +286,7 @@ bool NetworkPanel::startTransfer(int iterations) {
     };
     auto result = std::make_shared<const style::OptimizationTransferJob::Result>(job.run(callbacks));
     return JobRunner::Completion([this, result, label] {
-      status_label_->setText(result->cancelled ? tr("Optimisation cancelled")
-                                               : tr("Optimised in %1").arg(formatDuration(result->seconds)));
+      showOutcome(result->cancelled ? tr("Optimisation cancelled") : tr("Optimised in %1").arg(formatDuration(result->seconds)));
       if (result->clip) emit stylizedClipReady(*result->clip, label);
     });
   });
@@ -353,13 +352,13 @@ void NetworkPanel::onTrainingFinished(const style::StyleTrainingJob::Result& out
   }
   if (!cancelled) {
     progress_bar_->setValue(progress_bar_->maximum());
-    status_label_->setText(tr("Trained %n epoch(s) in %1. Not saved yet: Save As... on the Networks tab.", nullptr,
-                              outcome.epochs_completed).arg(formatDuration(outcome.seconds)));
+    showOutcome(tr("Trained %n epoch(s) in %1. Not saved yet: Save As... on the Networks tab.", nullptr,
+                   outcome.epochs_completed).arg(formatDuration(outcome.seconds)));
   } else if (outcome.model) {
-    status_label_->setText(tr("Cancelled. Kept the network of epoch %1 (checkpoint %2); not saved yet. Resume continues it.")
-                               .arg(outcome.epochs_completed).arg(QString::fromStdString(outcome.checkpoint.string())));
+    showOutcome(tr("Training cancelled. Kept the network of epoch %1 (checkpoint %2); not saved yet. Resume continues it.")
+                    .arg(outcome.epochs_completed).arg(QString::fromStdString(outcome.checkpoint.string())));
   } else {
-    status_label_->setText(tr("Cancelled before the first epoch ended: no network to keep."));
+    showOutcome(tr("Training cancelled before the first epoch ended: no network to keep."));
   }
   tabs_->setCurrentIndex(0);
 }

@@ -6,6 +6,8 @@
 #include <QColor>
 #include <QDir>
 #include <QImage>
+#include <QLabel>
+#include <QMainWindow>
 #include <QPointF>
 #include <QString>
 #include <QTest>
@@ -22,6 +24,12 @@ inline QString saveScreenshot(const QImage& image, const QString& name) {
   if (!dir.mkpath(QStringLiteral("."))) return {};
   const QString path = dir.filePath(name + QStringLiteral(".png"));
   return image.save(path, "PNG") ? path : QString();
+}
+
+// What the window's status bar says (MainWindow's "StatusLine"), empty if it has none.
+inline QString statusLine(const QMainWindow& window) {
+  const auto* line = window.findChild<QLabel*>(QStringLiteral("StatusLine"));
+  return line != nullptr ? line->text() : QString();
 }
 
 // "Green-ish" as the tests mean it: green dominates red and blue by a clear margin.

@@ -286,6 +286,7 @@ class FamiliarityTest : public QObject {
     const QTableWidget* table = tab->familiarityTable();
     QCOMPARE(table->rowCount(), 3);
     QVERIFY2(tab->statusText().contains(QStringLiteral("Adapted")), qPrintable(tab->statusText()));
+    QCOMPARE(test::statusLine(window), tab->statusText());  // the window's status bar says it too
     QCOMPARE(networks->networkList()->networkCount(), listed + 1);
     QVERIFY(!networks->networkList()->isNetworkSaved(networks->networkList()->networkCount() - 1));
     QVERIFY(networks->networkList()->currentNetworkName().startsWith(QStringLiteral("tiny_style adapted")));
@@ -300,6 +301,7 @@ class FamiliarityTest : public QObject {
     tab->cancel();
     QVERIFY(QTest::qWaitFor([&] { return !tab->isBusy(); }, 5000));
     qInfo("adaptation stopped %lld ms after Cancel", static_cast<long long>(timer.elapsed()));
+    QVERIFY(QTest::qWaitFor([&] { return test::statusLine(window).startsWith(QStringLiteral("Adaptation stopped")); }, 5000));
     QCOMPARE(networks->networkList()->networkCount(), listed + 1);
 
     // The adaptation's checkpoints go with the window (they piled up in /tmp, one folder per session).

@@ -341,7 +341,8 @@ class TrainingTest : public QObject {
     QVERIFY2(cancel_ms < kCancelBoundMs, qPrintable(QStringLiteral("cancel took %1 ms").arg(cancel_ms)));
     QVERIFY(!panel->isBusy());
     QVERIFY2(reports_.empty(), reports_.empty() ? "" : qPrintable(reports_.front().message));
-    QVERIFY2(panel->statusText().startsWith(QStringLiteral("Cancelled")), qPrintable(panel->statusText()));
+    QVERIFY2(panel->statusText().startsWith(QStringLiteral("Training cancelled")), qPrintable(panel->statusText()));
+    QCOMPARE(test::statusLine(*window), panel->statusText());  // the window's status bar says it too
 
     // The last completed epoch is kept: in the list (unsaved, current, announced) and as a loadable
     // checkpoint holding the same epoch count.
@@ -595,6 +596,7 @@ class TrainingTest : public QObject {
     QCOMPARE(panel->networkList()->network(0)->metadata.training.epochs, 3);
     QCOMPARE(panel->networkList()->network(0)->metadata.loss_history.epochs.size(), std::size_t{3});
     QVERIFY2(panel->statusText().startsWith(QStringLiteral("Trained")), qPrintable(panel->statusText()));
+    QCOMPARE(test::statusLine(*window), panel->statusText());
     QCOMPARE(panel->progressBar()->value(), panel->progressBar()->maximum());
     QCOMPARE(panel->progressBar()->format(), QStringLiteral("Done"));
 
