@@ -65,9 +65,10 @@ void ResultPanel::lookAhead() {
     const QString file = network_choice_->itemData(index).toString();
     const bool chosen = index == current && hasNetwork();
     if (file.isEmpty() && !chosen) continue;  // a network without a file: nothing to read ahead
-    ++candidates;
     ResultInputs inputs = currentInputs();
     if (!chosen) inputs.stylizer = stylizers_.find(file);  // prepared already, or read on the worker
+    if (!inputs.stylizer && unreadable_files_.contains(file)) continue;  // the user hears of it on picking it
+    ++candidates;
     if (inputs.stylizer && recent_.contains(inputs)) continue;  // already there
     startLookAhead(std::move(inputs), file, network_choice_->itemText(index));
     return;  // one at a time: its completion looks for the next
@@ -123,9 +124,14 @@ void ResultPanel::startLookAhead(ResultInputs inputs, const QString& file, const
   look_ahead_->restart(tr("Could not compute a neighbouring style"),
                        [this, job = std::move(job), inputs = std::move(inputs), file, name, started,
                         chosen](const JobRunner::Context& context) mutable -> JobRunner::Completion {
-                         if (!inputs.stylizer)
-                           inputs.stylizer = std::make_shared<const style::Stylizer>(
-                               style::loadCompatibleStyleModel(file.toStdString()), file.toStdString());
+                         if (!inputs.stylizer) {
+                           try {
+                             inputs.stylizer = std::make_shared<const style::Stylizer>(
+                                 style::loadCompatibleStyleModel(file.toStdString()), file.toStdString());
+                           } catch (...) {  // skipped from now on, and the next style computed
+                             return [this, file] { onReadAhead(nullptr, file, 0); };
+                           }
+                         }
                          job.stylizer = inputs.stylizer;
                          auto result = std::make_shared<const style::StylizeCleanupResult>(job.run(context.cancelFlag()));
                          if (!chosen) inputs.stylizer->releaseIdleNetworks();  // its scratch: it may never be chosen
