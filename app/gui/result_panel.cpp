@@ -153,7 +153,7 @@ void ResultPanel::setContentClip(const LoadedClip* clip) {
   refreshControls();
   refreshFamiliarity();
   // The chosen style (if any) and its neighbours, before Stylize is pressed: at once, as nothing is
-  // being dragged (no rest to wait for; the styles are there about 0.4 s sooner).
+  // being dragged (the rest is for drags).
   if (look_ahead_delay_ms_ >= 0 && !look_ahead_held_) look_ahead_timer_->start(0);
 }
 
@@ -380,7 +380,7 @@ void ResultPanel::logResultOnScreen(const QString& change, qint64 latency_ms, qi
                      .arg(job_ms)
                      .arg(figures_ms)
                      .arg(strength, 0, 'f', 2)
-                     .arg(result_->report.frames)
+                     .arg(result_->cleaned.frameCount())  // the content's frames, as in the status
                      .arg(chunks_solved)
                      .arg(result_->report.chunks)
                      .arg(how));

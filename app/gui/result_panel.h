@@ -257,7 +257,7 @@ class ResultPanel : public QWidget {
   int look_ahead_delay_ms_ = kLookAheadDelayMs;
   bool look_ahead_held_ = false;
   bool look_ahead_reads_ = false;   // its job only reads a network (readAhead): a change lets it finish
-  QStringList unreadable_files_;    // shipped networks readAhead could not read: not tried again
+  QStringList unreadable_files_;    // listed network files the look-ahead could not read: passed over
   JobRunner* reader_ = nullptr;  // reads the file of a network picked in the chooser
   QString reading_file_;         // the file it reads for the chooser's current entry, "" when none
   bool stylize_when_read_ = false;   // Stylize was pressed during the read

@@ -6,7 +6,7 @@
 // one style at a time; any change drops it, and so does a job of the Style networks panel
 // (holdLookAhead) until it ends. How many: lookAheadStyles(), every shipped style for a clip up to
 // 2,000 frames, two for a very long one (each costs a job on both cores and keeps its result and
-// prepared network).
+// prepared network). Before any clip is open it reads and prepares the shipped networks instead.
 #include <QComboBox>
 #include <QFileInfo>
 #include <QTimer>

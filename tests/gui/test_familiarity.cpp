@@ -8,6 +8,7 @@
 #include <QLabel>
 #include <QListWidget>
 #include <QPushButton>
+#include <QScopeGuard>
 #include <QSettings>
 #include <QSignalSpy>
 #include <QTabWidget>
@@ -248,6 +249,10 @@ class FamiliarityTest : public QObject {
     QVERIFY(temp.isValid());
     const QByteArray tmpdir = qgetenv("TMPDIR");
     qputenv("TMPDIR", temp.path().toLocal8Bit());
+    const auto restore = qScopeGuard([tmpdir] {
+      if (tmpdir.isNull()) qunsetenv("TMPDIR");
+      else qputenv("TMPDIR", tmpdir);
+    });
     auto window_owner = std::make_unique<MainWindow>(false);
     MainWindow& window = *window_owner;
     std::vector<QString> reports;
@@ -308,8 +313,6 @@ class FamiliarityTest : public QObject {
     QVERIFY(!QDir(temp.path()).entryList({QStringLiteral("motionstyle-adapt-*")}, QDir::Dirs).isEmpty());
     window_owner.reset();
     const QStringList left = QDir(temp.path()).entryList(QDir::AllEntries | QDir::NoDotAndDotDot);
-    if (tmpdir.isNull()) qunsetenv("TMPDIR");
-    else qputenv("TMPDIR", tmpdir);
     QVERIFY2(left.isEmpty(), qPrintable(left.join(QStringLiteral(", "))));
   }
 };

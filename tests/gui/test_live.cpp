@@ -409,8 +409,8 @@ class LiveTest : public QObject {
   }
 
   // A clip of 2,000 frames (17 s at 120 fps, as a capture session delivers them): every shipped style
-  // is computed ahead too, so a pick anywhere in the list is shown without a job, not only the two
-  // nearest (the look-ahead's reach until the seventeenth session).
+  // is computed ahead too, so a pick anywhere in the list is shown without a job, not only one of
+  // the two nearest.
   void everyStyleOfA2000FrameClipIsComputedAhead() {
     const QString clip = writeClip(scratch_, QStringLiteral("cmu_131_01.bvh"), QStringLiteral("clip_2000.bvh"), 2000);
     MainWindow window(false);
