@@ -24,6 +24,7 @@ bool LiveResolution::eventFilter(QObject* watched, QEvent* event) {
     QCoreApplication::instance()->removeEventFilter(this);
     watching_ = false;
     viewport_->setReducedResolution(false);  // the last result, sharp
+    emit handReleased();
   }
   return QObject::eventFilter(watched, event);
 }

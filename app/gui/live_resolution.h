@@ -4,9 +4,9 @@
 // Contract: call resultShown() just before a new result is painted. If a mouse button is held then (a
 // strength drag, a contact stroke: every step brings a new result), the viewport renders at half the
 // pixels across and down (SkeletonViewport::setReducedResolution) until the button is released, when
-// it renders the result at full resolution. Why: under a software OpenGL the render of each result
-// competes with the next result's job for the same cores (docs/decisions.md, "The viewport as an
-// image").
+// it renders the result at full resolution and emits handReleased(). Why: under a software OpenGL the
+// render of each result competes with the next result's job for the same cores (docs/decisions.md,
+// "The viewport as an image").
 
 #include <QObject>
 
@@ -21,6 +21,10 @@ class LiveResolution : public QObject {
   explicit LiveResolution(SkeletonViewport* viewport, QObject* parent = nullptr);
 
   void resultShown();
+
+ signals:
+  // The button held while results arrived was let go: the live drag is over.
+  void handReleased();
 
  protected:
   bool eventFilter(QObject* watched, QEvent* event) override;

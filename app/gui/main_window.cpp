@@ -67,6 +67,8 @@ MainWindow::MainWindow(bool persist_settings, QWidget* parent)
          "New to MotionStyle? Help &#9656; Open Demo loads two sample clips and a style."));
   setCentralWidget(viewport_);
   createDocks();
+  // A drag let go: the look-ahead need not wait for the rest meant for its steps.
+  connect(live_resolution_, &LiveResolution::handReleased, result_panel_, &ResultPanel::handReleased);
   createMenus();
 
   status_label_ = new QLabel(tr("Open a BVH clip (Ctrl+O) or drop files here"), this);

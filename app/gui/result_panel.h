@@ -104,6 +104,9 @@ class ResultPanel : public QWidget {
   // held: another job has the cores (the Style networks panel trains, optimises or adapts): what is
   // computed ahead stops, and nothing more is until it is released. Edits and Stylize still run.
   void holdLookAhead(bool held);
+  // The hand left a control it was dragging (LiveResolution::handReleased): the next look-ahead starts
+  // without the rest, which is there for the steps of a drag.
+  void handReleased();
   // The results remembered for switching back or ahead (recent_results.h).
   const RecentResults& recentResults() const { return recent_; }
 
@@ -256,6 +259,7 @@ class ResultPanel : public QWidget {
   QTimer* look_ahead_timer_ = nullptr;  // the inputs' rest before it starts
   int look_ahead_delay_ms_ = kLookAheadDelayMs;
   bool look_ahead_held_ = false;
+  bool rest_skipped_ = false;       // handReleased: the next scheduleLookAhead starts it at once
   bool look_ahead_reads_ = false;   // its job only reads a network (readAhead): a change lets it finish
   QStringList unreadable_files_;    // listed network files the look-ahead could not read: passed over
   JobRunner* reader_ = nullptr;  // reads the file of a network picked in the chooser

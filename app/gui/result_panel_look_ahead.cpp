@@ -12,6 +12,7 @@
 #include <QTimer>
 
 #include <algorithm>
+#include <utility>
 
 #include "app_log.h"
 #include "result_panel.h"
@@ -34,8 +35,14 @@ void ResultPanel::holdLookAhead(bool held) {
   else scheduleLookAhead();
 }
 
+void ResultPanel::handReleased() {
+  rest_skipped_ = true;
+  if (look_ahead_timer_->isActive()) scheduleLookAhead();  // the last result is in: at once, else after it
+}
+
 void ResultPanel::scheduleLookAhead() {
-  if (look_ahead_delay_ms_ >= 0 && !look_ahead_held_) look_ahead_timer_->start(look_ahead_delay_ms_);
+  const int delay = std::exchange(rest_skipped_, false) ? 0 : look_ahead_delay_ms_;
+  if (look_ahead_delay_ms_ >= 0 && !look_ahead_held_) look_ahead_timer_->start(delay);
 }
 
 void ResultPanel::stopLookAhead() {

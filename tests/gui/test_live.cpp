@@ -408,6 +408,30 @@ class LiveTest : public QObject {
     QVERIFY(!readLiveLog(log_).back().remembered);
   }
 
+  // A strength drag let go: the styles around the chosen one are computed for the new strength at once,
+  // not after the rest that keeps the look-ahead out of a drag's steps (longer than the wait here).
+  void theLookAheadStartsWhenTheHandLetsGo() {
+    const QString clip = writeClip(scratch_, QStringLiteral("cmu_131_01.bvh"), QStringLiteral("clip_let_go.bvh"));
+    MainWindow window(false);
+    QVERIFY(showStylized(window, clip));
+    ResultPanel* panel = window.resultPanel();
+    panel->setLookAheadDelay(2 * kJobTimeoutMs);
+    auto* slider = panel->findChild<QSlider*>(QStringLiteral("StrengthSlider"));
+    QVERIFY(slider != nullptr);
+    const int y = slider->height() / 2;
+    QTest::mousePress(slider, Qt::LeftButton, Qt::NoModifier, QPoint(sliderX(*slider, 100), y));
+    for (int value = 96; value >= 80; value -= 4) {
+      QTest::mouseMove(slider, QPoint(sliderX(*slider, value), y));
+      QTest::qWait(60);
+    }
+    QVERIFY(window.viewport()->reducedResolution());  // results came while the hand was down
+    QTest::mouseRelease(slider, Qt::LeftButton, Qt::NoModifier, QPoint(sliderX(*slider, 80), y));
+    QVERIFY(QTest::qWaitFor([&] { return !panel->isBusy() && !panel->resultIsStale(); }, kJobTimeoutMs));
+    const QString computed = QStringLiteral("computed for the current inputs");
+    const qsizetype before = readLogText(log_).count(computed);
+    QVERIFY(QTest::qWaitFor([&] { return readLogText(log_).count(computed) > before; }, kJobTimeoutMs));
+  }
+
   // A clip of 2,000 frames (17 s at 120 fps, as a capture session delivers them): every shipped style
   // is computed ahead too, so a pick anywhere in the list is shown without a job, not only one of
   // the two nearest.
