@@ -13,6 +13,7 @@
 
 #include <cmath>
 #include <exception>
+#include <utility>
 
 #include "common/errors.h"
 #include "common/resource_paths.h"
@@ -117,6 +118,12 @@ ResultPanel::ResultPanel(QWidget* parent) : QWidget(parent), memory_(std::make_s
   look_ahead_timer_ = new QTimer(this);
   look_ahead_timer_->setSingleShot(true);
   connect(look_ahead_timer_, &QTimer::timeout, this, &ResultPanel::lookAhead);
+  // A look-ahead job the panel waited for failed: a job of its own, which reports what went wrong.
+  connect(look_ahead_, &JobRunner::failed, this, [this] {
+    if (!std::exchange(look_ahead_adopted_, false)) return;
+    setBusy(false, status_label_->text());
+    runStylize();
+  });
   connect(runner_, &JobRunner::failed, this, [this](const QString& title, const QString& message) {
     setBusy(false, tr("Failed."));
     report(title, message);
@@ -189,8 +196,11 @@ const std::optional<style::Familiarity>& ResultPanel::familiarity() const { retu
 bool ResultPanel::canStylize() const { return content_ && content_->mapping && (hasNetwork() || given_stylized_); }
 
 void ResultPanel::inputsChanged(const QString& what, qint64 changed_ms) {
-  stopLookAhead();
-  if (!result_ && !busy_) {  // nothing shown or on its way: the next Stylize uses the new inputs
+  const bool was_waiting = look_ahead_adopted_;
+  dropAdoptedLookAhead();  // it computes the inputs before this change
+  look_ahead_timer_->stop();
+  if (!lookAheadComputes(currentInputs())) stopLookAhead();  // else runStylize waits for it
+  if (!result_ && !busy_ && !was_waiting) {  // nothing shown or on its way: the next Stylize uses the new inputs
     scheduleLookAhead();      // ... computed ahead once they rest
     return;
   }
@@ -212,6 +222,7 @@ void ResultPanel::inputsChanged(const QString& what, qint64 changed_ms) {
       dropped_previous_ = true;  // the running job has only just started: replaced (see the header)
       runStylize();
     } else {
+      stopLookAhead();  // (computing the new inputs or not: the job after the running one does)
       pending_ = true;  // after the running job: one job for the latest inputs
     }
   } else {
@@ -262,6 +273,7 @@ void ResultPanel::runStylize() {
     report(tr("No style network"), tr("Open a style network file (.net) first, or train one."));
     return;
   }
+  if (adoptLookAhead()) return;
   std::shared_ptr<const style::StylizeCleanupMemory> seed;
   if (stylizer_ && !given_stylized_) {
     // This style's own job memory when a result of it on this clip is remembered (its network output
@@ -313,8 +325,10 @@ void ResultPanel::cancel() {
   pending_ = false;
   stylize_when_read_ = false;
   if (!busy_) return;
-  // The job stops at its next check; anything it still sends is dropped.
-  {
+  if (look_ahead_adopted_) {
+    look_ahead_adopted_ = false;
+    stopLookAhead();
+  } else {  // the job stops at its next check; anything it still sends is dropped
     const QScopedValueRollback dropping(abandoning_, true);
     runner_->abandon();
   }

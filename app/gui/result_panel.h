@@ -187,7 +187,8 @@ class ResultPanel : public QWidget {
   // Shows the result remembered for the current inputs, if any (a style shown before with the same
   // clip, strength, path and contacts, or computed ahead): no job. Returns whether it did.
   // stylize_pressed: it answers Stylize (the status says the clip was stylized), not a change.
-  bool showRememberedResult(bool stylize_pressed = false);
+  // waited_ms: how long the panel waited for the look-ahead's job of it (adoptLookAhead), for the log.
+  bool showRememberedResult(bool stylize_pressed = false, qint64 waited_ms = -1);
   // The look-ahead (result_panel_look_ahead.cpp): scheduled after a result and, before the first
   // one, when a mapped clip opens or an input changes; stopped by any change and any job.
   void scheduleLookAhead();
@@ -199,6 +200,14 @@ class ResultPanel : public QWidget {
   void onReadAhead(std::shared_ptr<const style::Stylizer> stylizer, const QString& file, qint64 milliseconds);
   void startLookAhead(ResultInputs inputs, const QString& file, const QString& name);
   void onLookedAhead(RecentResults::Entry entry, const QString& file, qint64 milliseconds);
+  // The look-ahead job under way computes `inputs` (a prepared network's): a job for them would redo it.
+  bool lookAheadComputes(const ResultInputs& inputs) const;
+  // For runStylize: when the look-ahead computes the current inputs, the panel waits for it (busy, as for
+  // a job of its own) instead of dropping it and starting the same job; its result is shown as one
+  // computed ahead. Returns whether it did.
+  bool adoptLookAhead();
+  // A change or Cancel while waiting for it: the panel no longer waits (the look-ahead is dropped).
+  void dropAdoptedLookAhead();
   // Shows result_: the figures first, then the rows, `status` and the buttons. Returns when (clock_)
   // the figures were on the screen: what the live latencies in the log are measured to.
   // next_job_running: a job for newer inputs already runs; the panel stays busy with its status.
@@ -260,6 +269,9 @@ class ResultPanel : public QWidget {
   int look_ahead_delay_ms_ = kLookAheadDelayMs;
   bool look_ahead_held_ = false;
   bool rest_skipped_ = false;       // handReleased: the next scheduleLookAhead starts it at once
+  ResultInputs look_ahead_inputs_;  // what the look-ahead job under way computes
+  bool look_ahead_adopted_ = false;  // the panel waits for that job's result (adoptLookAhead)
+  bool adopted_for_stylize_ = false;  // ... asked for by Stylize (no result shown yet)
   bool look_ahead_reads_ = false;   // its job only reads a network (readAhead): a change lets it finish
   QStringList unreadable_files_;    // listed network files the look-ahead could not read: passed over
   JobRunner* reader_ = nullptr;  // reads the file of a network picked in the chooser

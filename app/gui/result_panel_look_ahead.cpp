@@ -8,6 +8,7 @@
 // 2,000 frames, two for a very long one (each costs a job on both cores and keeps its result and
 // prepared network). Before any clip is open it reads and prepares the shipped networks instead.
 #include <QComboBox>
+#include <QScopedValueRollback>
 #include <QFileInfo>
 #include <QTimer>
 
@@ -47,8 +48,9 @@ void ResultPanel::scheduleLookAhead() {
 
 void ResultPanel::stopLookAhead() {
   look_ahead_timer_->stop();
-  // A read is kept (it depends on no input, and a new job would wait for it on the thread anyway).
-  if (look_ahead_->isBusy() && !look_ahead_reads_) look_ahead_->abandon();
+  // A read is kept (it depends on no input, and a new job would wait for it on the thread anyway), and
+  // so is a job the panel waits for (dropAdoptedLookAhead and cancel drop it).
+  if (look_ahead_->isBusy() && !look_ahead_reads_ && !look_ahead_adopted_) look_ahead_->abandon();
 }
 
 int ResultPanel::lookAheadStyles() const {
@@ -127,6 +129,7 @@ void ResultPanel::startLookAhead(ResultInputs inputs, const QString& file, const
     if (auto kept = recent_.memoryFor(content_->id, inputs.stylizer)) job.memory->copyFrom(*kept);
   const qint64 started = clock_.elapsed();
   look_ahead_reads_ = false;
+  look_ahead_inputs_ = inputs;
   const bool chosen = inputs.stylizer && inputs.stylizer == stylizer_;  // its next job reuses the scratch
   look_ahead_->restart(tr("Could not compute a neighbouring style"),
                        [this, job = std::move(job), inputs = std::move(inputs), file, name, started,
@@ -150,15 +153,54 @@ void ResultPanel::startLookAhead(ResultInputs inputs, const QString& file, const
 
 void ResultPanel::onLookedAhead(RecentResults::Entry entry, const QString& file, qint64 milliseconds) {
   ResultInputs now = currentInputs();
+  const bool adopted = std::exchange(look_ahead_adopted_, false);
+  if (adopted && !(now == entry.inputs)) {  // not what the panel waited for (never expected): a job of its own
+    setBusy(false, status_label_->text());
+    runStylize();
+    return;
+  }
   now.stylizer = entry.inputs.stylizer;
   if (!(now == entry.inputs)) return;  // the inputs moved on while it ran
   if (!file.isEmpty() && !stylizers_.find(file)) stylizers_.store(file, entry.inputs.stylizer);
   app_log::write(QStringLiteral("look-ahead: %1 computed for the current inputs in %2 ms").arg(entry.network_name).arg(milliseconds));
   entry.computed_ahead = true;
   recent_.remember(std::move(entry));
+  if (adopted) {  // shown as one computed ahead, the panel's job done
+    setBusy(false, status_label_->text());
+    showRememberedResult(std::exchange(adopted_for_stylize_, false), clock_.elapsed() - job_start_ms_);
+    emit jobEnded(true);
+    return;
+  }
   // The inputs still rest: the next nearest at once. A change drops it within a few ms (a job checks
   // its cancel flag before every refinement step and clean-up frame), so it never holds an edit back.
   if (look_ahead_delay_ms_ >= 0 && !look_ahead_held_) look_ahead_timer_->start(0);
+}
+
+bool ResultPanel::lookAheadComputes(const ResultInputs& inputs) const {
+  return look_ahead_->isBusy() && !look_ahead_reads_ && look_ahead_inputs_.stylizer && look_ahead_inputs_ == inputs;
+}
+
+bool ResultPanel::adoptLookAhead() {
+  if (given_stylized_ || !lookAheadComputes(currentInputs())) return false;
+  look_ahead_timer_->stop();
+  if (busy_) {  // a job for older inputs: dropped, as startJob drops it
+    const QScopedValueRollback dropping(abandoning_, true);
+    runner_->abandon();
+  }
+  pending_ = false;
+  look_ahead_adopted_ = true;
+  adopted_for_stylize_ = !result_;
+  job_network_name_ = network_name_;
+  job_start_ms_ = clock_.elapsed();
+  const QString step = tr("Stylizing and cleaning up...");
+  setBusy(true, resultIsStale() ? tr("Out of date: %1. Updating: %2").arg(stale_reason_, step) : step);
+  return true;  // last_change_ms_ stays: showRememberedResult logs the latency from it
+}
+
+void ResultPanel::dropAdoptedLookAhead() {
+  if (!std::exchange(look_ahead_adopted_, false)) return;
+  stopLookAhead();
+  setBusy(false, status_label_->text());
 }
 
 }  // namespace motionstyle

@@ -2,6 +2,7 @@
 // for the same inputs is shown without a job, and the status says which.
 #include "result_panel.h"
 
+#include <algorithm>
 #include <utility>
 
 namespace motionstyle {
@@ -10,7 +11,7 @@ ResultInputs ResultPanel::currentInputs() const {
   return {content_ ? content_->id : 0, stylizer_, strength(), pathMode(), overrides_};
 }
 
-bool ResultPanel::showRememberedResult(bool stylize_pressed) {
+bool ResultPanel::showRememberedResult(bool stylize_pressed, qint64 waited_ms) {
   if (given_stylized_ || !canStylize()) return false;
   RecentResults::Entry* remembered = recent_.find(currentInputs());
   if (remembered == nullptr) return false;
@@ -27,9 +28,11 @@ bool ResultPanel::showRememberedResult(bool stylize_pressed) {
                                    .arg(result_->cleaned.frameCount())
                              : tr("Computed ahead while you looked, for the same clip, strength, path and contacts.");
   const qint64 on_screen = showResult(status);
-  logResultOnScreen(last_change_, on_screen - last_change_ms_, 0, on_screen - figures_start, strength(), 0,
-                    computed_ahead ? QStringLiteral("remembered: computed ahead for these inputs")
-                                   : QStringLiteral("remembered: made earlier for these inputs"));
+  const QString how = !computed_ahead ? QStringLiteral("remembered: made earlier for these inputs")
+                      : waited_ms < 0 ? QStringLiteral("remembered: computed ahead for these inputs")
+                                      : QStringLiteral("remembered: computed ahead for these inputs, its job waited for");
+  logResultOnScreen(last_change_, on_screen - last_change_ms_, std::max<qint64>(waited_ms, 0), on_screen - figures_start,
+                    strength(), 0, how);
   last_change_ms_ = -1;
   scheduleLookAhead();
   return true;

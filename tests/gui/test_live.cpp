@@ -408,6 +408,67 @@ class LiveTest : public QObject {
     QVERIFY(!readLiveLog(log_).back().remembered);
   }
 
+  // Stylize, or a switch to the next style, while the look-ahead computes that very result: the panel
+  // waits for it instead of dropping it and running the same job again (6,000 frames: each style's job
+  // takes far longer than the 50 ms the test gives it to start).
+  void aResultBeingComputedAheadIsWaitedFor() {
+    const QString clip = writeClip(scratch_, QStringLiteral("cmu_131_01.bvh"), QStringLiteral("clip_6000.bvh"), 6000);
+    MainWindow window(false);
+    ResultPanel* panel = window.resultPanel();
+    panel->setLookAheadDelay(0);
+    auto* choice = panel->findChild<QComboBox*>(QStringLiteral("NetworkChoice"));
+    QVERIFY(choice != nullptr && choice->count() >= 3);
+    // The window up for a moment before the clip opens: the shipped networks are prepared.
+    const qsizetype read = readLogText(log_).count(QStringLiteral("read and prepared"));
+    window.show();
+    QVERIFY(QTest::qWaitFor([&] {
+      return readLogText(log_).count(QStringLiteral("read and prepared")) == read + choice->count();
+    }, kJobTimeoutMs));
+    QVERIFY(openWithNetwork(window, {clip}));
+    QTest::qWait(50);  // the chosen style's look-ahead job starts
+    size_t before = readLiveLog(log_).size();
+    panel->stylize();
+    QVERIFY(panel->isBusy());
+    QVERIFY(waitForNewResult(panel, before));
+    LogEntry entry = readLiveLog(log_).back();
+    QCOMPARE(entry.change, QStringLiteral("Stylize"));
+    QVERIFY2(entry.remembered, "Stylize ran the job the look-ahead was running");
+    qInfo("Stylize while the look-ahead computed it (6,000 frames): %d ms to the result, of which waiting %d ms",
+          entry.latency_ms, entry.job_ms);
+    QVERIFY(lastStatus(log_).startsWith(QStringLiteral("Stylized and cleaned up 6000 frames")));
+
+    QVERIFY(choice->currentIndex() + 1 < choice->count());
+    QTest::qWait(50);  // the next style's look-ahead job starts
+    before = readLiveLog(log_).size();
+    choice->setFocus();
+    QTest::keyClick(choice, Qt::Key_Down);
+    QVERIFY(panel->isBusy());
+    QVERIFY(waitForNewResult(panel, before));
+    entry = readLiveLog(log_).back();
+    QVERIFY2(entry.remembered, "the switch ran the job the look-ahead was running");
+    qInfo("switch to the style the look-ahead computed: %d ms to the result, of which waiting %d ms", entry.latency_ms,
+          entry.job_ms);
+    QVERIFY(!panel->resultIsStale());
+
+    // Cancel while waiting (another strength: the next style's clean-up is under way when it is
+    // picked): the panel is free at once, and the next edit gets its result.
+    auto* slider = panel->findChild<QSlider*>(QStringLiteral("StrengthSlider"));
+    QVERIFY(slider != nullptr);
+    before = readLiveLog(log_).size();
+    slider->setValue(slider->value() - 10);
+    QVERIFY(waitForNewResult(panel, before));
+    QTest::qWait(50);
+    QTest::keyClick(choice, Qt::Key_Down);
+    QVERIFY(panel->isBusy());
+    panel->cancel();
+    QVERIFY(!panel->isBusy());
+    before = readLiveLog(log_).size();
+    slider->setValue(slider->value() - 10);
+    QVERIFY(waitForNewResult(panel, before));
+    QVERIFY(!panel->resultIsStale());
+    QCOMPARE(readLiveLog(log_).back().strength, panel->strength());
+  }
+
   // A strength drag let go: the styles around the chosen one are computed for the new strength at once,
   // not after the rest that keeps the look-ahead out of a drag's steps (longer than the wait here).
   void theLookAheadStartsWhenTheHandLetsGo() {
