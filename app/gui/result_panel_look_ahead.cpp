@@ -50,7 +50,10 @@ void ResultPanel::stopLookAhead() {
   look_ahead_timer_->stop();
   // A read is kept (it depends on no input, and a new job would wait for it on the thread anyway), and
   // so is a job the panel waits for (dropAdoptedLookAhead and cancel drop it).
-  if (look_ahead_->isBusy() && !look_ahead_reads_ && !look_ahead_adopted_) look_ahead_->abandon();
+  if (look_ahead_->isBusy() && !look_ahead_reads_ && !look_ahead_adopted_) {
+    look_ahead_->abandon();
+    look_ahead_inputs_ = {};  // (its network and contacts are not kept alive by it)
+  }
 }
 
 int ResultPanel::lookAheadStyles() const {
@@ -152,6 +155,7 @@ void ResultPanel::startLookAhead(ResultInputs inputs, const QString& file, const
 }
 
 void ResultPanel::onLookedAhead(RecentResults::Entry entry, const QString& file, qint64 milliseconds) {
+  look_ahead_inputs_ = {};
   ResultInputs now = currentInputs();
   const bool adopted = std::exchange(look_ahead_adopted_, false);
   if (adopted && !(now == entry.inputs)) {  // not what the panel waited for (never expected): a job of its own
