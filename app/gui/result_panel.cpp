@@ -161,7 +161,7 @@ void ResultPanel::setContentClip(const LoadedClip* clip) {
   refreshFamiliarity();
   // The chosen style (if any) and its neighbours, before Stylize is pressed: at once, as nothing is
   // being dragged (the rest is for drags).
-  if (look_ahead_delay_ms_ >= 0 && !look_ahead_held_) look_ahead_timer_->start(0);
+  scheduleLookAhead(true);
 }
 
 void ResultPanel::setContactOverrides(const Eigen::MatrixXi& overrides) {

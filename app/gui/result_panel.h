@@ -191,7 +191,8 @@ class ResultPanel : public QWidget {
   bool showRememberedResult(bool stylize_pressed = false, qint64 waited_ms = -1);
   // The look-ahead (result_panel_look_ahead.cpp): scheduled after a result and, before the first
   // one, when a mapped clip opens or an input changes; stopped by any change and any job.
-  void scheduleLookAhead();
+  // at_once: without the rest (nothing is being dragged); unless it is off or held.
+  void scheduleLookAhead(bool at_once = false);
   void stopLookAhead();
   void lookAhead();
   // Without a mapped clip: reads and prepares the next shipped network not prepared yet, so that the
@@ -229,6 +230,9 @@ class ResultPanel : public QWidget {
   // was picked since (result_panel_networks.cpp). The log's latency counts from the pick.
   void chooseNetwork(int index);
   void onNetworkRead(std::shared_ptr<const style::Stylizer> stylizer, const QString& file);
+  // A network file read, checked against this build and prepared (on a worker). Throws as
+  // style::loadCompatibleStyleModel.
+  static std::shared_ptr<const style::Stylizer> readNetworkFile(const QString& file);
   void onNetworkReadFailed(const QString& title, const QString& message);
   // Selects (adding it if needed) the chooser entry for `file` ("" for a network without a file, e.g.
   // one from the Networks panel or a stylized clip), showing `label`.

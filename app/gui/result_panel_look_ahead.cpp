@@ -8,8 +8,8 @@
 // 2,000 frames, two for a very long one (each costs a job on both cores and keeps its result and
 // prepared network). Before any clip is open it reads and prepares the shipped networks instead.
 #include <QComboBox>
-#include <QScopedValueRollback>
 #include <QFileInfo>
+#include <QScopedValueRollback>
 #include <QTimer>
 
 #include <algorithm>
@@ -17,7 +17,6 @@
 
 #include "app_log.h"
 #include "result_panel.h"
-#include "style/training.h"
 
 namespace motionstyle {
 
@@ -41,8 +40,8 @@ void ResultPanel::handReleased() {
   if (look_ahead_timer_->isActive()) scheduleLookAhead();  // the last result is in: at once, else after it
 }
 
-void ResultPanel::scheduleLookAhead() {
-  const int delay = std::exchange(rest_skipped_, false) ? 0 : look_ahead_delay_ms_;
+void ResultPanel::scheduleLookAhead(bool at_once) {
+  const int delay = at_once || std::exchange(rest_skipped_, false) ? 0 : look_ahead_delay_ms_;
   if (look_ahead_delay_ms_ >= 0 && !look_ahead_held_) look_ahead_timer_->start(delay);
 }
 
@@ -96,8 +95,7 @@ void ResultPanel::readAhead() {
     look_ahead_->restart(QString(), [this, file, started](const JobRunner::Context&) -> JobRunner::Completion {
       std::shared_ptr<const style::Stylizer> stylizer;
       try {
-        stylizer = std::make_shared<const style::Stylizer>(style::loadCompatibleStyleModel(file.toStdString()),
-                                                           file.toStdString());
+        stylizer = readNetworkFile(file);
       } catch (...) {  // reported if the user picks it (chooseNetwork reads it again)
       }
       return [this, stylizer, file, started] { onReadAhead(stylizer, file, clock_.elapsed() - started); };
@@ -114,7 +112,7 @@ void ResultPanel::onReadAhead(std::shared_ptr<const style::Stylizer> stylizer, c
                      .arg(milliseconds));
   if (!stylizer) unreadable_files_ << file;
   else if (!stylizers_.find(file)) stylizers_.store(file, std::move(stylizer));
-  if (look_ahead_delay_ms_ >= 0 && !look_ahead_held_) look_ahead_timer_->start(0);  // the next, or the clip's styles
+  scheduleLookAhead(true);  // the next, or the clip's styles
 }
 
 void ResultPanel::startLookAhead(ResultInputs inputs, const QString& file, const QString& name) {
@@ -139,8 +137,7 @@ void ResultPanel::startLookAhead(ResultInputs inputs, const QString& file, const
                         chosen](const JobRunner::Context& context) mutable -> JobRunner::Completion {
                          if (!inputs.stylizer) {
                            try {
-                             inputs.stylizer = std::make_shared<const style::Stylizer>(
-                                 style::loadCompatibleStyleModel(file.toStdString()), file.toStdString());
+                             inputs.stylizer = readNetworkFile(file);
                            } catch (...) {  // skipped from now on, and the next style computed
                              return [this, file] { onReadAhead(nullptr, file, 0); };
                            }
@@ -177,7 +174,7 @@ void ResultPanel::onLookedAhead(RecentResults::Entry entry, const QString& file,
   }
   // The inputs still rest: the next nearest at once. A change drops it within a few ms (a job checks
   // its cancel flag before every refinement step and clean-up frame), so it never holds an edit back.
-  if (look_ahead_delay_ms_ >= 0 && !look_ahead_held_) look_ahead_timer_->start(0);
+  scheduleLookAhead(true);
 }
 
 bool ResultPanel::lookAheadComputes(const ResultInputs& inputs) const {

@@ -143,10 +143,13 @@ void ResultPanel::chooseNetwork(int index) {
     status_label_->setText(tr("Reading %1...").arg(label));
   }
   reader_->restart(tr("Could not open the style network"), [this, file](const JobRunner::Context&) -> JobRunner::Completion {
-    auto stylizer = std::make_shared<const style::Stylizer>(style::loadCompatibleStyleModel(file.toStdString()),
-                                                            file.toStdString());
+    auto stylizer = readNetworkFile(file);
     return [this, stylizer, file] { onNetworkRead(stylizer, file); };
   });
+}
+
+std::shared_ptr<const style::Stylizer> ResultPanel::readNetworkFile(const QString& file) {
+  return std::make_shared<const style::Stylizer>(style::loadCompatibleStyleModel(file.toStdString()), file.toStdString());
 }
 
 void ResultPanel::onNetworkRead(std::shared_ptr<const style::Stylizer> stylizer, const QString& file) {
