@@ -67,7 +67,8 @@ MainWindow::MainWindow(bool persist_settings, QWidget* parent)
          "New to MotionStyle? Help &#9656; Open Demo loads two sample clips and a style."));
   setCentralWidget(viewport_);
   createDocks();
-  // A drag let go: the look-ahead need not wait for the rest meant for its steps.
+  // The look-ahead waits for the rest meant for a drag's steps only while the hand is on a control.
+  result_panel_->setHandOnControl([this] { return live_resolution_->handOnControl(); });
   connect(live_resolution_, &LiveResolution::handReleased, result_panel_, &ResultPanel::handReleased);
   createMenus();
 

@@ -2,6 +2,7 @@
 
 #include <QCheckBox>
 #include <QComboBox>
+#include <QGuiApplication>
 #include <QFormLayout>
 #include <QHBoxLayout>
 #include <QLabel>
@@ -117,6 +118,7 @@ ResultPanel::ResultPanel(QWidget* parent) : QWidget(parent), memory_(std::make_s
   connect(reader_, &JobRunner::failed, this, &ResultPanel::onNetworkReadFailed);
   look_ahead_timer_ = new QTimer(this);
   look_ahead_timer_->setSingleShot(true);
+  hand_on_control_ = [] { return QGuiApplication::mouseButtons() != Qt::NoButton; };
   connect(look_ahead_timer_, &QTimer::timeout, this, &ResultPanel::lookAhead);
   // A look-ahead job the panel waited for failed: a job of its own, which reports what went wrong.
   connect(look_ahead_, &JobRunner::failed, this, [this] {
@@ -368,7 +370,7 @@ void ResultPanel::onFinished(std::shared_ptr<const style::StylizeCleanupResult> 
                         .arg(result_->network_output_kept ? QStringLiteral("network output kept")
                                                           : QStringLiteral("network run")));
   emit jobEnded(true);
-  if (!inputs_moved_on) scheduleLookAhead();
+  if (!inputs_moved_on) scheduleLookAhead(!hand_on_control_());
 }
 
 qint64 ResultPanel::showResult(const QString& status, bool next_job_running) {

@@ -104,8 +104,11 @@ class ResultPanel : public QWidget {
   // held: another job has the cores (the Style networks panel trains, optimises or adapts): what is
   // computed ahead stops, and nothing more is until it is released. Edits and Stylize still run.
   void holdLookAhead(bool held);
-  // The hand left a control it was dragging (LiveResolution::handReleased): the next look-ahead starts
-  // without the rest, which is there for the steps of a drag.
+  // The rest before the look-ahead is there for the steps of a drag, or of a key held down: it is
+  // waited for only when a result comes with the hand on a control (`hand_on_control`, MainWindow:
+  // LiveResolution::handOnControl; by default a mouse button held), and cut short when the hand lets go
+  // (LiveResolution::handReleased).
+  void setHandOnControl(std::function<bool()> hand_on_control);
   void handReleased();
   // The results remembered for switching back or ahead (recent_results.h).
   const RecentResults& recentResults() const { return recent_; }
@@ -272,7 +275,7 @@ class ResultPanel : public QWidget {
   QTimer* look_ahead_timer_ = nullptr;  // the inputs' rest before it starts
   int look_ahead_delay_ms_ = kLookAheadDelayMs;
   bool look_ahead_held_ = false;
-  bool rest_skipped_ = false;       // handReleased: the next scheduleLookAhead starts it at once
+  std::function<bool()> hand_on_control_;  // setHandOnControl
   ResultInputs look_ahead_inputs_;  // what the look-ahead job under way computes
   bool look_ahead_adopted_ = false;  // the panel waits for that job's result (adoptLookAhead)
   bool adopted_for_stylize_ = false;  // ... asked for by Stylize (no result shown yet)

@@ -2,8 +2,10 @@
 // (+1, -1, +2, -2, ...: the nearest first) are computed for the same inputs on a second worker and
 // remembered (recent_results.h), so that a switch to any of them is shown at once. Before the first
 // result too (a clip just opened, a style just chosen), the chosen style first: Stylize then shows it
-// at once. It starts only after the inputs have rested for a moment (a drag's steps never start it),
-// one style at a time; any change drops it, and so does a job of the Style networks panel
+// at once. After a result that came with the hand away from the controls (a click, a key pressed and
+// let go) it starts at once; while a drag or a key held down brings results, only once the inputs
+// have rested for a moment or the hand lets go (a drag's steps never start it). One style at a time;
+// any change drops it, and so does a job of the Style networks panel
 // (holdLookAhead) until it ends. How many: lookAheadStyles(), every shipped style for a clip up to
 // 2,000 frames, two for a very long one (each costs a job on both cores and keeps its result and
 // prepared network). Before any clip is open it reads and prepares the shipped networks instead.
@@ -35,13 +37,17 @@ void ResultPanel::holdLookAhead(bool held) {
   else scheduleLookAhead();
 }
 
+void ResultPanel::setHandOnControl(std::function<bool()> hand_on_control) {
+  hand_on_control_ = std::move(hand_on_control);
+}
+
 void ResultPanel::handReleased() {
-  rest_skipped_ = true;
-  if (look_ahead_timer_->isActive()) scheduleLookAhead();  // the last result is in: at once, else after it
+  // The last result is in: at once. Else its result, with the hand away, starts it.
+  if (look_ahead_timer_->isActive()) scheduleLookAhead(true);
 }
 
 void ResultPanel::scheduleLookAhead(bool at_once) {
-  const int delay = at_once || std::exchange(rest_skipped_, false) ? 0 : look_ahead_delay_ms_;
+  const int delay = at_once ? 0 : look_ahead_delay_ms_;
   if (look_ahead_delay_ms_ >= 0 && !look_ahead_held_) look_ahead_timer_->start(delay);
 }
 

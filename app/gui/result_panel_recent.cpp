@@ -34,7 +34,7 @@ bool ResultPanel::showRememberedResult(bool stylize_pressed, qint64 waited_ms) {
   logResultOnScreen(last_change_, on_screen - last_change_ms_, std::max<qint64>(waited_ms, 0), on_screen - figures_start,
                     strength(), 0, how);
   last_change_ms_ = -1;
-  scheduleLookAhead();
+  scheduleLookAhead(!hand_on_control_());
   return true;
 }
 

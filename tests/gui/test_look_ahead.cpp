@@ -155,6 +155,41 @@ class LookAheadTest : public LiveTestBase {
     QVERIFY(QTest::qWaitFor([&] { return readLogText(log_).count(computed) > before; }, kJobTimeoutMs));
   }
 
+  // A key pressed and let go on the slider is a whole edit: its result, which comes with the hand away,
+  // starts the look-ahead at once. A key held down (the slider's arrow repeating) is a drag: its
+  // results wait for the rest, and the key's release starts it.
+  void aKeyLetGoStartsTheLookAheadAndAKeyHeldWaits() {
+    const QString clip = writeClip(scratch_, QStringLiteral("cmu_131_01.bvh"), QStringLiteral("clip_keys.bvh"));
+    MainWindow window(false);
+    QVERIFY(showStylized(window, clip));
+    ResultPanel* panel = window.resultPanel();
+    panel->setLookAheadDelay(2 * kJobTimeoutMs);  // the rest never ends within the test
+    auto* slider = panel->findChild<QSlider*>(QStringLiteral("StrengthSlider"));
+    QVERIFY(slider != nullptr);
+    slider->setFocus();
+    const QString computed = QStringLiteral("computed for the current inputs");
+    const auto settled = [&] { return !panel->isBusy() && !panel->resultIsStale(); };
+
+    qsizetype before = readLogText(log_).count(computed);
+    QTest::keyClick(slider, Qt::Key_Left);
+    QVERIFY(QTest::qWaitFor(settled, kJobTimeoutMs));
+    QVERIFY(!window.viewport()->reducedResolution());
+    QVERIFY2(QTest::qWaitFor([&] { return readLogText(log_).count(computed) > before; }, kJobTimeoutMs),
+             "a key pressed and let go: the look-ahead waited for the rest");
+
+    QTest::keyPress(slider, Qt::Key_Left);  // held: no release yet
+    QVERIFY(QTest::qWaitFor(settled, kJobTimeoutMs));
+    QVERIFY(window.viewport()->reducedResolution());  // its result came with the hand on the control
+    QTest::qWait(300);
+    before = readLogText(log_).count(computed);
+    QTest::qWait(300);
+    QCOMPARE(readLogText(log_).count(computed), before);  // nothing computed ahead while it is held
+    QTest::keyRelease(slider, Qt::Key_Left);
+    QVERIFY(!window.viewport()->reducedResolution());
+    QVERIFY2(QTest::qWaitFor([&] { return readLogText(log_).count(computed) > before; }, kJobTimeoutMs),
+             "the key let go: the look-ahead waited for the rest");
+  }
+
   // A clip of 2,000 frames (17 s at 120 fps, as a capture session delivers them): every shipped style
   // is computed ahead too, so a pick anywhere in the list is shown without a job, not only one of
   // the two nearest.
