@@ -29,6 +29,7 @@
 #include "common/errors.h"
 #include "contact_tracks.h"
 #include "error_text.h"
+#include "focused_keys.h"
 #include "live_resolution.h"
 #include "network_panel.h"
 #include "result_panel.h"
@@ -54,7 +55,10 @@ MainWindow::MainWindow(bool persist_settings, QWidget* parent)
   setWindowTitle(QStringLiteral("MotionStyle"));
   setObjectName(QStringLiteral("MainWindow"));
   setAcceptDrops(true);
-  if (auto* application = qobject_cast<QApplication*>(QCoreApplication::instance())) installWheelGuard(*application);
+  if (auto* application = qobject_cast<QApplication*>(QCoreApplication::instance())) {
+    installWheelGuard(*application);
+    installFocusedKeys(*application);
+  }
   reporter_ = [this](const QString& title, const QString& message) { QMessageBox::warning(this, title, message); };
   confirmer_ = [this](const QString& title, const QString& question) {
     return QMessageBox::question(this, title, question, QMessageBox::Yes | QMessageBox::Cancel) == QMessageBox::Yes;

@@ -90,6 +90,8 @@ void MainWindow::showShortcuts() {
          "<tr><td><b>R</b></td><td>show the raw network output</td></tr>"
          "<tr><td><b>Ctrl+O</b></td><td>open BVH clips</td></tr>"
          "<tr><td><b>Ctrl+E</b></td><td>export the result</td></tr>"
+         "<tr><td colspan='2'><br>A focused control keeps its own keys: the arrows move the strength slider "
+         "or a list, a letter picks a style in the chooser. Space plays from anywhere.</td></tr>"
          "<tr><td colspan='2'><br>Viewport: drag to orbit, Shift or middle drag to pan, wheel or right drag to "
          "zoom.<br>Contact tracks: press on a foot's track to toggle contact there, drag to paint that value over "
          "the frames you cross.</td></tr>"

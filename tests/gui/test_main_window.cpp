@@ -1,6 +1,7 @@
 // The main window end to end: opening clips through the menu's code path, the clips list, roles,
 // recent files, drag-and-drop, and bad input reported (injected reporter and the real message box)
 // without breaking the window.
+#include <QComboBox>
 #include <QDockWidget>
 #include <QDoubleSpinBox>
 #include <QDropEvent>
@@ -10,6 +11,7 @@
 #include <QPushButton>
 #include <QScreen>
 #include <QSettings>
+#include <QSlider>
 #include <QSpinBox>
 #include <QStatusBar>
 #include <QTabWidget>
@@ -23,6 +25,8 @@
 #include "gui_test_support.h"
 #include "main_window.h"
 #include "network_panel.h"
+#include "result_panel.h"
+#include "skeleton_viewport.h"
 #include "style/training.h"
 #include "timeline_widget.h"
 
@@ -263,6 +267,49 @@ class MainWindowTest : public QObject {
     if (!QTest::qWaitFor([&] { return spin->hasFocus(); }, 2000)) QSKIP("no window manager gives focus here");
     wheelDown();
     QVERIFY2(spin->value() < before, "a focused spin box takes the wheel");
+  }
+
+  // A focused control keeps the keys it works with (focused_keys.h), as a user at the keyboard meets it
+  // in the real window: the strength slider's arrows and End change the strength (they stepped the
+  // timeline), "f" typed in the style chooser picks Feminine (it reset the camera). Elsewhere the same
+  // keys are the window's shortcuts, and Space plays from anywhere.
+  void aFocusedControlKeepsItsKeys() {
+    MainWindow window(/*persist_settings=*/false);
+    window.show();
+    window.activateWindow();
+    if (!QTest::qWaitForWindowActive(&window)) QSKIP("no window manager activates windows here");
+    QCOMPARE(window.openFiles({test::fixture(QStringLiteral("cmu_131_01.bvh"))}), 1);
+    auto* slider = window.resultPanel()->findChild<QSlider*>(QStringLiteral("StrengthSlider"));
+    auto* choice = window.resultPanel()->findChild<QComboBox*>(QStringLiteral("NetworkChoice"));
+    QVERIFY(slider != nullptr && choice != nullptr && slider->isEnabled());
+    TimelineWidget* timeline = window.timeline();
+    timeline->setFrame(10);
+
+    slider->setFocus(Qt::OtherFocusReason);
+    if (!QTest::qWaitFor([&] { return slider->hasFocus(); }, 2000)) QSKIP("no window manager gives focus here");
+    const int strength = slider->value();
+    QTest::keyClick(slider, Qt::Key_Left);
+    QCOMPARE(slider->value(), strength - 1);
+    QTest::keyClick(slider, Qt::Key_End);
+    QCOMPARE(slider->value(), slider->maximum());
+    QCOMPARE(timeline->frame(), 10);
+
+    const int feminine = choice->findText(QStringLiteral("Feminine"));
+    QVERIFY2(feminine >= 0 && choice->currentIndex() != feminine, "the shipped styles are not in the chooser");
+    choice->setFocus(Qt::OtherFocusReason);
+    QTest::keyClick(choice, Qt::Key_F);
+    QCOMPARE(choice->currentIndex(), feminine);
+    QCOMPARE(timeline->frame(), 10);
+
+    window.viewport()->setFocus(Qt::OtherFocusReason);  // the viewport has no use for them
+    QTest::keyClick(window.viewport(), Qt::Key_Right);
+    QCOMPARE(timeline->frame(), 11);
+    QTest::keyClick(window.viewport(), Qt::Key_End);
+    QCOMPARE(timeline->frame(), timeline->frameCount() - 1);
+    slider->setFocus(Qt::OtherFocusReason);
+    QTest::keyClick(slider, Qt::Key_Space);
+    QVERIFY(timeline->isPlaying());
+    QCOMPARE(slider->value(), slider->maximum());
   }
 
   // Issue 14: the Clips table shows whole names and mappings (it scrolls sideways when narrow).
