@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "features/feature_layout.h"
+#include "motion/kinematics.h"
 #include "style/cancellation.h"
 #include "style/stylized_cleanup.h"
 
@@ -103,6 +104,7 @@ StylizeCleanupResult StylizeCleanupJob::run(const std::atomic<bool>* cancel) con
                                                 CleanupControl{cancel, memory ? &memory->cleanup : nullptr});
   throwIfCancelled(cancel);
   result.cleaned = std::move(cleanup.motion);
+  result.cleaned_world_positions = worldPositions(result.cleaned);
   result.report = std::move(cleanup.report);
   result.raw_metrics = std::move(cleanup.raw);
   result.cleaned_metrics = std::move(cleanup.cleaned);

@@ -9,6 +9,7 @@
 
 #include "common/errors.h"
 #include "mapping/joint_mapping.h"
+#include "motion/kinematics.h"
 #include "style/evaluation_job.h"
 #include "style/loss_network_training_job.h"
 #include "style/optimization_transfer_job.h"
@@ -61,6 +62,7 @@ TEST(StylizeCleanupJob, TheCleanedClipIsTheContentsRigAndLength) {
   EXPECT_EQ(result.cleaned.frameCount(), job.content.frameCount());
   EXPECT_EQ(result.cleaned.skeleton.channelCount(), job.content.skeleton.channelCount());
   EXPECT_TRUE(result.cleaned.values.allFinite());
+  EXPECT_TRUE(result.cleaned_world_positions.isApprox(worldPositions(result.cleaned), 1e-12));  // for viewers
   EXPECT_GT(result.stylized.frameCount(), 0);
   EXPECT_EQ(result.contacts.cols(), 4);
   EXPECT_GE(result.seconds, 0.0);
