@@ -110,20 +110,24 @@ void ViewportScene::FigureVisual::connectPipeline(vtkAlgorithm* bone_glyph) {
 }
 
 void ViewportScene::FigureVisual::fill(const FigureData& figure, double floor_height, bool trajectory_visible) {
-  double lateral = 0.0;
+  // One pass over the clip's positions (every result of a live edit comes through here).
+  double lateral_squared = 0.0;
   double tallest = 1.0;
-  for (int f = 0; f < figure.frame_count; ++f) {
+  const size_t joint_count = static_cast<size_t>(figure.jointCount());
+  for (size_t frame = 0; frame < static_cast<size_t>(figure.frame_count); ++frame) {
+    const double* p = figure.positions.data() + frame * joint_count * 3;
     double low = std::numeric_limits<double>::max();
     double high = std::numeric_limits<double>::lowest();
-    for (int j = 0; j < figure.jointCount(); ++j) {
-      low = std::min(low, figure.y(f, j));
-      high = std::max(high, figure.y(f, j));
-      lateral = std::max(lateral, std::hypot(figure.x(f, j) - figure.x(f, 0), figure.z(f, j) - figure.z(f, 0)));
+    for (size_t j = 0; j < joint_count; ++j) {
+      const double dx = p[3 * j] - p[0], y = p[3 * j + 1], dz = p[3 * j + 2] - p[2];
+      low = std::min(low, y);
+      high = std::max(high, y);
+      lateral_squared = std::max(lateral_squared, dx * dx + dz * dz);
     }
     tallest = std::max(tallest, high - low);
   }
   height = tallest;
-  lateral_extent = lateral;
+  lateral_extent = std::sqrt(lateral_squared);
   const QColor color = figureColor(figure.role);
 
   setRadiusUnlessClose(joint_sphere, kJointRadiusPerHeight * height);

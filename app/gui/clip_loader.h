@@ -70,6 +70,23 @@ FigureData figureFromClip(const LoadedClip& clip, FigureRole role, double displa
 FigureData figureFromPositions(const QString& name, FigureRole role, const std::vector<int>& parents,
                                const Eigen::MatrixXd& display_positions);
 
+// The joints of the subtree of `body_root` in order (every joint when body_root <= 0) and each joint's
+// index among them (-1 outside it): what keepBodySubtree keeps.
+struct BodySubtree {
+  std::vector<int> kept;
+  std::vector<int> new_index;
+};
+BodySubtree bodySubtree(const std::vector<int>& parents, int body_root);
+// A figure of `body`'s joints from FILE positions (frames x 3*joints, the rig's `parents`):
+// keepBodySubtree(figureFromPositions(name, role, parents, space.toDisplay(file_positions)), root) in
+// one pass, without the whole clip's intermediate copies (a live result of a long clip, once per
+// result). Without contacts. Throws std::invalid_argument when the shapes do not match.
+FigureData figureInDisplaySpace(const QString& name, FigureRole role, const std::vector<int>& parents,
+                                const BodySubtree& body, const Eigen::MatrixXd& file_positions, const DisplaySpace& space);
+// setFigureContacts for a figure of `body`'s joints, `joints` numbered in the whole rig (none when a
+// contact joint is outside the body).
+void setBodyContacts(FigureData& figure, const BodySubtree& body, std::array<int, kContactCount> joints,
+                     const Eigen::MatrixXi& labels);
 // The figure without the joints outside the subtree of `body_root` (the mapped hips): rigs such as
 // Bandai's have a reference root that stays at the world origin while the hips carry the motion, and
 // drawing it would put a bone from the origin to the body and place, follow and trace the figure by a

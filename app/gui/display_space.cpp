@@ -7,6 +7,8 @@
 #include "ik/contacts.h"
 #include "motion/resample.h"
 
+#include <utility>
+
 namespace motionstyle {
 namespace {
 
@@ -40,7 +42,7 @@ DisplaySpace unmappedDisplaySpace(const Motion& motion, const Eigen::MatrixXd& f
   return space;
 }
 
-Eigen::MatrixXd rowsAtRate(const Eigen::MatrixXd& rows, double source_fps, double target_fps) {
+Eigen::MatrixXd rowsAtRate(Eigen::MatrixXd rows, double source_fps, double target_fps) {
   if (rows.rows() == 0 || sameFrameRate(source_fps, target_fps)) return rows;
   return resampleRowsLinear(rows, 1.0 / source_fps, target_fps);
 }
@@ -48,7 +50,7 @@ Eigen::MatrixXd rowsAtRate(const Eigen::MatrixXd& rows, double source_fps, doubl
 std::vector<float> trackAtRate(const std::vector<double>& track, double track_fps, double fps) {
   Eigen::MatrixXd rows(static_cast<Eigen::Index>(track.size()), 1);
   for (size_t i = 0; i < track.size(); ++i) rows(static_cast<Eigen::Index>(i), 0) = track[i];
-  const Eigen::MatrixXd at_rate = rowsAtRate(rows, track_fps, fps);
+  const Eigen::MatrixXd at_rate = rowsAtRate(std::move(rows), track_fps, fps);
   std::vector<float> values(static_cast<size_t>(at_rate.rows()));
   for (Eigen::Index i = 0; i < at_rate.rows(); ++i) values[static_cast<size_t>(i)] = static_cast<float>(at_rate(i, 0));
   return values;

@@ -33,7 +33,8 @@ DisplaySpace unmappedDisplaySpace(const Motion& motion, const Eigen::MatrixXd& f
 
 // Per-frame rows (positions, one frame per row) from `source_fps` to `target_fps` by linear
 // interpolation (resampleRowsLinear), so that clips of any rate play in sync by time on one timeline.
-Eigen::MatrixXd rowsAtRate(const Eigen::MatrixXd& rows, double source_fps, double target_fps);
+// At the same rate `rows` come back as they are (moved: a long clip's positions are not copied).
+Eigen::MatrixXd rowsAtRate(Eigen::MatrixXd rows, double source_fps, double target_fps);
 
 // A per-frame track (one value per frame at track_fps, e.g. a metric) -> one value per frame at fps,
 // as rowsAtRate does it: for the timeline's quality tracks.

@@ -23,12 +23,19 @@ FigureData cleanedOutputFigure(const style::StylizeCleanupResult& result, const 
   std::vector<int> parents;
   parents.reserve(static_cast<size_t>(cleaned.skeleton.jointCount()));
   for (const Joint& joint : cleaned.skeleton.joints) parents.push_back(joint.parent);
-  FigureData figure = figureFromPositions(
-      name, FigureRole::Output, parents,
-      rowsAtRate(content.display_space.toDisplay(worldPositions(cleaned)), cleaned.fps(), display_fps));
-  setFigureContacts(figure, contactJoints(mapping),
-                    resampleRowsNearest(result.contacts, 1.0 / result.cleanup_fps, display_fps));
-  return keepBodySubtree(figure, mapping[CanonicalJoint::Hips]);
+  // The job's world positions (style::StylizeCleanupResult); a result made without them gets its own.
+  const bool computed = result.cleaned_world_positions.rows() == cleaned.frameCount() &&
+                        result.cleaned_world_positions.cols() == 3 * cleaned.skeleton.jointCount();
+  const Eigen::MatrixXd own = computed ? Eigen::MatrixXd() : worldPositions(cleaned);
+  const Eigen::MatrixXd& world = computed ? result.cleaned_world_positions : own;
+  const BodySubtree body = bodySubtree(parents, mapping[CanonicalJoint::Hips]);
+  FigureData figure =
+      sameFrameRate(cleaned.fps(), display_fps)
+          ? figureInDisplaySpace(name, FigureRole::Output, parents, body, world, content.display_space)
+          : figureInDisplaySpace(name, FigureRole::Output, parents, body, rowsAtRate(world, cleaned.fps(), display_fps),
+                                 content.display_space);
+  setBodyContacts(figure, body, contactJoints(mapping), resampleRowsNearest(result.contacts, 1.0 / result.cleanup_fps, display_fps));
+  return figure;
 }
 
 FigureData rawOutputFigure(const style::StylizeCleanupResult& result, const LoadedClip& content, const QString& name,

@@ -254,6 +254,34 @@ class TimelineTest : public QObject {
     QCOMPARE(tracks.floatTrackCount(), 0);
   }
 
+  // A long clip has many frames per pixel: each pixel column shows the highest value of its frames, so a
+  // one-frame spike (a foot skating for one frame of a 36,000-frame take) stays visible.
+  void aOneFrameSpikeInALongTrackIsDrawn() {
+    TrackView tracks;
+    tracks.setFrameCount(36000);
+    tracks.addFloatTrack(QStringLiteral("Skate"), QColor(40, 160, 255));
+    tracks.resize(700, tracks.sizeHint().height());
+    std::vector<float> values(36000, 0.0f);
+    const int spike = 20011;
+    values[static_cast<size_t>(spike)] = 10.0f;
+    tracks.setFloatValues(0, values, 0.0f, 10.0f);
+    const QImage image = tracks.grab().toImage();
+    const QRect row = tracks.floatTrackRect(0);
+    // The highest row of the track that the curve reaches, near x and far from it.
+    const auto topOfCurve = [&](int x) {
+      const QRgb background = image.pixel(x, row.top() + 1);
+      for (int y = row.top() + 1; y < row.bottom(); ++y)
+        if (image.pixel(x, y) != background) return y;
+      return row.bottom();
+    };
+    const int x = static_cast<int>(tracks.xForFrame(spike));
+    int highest = row.bottom();
+    for (int dx = -1; dx <= 1; ++dx) highest = std::min(highest, topOfCurve(x + dx));
+    QVERIFY2(highest < row.top() + row.height() / 3, qPrintable(QStringLiteral("the spike reaches row %1 of %2-%3")
+                                                                    .arg(highest).arg(row.top()).arg(row.bottom())));
+    QVERIFY(topOfCurve(static_cast<int>(tracks.xForFrame(5000))) > row.bottom() - 4);  // flat elsewhere
+  }
+
   void rulerScrubsTheTimeline() {
     TimelineWidget timeline;
     timeline.setFrameCount(200);

@@ -11,6 +11,8 @@
 
 #include "clip_loader.h"
 #include "gui_test_support.h"
+#include "mapping/canonical_joints.h"
+#include "motion/kinematics.h"
 
 using namespace motionstyle;
 
@@ -63,6 +65,46 @@ class ViewportRenderTest : public QObject {
     QCOMPARE(body.contacts, rig.contacts);
     body.validate();
     QCOMPARE(keepBodySubtree(rig, 0).parents, rig.parents);  // a rig rooted at its hips is unchanged
+  }
+
+  // A result's figure is built in one pass (figureInDisplaySpace): the same numbers as the steps one by
+  // one (display space, positions frame by frame, the body's joints), for real rigs and for one whose
+  // hips hang off a reference root; positions that do not match the rig are refused.
+  void aFigureInDisplaySpaceIsTheStepsInOnePass() {
+    const auto parentsOf = [](const Skeleton& skeleton) {
+      std::vector<int> parents;
+      for (const Joint& joint : skeleton.joints) parents.push_back(joint.parent);
+      return parents;
+    };
+    for (const LoadedClip* clip : {&cmu_, &zombie_}) {
+      const Eigen::MatrixXd world = worldPositions(clip->motion);
+      const std::vector<int> parents = parentsOf(clip->motion.skeleton);
+      const int hips = (*clip->mapping)[CanonicalJoint::Hips];
+      const FigureData steps = keepBodySubtree(
+          figureFromPositions(clip->name, FigureRole::Output, parents, clip->display_space.toDisplay(world)), hips);
+      const FigureData one_pass = figureInDisplaySpace(clip->name, FigureRole::Output, parents,
+                                                       bodySubtree(parents, hips), world, clip->display_space);
+      QCOMPARE(one_pass.parents, steps.parents);
+      QCOMPARE(one_pass.frame_count, clip->frameCount());
+      QVERIFY(one_pass.positions == steps.positions);
+    }
+    // Bandai-like: the hips (1) under a reference root (0), joint 3 outside the body; Z-up inches.
+    const std::vector<int> parents = {-1, 0, 1, 0};
+    Eigen::MatrixXd file(2, 12);
+    file << 0, 0, 0, 500, 0, 90, 500, 0, 10, 1, 1, 1,  //
+        0, 0, 0, 510, 0, 90, 510, 0, 10, 1, 1, 1;
+    DisplaySpace space;
+    space.convention.axes << 1, 0, 0, 0, 0, 1, 0, -1, 0;  // file +Z up -> +Y
+    space.convention.cm_per_unit = 2.54;
+    space.floor_height = 3.0;
+    const FigureData steps = keepBodySubtree(figureFromPositions(QString(), FigureRole::Output, parents, space.toDisplay(file)), 1);
+    const FigureData one_pass = figureInDisplaySpace(QString(), FigureRole::Output, parents, bodySubtree(parents, 1), file, space);
+    QCOMPARE(one_pass.parents, (std::vector<int>{-1, 0}));
+    QVERIFY(one_pass.positions == steps.positions);
+    QCOMPARE(one_pass.y(0, 0), 2.54 * 90 - 2.54 * 3.0);
+    QVERIFY_THROWS_EXCEPTION(std::invalid_argument, figureInDisplaySpace(QString(), FigureRole::Output, {-1, 0}, bodySubtree(parents, 1), file, space));
+    QVERIFY_THROWS_EXCEPTION(std::invalid_argument,
+                             figureInDisplaySpace(QString(), FigureRole::Output, parents, bodySubtree({-1, 0}, 1), file, space));
   }
 
   void rejectsInvalidFigures() {
