@@ -10,33 +10,33 @@
 namespace motionstyle {
 namespace {
 
-bool isNavigationKey(int key) {
-  switch (key) {
-    case Qt::Key_Left:
-    case Qt::Key_Right:
-    case Qt::Key_Up:
-    case Qt::Key_Down:
-    case Qt::Key_Home:
-    case Qt::Key_End:
-    case Qt::Key_PageUp:
-    case Qt::Key_PageDown:
-      return true;
-    default:
-      return false;
-  }
-}
-
 // A letter or digit typed without Ctrl, Alt or Meta (Shift and the keypad's flag allowed).
 bool isTypedCharacter(const QKeyEvent& event) {
   if (event.modifiers() & (Qt::ControlModifier | Qt::AltModifier | Qt::MetaModifier)) return false;
   return event.text().size() == 1 && event.text().front().isLetterOrNumber();
 }
 
+// The keys each kind of control moves with. Left and Right only for sliders and tab bars: a combo
+// box or a flat list has no use for them, and there they go on stepping the timeline.
 bool keepsKey(const QWidget& widget, const QKeyEvent& event) {
-  const bool searches = qobject_cast<const QComboBox*>(&widget) || qobject_cast<const QAbstractItemView*>(&widget);
-  const bool navigates = searches || qobject_cast<const QAbstractSlider*>(&widget) || qobject_cast<const QTabBar*>(&widget);
-  const bool plain = (event.modifiers() & ~(Qt::KeypadModifier | Qt::ShiftModifier)) == 0;
-  return (navigates && plain && isNavigationKey(event.key())) || (searches && isTypedCharacter(event));
+  const bool slides = qobject_cast<const QAbstractSlider*>(&widget) || qobject_cast<const QTabBar*>(&widget);
+  const bool lists = qobject_cast<const QComboBox*>(&widget) || qobject_cast<const QAbstractItemView*>(&widget);
+  if (lists && isTypedCharacter(event)) return true;  // it jumps to the entry that starts with it
+  if ((event.modifiers() & ~(Qt::KeypadModifier | Qt::ShiftModifier)) != 0) return false;
+  switch (event.key()) {
+    case Qt::Key_Left:
+    case Qt::Key_Right:
+      return slides;
+    case Qt::Key_Up:
+    case Qt::Key_Down:
+    case Qt::Key_Home:
+    case Qt::Key_End:
+    case Qt::Key_PageUp:
+    case Qt::Key_PageDown:
+      return slides || lists;
+    default:
+      return false;
+  }
 }
 
 class FocusedKeys : public QObject {

@@ -300,6 +300,10 @@ class MainWindowTest : public QObject {
     QTest::keyClick(choice, Qt::Key_F);
     QCOMPARE(choice->currentIndex(), feminine);
     QCOMPARE(timeline->frame(), 10);
+    QTest::keyClick(choice, Qt::Key_Right);  // no use to a combo box: still the timeline's
+    QCOMPARE(timeline->frame(), 11);
+    QCOMPARE(choice->currentIndex(), feminine);
+    timeline->setFrame(10);
 
     window.viewport()->setFocus(Qt::OtherFocusReason);  // the viewport has no use for them
     QTest::keyClick(window.viewport(), Qt::Key_Right);
