@@ -151,6 +151,8 @@ void ResultPanel::report(const QString& title, const QString& message) {
 
 void ResultPanel::setContentClip(const LoadedClip* clip) {
   if ((clip == nullptr && !content_) || (clip != nullptr && content_ && content_->id == clip->id)) return;
+  // A result (or one on its way) of the clip that goes: the window's status line spoke of it.
+  const QString dropped = content_ && (result_ || busy_) ? content_->name : QString();
   cancel();
   content_ = clip != nullptr ? std::make_shared<const LoadedClip>(*clip) : nullptr;
   memory_ = std::make_shared<style::StylizeCleanupMemory>();  // the last clip's solutions help no other
@@ -161,6 +163,9 @@ void ResultPanel::setContentClip(const LoadedClip* clip) {
   clearResult();
   refreshControls();
   refreshFamiliarity();
+  if (!dropped.isEmpty())
+    emit statusMessage(content_ ? tr("The content is %1 now: the result of %2 was cleared.").arg(content_->name, dropped)
+                                : tr("No content clip: the result of %1 was cleared.").arg(dropped));
   // The chosen style (if any) and its neighbours, before Stylize is pressed: at once, as nothing is
   // being dragged (the rest is for drags).
   scheduleLookAhead(true);

@@ -456,6 +456,31 @@ class ResultTest : public QObject {
   }
 
   // Issue 14: a result always matches its inputs, or says that it does not.
+  // Found as a user: with a result of clip A shown, A removed from the Clips list (or another clip made
+  // the content) drops the result, and the window's status line went on saying "Stylized and cleaned
+  // up ... frames" of A under clip B with nothing stylized. It now says what happened to the result.
+  void aResultDroppedWithItsClipIsNotClaimedInTheStatusLine() {
+    MainWindow window(false);
+    QCOMPARE(window.openFiles({test::fixture(QStringLiteral("cmu_131_01.bvh")), test::fixture(QStringLiteral("zombie.bvh"))}), 2);
+    ResultPanel* panel = window.resultPanel();
+    QVERIFY(panel->loadNetworkFile(QString::fromStdString(network_.string())));
+    for (const bool remove : {false, true}) {
+      QSignalSpy ended(panel, &ResultPanel::jobEnded);
+      panel->stylize();
+      QVERIFY(waitForJobs(ended));
+      QVERIFY(panel->result() != nullptr);
+      const QString stylized = window.clip(window.contentClip()).name;
+      QVERIFY2(test::statusLine(window).startsWith(QStringLiteral("Stylized")), qPrintable(test::statusLine(window)));
+      if (remove) window.removeClip(window.contentClip());
+      else window.setContentClip(1 - window.contentClip());
+      QVERIFY(panel->result() == nullptr);
+      const QString status = test::statusLine(window);
+      QVERIFY2(!status.startsWith(QStringLiteral("Stylized")) && status.contains(stylized) &&
+                   status.contains(window.clip(window.contentClip()).name),
+               qPrintable(status));
+    }
+  }
+
   void switchingTheStyleRedoesTheResultAndTheOldOneSaysItIsOutOfDate() {
     const std::filesystem::path other = writeTinyNetwork(scratch_, QStringLiteral("other_style"), 9);
     MainWindow window(false);
