@@ -164,8 +164,10 @@ void ResultPanel::setContentClip(const LoadedClip* clip) {
   refreshControls();
   refreshFamiliarity();
   if (!dropped.isEmpty())
-    emit statusMessage(content_ ? tr("The content is %1 now: the result of %2 was cleared.").arg(content_->name, dropped)
-                                : tr("No content clip: the result of %1 was cleared.").arg(dropped));
+    emit statusMessage(!content_                  ? tr("No content clip: the result of %1 was cleared.").arg(dropped)
+                       : content_->name == dropped ? tr("%1 changed (mapped again): its result was cleared.").arg(dropped)
+                                                   : tr("The content is %1 now: the result of %2 was cleared.")
+                                                         .arg(content_->name, dropped));
   // The chosen style (if any) and its neighbours, before Stylize is pressed: at once, as nothing is
   // being dragged (the rest is for drags).
   scheduleLookAhead(true);
