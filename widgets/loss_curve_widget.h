@@ -44,7 +44,9 @@ class LossCurveWidget : public QWidget {
   static QColor termColor(const QString& term);
 
   QSize sizeHint() const override { return {360, 200}; }
-  QSize minimumSizeHint() const override { return {200, 120}; }
+  // Small enough for a laptop screen: the Style networks panel, and so the window, is never taller
+  // than its forms need (they scroll) plus this.
+  QSize minimumSizeHint() const override { return {200, 64}; }
 
  protected:
   void paintEvent(QPaintEvent* event) override;

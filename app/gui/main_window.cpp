@@ -18,6 +18,7 @@
 #include <QMimeData>
 #include <QProgressDialog>
 #include <QSettings>
+#include <QScreen>
 #include <QStatusBar>
 #include <QTreeWidget>
 #include <QUrl>
@@ -82,7 +83,8 @@ MainWindow::MainWindow(bool persist_settings, QWidget* parent)
 
   connect(timeline_, &TimelineWidget::frameChanged, viewport_, &SkeletonViewport::setFrame);
 
-  resize(1440, 900);
+  // 1440 x 900, or less on a smaller screen (a 1366 x 768 laptop): never larger than its free area.
+  resize(QSize(1440, 900).boundedTo(screen()->availableGeometry().size()));
   if (persist_settings_) {
     const QSettings settings;
     restoreGeometry(settings.value(kGeometryKey).toByteArray());

@@ -49,7 +49,15 @@ NetworkPanel::NetworkPanel(ClipRoles roles, QWidget* parent, bool persist_settin
   });
   tabs_ = new QTabWidget(this);
   tabs_->addTab(network_list_, tr("Networks"));
-  // The training form is tall: it scrolls rather than squeezing its fields on a small screen.
+  // The forms are tall: each scrolls rather than squeezing its fields, or making the window taller
+  // than a laptop's screen (their height was the window's minimum: 948 px).
+  const auto scrolling = [this](QWidget* form) {
+    auto* scroll = new QScrollArea(this);
+    scroll->setWidget(form);
+    scroll->setWidgetResizable(true);
+    scroll->setFrameShape(QFrame::NoFrame);
+    return scroll;
+  };
   train_tab_ = new TrainTab(roles_, this);
   train_tab_->setFolders([this] { return clipFolder().folder(); }, [this] { return network_list_->networksFolder(); });
   connect(train_tab_, &TrainTab::errorOccurred, this, &NetworkPanel::report);
@@ -57,16 +65,12 @@ NetworkPanel::NetworkPanel(ClipRoles roles, QWidget* parent, bool persist_settin
   connect(train_tab_, &TrainTab::lossNetworkChanged, this, [this](const QString& file) {
     if (persist_settings_ && !file.isEmpty()) QSettings().setValue(kLossNetworkKey, file);
   });
-  auto* train_scroll = new QScrollArea(this);
-  train_scroll->setWidget(train_tab_);
-  train_scroll->setWidgetResizable(true);
-  train_scroll->setFrameShape(QFrame::NoFrame);
-  tabs_->addTab(train_scroll, tr("Train"));
+  tabs_->addTab(scrolling(train_tab_), tr("Train"));
   optimise_tab_ = new OptimiseTab(this);
   connect(optimise_tab_, &OptimiseTab::optimiseRequested, this, &NetworkPanel::startTransfer);
   connect(optimise_tab_, &OptimiseTab::cancelRequested, this, &NetworkPanel::cancelJob);
-  tabs_->addTab(optimise_tab_, tr("Optimise"));
-  tabs_->addTab(createAdaptTab(), tr("Adapt"));
+  tabs_->addTab(scrolling(optimise_tab_), tr("Optimise"));
+  tabs_->addTab(scrolling(createAdaptTab()), tr("Adapt"));
 
   progress_bar_ = new QProgressBar(this);
   progress_bar_->setObjectName(QStringLiteral("TrainingProgress"));

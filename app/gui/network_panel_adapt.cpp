@@ -48,7 +48,8 @@ AdaptTab* NetworkPanel::createAdaptTab() {
 void NetworkPanel::showAdaptTab(const QString& clip_path, const QString& style) {
   adapt_tab_->refresh();
   adapt_tab_->focus(clip_path, style);
-  tabs_->setCurrentWidget(adapt_tab_);
+  for (int index = 0; index < tabs_->count(); ++index)  // its page is the scroll area around it
+    if (tabs_->widget(index)->isAncestorOf(adapt_tab_)) tabs_->setCurrentIndex(index);
   for (QWidget* ancestor = parentWidget(); ancestor != nullptr; ancestor = ancestor->parentWidget())
     if (ancestor->inherits("QDockWidget")) {
       ancestor->show();

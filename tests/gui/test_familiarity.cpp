@@ -124,7 +124,7 @@ class FamiliarityTest : public QObject {
     emit label->linkActivated(QStringLiteral("adapt"));
     auto* tabs = window.networkPanel()->findChild<QTabWidget*>();
     QVERIFY(tabs != nullptr);
-    QCOMPARE(tabs->currentWidget(), static_cast<QWidget*>(window.networkPanel()->adaptTab()));
+    QVERIFY(tabs->currentWidget()->isAncestorOf(window.networkPanel()->adaptTab()));  // its page scrolls it
     auto* clips = window.networkPanel()->adaptTab()->findChild<QListWidget*>(QStringLiteral("AdaptClips"));
     QCOMPARE(clips->count(), 1);
     QCOMPARE(clips->item(0)->checkState(), Qt::Checked);
