@@ -331,6 +331,8 @@ class MainWindowTest : public QObject {
              qPrintable(QStringLiteral("%1 x %2 on %3 x %4").arg(window.width()).arg(window.height())
                             .arg(available.width()).arg(available.height())));
     const QSize minimum = window.minimumSizeHint();
+    qInfo("window %d x %d, minimum %d x %d, on a free area of %d x %d", window.width(), window.height(), minimum.width(),
+          minimum.height(), available.width(), available.height());
     QVERIFY2(minimum.width() <= 1280 && minimum.height() <= 700,
              qPrintable(QStringLiteral("minimum %1 x %2").arg(minimum.width()).arg(minimum.height())));
     QVERIFY(!test::saveScreenshot(window.grab().toImage(),
