@@ -185,13 +185,13 @@ void TrackView::paintEvent(QPaintEvent*) {
     // A step per frame, or, with more frames than pixels, per pixel column the highest of its frames (a
     // one-frame spike stays visible; a 36,000-frame clip is 1,300 steps, not 36,000).
     const int columns = std::min(frames_, std::max(1, timeArea().width()));
+    const double step = static_cast<double>(timeArea().width()) / columns;
     for (int c = 0, f = 0; c < columns; ++c) {
       const int end = std::max(f + 1, static_cast<int>(static_cast<long long>(c + 1) * frames_ / columns));
       float highest = track.values[static_cast<size_t>(f)];
       for (; f < end; ++f) highest = std::max(highest, track.values[static_cast<size_t>(f)]);
       const double v = std::clamp((highest - track.minimum) / (track.maximum - track.minimum), 0.0f, 1.0f);
       const double y = row.bottom() - v * (row.height() - 4);
-      const double step = static_cast<double>(timeArea().width()) / columns;
       curve.lineTo(row.left() + c * step, y);
       curve.lineTo(row.left() + (c + 1) * step, y);
     }

@@ -164,38 +164,6 @@ BodySubtree bodySubtree(const std::vector<int>& parents, int body_root) {
   return subtree;
 }
 
-FigureData keepBodySubtree(const FigureData& figure, int body_root) {
-  if (body_root <= 0 || body_root >= figure.jointCount()) return figure;
-  const BodySubtree subtree = bodySubtree(figure.parents, body_root);
-  const std::vector<int>& kept = subtree.kept;
-  const std::vector<int>& new_index = subtree.new_index;
-  FigureData body;  // everything but the positions copied; those only for the kept joints
-  body.name = figure.name;
-  body.role = figure.role;
-  body.frame_count = figure.frame_count;
-  body.parents.assign(kept.size(), -1);
-  for (size_t k = 1; k < kept.size(); ++k) body.parents[k] = new_index[static_cast<size_t>(figure.parents[static_cast<size_t>(kept[k])])];
-  body.positions.resize(static_cast<size_t>(figure.frame_count) * kept.size() * 3);
-  for (int f = 0; f < figure.frame_count; ++f)
-    for (size_t k = 0; k < kept.size(); ++k) {
-      const size_t to = (static_cast<size_t>(f) * kept.size() + k) * 3;
-      body.positions[to] = figure.x(f, kept[k]);
-      body.positions[to + 1] = figure.y(f, kept[k]);
-      body.positions[to + 2] = figure.z(f, kept[k]);
-    }
-  // Contact joints outside the body (not possible for a mapped rig, whose feet descend from the hips)
-  // would lose their markers rather than point at another joint.
-  body.contact_joints.clear();
-  body.contacts.clear();
-  bool all_kept = true;
-  for (const int joint : figure.contact_joints) all_kept = all_kept && new_index[static_cast<size_t>(joint)] >= 0;
-  if (all_kept) {
-    for (const int joint : figure.contact_joints) body.contact_joints.push_back(new_index[static_cast<size_t>(joint)]);
-    body.contacts = figure.contacts;
-  }
-  return body;
-}
-
 FigureData figureInDisplaySpace(const QString& name, FigureRole role, const std::vector<int>& parents,
                                 const BodySubtree& body, const Eigen::MatrixXd& file_positions, const DisplaySpace& space) {
   const size_t kept = body.kept.size();

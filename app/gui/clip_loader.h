@@ -70,28 +70,26 @@ FigureData figureFromClip(const LoadedClip& clip, FigureRole role, double displa
 FigureData figureFromPositions(const QString& name, FigureRole role, const std::vector<int>& parents,
                                const Eigen::MatrixXd& display_positions);
 
-// The joints of the subtree of `body_root` in order (every joint when body_root <= 0) and each joint's
-// index among them (-1 outside it): what keepBodySubtree keeps.
+// The joints of the subtree of `body_root` (the mapped hips) in order, and each joint's index among them
+// (-1 outside it); every joint when body_root <= 0 (a rig rooted at its hips). What a figure draws:
+// rigs such as Bandai's have a reference root that stays at the world origin while the hips carry the
+// motion, and drawing it would put a bone from the origin to the body and place, follow and trace the
+// figure by a point that never moves.
 struct BodySubtree {
   std::vector<int> kept;
   std::vector<int> new_index;
 };
 BodySubtree bodySubtree(const std::vector<int>& parents, int body_root);
-// A figure of `body`'s joints from FILE positions (frames x 3*joints, the rig's `parents`):
-// keepBodySubtree(figureFromPositions(name, role, parents, space.toDisplay(file_positions)), root) in
-// one pass, without the whole clip's intermediate copies (a live result of a long clip, once per
-// result). Without contacts. Throws std::invalid_argument when the shapes do not match.
+// The figure of `body`'s joints from FILE positions (frames x 3*joints of the rig whose joints have
+// `parents`), in display space (DisplaySpace::toDisplay), in one pass over the clip: no whole-clip
+// intermediate copies (a live result of a long clip, once per result). Without contacts. Throws
+// std::invalid_argument when the positions, the parents and the body do not match.
 FigureData figureInDisplaySpace(const QString& name, FigureRole role, const std::vector<int>& parents,
                                 const BodySubtree& body, const Eigen::MatrixXd& file_positions, const DisplaySpace& space);
 // setFigureContacts for a figure of `body`'s joints, `joints` numbered in the whole rig (none when a
 // contact joint is outside the body).
 void setBodyContacts(FigureData& figure, const BodySubtree& body, std::array<int, kContactCount> joints,
                      const Eigen::MatrixXi& labels);
-// The figure without the joints outside the subtree of `body_root` (the mapped hips): rigs such as
-// Bandai's have a reference root that stays at the world origin while the hips carry the motion, and
-// drawing it would put a bone from the origin to the body and place, follow and trace the figure by a
-// point that never moves. Contact joints are renumbered. body_root <= 0 returns the figure unchanged.
-FigureData keepBodySubtree(const FigureData& figure, int body_root);
 
 // Gives `figure` its foot-contact markers: `labels` is frames x 4 (at the figure's rate, nonzero = in
 // contact) for the figure's joints `joints` (foot_contacts.h order); frames past the labels get none.

@@ -46,49 +46,12 @@ class ViewportRenderTest : public QObject {
     QVERIFY(cmu_.frameCount() > 100);
   }
 
-  void aReferenceRootAboveTheHipsIsLeftOut() {
-    // Bandai-like: joint 0 stays at the origin, the hips (1) carry the body 5 m away; joint 3 hangs
-    // off the reference root, outside the body. The contact is on the leg (2).
-    FigureData rig;
-    rig.parents = {-1, 0, 1, 0};
-    rig.frame_count = 2;
-    rig.positions = {0, 0, 0, 500, 90, 0, 500, 10, 0, 1, 1, 1,    // frame 0
-                     0, 0, 0, 510, 90, 0, 510, 10, 0, 1, 1, 1};  // frame 1
-    rig.contact_joints = {2};
-    rig.contacts = {1, 0};
-    const FigureData body = keepBodySubtree(rig, 1);
-    QCOMPARE(body.parents, (std::vector<int>{-1, 0}));
-    QCOMPARE(body.frame_count, 2);
-    QCOMPARE(body.x(1, 0), 510.0);  // the hips are joint 0 now: placement and follow use them
-    QCOMPARE(body.y(0, 1), 10.0);
-    QCOMPARE(body.contact_joints, (std::vector<int>{1}));
-    QCOMPARE(body.contacts, rig.contacts);
-    body.validate();
-    QCOMPARE(keepBodySubtree(rig, 0).parents, rig.parents);  // a rig rooted at its hips is unchanged
-  }
-
-  // A result's figure is built in one pass (figureInDisplaySpace): the same numbers as the steps one by
-  // one (display space, positions frame by frame, the body's joints), for real rigs and for one whose
-  // hips hang off a reference root; positions that do not match the rig are refused.
-  void aFigureInDisplaySpaceIsTheStepsInOnePass() {
-    const auto parentsOf = [](const Skeleton& skeleton) {
-      std::vector<int> parents;
-      for (const Joint& joint : skeleton.joints) parents.push_back(joint.parent);
-      return parents;
-    };
-    for (const LoadedClip* clip : {&cmu_, &zombie_}) {
-      const Eigen::MatrixXd world = worldPositions(clip->motion);
-      const std::vector<int> parents = parentsOf(clip->motion.skeleton);
-      const int hips = (*clip->mapping)[CanonicalJoint::Hips];
-      const FigureData steps = keepBodySubtree(
-          figureFromPositions(clip->name, FigureRole::Output, parents, clip->display_space.toDisplay(world)), hips);
-      const FigureData one_pass = figureInDisplaySpace(clip->name, FigureRole::Output, parents,
-                                                       bodySubtree(parents, hips), world, clip->display_space);
-      QCOMPARE(one_pass.parents, steps.parents);
-      QCOMPARE(one_pass.frame_count, clip->frameCount());
-      QVERIFY(one_pass.positions == steps.positions);
-    }
-    // Bandai-like: the hips (1) under a reference root (0), joint 3 outside the body; Z-up inches.
+  // A figure is the body's joints in display space (figureInDisplaySpace): invalid shapes are refused;
+  // a reference root above the hips is left out; every kept joint is DisplaySpace::toDisplay's, frame
+  // by frame, for real rigs too.
+  void aFigureIsTheBodysJointsInDisplaySpace() {
+    // Bandai-like: joint 0 stays at the origin, the hips (1) carry the body 5 m away; joint 3 hangs off
+    // the reference root, outside the body. Z-up inches, the floor 3 inches down.
     const std::vector<int> parents = {-1, 0, 1, 0};
     Eigen::MatrixXd file(2, 12);
     file << 0, 0, 0, 500, 0, 90, 500, 0, 10, 1, 1, 1,  //
@@ -97,14 +60,48 @@ class ViewportRenderTest : public QObject {
     space.convention.axes << 1, 0, 0, 0, 0, 1, 0, -1, 0;  // file +Z up -> +Y
     space.convention.cm_per_unit = 2.54;
     space.floor_height = 3.0;
-    const FigureData steps = keepBodySubtree(figureFromPositions(QString(), FigureRole::Output, parents, space.toDisplay(file)), 1);
-    const FigureData one_pass = figureInDisplaySpace(QString(), FigureRole::Output, parents, bodySubtree(parents, 1), file, space);
-    QCOMPARE(one_pass.parents, (std::vector<int>{-1, 0}));
-    QVERIFY(one_pass.positions == steps.positions);
-    QCOMPARE(one_pass.y(0, 0), 2.54 * 90 - 2.54 * 3.0);
-    QVERIFY_THROWS_EXCEPTION(std::invalid_argument, figureInDisplaySpace(QString(), FigureRole::Output, {-1, 0}, bodySubtree(parents, 1), file, space));
+    QVERIFY_THROWS_EXCEPTION(std::invalid_argument,
+                             figureInDisplaySpace(QString(), FigureRole::Output, {-1, 0}, bodySubtree(parents, 1), file, space));
     QVERIFY_THROWS_EXCEPTION(std::invalid_argument,
                              figureInDisplaySpace(QString(), FigureRole::Output, parents, bodySubtree({-1, 0}, 1), file, space));
+    const BodySubtree body = bodySubtree(parents, 1);
+    QCOMPARE(body.kept, (std::vector<int>{1, 2}));
+    QCOMPARE(body.new_index, (std::vector<int>{-1, 0, 1, -1}));
+    FigureData figure = figureInDisplaySpace(QString(), FigureRole::Output, parents, body, file, space);
+    QCOMPARE(figure.parents, (std::vector<int>{-1, 0}));
+    QCOMPARE(figure.frame_count, 2);
+    QCOMPARE(figure.x(1, 0), 2.54 * 510);  // the hips are joint 0 now: placement and follow use them
+    QCOMPARE(figure.y(0, 0), 2.54 * 90 - 2.54 * 3.0);
+    QCOMPARE(figure.z(0, 1), 0.0);
+    // The contact on the leg (2) is the figure's joint 1; one on the joint outside the body: none.
+    Eigen::MatrixXi labels(2, kContactCount);
+    labels << 1, 0, 0, 0, 0, 0, 0, 0;
+    setBodyContacts(figure, body, {2, 2, 2, 2}, labels);
+    QCOMPARE(figure.contact_joints, (std::vector<int>{1, 1, 1, 1}));
+    QVERIFY(figure.inContact(0, 0) && !figure.inContact(1, 0));
+    figure.validate();
+    FigureData outside = figureInDisplaySpace(QString(), FigureRole::Output, parents, body, file, space);
+    setBodyContacts(outside, body, {2, 2, 3, 3}, labels);
+    QVERIFY(outside.contact_joints.empty());
+    QCOMPARE(bodySubtree(parents, 0).kept, (std::vector<int>{0, 1, 2, 3}));  // rooted at its hips: all of it
+
+    for (const LoadedClip* clip : {&cmu_, &zombie_}) {
+      const Eigen::MatrixXd world = worldPositions(clip->motion);
+      std::vector<int> rig;
+      for (const Joint& joint : clip->motion.skeleton.joints) rig.push_back(joint.parent);
+      const BodySubtree kept = bodySubtree(rig, (*clip->mapping)[CanonicalJoint::Hips]);
+      const FigureData made = figureInDisplaySpace(clip->name, FigureRole::Output, rig, kept, world, clip->display_space);
+      made.validate();
+      const Eigen::MatrixXd display = clip->display_space.toDisplay(world);
+      QCOMPARE(made.frame_count, clip->frameCount());
+      for (int f = 0; f < made.frame_count; f += 7)
+        for (size_t k = 0; k < kept.kept.size(); ++k) {
+          const Eigen::Index column = 3 * kept.kept[k];
+          QCOMPARE(made.x(f, static_cast<int>(k)), display(f, column));
+          QCOMPARE(made.y(f, static_cast<int>(k)), display(f, column + 1));
+          QCOMPARE(made.z(f, static_cast<int>(k)), display(f, column + 2));
+        }
+    }
   }
 
   void rejectsInvalidFigures() {
