@@ -67,9 +67,7 @@ MainWindow::MainWindow(bool persist_settings, QWidget* parent)
 
   viewport_ = new SkeletonViewport(this);
   live_resolution_ = new LiveResolution(viewport_, this);
-  viewport_->setEmptyMessage(
-      tr("<b>No clips yet</b><br><br>File &#9656; Open BVH (Ctrl+O), or drop BVH files or folders here.<br>"
-         "New to MotionStyle? Help &#9656; Open Demo loads two sample clips and a style."));
+  viewport_->setEmptyMessage(emptyViewMessage());
   setCentralWidget(viewport_);
   createDocks();
   // The look-ahead waits for the rest meant for a drag's steps only while the hand is on a control.
@@ -329,6 +327,7 @@ void MainWindow::rebuildFigures() {
     for (FigureData& figure : result_panel_->resultFigures(raw_output_action_->isChecked()))
       figures.push_back(std::move(figure));
   }
+  viewport_->setEmptyMessage(emptyViewMessage());
   try {
     viewport_->setFigures(std::move(figures));
   } catch (...) {

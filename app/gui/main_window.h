@@ -125,6 +125,8 @@ class MainWindow : public QMainWindow {
   void forgetTrainingClip(int removed_index);
   void showAbout();
   void showShortcuts();
+  // What the view shows when it has no figure: how to open clips, or how to choose the content.
+  QString emptyViewMessage() const;
   void report(const QString& title, const QString& message);
   RememberedFolder clipFolder() const { return {kClipFolderKey, persist_settings_}; }
 

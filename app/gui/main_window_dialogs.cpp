@@ -76,6 +76,14 @@ void MainWindow::browseMappingFile(int index) {
   if (!file.isEmpty()) loadMappingFile(index, file);
 }
 
+QString MainWindow::emptyViewMessage() const {
+  // With a style network chosen the Style clip is not drawn: clips, but no content, leave the view empty.
+  return clipCount() == 0
+             ? tr("<b>No clips yet</b><br><br>File &#9656; Open BVH (Ctrl+O), or drop BVH files or folders here.<br>"
+                  "New to MotionStyle? Help &#9656; Open Demo loads two sample clips and a style.")
+             : tr("<b>No content clip</b><br><br>Right-click a clip in the Clips list and choose Use as Content.");
+}
+
 void MainWindow::showShortcuts() {
   QMessageBox::information(
       this, tr("Keyboard Shortcuts"),

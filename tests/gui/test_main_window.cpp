@@ -340,6 +340,33 @@ class MainWindowTest : public QObject {
                  .isEmpty());
   }
 
+  // Found as a user: the only clip made the Style clip, with a style network chosen (which does not draw
+  // the Style clip), left an empty view saying "No clips yet" over a Clips list holding one. The empty
+  // view now says what is missing and how to get it.
+  void anEmptyViewSaysWhatIsMissing() {
+    MainWindow window(/*persist_settings=*/false);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    auto* message = window.viewport()->findChild<QLabel*>(QStringLiteral("ViewportEmptyMessage"));
+    QVERIFY(message != nullptr);
+    QVERIFY(message->isVisible() && message->text().contains(QStringLiteral("No clips yet")));
+    QCOMPARE(window.openFiles({test::fixture(QStringLiteral("cmu_131_01.bvh"))}), 1);
+    QVERIFY(!message->isVisible());
+    auto* choice = window.resultPanel()->findChild<QComboBox*>(QStringLiteral("NetworkChoice"));
+    QVERIFY(choice != nullptr && choice->count() > 0);
+    choice->setFocus(Qt::OtherFocusReason);
+    QTest::keyClick(choice, Qt::Key_Down);  // a shipped style picked: the Style clip plays no part
+    QVERIFY(QTest::qWaitFor([&] { return window.resultPanel()->hasNetwork(); }, 10000));
+    window.setStyleClip(0);
+    QCOMPARE(window.contentClip(), -1);
+    QCOMPARE(window.viewport()->figureCount(), 0);
+    QVERIFY2(message->isVisible() && !message->text().contains(QStringLiteral("No clips yet")) &&
+                 message->text().contains(QStringLiteral("Use as Content")),
+             qPrintable(message->text()));
+    window.removeClip(0);
+    QVERIFY(message->isVisible() && message->text().contains(QStringLiteral("No clips yet")));
+  }
+
   // Issue 14: the Clips table shows whole names and mappings (it scrolls sideways when narrow).
   void clipNamesAndMappingsAreNotCut() {
     const QString name = QStringLiteral("a_rather_long_clip_name_from_the_studio_take_042.bvh");
