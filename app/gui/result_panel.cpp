@@ -297,6 +297,7 @@ void ResultPanel::runStylize() {
     }
   }
   style::StylizeCleanupJob job;
+  job.world_positions = true;  // the figure of its result is drawn from them (result_figures.h)
   job_network_name_ = network_name_;
   job.content = content_->motion;
   job.mapping = *content_->mapping;

@@ -123,6 +123,7 @@ void ResultPanel::onReadAhead(std::shared_ptr<const style::Stylizer> stylizer, c
 
 void ResultPanel::startLookAhead(ResultInputs inputs, const QString& file, const QString& name) {
   style::StylizeCleanupJob job;
+  job.world_positions = true;  // the figure of its result is drawn from them (result_figures.h)
   job.content = content_->motion;
   job.mapping = *content_->mapping;
   job.strength = inputs.strength;

@@ -104,7 +104,7 @@ StylizeCleanupResult StylizeCleanupJob::run(const std::atomic<bool>* cancel) con
                                                 CleanupControl{cancel, memory ? &memory->cleanup : nullptr});
   throwIfCancelled(cancel);
   result.cleaned = std::move(cleanup.motion);
-  result.cleaned_world_positions = worldPositions(result.cleaned);
+  if (world_positions) result.cleaned_world_positions = worldPositions(result.cleaned);
   result.report = std::move(cleanup.report);
   result.raw_metrics = std::move(cleanup.raw);
   result.cleaned_metrics = std::move(cleanup.cleaned);

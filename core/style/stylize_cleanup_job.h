@@ -27,9 +27,10 @@ struct StylizeCleanupResult {
   StylizedClip stylized;         // raw network output: 21 canonical joints, file space, 60 fps
   Motion cleaned;                // on the content's skeleton, at the content's rate and frame count
                                  // (or at output_fps)
-  // frames x 3*joints: worldPositions(cleaned), every joint, file units and axes. Computed on the
-  // job's thread, so that a viewer draws the cleaned clip without forward kinematics on its own
-  // (the app's GUI thread spent 65-220 ms of each result of a 36,000-frame clip on it).
+  // frames x 3*joints: worldPositions(cleaned), every joint, file units and axes, when the job was asked
+  // for them (StylizeCleanupJob::world_positions), else empty. Computed on the job's thread, so that a
+  // viewer draws the cleaned clip without forward kinematics on its own (the app's GUI thread spent
+  // 65-220 ms of each result of a 36,000-frame clip on it).
   Eigen::MatrixXd cleaned_world_positions;
   CleanupReport report;
   ClipMetrics raw_metrics;       // the raw output, judged by the content's contacts (60 fps)
@@ -77,6 +78,7 @@ struct StylizeCleanupJob {
   Eigen::MatrixXi contact_overrides;
   CleanupOptions options;
   double output_fps = 0.0;  // the cleaned clip's rate (resampled): 0 = the content's own
+  bool world_positions = false;  // also give the cleaned clip's world positions (for a viewer)
   // The previous job on this clip: after a small edit only what changed is computed again (the
   // network not at all for a strength or path change, the clean-up only where its inputs moved, from
   // the last solution). Null: compute everything.

@@ -62,10 +62,17 @@ TEST(StylizeCleanupJob, TheCleanedClipIsTheContentsRigAndLength) {
   EXPECT_EQ(result.cleaned.frameCount(), job.content.frameCount());
   EXPECT_EQ(result.cleaned.skeleton.channelCount(), job.content.skeleton.channelCount());
   EXPECT_TRUE(result.cleaned.values.allFinite());
-  EXPECT_TRUE(result.cleaned_world_positions.isApprox(worldPositions(result.cleaned), 1e-12));  // for viewers
+  EXPECT_EQ(result.cleaned_world_positions.size(), 0);  // not asked for (the CLI)
   EXPECT_GT(result.stylized.frameCount(), 0);
   EXPECT_EQ(result.contacts.cols(), 4);
   EXPECT_GE(result.seconds, 0.0);
+}
+
+TEST(StylizeCleanupJob, ItGivesTheCleanedClipsWorldPositionsWhenAsked) {
+  style::StylizeCleanupJob job = cleanupJobOnFixture(90);
+  job.world_positions = true;  // as the app asks: its viewer draws them
+  const style::StylizeCleanupResult result = job.run();
+  EXPECT_TRUE(result.cleaned_world_positions.isApprox(worldPositions(result.cleaned), 1e-12));
 }
 
 TEST(StylizeCleanupJob, ASetCancelFlagStopsIt) {
