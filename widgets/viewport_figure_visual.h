@@ -46,6 +46,7 @@ struct ViewportScene::FigureVisual {
   // plane (actor origin), yaw about the vertical (actor orientation) and lane where it starts.
   Vec3 pivot{};
   double yaw_degrees = 0.0;
+  double yaw_cos = 1.0, yaw_sin = 0.0;  // of yaw_degrees, set by place(): drawn() runs per joint and frame
   Vec3 lane{};
   std::vector<int> bone_joints;  // joints with a parent: one bone each, parent -> joint
 
@@ -94,6 +95,8 @@ struct ViewportScene::FigureVisual {
   void place(const Vec3& first_root, double yaw, const Vec3& start) {
     pivot = first_root;
     yaw_degrees = yaw;
+    yaw_cos = std::cos(vtkMath::RadiansFromDegrees(yaw));
+    yaw_sin = std::sin(vtkMath::RadiansFromDegrees(yaw));
     lane = start;
     for (vtkActor* actor : actors()) {
       actor->SetOrigin(pivot[0], pivot[1], pivot[2]);
@@ -102,11 +105,10 @@ struct ViewportScene::FigureVisual {
     }
   }
   Vec3 drawn(double x, double y, double z) const {
-    const double a = vtkMath::RadiansFromDegrees(yaw_degrees);
     const double dx = x - pivot[0];
     const double dz = z - pivot[2];
     // vtkProp3D's RotateY: x' = x cos a + z sin a, z' = -x sin a + z cos a.
-    return {lane[0] + dx * std::cos(a) + dz * std::sin(a), y, lane[2] - dx * std::sin(a) + dz * std::cos(a)};
+    return {lane[0] + dx * yaw_cos + dz * yaw_sin, y, lane[2] - dx * yaw_sin + dz * yaw_cos};
   }
 };
 

@@ -271,17 +271,12 @@ std::array<double, 6> ViewportScene::bounds(int frame) const {
   for (size_t i = 0; i < figures_.size(); ++i) {
     const FigureData& figure = figures_[i];
     const FigureVisual& visual = *visuals_[i];
-    // The figure's placement (FigureVisual::drawn) with its rotation computed once: a whole clip's
-    // joints pass through here at every result.
-    const double yaw = vtkMath::RadiansFromDegrees(visual.yaw_degrees), c = std::cos(yaw), s = std::sin(yaw);
     const int first = frame < 0 ? 0 : std::clamp(frame, 0, figure.frame_count - 1);
     const int last = frame < 0 ? figure.frame_count - 1 : first;
     const size_t begin = static_cast<size_t>(first) * static_cast<size_t>(figure.jointCount()) * 3;
     const size_t end = static_cast<size_t>(last + 1) * static_cast<size_t>(figure.jointCount()) * 3;
-    for (size_t k = begin; k < end; k += 3) {
-      const double dx = figure.positions[k] - visual.pivot[0], dz = figure.positions[k + 2] - visual.pivot[2];
-      const std::array<double, 3> p = {visual.lane[0] + dx * c + dz * s, figure.positions[k + 1],
-                                       visual.lane[2] - dx * s + dz * c};
+    for (size_t k = begin; k < end; k += 3) {  // a whole clip's joints at every result: no per-joint lookup
+      const Vec3 p = visual.drawn(figure.positions[k], figure.positions[k + 1], figure.positions[k + 2]);
       for (size_t a = 0; a < 3; ++a) {
         box[2 * a] = std::min(box[2 * a], p[a]);
         box[2 * a + 1] = std::max(box[2 * a + 1], p[a]);
