@@ -20,12 +20,25 @@ namespace {
 
 namespace fs = std::filesystem;
 
-void requireFolder(const fs::path& folder, const std::string& option) {
+// UsageError when --out (or --metrics) names an existing file: with several clips it is a folder.
+void requireNotAFile(const fs::path& folder, const std::string& option) {
   std::error_code error;
   if (fs::exists(folder, error) && !fs::is_directory(folder, error))
     throw UsageError(option + " " + folder.string() + " is a file: with several clips or a folder it must be a folder");
+}
+
+// Creates `folder` and the folders above it that are missing; appends each one it created to
+// `created`, outermost first.
+void createFolder(const fs::path& folder, std::vector<fs::path>& created) {
+  std::vector<fs::path> missing;
+  std::error_code error;
+  for (fs::path f = folder; !f.empty() && !fs::exists(f, error); f = f.parent_path()) {
+    missing.push_back(f);
+    if (f == f.parent_path()) break;
+  }
   fs::create_directories(folder, error);
   if (error) throw WriteError(folder.string(), "cannot create the folder: " + error.message());
+  created.insert(created.end(), missing.rbegin(), missing.rend());
 }
 
 }  // namespace
@@ -37,6 +50,10 @@ bool isBatch(const std::vector<std::string>& inputs) {
 
 std::vector<BatchItem> batchItems(const std::vector<std::string>& inputs, const fs::path& out_folder,
                                   const std::optional<fs::path>& metrics_folder) {
+  requireNotAFile(out_folder, "--out");
+  if (metrics_folder) requireNotAFile(*metrics_folder, "--metrics");
+  std::vector<fs::path> skipped = {out_folder};
+  if (metrics_folder) skipped.push_back(*metrics_folder);
   std::vector<BatchItem> items;
   const auto add = [&](const fs::path& input, const fs::path& relative) {
     BatchItem item{input, out_folder / relative, std::nullopt};
@@ -44,24 +61,18 @@ std::vector<BatchItem> batchItems(const std::vector<std::string>& inputs, const 
     items.push_back(std::move(item));
   };
   for (const std::string& given : inputs) {
-    // The dataset's listing: a folder's clips below it, sorted; InputError for a missing input or a
-    // folder without clips.
+    // The dataset's listing: a folder's clips below it, sorted, without the output folders' (the last
+    // run's outputs); InputError for a missing input or a folder without clips.
     const fs::path path(given);
     std::error_code error;
     const bool folder = fs::is_directory(path, error);
-    for (const fs::path& file : style::findBvhFiles({path})) add(file, folder ? file.lexically_relative(path) : file.filename());
-  }
-  // Only once every input is found: no folder is left behind by a command that never starts.
-  requireFolder(out_folder, "--out");
-  if (metrics_folder) requireFolder(*metrics_folder, "--metrics");
-  for (const BatchItem& item : items) {
-    requireFolder(item.output.parent_path(), "--out");
-    if (item.metrics) requireFolder(item.metrics->parent_path(), "--metrics");
+    for (const fs::path& file : style::findBvhFiles({path}, skipped))
+      add(file, folder ? file.lexically_relative(path) : file.filename());
   }
   return items;
 }
 
-void checkBatchOutputs(const std::vector<BatchItem>& items, const std::vector<NamedPath>& extra_inputs) {
+void prepareBatchOutputs(const std::vector<BatchItem>& items, const std::vector<NamedPath>& extra_inputs) {
   std::vector<NamedPath> inputs = extra_inputs;
   std::vector<NamedPath> outputs;
   for (const BatchItem& item : items) {
@@ -69,7 +80,15 @@ void checkBatchOutputs(const std::vector<BatchItem>& items, const std::vector<Na
     outputs.push_back({item.output, "the output of " + item.input.string()});
     if (item.metrics) outputs.push_back({*item.metrics, "the metrics of " + item.input.string()});
   }
-  checkOutputPaths(inputs, outputs);
+  std::vector<fs::path> created;
+  try {
+    for (const NamedPath& output : outputs) createFolder(output.path.parent_path(), created);
+    checkOutputPaths(inputs, outputs);
+  } catch (...) {
+    std::error_code ignored;  // only folders this call made and left empty
+    for (auto it = created.rbegin(); it != created.rend(); ++it) fs::remove(*it, ignored);
+    throw;
+  }
 }
 
 int jobsOption(const ParsedArgs& parsed) {

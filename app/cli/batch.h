@@ -6,7 +6,7 @@
 //
 // Each clip is written to <out>/<its path below the folder it was found in> (a file given by name:
 // <out>/<its name>), its metrics to <metrics>/<the same path>.json. Everything is checked before the
-// first clip starts (checkOutputPaths: no output is an input, or inside an input folder, or
+// first clip starts (prepareBatchOutputs: no output is an input, or inside an input folder, or
 // another clip's output). A clip that fails is reported at the end and does not stop the others.
 // Exit code: 0 all written; 2 some failed on their input or output; 1 some failed otherwise (an
 // internal error); 130 after Ctrl-C (the clips being written finish; no new one starts).
@@ -39,15 +39,17 @@ struct BatchItem {
 // True when the command's clips ask for batch mode: more than one, or a folder.
 bool isBatch(const std::vector<std::string>& inputs);
 
-// The clips of `inputs` and where each goes (see the top of this file); once all are found, the
-// output folders are created. InputError naming an input that does not exist or a folder without
-// clips; UsageError when --out (or --metrics) names an existing file.
+// The clips of `inputs` and where each goes (see the top of this file). A folder's search skips the
+// output and metrics folders when they lie inside it, so a second run into shots/cleaned/ takes the
+// same clips as the first. InputError naming an input that does not exist or a folder without clips;
+// UsageError when --out (or --metrics) names an existing file. Creates nothing.
 std::vector<BatchItem> batchItems(const std::vector<std::string>& inputs, const std::filesystem::path& out_folder,
                                   const std::optional<std::filesystem::path>& metrics_folder);
 
-// checkOutputPaths over every item: the clips and `extra_inputs` (a mapping file, a network) against
-// every output.
-void checkBatchOutputs(const std::vector<BatchItem>& items, const std::vector<NamedPath>& extra_inputs);
+// Creates the output folders, then checkOutputPaths over every item: the clips and `extra_inputs` (a
+// mapping file, a network) against every output. On failure the folders it created are removed
+// again: a command that never starts leaves nothing behind.
+void prepareBatchOutputs(const std::vector<BatchItem>& items, const std::vector<NamedPath>& extra_inputs);
 
 // --jobs N: at least 1, at most 64; default: the machine's hardware threads.
 int jobsOption(const ParsedArgs& parsed);

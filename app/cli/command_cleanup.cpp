@@ -205,7 +205,7 @@ int runCleanup(const Args& args) {
     std::vector<NamedPath> extra;
     if (request.mapping) extra.push_back({*request.mapping, "--mapping"});
     for (const BatchItem& item : items) extra.push_back({contactTracksPath(item.input), "the clip's contact tracks"});
-    checkBatchOutputs(items, extra);
+    prepareBatchOutputs(items, extra);
     request.cleanup_threads = 1;  // --jobs says how many cores: one per clip
     return runBatch(items, jobsOption(parsed), [&](const BatchItem& item) {
       CleanupRequest one = request;

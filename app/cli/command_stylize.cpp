@@ -92,7 +92,7 @@ int runStylize(const Args& args) {
 
   if (isBatch(parsed.positional)) {
     const std::vector<BatchItem> items = batchItems(parsed.positional, out, request.output.metrics);
-    checkBatchOutputs(items, networks);
+    prepareBatchOutputs(items, networks);
     const std::shared_ptr<const style::Stylizer> stylizer = loadStylizer(request);
     request.output.cleanup_threads = 1;  // --jobs says how many cores: one per clip
     return runBatch(items, jobsOption(parsed), [&](const BatchItem& item) {

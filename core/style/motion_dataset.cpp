@@ -20,15 +20,30 @@ struct FoundFile {
   bool from_folder = false;
 };
 
-std::vector<FoundFile> findFiles(const std::vector<fs::path>& inputs) {
+// The path with symlinks resolved, for comparing folders; the path itself when that fails.
+fs::path resolvedFolder(const fs::path& folder) {
+  std::error_code error;
+  fs::path resolved = fs::weakly_canonical(folder, error);
+  return error ? folder.lexically_normal() : resolved;
+}
+
+std::vector<FoundFile> findFiles(const std::vector<fs::path>& inputs, const std::vector<fs::path>& skipped_folders) {
+  std::vector<fs::path> skipped;
+  for (const fs::path& folder : skipped_folders) skipped.push_back(resolvedFolder(folder));
   std::vector<FoundFile> found;
   for (const fs::path& input : inputs) {
     std::error_code error;
     if (fs::is_directory(input, error)) {
       std::vector<fs::path> in_folder;
       for (fs::recursive_directory_iterator it(input, fs::directory_options::skip_permission_denied, error), end;
-           !error && it != end; it.increment(error))
+           !error && it != end; it.increment(error)) {
+        if (it->is_directory(error) && !skipped.empty() &&
+            std::find(skipped.begin(), skipped.end(), resolvedFolder(it->path())) != skipped.end()) {
+          it.disable_recursion_pending();
+          continue;
+        }
         if (it->is_regular_file(error) && isClipFile(it->path())) in_folder.push_back(it->path());
+      }
       if (error) throw InputError(input.string(), 0, "cannot list the folder: " + error.message());
       if (in_folder.empty()) throw InputError(input.string(), 0, "the folder holds no .bvh file (searched recursively)");
       std::sort(in_folder.begin(), in_folder.end());
@@ -51,9 +66,9 @@ DatasetOptions styleClipOptions(const DatasetOptions& base, int minimum_frames) 
   return options;
 }
 
-std::vector<fs::path> findBvhFiles(const std::vector<fs::path>& inputs) {
+std::vector<fs::path> findBvhFiles(const std::vector<fs::path>& inputs, const std::vector<fs::path>& skipped_folders) {
   std::vector<fs::path> files;
-  for (FoundFile& file : findFiles(inputs)) files.push_back(std::move(file.path));
+  for (FoundFile& file : findFiles(inputs, skipped_folders)) files.push_back(std::move(file.path));
   return files;
 }
 
@@ -91,7 +106,7 @@ std::vector<MotionClip> loadMotionClips(const std::vector<fs::path>& inputs, con
                                         std::vector<std::string>* warnings, const std::atomic<bool>* cancel,
                                         const std::function<void(int, int)>& on_file) {
   std::vector<MotionClip> clips;
-  const std::vector<FoundFile> files = findFiles(inputs);
+  const std::vector<FoundFile> files = findFiles(inputs, {});
   for (const FoundFile& file : files) {
     throwIfCancelled(cancel);
     try {

@@ -52,8 +52,11 @@ struct MotionClip {
 // The .bvh files (extension compared case-insensitively) named by `inputs`: a folder contributes every
 // .bvh below it (recursively), a file itself. Folders are listed sorted by path, so the result is
 // deterministic; files keep their position in `inputs`. Throws InputError naming the folder when a
-// folder holds no .bvh file, or naming the path when it does not exist.
-std::vector<std::filesystem::path> findBvhFiles(const std::vector<std::filesystem::path>& inputs);
+// folder holds no .bvh file, or naming the path when it does not exist. A folder below an input folder
+// that is one of `skipped_folders` (compared once symlinks are resolved) is not searched: a batch's
+// output folder inside its input folder, whose clips are the last run's outputs, not inputs.
+std::vector<std::filesystem::path> findBvhFiles(const std::vector<std::filesystem::path>& inputs,
+                                                const std::vector<std::filesystem::path>& skipped_folders = {});
 
 // Reads, maps and featurises one file. Throws InputError naming the file (see the top of this file).
 MotionClip loadMotionClip(const std::filesystem::path& file, const DatasetOptions& options = {});

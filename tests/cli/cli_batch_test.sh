@@ -39,7 +39,7 @@ expect 2 "refusing to overwrite an input" "$cli" cleanup "$work/in/a.bvh" "$work
 [ "$(md5sum "$work/in/a.bvh")" = "$before" ] || fail "an input was overwritten"
 # Two clips that would write one output.
 expect 2 "a.bvh" "$cli" cleanup "$work/in/a.bvh" "$work/elsewhere/a.bvh" --out "$work/clash"
-[ -e "$work/clash/a.bvh" ] && fail "a clash still wrote"
+[ -e "$work/clash" ] && fail "a clash left its output folder behind"
 
 # 4. Usage: --out a file with several clips, --contacts with several clips, --jobs out of range, a
 # folder without clips, a clip that does not exist.
@@ -51,6 +51,19 @@ mkdir -p "$work/empty"
 expect 2 "holds no .bvh" "$cli" stylize --net elderly "$work/empty" --out "$work/o"
 expect 2 "no-such.bvh" "$cli" cleanup "$work/in/a.bvh" "$work/no-such.bvh" --out "$work/never"
 [ -e "$work/never" ] && fail "a command that never started left its output folder"
+
+# 5. The output folder inside the input folder (shots/ -> shots/cleaned/): run again, the same clips are
+# written over the first run's outputs, which are not taken for inputs.
+mkdir -p "$work/shots/sub"
+cp "$data/zombie.bvh" "$work/shots/a.bvh"
+cp "$data/cmu_131_01.bvh" "$work/shots/sub/b.bvh"
+expect 0 "2 of 2 clip(s) written" "$cli" cleanup "$work/shots" --out "$work/shots/cleaned" --jobs 2
+expect 0 "2 of 2 clip(s) written" "$cli" cleanup "$work/shots" --out "$work/shots/cleaned" --jobs 2
+[ -e "$work/shots/cleaned/cleaned" ] && fail "the second run took the first run's outputs for inputs"
+cmp -s "$work/shots/cleaned/sub/b.bvh" "$work/cleaned/sub/b.bvh" || fail "the rerun's output differs"
+# Given by name, a clip in the output folder is still an input: refused.
+expect 2 "refusing to overwrite an input" "$cli" cleanup "$work/shots/cleaned/a.bvh" "$work/shots/a.bvh" \
+  --out "$work/shots/cleaned"
 
 if [ "$failures" -ne 0 ]; then echo "$failures batch check(s) failed"; exit 1; fi
 echo "all batch checks passed"

@@ -46,6 +46,19 @@ TEST(FindBvhFiles, FoldersAreSearchedRecursivelyAndSorted) {
   EXPECT_EQ(files[3], dir / "a.BVH");  // a file named explicitly keeps its place
 }
 
+TEST(FindBvhFiles, ASkippedFolderBelowAnInputIsNotSearched) {
+  test::TempDir dir;
+  for (const char* name : {"shots/a.bvh", "shots/out/a.bvh", "shots/out/deep/b.bvh", "shots/outtakes/c.bvh"})
+    test::writeText(dir / name, "x");
+  // Reached through "..": compared once resolved.
+  const auto files = style::findBvhFiles({dir / "shots"}, {dir / "shots/outtakes/../out"});
+  ASSERT_EQ(files.size(), 2u);
+  EXPECT_EQ(files[0], dir / "shots/a.bvh");
+  EXPECT_EQ(files[1], dir / "shots/outtakes/c.bvh");  // a name that merely starts like it is searched
+  // The input folder itself is never skipped: its clips are what was asked for.
+  EXPECT_EQ(style::findBvhFiles({dir / "shots/out"}, {dir / "shots/out"}).size(), 2u);
+}
+
 TEST(Windows, SpansFollowThe2016Rule) {
   const style::WindowOptions options;  // 240 / 120
   using Span = style::WindowSpan;
