@@ -23,6 +23,7 @@
 #include "common/errors.h"
 #include "common/resource_paths.h"
 #include "error_text.h"
+#include "item_view_layout.h"
 #include "job_runner.h"
 #include "style/training.h"
 
@@ -194,6 +195,8 @@ void AdaptTab::refresh() {
   for (const ShippedStyleNetwork& network : shippedStyleNetworks()) addStyle(network.name, network.file, network.problem);
   for (const NamedNetwork& network : networks_())
     if (network.model && !network.model->style_targets.empty()) addStyle(network.name, QStringLiteral("panel:") + network.name);
+  layOutItemsNow(*clip_list_);
+  layOutItemsNow(*style_list_);
 }
 
 void AdaptTab::focus(const QString& clip_path, const QString& style) {

@@ -31,6 +31,7 @@
 #include "contact_tracks.h"
 #include "error_text.h"
 #include "focused_keys.h"
+#include "item_view_layout.h"
 #include "live_resolution.h"
 #include "network_panel.h"
 #include "result_panel.h"
@@ -404,6 +405,7 @@ void MainWindow::refreshClipList() {
     for (int column = kFramesColumn; column < kMappingColumn; ++column)
       item->setTextAlignment(column, Qt::AlignRight | Qt::AlignVCenter);
   }
+  layOutItemsNow(*clip_list_);
   emit clipsChanged();
 }
 

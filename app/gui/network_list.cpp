@@ -18,6 +18,7 @@
 #include <filesystem>
 
 #include "error_text.h"
+#include "item_view_layout.h"
 #include "remembered_folder.h"
 #include "style/training.h"
 
@@ -324,6 +325,7 @@ void NetworkList::refresh() {
     item->setText(kCreated, created);
   }
   if (current >= 0 && current < networkCount()) tree_->setCurrentItem(tree_->topLevelItem(current));
+  layOutItemsNow(*tree_);
   updateButtons();
 }
 
