@@ -66,7 +66,8 @@ int main(int argc, char** argv) {
   parser.addOption(screenshot);
   parser.addOption(demo);
   parser.addOption(log);
-  parser.addPositionalArgument(QStringLiteral("files"), QStringLiteral("BVH clips to open."), QStringLiteral("[files...]"));
+  parser.addPositionalArgument(QStringLiteral("clips"), QStringLiteral("BVH clips, or folders of them, to open."),
+                               QStringLiteral("[clips or folders...]"));
   parser.process(app);
 
   const QString log_file = parser.isSet(log) ? parser.value(log) : qEnvironmentVariable("MOTIONSTYLE_LOG");
@@ -83,8 +84,7 @@ int main(int argc, char** argv) {
     });
   }
   window.show();
-  const QStringList files = parser.positionalArguments();
-  if (!files.isEmpty()) window.openFiles(files);
+  window.openPaths(parser.positionalArguments());
   if (parser.isSet(demo)) {
     const motionstyle::DemoOutcome outcome = motionstyle::openDemo(window, *window.resultPanel());
     window.showStatus(outcome.message);

@@ -463,17 +463,32 @@ void MainWindow::dragEnterEvent(QDragEnterEvent* event) {
 }
 
 void MainWindow::dropEvent(QDropEvent* event) {
-  QStringList files;
-  QStringList folders;
+  QStringList paths;  // folders and clips; anything else dropped with them is ignored
   for (const QUrl& url : event->mimeData()->urls()) {
-    if (!url.isLocalFile()) continue;
     const QString path = url.toLocalFile();
-    if (QFileInfo(path).isDir()) folders << path;
-    else if (isBvhPath(path)) files << path;
+    if (url.isLocalFile() && (QFileInfo(path).isDir() || isBvhPath(path))) paths << path;
   }
   event->acceptProposedAction();
-  if (!files.isEmpty()) openFiles(files);
-  for (const QString& folder : folders) openFolder(folder);
+  openPaths(paths);
+}
+
+int MainWindow::openPaths(const QStringList& paths) {
+  int loaded = 0;
+  QStringList files;
+  const auto openRun = [&] {
+    if (!files.isEmpty()) loaded += openFiles(files);
+    files.clear();
+  };
+  for (const QString& path : paths) {
+    if (!QFileInfo(path).isDir()) {
+      files << path;
+      continue;
+    }
+    openRun();
+    loaded += openFolder(path);
+  }
+  openRun();
+  return loaded;
 }
 
 bool MainWindow::openDemoScene() {

@@ -88,6 +88,9 @@ class MainWindow : public QMainWindow {
   int openFiles(const QStringList& paths);
   // Loads every *.bvh directly inside `folder`, in name order.
   int openFolder(const QString& folder);
+  // Files and folders in the order given (the command line, drag-and-drop): each run of files with
+  // openFiles, each folder with openFolder. Returns how many clips loaded.
+  int openPaths(const QStringList& paths);
   void setContentClip(int index);
   void setStyleClip(int index);
   void removeClip(int index);

@@ -183,6 +183,24 @@ class MainWindowTest : public QObject {
     QCOMPARE(window.clip(0).name, QStringLiteral("zombie.bvh"));
   }
 
+  // `motionstyle shots/ extra.bvh`: a folder on the command line is opened as a folder (it was read as
+  // a clip: "cannot read: it is a directory"), and the order given is kept.
+  void foldersAndClipsGivenTogetherAreOpenedInOrder() {
+    QTemporaryDir folder;
+    QFile::copy(test::fixture(QStringLiteral("zombie.bvh")), folder.filePath(QStringLiteral("b_zombie.bvh")));
+    QFile::copy(test::fixture(QStringLiteral("cmu_131_01.bvh")), folder.filePath(QStringLiteral("a_walk.bvh")));
+    MainWindow window;
+    std::vector<Report> reports;
+    window.setErrorReporter([&](const QString& title, const QString& message) { reports.push_back({title, message}); });
+    QCOMPARE(window.openPaths({test::fixture(QStringLiteral("zombie.bvh")), folder.path(),
+                               test::fixture(QStringLiteral("cmu_131_01.bvh"))}),
+             4);
+    QVERIFY(reports.empty());
+    const QStringList expected = {QStringLiteral("zombie.bvh"), QStringLiteral("a_walk.bvh"), QStringLiteral("b_zombie.bvh"),
+                                  QStringLiteral("cmu_131_01.bvh")};
+    for (int i = 0; i < expected.size(); ++i) QCOMPARE(window.clip(i).name, expected[i]);
+  }
+
   void openFolderLoadsEveryClipInNameOrder() {
     QTemporaryDir folder;
     QFile::copy(test::fixture(QStringLiteral("zombie.bvh")), folder.filePath(QStringLiteral("b_zombie.bvh")));
