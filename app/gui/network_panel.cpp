@@ -91,8 +91,11 @@ NetworkPanel::NetworkPanel(ClipRoles roles, QWidget* parent, bool persist_settin
   auto* bottom_layout = new QVBoxLayout(bottom);
   bottom_layout->setContentsMargins(0, 0, 0, 0);
   // Train, Retrain, Cancel and Resume stay in view under the (scrolling) form, next to the progress
-  // they start.
-  auto* run_buttons = new QHBoxLayout;
+  // they start; under the Optimise and Adapt forms, which have their own buttons, only while a
+  // training runs (updateButtons).
+  run_row_ = new QWidget(this);
+  auto* run_buttons = new QHBoxLayout(run_row_);
+  run_buttons->setContentsMargins(0, 0, 0, 0);
   const auto button = [&](const QString& text, const char* name, const QString& tip, auto on_click) {
     auto* made = new QPushButton(text, this);
     made->setObjectName(QString::fromLatin1(name));
@@ -108,7 +111,7 @@ NetworkPanel::NetworkPanel(ClipRoles roles, QWidget* parent, bool persist_settin
   cancel_button_ = button(tr("Cancel"), "CancelButton", tr("Stop; the last completed epoch is kept"), [this] { cancelJob(); });
   resume_button_ = button(tr("Res&ume"), "ResumeButton", tr("Continue the cancelled training from its last completed epoch"),
                           [this] { resumeTraining(); });
-  bottom_layout->addLayout(run_buttons);
+  bottom_layout->addWidget(run_row_);
   bottom_layout->addWidget(progress_bar_);
   bottom_layout->addWidget(status_label_);
   bottom_layout->addWidget(loss_curve_, 1);
@@ -120,6 +123,7 @@ NetworkPanel::NetworkPanel(ClipRoles roles, QWidget* parent, bool persist_settin
   auto* layout = new QVBoxLayout(this);
   layout->setContentsMargins(4, 4, 4, 4);
   layout->addWidget(splitter);
+  connect(tabs_, &QTabWidget::currentChanged, this, &NetworkPanel::updateButtons);
 
   // The loss network: the one last used if it is still there, else the shipped one, so that a first
   // training needs nothing but clips.
@@ -194,6 +198,8 @@ void NetworkPanel::updateButtons() {
   retrain_button_->setEnabled(!busy && has_current);
   cancel_button_->setEnabled(running_ == Running::Training);
   resume_button_->setEnabled(!busy && canResumeTraining());
+  const bool training_tab = tabs_->currentWidget() == network_list_ || tabs_->currentWidget()->isAncestorOf(train_tab_);
+  run_row_->setVisible(training_tab || running_ == Running::Training);
   optimise_tab_->setRunState(!busy, running_ == Running::Transfer);
   if (busy != busy_) {
     busy_ = busy;

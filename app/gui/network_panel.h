@@ -186,6 +186,7 @@ class NetworkPanel : public QWidget {
   bool busy_ = false;  // isBusy() as busyChanged() last said
 
   QTabWidget* tabs_ = nullptr;
+  QWidget* run_row_ = nullptr;  // Train, Retrain, Cancel, Resume
   NetworkList* network_list_ = nullptr;
   TrainTab* train_tab_ = nullptr;
   QPushButton* train_button_ = nullptr;

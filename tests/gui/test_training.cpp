@@ -689,6 +689,37 @@ class TrainingTest : public QObject {
     QCOMPARE(panel->progressBar()->format(), QStringLiteral("Idle"));
   }
 
+  // Train, Retrain, Cancel and Resume under the Optimise and Adapt forms, beside their own Optimise
+  // and Adapt buttons, read as the way to run those: they show there only while a training runs.
+  void theTrainingButtonsShowWhereTheyApply() {
+    auto window = makeWindow();
+    QVERIFY(window);
+    NetworkPanel* panel = window->networkPanel();
+    auto* tabs = panel->findChild<QTabWidget*>();
+    auto* train = panel->findChild<QPushButton*>(QStringLiteral("TrainButton"));
+    auto* cancel = panel->findChild<QPushButton*>(QStringLiteral("CancelButton"));
+    QVERIFY(tabs != nullptr && train != nullptr && cancel != nullptr);
+    const auto shownOn = [&](const QString& tab) {
+      for (int i = 0; i < tabs->count(); ++i)
+        if (tabs->tabText(i).remove(QLatin1Char('&')) == tab) tabs->setCurrentIndex(i);
+      return train->isVisibleTo(panel) && cancel->isVisibleTo(panel);
+    };
+    QVERIFY(shownOn(QStringLiteral("Networks")));
+    QVERIFY(shownOn(QStringLiteral("Train")));
+    QVERIFY(!shownOn(QStringLiteral("Optimise")));
+    QVERIFY(!shownOn(QStringLiteral("Adapt")));
+    window->setTrainingClip(0, true);
+    window->setTrainingClip(1, true);
+    panel->setLossNetworkFile(loss_network_);
+    setTinyForm(panel, 100000);
+    QSignalSpy finished(panel, &NetworkPanel::jobFinished);
+    QVERIFY(panel->startTraining(false));  // shows the Train tab
+    QVERIFY(shownOn(QStringLiteral("Adapt")));  // its Cancel stays in reach
+    cancel->click();
+    QVERIFY(finished.wait(kJobTimeoutMs));
+    QVERIFY(!shownOn(QStringLiteral("Adapt")));
+  }
+
   void closingDuringTrainingAsksAndStopsCleanly() {
     auto window = makeWindow();
     QVERIFY(window);
