@@ -192,4 +192,26 @@ ContactTracks loadContactTracks(const std::filesystem::path& file) {
   return parseContactTracks(content.str(), file.string());
 }
 
+namespace {
+std::string formatFps(double fps) {
+  std::ostringstream text;
+  text << fps;  // 120, 29.97
+  return text.str();
+}
+}  // namespace
+
+Eigen::MatrixXi contactOverridesFromTracks(const ContactTracks& tracks, const ContactLabels& detected, double fps,
+                                           const std::filesystem::path& file) {
+  if (tracks.labels.rows() != detected.rows() || std::abs(tracks.fps - fps) > 1e-3 * fps)
+    throw InputError(file.string(), 0,
+                     "holds " + std::to_string(tracks.labels.rows()) + " frames at " + formatFps(tracks.fps) +
+                         " fps, the clip " + std::to_string(detected.rows()) + " at " + formatFps(fps));
+  Eigen::MatrixXi overrides =
+      tracks.overrides.size() > 0 ? tracks.overrides : Eigen::MatrixXi::Constant(tracks.labels.rows(), kContactCount, -1);
+  for (Eigen::Index f = 0; f < overrides.rows(); ++f)
+    for (Eigen::Index k = 0; k < overrides.cols(); ++k)
+      if (overrides(f, k) < 0 && tracks.labels(f, k) != detected(f, k)) overrides(f, k) = tracks.labels(f, k);
+  return overrides;
+}
+
 }  // namespace motionstyle

@@ -46,4 +46,11 @@ void saveContactTracks(const ContactTracks& tracks, const std::filesystem::path&
 ContactTracks parseContactTracks(std::string_view text, const std::string& source_name);
 ContactTracks loadContactTracks(const std::filesystem::path& file);
 
+// The clip's overrides (frames x 4, -1/0/1) that `tracks` means against today's detection `detected`
+// (frames x 4, 0/1): its overrides, and where a frame has none but its saved label differs from the
+// detection, that label, so that a file edited by hand (tracks only) still says what it says. Throws
+// InputError naming `file` when the tracks are not of a clip with `detected`'s frames at `fps`.
+Eigen::MatrixXi contactOverridesFromTracks(const ContactTracks& tracks, const ContactLabels& detected, double fps,
+                                           const std::filesystem::path& file);
+
 }  // namespace motionstyle

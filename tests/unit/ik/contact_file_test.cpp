@@ -106,6 +106,32 @@ TEST(ContactFile, SavingInvalidTracksLeavesTheOldFileIntact) {
   EXPECT_EQ(loadContactTracks(file).labels, tracks.labels);
 }
 
+TEST(ContactFile, TracksOfAnotherClipGiveNoOverrides) {
+  const ContactTracks tracks = parseContactTracks(kValid, "test");  // 5 frames at 60 fps
+  std::string message;
+  try {
+    contactOverridesFromTracks(tracks, ContactLabels::Zero(6, kContactCount), 60.0, "walk.bvh.contacts.json");
+  } catch (const InputError& error) {
+    message = error.what();
+  }
+  EXPECT_NE(message.find("walk.bvh.contacts.json"), std::string::npos) << message;
+  EXPECT_NE(message.find("5 frames at 60 fps, the clip 6 at 60"), std::string::npos) << message;
+  EXPECT_THROW(contactOverridesFromTracks(tracks, ContactLabels::Zero(5, kContactCount), 30.0, "x"), InputError);
+}
+
+TEST(ContactFile, OverridesAreTheFilesAndWhereItsTracksDisagreeWithTheDetection) {
+  const ContactTracks tracks = parseContactTracks(kValid, "test");
+  ContactLabels detected = tracks.labels;
+  detected(4, 1) = 0;  // the file says 1 there, with no override: that is what it means
+  detected(0, 3) = 0;  // the file overrides this frame itself (0): kept
+  const Eigen::MatrixXi overrides = contactOverridesFromTracks(tracks, detected, 60.0, "test");
+  EXPECT_EQ(overrides(2, 0), 1);   // the file's override
+  EXPECT_EQ(overrides(0, 3), 0);   // the file's override
+  EXPECT_EQ(overrides(4, 1), 1);   // a saved label the detection no longer gives
+  EXPECT_EQ(overrides(1, 1), -1);  // agrees with the detection: automatic
+  EXPECT_EQ((overrides.array() >= 0).count(), 3);
+}
+
 TEST(ContactFile, ParsesLabelsAndOverrides) {
   const ContactTracks tracks = parseContactTracks(kValid, "test");
   EXPECT_EQ(tracks.fps, 60.0);

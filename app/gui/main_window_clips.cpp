@@ -1,0 +1,122 @@
+// MainWindow: opening clips (the File menu, the command line, drag-and-drop, folders) and keeping
+// the user's contact edits (saved beside each clip, asked about before they could be lost).
+#include "main_window.h"
+
+#include <QDir>
+#include <QDragEnterEvent>
+#include <QDropEvent>
+#include <QFileInfo>
+#include <QMimeData>
+#include <QProgressDialog>
+#include <QUrl>
+
+#include "error_text.h"
+
+namespace motionstyle {
+namespace {
+
+bool isBvhPath(const QString& path) { return path.endsWith(QStringLiteral(".bvh"), Qt::CaseInsensitive); }
+
+}  // namespace
+
+int MainWindow::openFiles(const QStringList& paths) { return loadClips(paths, nullptr); }
+
+int MainWindow::loadClips(const QStringList& paths, QProgressDialog* progress) {
+  QStringList failures;
+  QStringList loaded;
+  bool cancelled = false;
+  for (qsizetype i = 0; i < paths.size(); ++i) {
+    if (progress) {
+      if (progress->wasCanceled()) {
+        cancelled = true;
+        break;
+      }
+      progress->setValue(static_cast<int>(i));
+    }
+    const QString& path = paths[i];
+    try {
+      clips_.push_back(loadClip(std::filesystem::path(path.toStdString())));
+      loaded << clips_.back().path;
+      if (content_ < 0) content_ = clipCount() - 1;
+      else if (style_ < 0) style_ = clipCount() - 1;
+    } catch (...) {
+      failures << errorText(std::current_exception(), path);
+    }
+  }
+  if (progress) progress->setValue(progress->maximum());
+  if (!loaded.isEmpty()) {
+    rememberRecent(loaded);
+    clipFolder().remember(QFileInfo(loaded.back()).absolutePath());
+    refreshClipList();
+    rebuildFigures();
+  }
+  showStatus((loaded.size() == 1 ? tr("Loaded 1 clip") : tr("Loaded %1 clips").arg(loaded.size())) +
+             (failures.isEmpty() ? QString() : tr(", %1 failed").arg(failures.size())) +
+             (cancelled ? tr("; cancelled") : QString()));
+  if (!failures.isEmpty())
+    report(failures.size() == 1 ? tr("Could not open the clip") : tr("Could not open %1 clips").arg(failures.size()),
+           failures.join(QStringLiteral("\n\n")));
+  return static_cast<int>(loaded.size());
+}
+
+int MainWindow::openFolder(const QString& folder) {
+  const QDir dir(folder);
+  if (!dir.exists()) {
+    report(tr("Could not open the folder"), tr("%1 does not exist.").arg(folder));
+    return 0;
+  }
+  QStringList files;
+  for (const QFileInfo& info : dir.entryInfoList({QStringLiteral("*.bvh"), QStringLiteral("*.BVH")}, QDir::Files, QDir::Name))
+    files << info.absoluteFilePath();
+  files.removeDuplicates();
+  clipFolder().remember(dir.absolutePath());
+  if (files.isEmpty()) {
+    report(tr("No clips found"), tr("%1 holds no .bvh files.").arg(dir.absolutePath()));
+    return 0;
+  }
+  // A large folder takes a while: a cancellable progress dialog; one refresh and one report at the end.
+  QProgressDialog progress(tr("Loading clips..."), tr("Cancel"), 0, static_cast<int>(files.size()), this);
+  progress.setWindowModality(Qt::WindowModal);
+  progress.setMinimumDuration(500);
+  return loadClips(files, &progress);
+}
+
+void MainWindow::dragEnterEvent(QDragEnterEvent* event) {
+  for (const QUrl& url : event->mimeData()->urls()) {
+    if (url.isLocalFile() && (isBvhPath(url.toLocalFile()) || QFileInfo(url.toLocalFile()).isDir())) {
+      event->acceptProposedAction();
+      return;
+    }
+  }
+}
+
+void MainWindow::dropEvent(QDropEvent* event) {
+  QStringList paths;  // folders and clips; anything else dropped with them is ignored
+  for (const QUrl& url : event->mimeData()->urls()) {
+    const QString path = url.toLocalFile();
+    if (url.isLocalFile() && (QFileInfo(path).isDir() || isBvhPath(path))) paths << path;
+  }
+  event->acceptProposedAction();
+  openPaths(paths);
+}
+
+int MainWindow::openPaths(const QStringList& paths) {
+  int loaded = 0;
+  QStringList files;
+  const auto openRun = [&] {
+    if (!files.isEmpty()) loaded += openFiles(files);
+    files.clear();
+  };
+  for (const QString& path : paths) {
+    if (!QFileInfo(path).isDir()) {
+      files << path;
+      continue;
+    }
+    openRun();
+    loaded += openFolder(path);
+  }
+  openRun();
+  return loaded;
+}
+
+}  // namespace motionstyle
