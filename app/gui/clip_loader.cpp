@@ -1,6 +1,7 @@
 #include "clip_loader.h"
 
 #include <QFileInfo>
+#include <QObject>
 #include <QStringList>
 
 #include <algorithm>
@@ -10,6 +11,7 @@
 
 #include "bvh/bvh_reader.h"
 #include "features/foot_contacts.h"
+#include "ik/contact_file.h"
 #include "features/representation.h"
 #include "features/rest_pose_frames.h"
 #include "common/errors.h"
@@ -38,6 +40,7 @@ void prepare(LoadedClip& clip) {
   const Eigen::MatrixXd world = worldPositions(clip.motion);
   clip.detected_contacts.resize(0, 0);
   clip.contact_overrides.resize(0, 0);
+  clip.saved_contact_overrides.resize(0, 0);
   if (clip.mapping) {
     requireMeasurableRestPose(clip.motion, *clip.mapping);  // InputError: a flat skeleton is not loaded
     // The convention, floor and contacts as every clean-up front end finds them (foot_contacts.h), on
@@ -60,6 +63,7 @@ void prepare(LoadedClip& clip) {
     clip.display_space.floor_height = ground.floor_height;
     clip.detected_contacts = std::move(ground.contacts);
     clip.contact_overrides = Eigen::MatrixXi::Constant(clip.detected_contacts.rows(), kContactCount, -1);
+    clip.saved_contact_overrides = clip.contact_overrides;
   } else {
     clip.display_space = unmappedDisplaySpace(clip.motion, world);
   }
@@ -101,7 +105,41 @@ LoadedClip loadClip(const std::filesystem::path& file) {
     clip.mapping_problem = missingJoints(clip.motion.skeleton);
   }
   prepare(clip);
+  if (clip.isMapped() && std::filesystem::exists(contactTracksPath(file))) {
+    const QString tracks_name = QString::fromStdString(contactTracksPath(file).filename().string());
+    try {
+      loadContactTracksBeside(clip);
+      clip.contacts_note = QObject::tr("contacts from %1").arg(tracks_name);
+    } catch (const InputError& error) {
+      clip.contacts_note = QObject::tr("%1 not used: %2").arg(tracks_name, QString::fromStdString(error.what()));
+    }
+  }
   return clip;
+}
+
+bool LoadedClip::hasUnsavedContactEdits() const {
+  return contact_overrides.size() > 0 && (contact_overrides.rows() != saved_contact_overrides.rows() ||
+                                          contact_overrides.cols() != saved_contact_overrides.cols() ||
+                                          contact_overrides != saved_contact_overrides);
+}
+
+void loadContactTracksBeside(LoadedClip& clip) {
+  const std::filesystem::path file = contactTracksPath(clip.path.toStdString());
+  if (!clip.isMapped()) throw InputError(file.string(), 0, "the clip's rig is not mapped: it has no foot contacts");
+  Eigen::MatrixXi overrides = contactOverridesFromTracks(loadContactTracks(file), clip.detected_contacts, clip.fps(), file);
+  clip.contact_overrides = overrides;
+  clip.saved_contact_overrides = std::move(overrides);
+}
+
+void saveContactTracksBeside(LoadedClip& clip) {
+  const std::filesystem::path file = contactTracksPath(clip.path.toStdString());
+  if (!clip.isMapped()) throw InputError(file.string(), 0, "the clip's rig is not mapped: it has no foot contacts");
+  ContactTracks tracks;
+  tracks.fps = clip.fps();
+  tracks.labels = clip.effectiveContacts();
+  tracks.overrides = clip.contact_overrides;
+  saveContactTracks(tracks, file);
+  clip.saved_contact_overrides = clip.contact_overrides;
 }
 
 void remapClip(LoadedClip& clip, const std::filesystem::path& mapping_file) {

@@ -37,6 +37,11 @@ struct LoadedClip {
   // and speed; empty when unmapped. Overrides: same shape, -1 automatic / 0 off / 1 on (user edits).
   ContactLabels detected_contacts;
   Eigen::MatrixXi contact_overrides;
+  // The overrides as the file beside the clip holds them (ik/contact_file.h; all automatic when there
+  // is none): what differs is the user's unsaved work. contacts_note: what loadClip did with that file
+  // ("contacts from walk.bvh.contacts.json", or why it was not used); empty when there is none.
+  Eigen::MatrixXi saved_contact_overrides;
+  QString contacts_note;
   // Leading frames that are the rig's rest pose, not motion (a CMU file's T-pose frame 0): the features,
   // the contacts and the clean-up see the motion continued over them (features/rest_pose_frames.h).
   int rest_pose_frames = 0;
@@ -50,11 +55,22 @@ struct LoadedClip {
   QString mappingStatus() const;
   // Detected contacts with the overrides applied (frames x 4); empty when unmapped.
   ContactLabels effectiveContacts() const;
+  // True when the contact overrides differ from those saved beside the clip.
+  bool hasUnsavedContactEdits() const;
 };
 
+// Reads the contact tracks saved beside `clip` (contactTracksPath) as its overrides, which are then
+// saved. Throws InputError naming the file (unreadable, malformed, or of another clip: frames, rate)
+// or when the clip is not mapped; the clip is unchanged then.
+void loadContactTracksBeside(LoadedClip& clip);
+// Writes the clip's effective contacts and overrides beside it, atomically; they are saved then.
+// Throws WriteError (the old file stays intact) or InputError when the clip is not mapped.
+void saveContactTracksBeside(LoadedClip& clip);
+
 // Reads and prepares a BVH file. A rig that cannot be mapped still loads (unmapped, shown with a best
-// -effort display space). Throws InputError (bad or unreadable file) and std::bad_alloc; never leaves
-// a partial clip.
+// -effort display space). Contact tracks saved beside it are its overrides (a file that does not fit
+// is left alone and named in contacts_note). Throws InputError (bad or unreadable file) and
+// std::bad_alloc; never leaves a partial clip.
 LoadedClip loadClip(const std::filesystem::path& file);
 
 // Maps `clip` with a mapping file (mapping/mapping_file.h) and recomputes its display space and

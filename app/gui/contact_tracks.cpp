@@ -92,12 +92,8 @@ bool ContactTrackController::saveTracks() {
     reporter_(tr("Could not save the contact tracks"), tr("There is no mapped content clip."));
     return false;
   }
-  ContactTracks tracks;
-  tracks.fps = clip->fps();
-  tracks.labels = clip->effectiveContacts();
-  tracks.overrides = clip->contact_overrides;
   try {
-    saveContactTracks(tracks, contactTracksPath(clip->path.toStdString()));
+    saveContactTracksBeside(*clip);
   } catch (const std::exception& error) {
     reporter_(tr("Could not save the contact tracks"), QString::fromStdString(error.what()));
     return false;
@@ -112,21 +108,8 @@ bool ContactTrackController::loadTracks() {
     reporter_(title, tr("There is no mapped content clip."));
     return false;
   }
-  const std::filesystem::path file = contactTracksPath(clip->path.toStdString());
   try {
-    const ContactTracks tracks = loadContactTracks(file);
-    if (tracks.labels.rows() != clip->frameCount() || std::abs(tracks.fps - clip->fps()) > 1e-3 * clip->fps())
-      throw InputError(file.string(), 0, "holds " + std::to_string(tracks.labels.rows()) + " frames at " +
-                                             std::to_string(tracks.fps) + " fps, the clip " +
-                                             std::to_string(clip->frameCount()) + " at " + std::to_string(clip->fps()));
-    // Frames whose saved label differs from today's detection are kept as overrides too, so that a
-    // file edited by hand (tracks only) still means what it says.
-    Eigen::MatrixXi overrides = tracks.overrides.size() > 0 ? tracks.overrides
-                                                            : Eigen::MatrixXi::Constant(tracks.labels.rows(), kContactCount, -1);
-    for (Eigen::Index f = 0; f < overrides.rows(); ++f)
-      for (Eigen::Index k = 0; k < overrides.cols(); ++k)
-        if (overrides(f, k) < 0 && tracks.labels(f, k) != clip->detected_contacts(f, k)) overrides(f, k) = tracks.labels(f, k);
-    clip->contact_overrides = overrides;
+    loadContactTracksBeside(*clip);
   } catch (const std::exception& error) {
     reporter_(title, QString::fromStdString(error.what()));
     return false;

@@ -56,6 +56,9 @@ MainWindow::MainWindow(bool persist_settings, QWidget* parent)
   confirmer_ = [this](const QString& title, const QString& question) {
     return QMessageBox::question(this, title, question, QMessageBox::Yes | QMessageBox::Cancel) == QMessageBox::Yes;
   };
+  choice_asker_ = [this](const QString& title, const QString& question, QMessageBox::StandardButtons buttons) {
+    return QMessageBox::question(this, title, question, buttons);
+  };
 
   viewport_ = new SkeletonViewport(this);
   live_resolution_ = new LiveResolution(viewport_, this);
@@ -225,7 +228,7 @@ void MainWindow::setStyleClip(int index) {
 }
 
 void MainWindow::removeClip(int index) {
-  if (index < 0 || index >= clipCount()) return;
+  if (index < 0 || index >= clipCount() || !keepContactEdits({index})) return;
   clips_.erase(clips_.begin() + index);
   const auto shift = [index](int& role) { role = role == index ? -1 : (role > index ? role - 1 : role); };
   shift(content_);
@@ -369,7 +372,14 @@ void MainWindow::report(const QString& title, const QString& message) {
 }
 
 void MainWindow::closeEvent(QCloseEvent* event) {
-  // A running training asks, then cancels cleanly; unsaved networks ask before they are lost.
+  // Unsaved contact edits, a running training and unsaved networks ask before they are lost.
+  std::vector<int> edited;
+  for (int i = 0; i < clipCount(); ++i)
+    if (clip(i).hasUnsavedContactEdits()) edited.push_back(i);
+  if (!keepContactEdits(edited)) {
+    event->ignore();
+    return;
+  }
   if (network_panel_ != nullptr && !network_panel_->prepareToClose()) {
     event->ignore();
     return;

@@ -10,6 +10,7 @@
 // which tests replace; the window stays usable after any failed load.
 
 #include <QMainWindow>
+#include <QMessageBox>
 #include <QStringList>
 
 #include <functional>
@@ -42,6 +43,9 @@ class MainWindow : public QMainWindow {
   using ErrorReporter = std::function<void(const QString& title, const QString& message)>;
   // Asks before an action replaces what the user set up; true = go ahead (default: a Yes/No box).
   using Confirmer = std::function<bool(const QString& title, const QString& question)>;
+  // Asks with a choice of buttons (unsaved contact edits: Save, Discard, Cancel); returns the answer.
+  using ChoiceAsker = std::function<QMessageBox::StandardButton(const QString& title, const QString& question,
+                                                                QMessageBox::StandardButtons buttons)>;
   static constexpr int kMaxRecentFiles = 8;
 
   // persist_settings = false leaves QSettings untouched (screenshots, tests): no geometry restore, no
@@ -51,6 +55,7 @@ class MainWindow : public QMainWindow {
 
   void setErrorReporter(ErrorReporter reporter);
   void setConfirmer(Confirmer confirmer) { confirmer_ = std::move(confirmer); }
+  void setChoiceAsker(ChoiceAsker asker) { choice_asker_ = std::move(asker); }
 
   // Help > Open Demo (demo_scene.h): sample clips as content and style, the bundled style selected.
   // With clips or a result already there it asks first (the roles and the result change); false when
@@ -116,6 +121,9 @@ class MainWindow : public QMainWindow {
   // refresh, one status line for all of them and one report of every failure.
   int loadClips(const QStringList& paths, QProgressDialog* progress);
   void refreshClipList();
+  // Before the contact edits of `clips` (indices) could be lost (closing, removing a clip): asks to
+  // save them beside their clips, or to discard them. False when the user cancels or a save fails.
+  bool keepContactEdits(const std::vector<int>& clips);
   void rememberRecent(const QStringList& files);
   void rebuildRecentMenu();
   void showClipMenu(const QPoint& position);
@@ -136,6 +144,7 @@ class MainWindow : public QMainWindow {
   bool persist_settings_;
   ErrorReporter reporter_;
   Confirmer confirmer_;
+  ChoiceAsker choice_asker_;
   std::vector<LoadedClip> clips_;
   int content_ = -1;
   int style_ = -1;

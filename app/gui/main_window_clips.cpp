@@ -50,9 +50,13 @@ int MainWindow::loadClips(const QStringList& paths, QProgressDialog* progress) {
     refreshClipList();
     rebuildFigures();
   }
+  QStringList contact_notes;  // contacts read from the files beside the clips, or why not
+  for (int i = clipCount() - static_cast<int>(loaded.size()); i < clipCount(); ++i)
+    if (!clip(i).contacts_note.isEmpty()) contact_notes << clip(i).contacts_note;
   showStatus((loaded.size() == 1 ? tr("Loaded 1 clip") : tr("Loaded %1 clips").arg(loaded.size())) +
              (failures.isEmpty() ? QString() : tr(", %1 failed").arg(failures.size())) +
-             (cancelled ? tr("; cancelled") : QString()));
+             (cancelled ? tr("; cancelled") : QString()) +
+             (contact_notes.isEmpty() ? QString() : QStringLiteral("; ") + contact_notes.join(QStringLiteral("; "))));
   if (!failures.isEmpty())
     report(failures.size() == 1 ? tr("Could not open the clip") : tr("Could not open %1 clips").arg(failures.size()),
            failures.join(QStringLiteral("\n\n")));
@@ -117,6 +121,31 @@ int MainWindow::openPaths(const QStringList& paths) {
   }
   openRun();
   return loaded;
+}
+
+bool MainWindow::keepContactEdits(const std::vector<int>& clips) {
+  QStringList names;
+  for (int i : clips)
+    if (clip(i).hasUnsavedContactEdits()) names << clip(i).name;
+  if (names.isEmpty()) return true;
+  const QMessageBox::StandardButton answer = choice_asker_(
+      tr("Unsaved contact edits"),
+      tr("The foot contacts you edited on %1 are not saved.\n\nSave them beside the clip (as .contacts.json, which "
+         "the clean-up reads), or discard them?", nullptr, static_cast<int>(names.size()))
+          .arg(names.join(QStringLiteral(", "))),
+      QMessageBox::Save | QMessageBox::Discard | QMessageBox::Cancel);
+  if (answer == QMessageBox::Discard) return true;
+  if (answer != QMessageBox::Save) return false;
+  for (int i : clips) {
+    if (!clip(i).hasUnsavedContactEdits()) continue;
+    try {
+      saveContactTracksBeside(clips_[static_cast<size_t>(i)]);
+    } catch (...) {
+      report(tr("Could not save the contact tracks"), errorText(std::current_exception(), clip(i).path));
+      return false;
+    }
+  }
+  return true;
 }
 
 }  // namespace motionstyle

@@ -24,6 +24,9 @@
 #include <QWheelEvent>
 
 #include "bvh/bvh_reader.h"
+#include "contact_tracks.h"
+#include "ik/contact_file.h"
+#include "track_view.h"
 #include "gui_test_support.h"
 #include "main_window.h"
 #include "network_panel.h"
@@ -199,6 +202,76 @@ class MainWindowTest : public QObject {
     const QStringList expected = {QStringLiteral("zombie.bvh"), QStringLiteral("a_walk.bvh"), QStringLiteral("b_zombie.bvh"),
                                   QStringLiteral("cmu_131_01.bvh")};
     for (int i = 0; i < expected.size(); ++i) QCOMPARE(window.clip(i).name, expected[i]);
+  }
+
+  // Nothing the user owns is lost: contact edits (the timeline's foot tracks) are asked about before a
+  // clip is removed or the window closes (they were dropped without a word), and tracks saved beside a
+  // clip are its contacts when it is opened again (the CLI's clean-up read them; the app did not).
+  void contactEditsAreKeptOrAskedAbout() {
+    QTemporaryDir folder;
+    const QString clip = folder.filePath(QStringLiteral("walk.bvh"));
+    QVERIFY(QFile::copy(test::fixture(QStringLiteral("zombie.bvh")), clip));
+    const QString saved = clip + QStringLiteral(".contacts.json");
+    std::vector<QString> questions;
+    QMessageBox::StandardButton answer = QMessageBox::Cancel;
+    const auto openWindow = [&] {
+      auto window = std::make_unique<MainWindow>(false);
+      window->setChoiceAsker([&](const QString&, const QString& question, QMessageBox::StandardButtons buttons) {
+        questions.push_back(question);
+        return (buttons & answer) ? answer : QMessageBox::Cancel;
+      });
+      window->show();
+      return window;
+    };
+    const auto paintLeftFoot = [](MainWindow& window, bool on) {
+      emit window.timeline()->trackView()->trackEdited(ContactTrackController::kLeftFootTrack, 10, 40, on);
+    };
+
+    auto window = openWindow();
+    QCOMPARE(window->openFiles({clip}), 1);
+    QVERIFY(!window->clip(0).hasUnsavedContactEdits());
+    QVERIFY(window->close());  // nothing edited: no question
+    QVERIFY(questions.empty());
+
+    window = openWindow();
+    QCOMPARE(window->openFiles({clip}), 1);
+    paintLeftFoot(*window, false);
+    QVERIFY(window->clip(0).hasUnsavedContactEdits());
+    answer = QMessageBox::Cancel;
+    window->removeClip(0);
+    QCOMPARE(window->clipCount(), 1);  // cancelled: kept
+    QVERIFY(!window->close());
+    QCOMPARE(questions.size(), size_t{2});
+    QVERIFY2(questions.back().contains(QStringLiteral("walk.bvh")), qPrintable(questions.back()));
+    answer = QMessageBox::Save;
+    QVERIFY(window->close());
+    QVERIFY(QFile::exists(saved));
+    const Eigen::MatrixXi edited = window->clip(0).contact_overrides;
+    const double fps = window->clip(0).fps();
+
+    // Opened again: the saved edits are its contacts, and the status line says where they came from.
+    window = openWindow();
+    QCOMPARE(window->openFiles({clip}), 1);
+    QCOMPARE(window->clip(0).contact_overrides, edited);
+    QVERIFY(!window->clip(0).hasUnsavedContactEdits());
+    QVERIFY2(test::statusLine(*window).contains(QStringLiteral("contacts from walk.bvh.contacts.json")),
+             qPrintable(test::statusLine(*window)));
+    // Discarded: the file keeps the saved edits.
+    paintLeftFoot(*window, true);
+    answer = QMessageBox::Discard;
+    window->removeClip(0);
+    QCOMPARE(window->clipCount(), 0);
+    QCOMPARE(loadContactTracks(saved.toStdString()).overrides, edited);
+
+    // Tracks of another take (other frames) are left alone, and the status line says why.
+    ContactTracks other;
+    other.fps = fps;
+    other.labels = ContactLabels::Zero(7, kContactCount);
+    saveContactTracks(other, saved.toStdString());
+    QCOMPARE(window->openFiles({clip}), 1);
+    QVERIFY((window->clip(0).contact_overrides.array() == -1).all());
+    QVERIFY2(test::statusLine(*window).contains(QStringLiteral("walk.bvh.contacts.json not used")),
+             qPrintable(test::statusLine(*window)));
   }
 
   void openFolderLoadsEveryClipInNameOrder() {
