@@ -17,6 +17,7 @@
 #include "cli_args.h"
 #include "commands.h"
 #include "common/errors.h"
+#include "ik/contact_file.h"
 #include "nn/loss_network.h"
 #include "style/motion_dataset.h"
 #include "style/position_clip.h"
@@ -92,7 +93,9 @@ int runStylize(const Args& args) {
 
   if (isBatch(parsed.positional)) {
     const std::vector<BatchItem> items = batchItems(parsed.positional, out, request.output.metrics);
-    prepareBatchOutputs(items, networks);
+    std::vector<NamedPath> extra = networks;
+    for (const BatchItem& item : items) extra.push_back({contactTracksPath(item.input), "the clip's contact tracks"});
+    prepareBatchOutputs(items, extra);
     const std::shared_ptr<const style::Stylizer> stylizer = loadStylizer(request);
     request.output.cleanup_threads = 1;  // --jobs says how many cores: one per clip
     return runBatch(items, jobsOption(parsed), [&](const BatchItem& item) {
@@ -102,6 +105,7 @@ int runStylize(const Args& args) {
   const std::filesystem::path input = parsed.positional[0];
   std::vector<NamedPath> inputs = networks;
   inputs.insert(inputs.begin(), {input, "the input clip"});
+  inputs.push_back({contactTracksPath(input), "the clip's contact tracks"});
   checkOutputPaths(inputs, outputPaths(request.output, out));
   const std::shared_ptr<const style::Stylizer> stylizer = loadStylizer(request);
   std::cout << stylizeFile(*stylizer, request, input, out, request.output.metrics) << "\n";

@@ -7,7 +7,11 @@
 #include "bvh/bvh_reader.h"
 #include "bvh/bvh_writer.h"
 #include "common/atomic_file.h"
+#include "features/foot_contacts.h"
+#include "features/representation.h"
+#include "features/rest_pose_frames.h"
 #include "features/root_path.h"
+#include "ik/contact_file.h"
 #include "ik/metrics.h"
 #include "motion/kinematics.h"
 #include "motion/resample.h"
@@ -91,6 +95,18 @@ void writeStylizedOutput(const std::filesystem::path& content_file, const style:
   if (options.fps > 0.0) requireResampleableTo(content, options.fps);
   job.mapping = mapJoints(content.skeleton, content_file.string());
   job.stylized = stylized;
+  // The user's contact edits saved beside the clip (the app's Save Contact Tracks) rule the locks, as
+  // in the app and in cleanup: read against the contacts detected as they detect them.
+  const std::filesystem::path tracks_file = contactTracksPath(content_file);
+  if (std::filesystem::exists(tracks_file)) {
+    Motion continued = content;  // over a leading rest pose, the motion continued (rest_pose_frames.h)
+    replaceRestPoseFrames(continued, leadingRestPoseFrames(content, job.mapping));
+    const ContactLabels detected = detectFileSpaceGround(continued, job.mapping, canonicalJointPositions(continued, job.mapping),
+                                                         stylized.anchor.convention.unit)
+                                       .contacts;
+    job.contact_overrides = contactOverridesFromTracks(loadContactTracks(tracks_file), detected, content.fps(), tracks_file);
+    log << "contacts from " << tracks_file.string() << "\n";
+  }
   job.options.max_total_seconds = options.time_limit_seconds;
   job.options.threads = options.cleanup_threads;
   job.output_fps = options.fps;

@@ -103,6 +103,28 @@ expect 0 "721 frames" "$cli" stylize --net "$work/style.net" "$work/rest_pose.bv
 [ "$(first_frame "$work/rest_styled.bvh")" = "$(first_frame "$work/rest_pose.bvh")" ] || fail "stylize changed the rest-pose frame"
 [ "$(first_frame "$work/rest_styled.bvh")" != "$(first_frame "$data/cmu_131_01.bvh")" ] || fail "the test clip has no rest pose"
 
+# Foot contacts saved beside a clip (the app's Save Contact Tracks) decide the locks of cleanup and
+# stylize (stylize ignored them). Here every track off: no foot is locked anywhere.
+cp "$data/zombie.bvh" "$work/tracked.bvh"
+expect 0 "wrote" "$cli" stylize --net "$work/style.net" "$work/tracked.bvh" --out "$work/tracked_detected.bvh"
+python3 - "$work/tracked.bvh" <<'PY'
+import json, sys
+text = open(sys.argv[1]).read()
+frames = int(text.split("Frames:")[1].split()[0])
+fps = 1.0 / float(text.split("Frame Time:")[1].split()[0])
+tracks = {name: "0" * frames for name in ("LeftHeel", "LeftToe", "RightHeel", "RightToe")}
+json.dump({"format": "motionstyle-contacts", "version": 1, "fps": fps, "frames": frames, "tracks": tracks},
+          open(sys.argv[1] + ".contacts.json", "w"))
+PY
+expect 0 "contacts from $work/tracked.bvh.contacts.json" "$cli" stylize --net "$work/style.net" "$work/tracked.bvh" \
+  --out "$work/tracked_edited.bvh"
+cmp -s "$work/tracked_detected.bvh" "$work/tracked_edited.bvh" && fail "stylize ignored the contact tracks beside the clip"
+expect 0 "contacts from $work/tracked.bvh.contacts.json" "$cli" cleanup "$work/tracked.bvh" --out "$work/tracked_clean.bvh"
+# Tracks of another take (other frames): exit 2 naming the file, nothing written.
+sed -i 's/"frames": [0-9]*/"frames": 5/; s/"0\{5,\}"/"00000"/g' "$work/tracked.bvh.contacts.json"
+expect 2 "tracked.bvh.contacts.json" "$cli" stylize --net "$work/style.net" "$work/tracked.bvh" --out "$work/tracked_other.bvh"
+[ -e "$work/tracked_other.bvh" ] && fail "stylize wrote with the contact tracks of another take"
+
 expect 2 "no-such" "$cli" adapt --loss-network "$work/ae.net" --data "$work/no-such" --out "$work/adapted.net" --threads 1
 expect 2 "--out" "$cli" adapt --loss-network "$work/ae.net" --data "$data/cmu_131_01.bvh"
 expect 0 "before -> after" "$cli" adapt --loss-network "$work/ae.net" --data "$data/cmu_131_01.bvh" --out "$work/adapted.net" \
