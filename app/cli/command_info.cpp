@@ -10,7 +10,9 @@
 #include "bvh/bvh_reader.h"
 #include "cli_args.h"
 #include "commands.h"
+#include "common/atomic_file.h"
 #include "common/errors.h"
+#include "common/output_paths.h"
 #include "features/representation.h"
 #include "mapping/canonical_joints.h"
 #include "mapping/joint_mapping.h"
@@ -174,11 +176,30 @@ bool isNetworkFile(const std::string& path) {
   return in.gcount() == static_cast<std::streamsize>(sizeof magic) && std::string(magic, sizeof magic) == "MSTYLNET";
 }
 
+// --write-mapping: the automatic mapping of the clip's rig as a file to complete (mapping_file.h).
+int writeMappingTemplate(const std::string& clip, const std::filesystem::path& out) {
+  checkOutputPaths({{clip, "the clip"}}, {{out, "--write-mapping"}});
+  const Skeleton skeleton = readBvh(clip).skeleton;
+  const JointMapping guess = guessJointMapping(skeleton);
+  writeFileAtomically(out, formatJointMappingTemplate(guess, skeleton, std::filesystem::path(clip).filename().string()));
+  std::string missing;
+  for (CanonicalJoint joint : guess.missing()) missing += (missing.empty() ? "" : ", ") + std::string(canonicalJointName(joint));
+  std::cout << "wrote " << safeText(out.string()) << ": the automatic mapping found "
+            << kCanonicalJointCount - static_cast<int>(guess.missing().size()) << " of " << kCanonicalJointCount
+            << " joints" << (missing.empty() ? "" : "; fill in " + missing) << ", then pass it with --mapping\n";
+  return 0;
+}
+
 }  // namespace
 
 int runInfo(const Args& args) {
-  const ParsedArgs parsed = parseArgs(args, {{"json", false}, {"mapping"}, {"unit"}, {"loss-network"}});
+  const ParsedArgs parsed = parseArgs(args, {{"json", false}, {"mapping"}, {"unit"}, {"loss-network"}, {"write-mapping"}});
   if (parsed.positional.empty()) throw UsageError("info needs at least one FILE");
+  if (const std::optional<std::string> out = parsed.value("write-mapping")) {
+    if (parsed.positional.size() != 1 || parsed.has("json") || parsed.has("mapping"))
+      throw UsageError("--write-mapping takes one clip, without --json or --mapping");
+    return writeMappingTemplate(parsed.positional[0], *out);
+  }
   const std::optional<std::string> unit = lengthUnit(parsed);  // a usage error before any file is read
   std::optional<LossNetwork> loss_network;  // loaded on the first clip (network files need none)
   nlohmann::ordered_json all = nlohmann::ordered_json::array();

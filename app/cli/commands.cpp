@@ -8,7 +8,8 @@ namespace motionstyle::cli {
 const std::vector<Command>& commands() {
   static const std::vector<Command> table = {
       {"info", "describe BVH files (joints, frames, fps, units, mapping, contacts) or network files",
-       "usage: motionstyle-cli info FILE... [--json] [--mapping MAP.json] [--unit UNIT] [--loss-network LOSS]\n\n"
+       "usage: motionstyle-cli info FILE... [--json] [--mapping MAP.json] [--unit UNIT] [--loss-network LOSS]\n"
+       "       motionstyle-cli info CLIP.bvh --write-mapping MAP.json\n\n"
        "Prints what MotionStyle reads from each BVH file: joints, frames, frame rate, the up axis and\n"
        "length unit it assumed, the mapping to the 21 canonical joints, a foot-contact summary and how\n"
        "familiar the clip is to the networks (the loss network's reconstruction error: familiar up to\n"
@@ -19,6 +20,9 @@ const std::vector<Command>& commands() {
        "commands that need motion (convert --fps, cleanup, stylize, transfer) refuse it with exit code 2.\n\n"
        "  --json            print JSON instead of text\n"
        "  --mapping FILE    use this joint-mapping JSON instead of the automatic mapping\n"
+       "  --write-mapping FILE\n"
+       "                    write the automatic mapping of CLIP's rig as a mapping file to complete by hand\n"
+       "                    (the joints it could not find are empty; the rig's joints are listed in it)\n"
        "  --unit UNIT       the file's length unit: cm, m, mm, inch, ft, dm or cmu (default: guessed)\n"
        "  --loss-network LOSS\n"
        "                    the loss network that judges how familiar the clip is (default: the shipped\n"

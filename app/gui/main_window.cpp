@@ -332,7 +332,7 @@ void MainWindow::refreshClipList() {
     item->setText(kMappingColumn, c.mappingStatus());
     item->setToolTip(kMappingColumn, c.isMapped() ? c.mappingStatus()
                                                   : tr("This rig cannot be stylized until it is mapped: "
-                                                       "right-click and choose Load Mapping File."));
+                                                       "right-click, Save Mapping Template, complete it and Load Mapping File."));
     if (!c.isMapped()) item->setForeground(kMappingColumn, QColor(230, 120, 60));
     for (int column = kFramesColumn; column < kMappingColumn; ++column)
       item->setTextAlignment(column, Qt::AlignRight | Qt::AlignVCenter);
@@ -353,6 +353,8 @@ void MainWindow::showClipMenu(const QPoint& position) {
   training->setChecked(isTrainingClip(index));
   menu.addAction(tr("Add &Folder to the Training Set..."), network_panel_, &NetworkPanel::browseTrainingFolder);
   menu.addAction(tr("Load &Mapping File..."), this, [this, index] { browseMappingFile(index); });
+  menu.addAction(tr("Save Mapping &Template..."), this, [this, index] { browseMappingTemplate(index); })
+      ->setStatusTip(tr("Write how this rig maps to the 21 joints the networks use, to complete or correct by hand"));
   menu.addSeparator();
   menu.addAction(tr("&Remove"), this, [this, index] { removeClip(index); });
   menu.exec(clip_list_->viewport()->mapToGlobal(position));

@@ -102,6 +102,9 @@ class MainWindow : public QMainWindow {
   // Re-maps clip `index` with a joint mapping file (mapping/mapping_file.h); false and a report if the
   // file does not fit the rig.
   bool loadMappingFile(int index, const QString& file);
+  // Writes clip `index`'s mapping (or the automatic mapping's guess, gaps empty) as a mapping file to
+  // complete by hand (formatJointMappingTemplate); false (and a report) on failure.
+  bool saveMappingTemplate(int index, const QString& file);
   // Shows or hides the raw network output (grey) beside the cleaned output.
   void setRawOutputVisible(bool visible);
   // Saves a PNG of the whole window as it is now; false (and a report) on failure.
@@ -131,6 +134,7 @@ class MainWindow : public QMainWindow {
   void browseFolder();
   void browseScreenshot();
   void browseMappingFile(int index);
+  void browseMappingTemplate(int index);
   void createResultDock();
   void createNetworkDock();
   void forgetTrainingClip(int removed_index);

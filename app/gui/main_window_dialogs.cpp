@@ -1,4 +1,5 @@
-// MainWindow's file dialogs, recent-file list and remembered folder (QSettings), and About box.
+// MainWindow's file dialogs, recent-file list and remembered folder (QSettings), the joint-mapping
+// template, and About box.
 #include <QApplication>
 #include <QDir>
 #include <QFileDialog>
@@ -8,6 +9,11 @@
 #include <QSettings>
 
 #include "main_window.h"
+
+#include "common/atomic_file.h"
+#include "common/output_paths.h"
+#include "error_text.h"
+#include "mapping/mapping_file.h"
 
 namespace motionstyle {
 namespace {
@@ -74,6 +80,32 @@ void MainWindow::browseMappingFile(int index) {
   const QString file = QFileDialog::getOpenFileName(this, tr("Load a joint mapping file"), clipFolder().folder(),
                                                     tr("Joint mapping (*.json);;All files (*)"));
   if (!file.isEmpty()) loadMappingFile(index, file);
+}
+
+void MainWindow::browseMappingTemplate(int index) {
+  const QString suggested = clip(index).path + QStringLiteral(".mapping.json");
+  const QString file = QFileDialog::getSaveFileName(this, tr("Save a joint mapping template"), suggested,
+                                                    tr("Joint mapping (*.json);;All files (*)"));
+  if (!file.isEmpty()) saveMappingTemplate(index, file);
+}
+
+bool MainWindow::saveMappingTemplate(int index, const QString& file) {
+  if (index < 0 || index >= clipCount()) return false;
+  const LoadedClip& c = clip(index);
+  const JointMapping mapping = c.mapping ? *c.mapping : guessJointMapping(c.motion.skeleton);
+  try {
+    checkOutputPaths({{c.path.toStdString(), "the clip"}}, {{file.toStdString(), "the mapping template"}});
+    writeFileAtomically(file.toStdString(), formatJointMappingTemplate(mapping, c.motion.skeleton, c.name.toStdString()));
+  } catch (...) {
+    report(tr("Could not save the mapping template"), errorText(std::current_exception(), file));
+    return false;
+  }
+  const int gaps = static_cast<int>(mapping.missing().size());
+  showStatus(gaps == 0 ? tr("Saved the mapping of %1 in %2").arg(c.name, file)
+                       : tr("Saved the mapping template of %1 in %2: fill in its %3 empty joint(s), then Load Mapping File")
+                             .arg(c.name, file)
+                             .arg(gaps));
+  return true;
 }
 
 QString MainWindow::emptyViewMessage() const {

@@ -344,7 +344,8 @@ JointMapping mapJoints(const Skeleton& skeleton, const std::string& source) {
   for (const auto& [reason, joints] : reasons) explanation += (explanation.empty() ? "" : "; ") + joints + ": " + reason;
   throw InputError(source, 0,
                    "cannot map the rig to the canonical skeleton: missing " + list + " (" + explanation +
-                       "); provide a joint mapping file (see core/mapping/README.md)");
+                       "); provide a joint mapping file (motionstyle-cli info CLIP --write-mapping MAP.json writes one "
+                       "to complete)");
 }
 
 std::string detectConvention(const Skeleton& skeleton) {

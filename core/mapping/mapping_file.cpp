@@ -122,6 +122,10 @@ JointMapping parseJointMapping(std::string_view text, const Skeleton& skeleton, 
     if (!value.is_string())
       throw InputError(source_name, key_line, "expected the rig's joint name as a string for \"" + key + "\"");
     const std::string rig_name = value.get<std::string>();
+    if (rig_name.empty())
+      throw InputError(source_name, key_line,
+                       "no rig joint given for " + std::string(canonicalJointName(*canonical)) +
+                           ": fill in the name of the rig's joint (the comments above list them)");
     const int rig_joint = skeleton.find(rig_name);
     if (rig_joint < 0)
       throw InputError(source_name, key_line,
@@ -162,6 +166,37 @@ std::string formatJointMapping(const JointMapping& mapping, const Skeleton& skel
   root["version"] = kJointMappingVersion;
   root["joints"] = std::move(joints);
   return root.dump(2) + "\n";
+}
+
+std::string formatJointMappingTemplate(const JointMapping& guess, const Skeleton& skeleton, const std::string& clip_name) {
+  nlohmann::ordered_json joints = nlohmann::ordered_json::object();
+  std::string missing;
+  for (CanonicalJoint joint : kAllCanonicalJoints) {
+    const int rig_joint = guess[joint];
+    const bool found = rig_joint >= 0 && rig_joint < static_cast<int>(skeleton.joints.size());
+    joints[std::string(canonicalJointName(joint))] = found ? skeleton.joints[static_cast<size_t>(rig_joint)].name : "";
+    if (!found) missing += (missing.empty() ? "" : ", ") + std::string(canonicalJointName(joint));
+  }
+  nlohmann::ordered_json root;
+  root["format"] = kJointMappingFormat;
+  root["version"] = kJointMappingVersion;
+  root["joints"] = std::move(joints);
+  std::string text = "// Joint mapping for " + clip_name + ": the rig's joint for each of the 21 canonical joints.\n";
+  text += missing.empty() ? "// Every joint was found; check them.\n"
+                          : "// Fill in the empty ones (" + missing + ") with joints of the rig listed below.\n";
+  text += "// Each must hang below its canonical parent's joint; End Sites are named \"<parent>_End\".\n";
+  text += "// Then use it: motionstyle-cli ... --mapping THIS_FILE, or in the app right-click the clip,\n";
+  text += "// Load Mapping File.\n// The rig's joints:";
+  std::string line;
+  for (const Joint& joint : skeleton.joints) {
+    const std::string& name = joint.name;  // an End Site's is "<parent>_End"
+    if (line.size() + name.size() > 96) {
+      text += line + "\n//";
+      line.clear();
+    }
+    line += " " + name;
+  }
+  return text + line + "\n" + root.dump(2) + "\n";
 }
 
 void saveJointMapping(const JointMapping& mapping, const Skeleton& skeleton, const std::filesystem::path& json) {

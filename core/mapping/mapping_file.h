@@ -37,6 +37,12 @@ JointMapping parseJointMapping(std::string_view text, const Skeleton& skeleton, 
 // Throws std::invalid_argument when the mapping is not valid for the skeleton (describeMappingProblem).
 std::string formatJointMapping(const JointMapping& mapping, const Skeleton& skeleton);
 
+// A mapping file to fill in, for a rig the automatic mapping reads only in part: every canonical joint
+// with `guess`'s rig joint (guessJointMapping; "" where it found none), above it comments that say what
+// to do and list the rig's joints to choose from (the reader ignores comments). Why: writing 21 names
+// from a BVH hierarchy by hand is where a user of an unusual rig gives up.
+std::string formatJointMappingTemplate(const JointMapping& guess, const Skeleton& skeleton, const std::string& clip_name);
+
 // Writes formatJointMapping atomically (writeFileAtomically): WriteError on failure, nothing changed.
 void saveJointMapping(const JointMapping& mapping, const Skeleton& skeleton, const std::filesystem::path& json);
 

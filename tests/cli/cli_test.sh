@@ -36,6 +36,18 @@ expect 2 "option --loss-network given more than once" "$cli" info "$data/zombie.
 expect 0 "up axis      +Z" "$cli" info "$data/zombie.bvh"
 expect 0 '"unit"' "$cli" info --json "$data/cmu_131_01.bvh"
 expect 0 "wrote" "$cli" convert "$data/cmu_131_01.bvh" "$work/cmu60.bvh" --fps 60
+# A rig the automatic mapping reads in part: --write-mapping writes the mapping to complete by hand,
+# refused with its gaps named until they are filled in.
+sed 's/JOINT LeftKnee/JOINT KnieL/; s/JOINT RightKnee/JOINT KnieR/' "$data/cmu_131_01.bvh" >"$work/knie.bvh"
+expect 2 "write-mapping" "$cli" info "$work/knie.bvh" --mapping "$work/none.json" --write-mapping "$work/knie.json"
+expect 2 "refusing to overwrite an input" "$cli" info "$work/knie.bvh" --write-mapping "$work/knie.bvh"
+expect 0 "found 9 of 21 joints; fill in Hips" "$cli" info "$work/knie.bvh" --write-mapping "$work/knie.json"
+expect 2 "knie.json:[0-9]*: no rig joint given" "$cli" info "$work/knie.bvh" --mapping "$work/knie.json"
+sed -i 's/"Hips": ""/"Hips": "Hips"/; s/"LeftHip": ""/"LeftHip": "LeftHip"/; s/"LeftKnee": ""/"LeftKnee": "KnieL"/;
+        s/"LeftAnkle": ""/"LeftAnkle": "LeftAnkle"/; s/"LeftToe": ""/"LeftToe": "LeftToe"/; s/"RightHip": ""/"RightHip": "RightHip"/;
+        s/"RightKnee": ""/"RightKnee": "KnieR"/; s/"RightAnkle": ""/"RightAnkle": "RightAnkle"/; s/"RightToe": ""/"RightToe": "RightToe"/;
+        s/"Spine": ""/"Spine": "Chest"/; s/"Chest": ""/"Chest": "Chest2"/; s/"Neck": ""/"Neck": "Neck"/' "$work/knie.json"
+expect 0 "mapping      complete (file:" "$cli" info "$work/knie.bvh" --mapping "$work/knie.json"
 expect 0 "360 at 60 fps" "$cli" info "$work/cmu60.bvh"
 
 expect 2 "garbage.bvh:1:" "$cli" cleanup "$work/garbage.bvh" --out "$work/clean.bvh"

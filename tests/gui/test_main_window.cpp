@@ -569,6 +569,45 @@ class MainWindowTest : public QObject {
              qPrintable(stylize->toolTip()));
     QVERIFY(reports.empty());
   }
+
+  // A rig the automatic mapping reads only in part: its context menu's Save Mapping Template writes
+  // the mapping to complete (gaps empty, refused as they are), and the completed file maps the clip.
+  void aMappingTemplateCompletedByHandMapsTheClip() {
+    QFile fixture(test::fixture(QStringLiteral("cmu_131_01.bvh")));
+    QVERIFY(fixture.open(QIODevice::ReadOnly));
+    QByteArray text = fixture.readAll();
+    text.replace("JOINT LeftKnee", "JOINT KnieL").replace("JOINT RightKnee", "JOINT KnieR");
+    const QString file = writeFile(scratch_, QStringLiteral("knie.bvh"), text);
+    MainWindow window(/*persist_settings=*/false);
+    std::vector<Report> reports;
+    window.setErrorReporter([&](const QString& title, const QString& message) { reports.push_back({title, message}); });
+    QCOMPARE(window.openFiles({file}), 1);
+    QVERIFY(!window.clip(0).isMapped());
+    const QString mapping = scratch_.filePath(QStringLiteral("knie.mapping.json"));
+    QVERIFY(window.saveMappingTemplate(0, mapping));
+    QVERIFY2(test::statusLine(window).contains(QStringLiteral("fill in")), qPrintable(test::statusLine(window)));
+    QVERIFY(!window.saveMappingTemplate(0, file));  // never over the clip itself
+    QCOMPARE(reports.size(), size_t{1});
+    QVERIFY(!window.loadMappingFile(0, mapping));  // as written: its gaps are named
+    QCOMPARE(reports.size(), size_t{2});
+    QVERIFY2(reports.back().message.contains(QStringLiteral("no rig joint given")), qPrintable(reports.back().message));
+
+    QFile written(mapping);
+    QVERIFY(written.open(QIODevice::ReadOnly));
+    QString completed = QString::fromUtf8(written.readAll());
+    written.close();
+    const std::vector<std::pair<const char*, const char*>> gaps = {
+        {"Hips", "Hips"}, {"LeftHip", "LeftHip"}, {"LeftKnee", "KnieL"}, {"LeftAnkle", "LeftAnkle"},
+        {"LeftToe", "LeftToe"}, {"RightHip", "RightHip"}, {"RightKnee", "KnieR"}, {"RightAnkle", "RightAnkle"},
+        {"RightToe", "RightToe"}, {"Spine", "Chest"}, {"Chest", "Chest2"}, {"Neck", "Neck"}};
+    for (const auto& [canonical, rig] : gaps)
+      completed.replace(QStringLiteral("\"%1\": \"\"").arg(QLatin1String(canonical)),
+                        QStringLiteral("\"%1\": \"%2\"").arg(QLatin1String(canonical), QLatin1String(rig)));
+    QVERIFY(writeFile(scratch_, QStringLiteral("knie.mapping.json"), completed.toUtf8()) == mapping);
+    QVERIFY2(window.loadMappingFile(0, mapping), qPrintable(reports.back().message));
+    QVERIFY(window.clip(0).isMapped());
+    QCOMPARE(reports.size(), size_t{2});
+  }
 };
 
 MOTIONSTYLE_GUI_TEST_MAIN(MainWindowTest)

@@ -111,6 +111,52 @@ TEST_F(MappingFile, FileMapsARigTheAutomaticMappingCannotRead) {
   EXPECT_TRUE(skeleton.joints[static_cast<size_t>(mapping[CJ::LeftHandEnd])].end_site);
 }
 
+// The template (info --write-mapping): empty where the automatic mapping found nothing, refused as it
+// is with the line of the first gap, and a valid file once the gaps are filled in.
+TEST_F(MappingFile, TheTemplateIsRefusedUntilItsGapsAreFilledIn) {
+  test::RigBuilder b;  // German leg names: the automatic mapping finds the spine and arms only
+  b.joint("Hips", "", {0, 95, 0}).chain({"Spine", "Chest", "Neck", "Head"}, "Hips", {0, 12, 0});
+  for (const std::string s : {"Left", "Right"}) {
+    b.chain({s + "Arm", s + "ForeArm", s + "Hand"}, "Chest", {s == "Left" ? 12.0 : -12.0, 0, 0});
+    b.chain({"Oberschenkel" + s, "Unterschenkel" + s, "Fussgelenk" + s, "Zehen" + s}, "Hips",
+            {s == "Left" ? 8.0 : -8.0, -20, 0});
+  }
+  const Skeleton skeleton = b.build();
+  const JointMapping guess = guessJointMapping(skeleton);
+  ASSERT_FALSE(guess.missing().empty());
+  const std::string text = formatJointMappingTemplate(guess, skeleton, "german.bvh");
+  EXPECT_NE(text.find("// Joint mapping for german.bvh"), std::string::npos);
+  EXPECT_NE(text.find("UnterschenkelLeft"), std::string::npos);  // the rig's joints are listed
+  EXPECT_NE(text.find("\"LeftKnee\": \"\""), std::string::npos) << text;
+  try {
+    parseJointMapping(text, skeleton, "german.json");
+    ADD_FAILURE() << "a template with gaps was accepted";
+  } catch (const InputError& error) {
+    EXPECT_GT(error.line(), 0);
+    EXPECT_NE(std::string(error.what()).find("no rig joint given"), std::string::npos) << error.what();
+  }
+  std::string filled = text;
+  for (const std::string s : {"Left", "Right"})
+    for (const auto& [canonical, rig] : {std::pair{"Hip", "Oberschenkel"}, std::pair{"Knee", "Unterschenkel"},
+                                         std::pair{"Ankle", "Fussgelenk"}, std::pair{"Toe", "Zehen"}}) {
+      const std::string gap = "\"" + s + canonical + "\": \"\"";
+      const size_t at = filled.find(gap);
+      if (at != std::string::npos) filled.replace(at, gap.size(), "\"" + s + canonical + "\": \"" + rig + s + "\"");
+    }
+  for (const std::string trunk : {"Hips", "Spine", "Chest", "Neck"}) {  // found from the legs: gaps too
+    const std::string gap = "\"" + trunk + "\": \"\"";
+    const size_t at = filled.find(gap);
+    if (at != std::string::npos) filled.replace(at, gap.size(), "\"" + trunk + "\": \"" + trunk + "\"");
+  }
+  const JointMapping mapping = parseJointMapping(filled, skeleton, "german.json");
+  EXPECT_TRUE(mapping.missing().empty());
+  for (CanonicalJoint joint : kAllCanonicalJoints) {  // what the guess found is kept
+    if (guess[joint] >= 0) {
+      EXPECT_EQ(mapping[joint], guess[joint]) << canonicalJointName(joint);
+    }
+  }
+}
+
 TEST_F(MappingFile, ReadmeExampleIsAValidFileForAnUnrealRig) {
   const std::filesystem::path readme =
       std::filesystem::path(MOTIONSTYLE_TEST_DATA_DIR) / ".." / ".." / "core" / "mapping" / "README.md";

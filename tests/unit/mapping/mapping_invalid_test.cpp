@@ -18,7 +18,7 @@ using test::CJ;
 using test::RigBuilder;
 
 constexpr std::string_view kPrefix = "cannot map the rig to the canonical skeleton: missing ";
-constexpr std::string_view kSuffix = "; provide a joint mapping file (see core/mapping/README.md)";
+constexpr std::string_view kSuffix = "; provide a joint mapping file (motionstyle-cli info CLIP --write-mapping MAP.json writes one to complete)";
 
 // The comma-separated list between "missing " and " (" in the error message.
 std::string missingListOf(const InputError& error) {
