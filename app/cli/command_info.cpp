@@ -21,6 +21,7 @@
 #include "common/text_safety.h"
 #include "nn/network_file.h"
 #include "style/familiarity.h"
+#include "style/motion_dataset.h"
 #include "stylized_output.h"
 #include "style/training.h"
 
@@ -203,7 +204,16 @@ int runInfo(const Args& args) {
   const std::optional<std::string> unit = lengthUnit(parsed);  // a usage error before any file is read
   std::optional<LossNetwork> loss_network;  // loaded on the first clip (network files need none)
   nlohmann::ordered_json all = nlohmann::ordered_json::array();
+  std::vector<std::string> files;  // a folder: every .bvh below it, as stylize and cleanup take them
   for (const std::string& argument : parsed.positional) {
+    std::error_code error;
+    if (!std::filesystem::is_directory(argument, error)) {
+      files.push_back(argument);
+      continue;
+    }
+    for (const std::filesystem::path& file : style::findBvhFiles({argument})) files.push_back(file.string());
+  }
+  for (const std::string& argument : files) {
     const std::string path = resolveNetworkArgument(argument).string();  // "elderly": a shipped network
     if (isNetworkFile(path)) {
       const std::string description = nn::describeNetworkFile(path);

@@ -10,7 +10,7 @@ const std::vector<Command>& commands() {
       {"info", "describe BVH files (joints, frames, fps, units, mapping, contacts) or network files",
        "usage: motionstyle-cli info FILE... [--json] [--mapping MAP.json] [--unit UNIT] [--loss-network LOSS]\n"
        "       motionstyle-cli info CLIP.bvh --write-mapping MAP.json\n\n"
-       "Prints what MotionStyle reads from each BVH file: joints, frames, frame rate, the up axis and\n"
+       "Prints what MotionStyle reads from each BVH file (a folder: every .bvh below it): joints, frames, frame rate, the up axis and\n"
        "length unit it assumed, the mapping to the 21 canonical joints, a foot-contact summary and how\n"
        "familiar the clip is to the networks (the loss network's reconstruction error: familiar up to\n"
        "1.5 cm, unusual up to 2.5 cm, far beyond: results will be weak; adapt the networks to such clips).\n"

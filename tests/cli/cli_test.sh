@@ -34,6 +34,12 @@ expect 2 "option --loss-network given more than once" "$cli" info "$data/zombie.
 
 # Working commands.
 expect 0 "up axis      +Z" "$cli" info "$data/zombie.bvh"
+# A folder: every .bvh below it, as stylize and cleanup take folders.
+mkdir -p "$work/takes/day2"
+cp "$data/zombie.bvh" "$work/takes/a.bvh"
+cp "$data/cmu_131_01.bvh" "$work/takes/day2/b.bvh"
+expect 0 "takes/day2/b.bvh" "$cli" info "$work/takes"
+[ "$(grep -c 'familiarity' "$work/out")" = 2 ] || fail "info of a folder did not describe its two clips"
 expect 0 '"unit"' "$cli" info --json "$data/cmu_131_01.bvh"
 expect 0 "wrote" "$cli" convert "$data/cmu_131_01.bvh" "$work/cmu60.bvh" --fps 60
 # A rig the automatic mapping reads in part: --write-mapping writes the mapping to complete by hand,
