@@ -16,11 +16,13 @@
 #include <QStatusBar>
 #include <QTreeWidget>
 
+#include <algorithm>
 #include <exception>
 #include <new>
 
 #include "app_log.h"
 #include "common/errors.h"
+#include "clip_file_watcher.h"
 #include "contact_tracks.h"
 #include "error_text.h"
 #include "focused_keys.h"
@@ -60,6 +62,8 @@ MainWindow::MainWindow(bool persist_settings, QWidget* parent)
     return QMessageBox::question(this, title, question, buttons);
   };
 
+  file_watcher_ = new ClipFileWatcher(this);
+  connect(file_watcher_, &ClipFileWatcher::changedOnDisk, this, &MainWindow::noticeClipFileChanged);
   viewport_ = new SkeletonViewport(this);
   live_resolution_ = new LiveResolution(viewport_, this);
   viewport_->setEmptyMessage(emptyViewMessage());
@@ -229,7 +233,12 @@ void MainWindow::setStyleClip(int index) {
 
 void MainWindow::removeClip(int index) {
   if (index < 0 || index >= clipCount() || !keepContactEdits({index})) return;
+  const QString path = clip(index).path;
   clips_.erase(clips_.begin() + index);
+  if (std::none_of(clips_.begin(), clips_.end(), [&](const LoadedClip& c) { return c.path == path; })) {
+    file_watcher_->forget(path);
+    changed_on_disk_.remove(path);
+  }
   const auto shift = [index](int& role) { role = role == index ? -1 : (role > index ? role - 1 : role); };
   shift(content_);
   shift(style_);
@@ -317,6 +326,12 @@ void MainWindow::refreshClipList() {
     auto* item = new QTreeWidgetItem(clip_list_);
     item->setText(kNameColumn, c.name);
     item->setToolTip(kNameColumn, c.path);
+    if (changed_on_disk_.contains(c.path)) {
+      item->setText(kNameColumn, tr("%1 (changed on disk)").arg(c.name));
+      item->setForeground(kNameColumn, QColor(230, 120, 60));
+      item->setToolTip(kNameColumn, tr("%1 changed on disk after it was opened: what is shown is the file as it was. "
+                                       "Right-click and choose Reload from Disk.").arg(c.path));
+    }
     const bool is_content = i == content_;
     const bool is_style = i == style_;
     if (is_content || is_style) {
@@ -356,6 +371,7 @@ void MainWindow::showClipMenu(const QPoint& position) {
   menu.addAction(tr("Save Mapping &Template..."), this, [this, index] { browseMappingTemplate(index); })
       ->setStatusTip(tr("Write how this rig maps to the 21 joints the networks use, to complete or correct by hand"));
   menu.addSeparator();
+  menu.addAction(tr("Re&load from Disk"), this, [this, index] { reloadClip(index); });
   menu.addAction(tr("&Remove"), this, [this, index] { removeClip(index); });
   menu.exec(clip_list_->viewport()->mapToGlobal(position));
 }

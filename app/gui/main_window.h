@@ -11,6 +11,7 @@
 
 #include <QMainWindow>
 #include <QMessageBox>
+#include <QSet>
 #include <QStringList>
 
 #include <functional>
@@ -29,6 +30,7 @@ class QTreeWidget;
 
 namespace motionstyle {
 
+class ClipFileWatcher;
 class ContactTrackController;
 class LiveResolution;
 class NetworkPanel;
@@ -96,6 +98,10 @@ class MainWindow : public QMainWindow {
   // Files and folders in the order given (the command line, drag-and-drop): each run of files with
   // openFiles, each folder with openFolder. Returns how many clips loaded.
   int openPaths(const QStringList& paths);
+  // Reads clip `index` from its file again (a new take exported over it), keeping its roles; asks first
+  // when its contact edits are unsaved. False (and a report) when the file cannot be read: the clip
+  // stays as it was.
+  bool reloadClip(int index);
   void setContentClip(int index);
   void setStyleClip(int index);
   void removeClip(int index);
@@ -127,6 +133,8 @@ class MainWindow : public QMainWindow {
   // Before the contact edits of `clips` (indices) could be lost (closing, removing a clip): asks to
   // save them beside their clips, or to discard them. False when the user cancels or a save fails.
   bool keepContactEdits(const std::vector<int>& clips);
+  // The file of an open clip changed (or went) on disk: the list marks it and the status line says so.
+  void noticeClipFileChanged(const QString& path);
   void rememberRecent(const QStringList& files);
   void rebuildRecentMenu();
   void showClipMenu(const QPoint& position);
@@ -150,6 +158,8 @@ class MainWindow : public QMainWindow {
   Confirmer confirmer_;
   ChoiceAsker choice_asker_;
   std::vector<LoadedClip> clips_;
+  ClipFileWatcher* file_watcher_ = nullptr;
+  QSet<QString> changed_on_disk_;  // paths of open clips whose file is no longer what is shown
   int content_ = -1;
   int style_ = -1;
   QStringList session_recent_;  // recent files when settings are not persisted

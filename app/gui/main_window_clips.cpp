@@ -10,6 +10,7 @@
 #include <QProgressDialog>
 #include <QUrl>
 
+#include "clip_file_watcher.h"
 #include "error_text.h"
 
 namespace motionstyle {
@@ -37,6 +38,7 @@ int MainWindow::loadClips(const QStringList& paths, QProgressDialog* progress) {
     try {
       clips_.push_back(loadClip(std::filesystem::path(path.toStdString())));
       loaded << clips_.back().path;
+      file_watcher_->watch(clips_.back().path);
       if (content_ < 0) content_ = clipCount() - 1;
       else if (style_ < 0) style_ = clipCount() - 1;
     } catch (...) {
@@ -145,6 +147,39 @@ bool MainWindow::keepContactEdits(const std::vector<int>& clips) {
       return false;
     }
   }
+  return true;
+}
+
+void MainWindow::noticeClipFileChanged(const QString& path) {
+  QString name;
+  for (const LoadedClip& c : clips_)
+    if (c.path == path) name = c.name;
+  if (name.isEmpty()) return;
+  changed_on_disk_.insert(path);
+  refreshClipList();
+  showStatus(QFileInfo::exists(path)
+                 ? tr("%1 changed on disk: what is shown is the file as it was opened; right-click it and choose "
+                      "Reload from Disk to see the new one.").arg(name)
+                 : tr("%1 was removed or renamed on disk: what is shown is the file as it was opened.").arg(name));
+}
+
+bool MainWindow::reloadClip(int index) {
+  if (index < 0 || index >= clipCount() || !keepContactEdits({index})) return false;
+  const QString path = clip(index).path;
+  try {
+    LoadedClip reloaded = loadClip(std::filesystem::path(path.toStdString()));
+    clips_[static_cast<size_t>(index)] = std::move(reloaded);  // a new id: results of the old take go
+  } catch (...) {
+    report(tr("Could not reload the clip"), errorText(std::current_exception(), path));
+    return false;
+  }
+  file_watcher_->watch(path);
+  changed_on_disk_.remove(path);
+  refreshClipList();
+  rebuildFigures();
+  const LoadedClip& c = clip(index);
+  showStatus(tr("Reloaded %1: %2 frames at %3 fps").arg(c.name).arg(c.frameCount()).arg(c.fps(), 0, 'g', 4) +
+             (c.contacts_note.isEmpty() ? QString() : QStringLiteral("; ") + c.contacts_note));
   return true;
 }
 

@@ -23,6 +23,8 @@
 #include <QUrl>
 #include <QWheelEvent>
 
+#include <cstdio>
+
 #include "bvh/bvh_reader.h"
 #include "contact_tracks.h"
 #include "ik/contact_file.h"
@@ -568,6 +570,50 @@ class MainWindowTest : public QObject {
                  stylize->toolTip().contains(QStringLiteral("mapping file")),
              qPrintable(stylize->toolTip()));
     QVERIFY(reports.empty());
+  }
+
+  // An animator exports a new take over a clip that is open: the list marks it, the status line says
+  // so, and Reload from Disk shows the new take in the same role (the window went on showing the old
+  // take, and stylizing it, without a word).
+  void aClipChangedOnDiskIsMarkedAndReloaded() {
+    QTemporaryDir folder;
+    const QString clip = folder.filePath(QStringLiteral("take.bvh"));
+    QVERIFY(QFile::copy(test::fixture(QStringLiteral("cmu_131_01.bvh")), clip));
+    MainWindow window(/*persist_settings=*/false);
+    std::vector<Report> reports;
+    window.setErrorReporter([&](const QString& title, const QString& message) { reports.push_back({title, message}); });
+    QCOMPARE(window.openFiles({clip}), 1);
+    const int first_take = window.clip(0).frameCount();
+    auto* list = window.findChild<QTreeWidget*>(QStringLiteral("ClipList"));
+    QVERIFY(list != nullptr);
+    const auto marked = [&] { return list->topLevelItem(0)->text(0).contains(QStringLiteral("changed on disk")); };
+    QVERIFY(!marked());
+
+    // A new take saved by rename, as most tools (and MotionStyle) save.
+    const QString temporary = folder.filePath(QStringLiteral("take.bvh.tmp"));
+    QVERIFY(QFile::copy(test::fixture(QStringLiteral("zombie.bvh")), temporary));
+    QVERIFY(std::rename(temporary.toLocal8Bit().constData(), clip.toLocal8Bit().constData()) == 0);
+    QTRY_VERIFY_WITH_TIMEOUT(marked(), 5000);
+    QVERIFY2(test::statusLine(window).contains(QStringLiteral("take.bvh changed on disk")), qPrintable(test::statusLine(window)));
+    QCOMPARE(window.clip(0).frameCount(), first_take);  // shown as opened until reloaded
+    QVERIFY(window.reloadClip(0));
+    QCOMPARE(window.clip(0).frameCount(), 300);  // the zombie's take
+    QCOMPARE(window.contentClip(), 0);
+    QVERIFY(!marked());
+
+    // Still watched after the rename: a file that can no longer be read is reported on reload, and
+    // the clip stays as shown.
+    QFile damaged(clip);
+    QVERIFY(damaged.open(QIODevice::WriteOnly | QIODevice::Truncate));
+    damaged.write("HIERARCHY\nnot a skeleton\n");
+    damaged.close();
+    QTRY_VERIFY_WITH_TIMEOUT(marked(), 5000);
+    QVERIFY(reports.empty());
+    QVERIFY(!window.reloadClip(0));
+    QCOMPARE(reports.size(), size_t{1});
+    QVERIFY2(reports.back().message.contains(QStringLiteral("take.bvh")), qPrintable(reports.back().message));
+    QCOMPARE(window.clip(0).frameCount(), 300);
+    QVERIFY(marked());
   }
 
   // A rig the automatic mapping reads only in part: its context menu's Save Mapping Template writes
