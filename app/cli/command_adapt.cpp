@@ -36,7 +36,7 @@ int runAdapt(const Args& args) {
   for (const std::string& value : parsed.values("data")) data.emplace_back(value);
   for (const std::string& value : parsed.positional) data.emplace_back(value);  // --data A B C
   if (data.empty()) throw UsageError("adapt needs --data with your clips (folders or .bvh files)");
-  const std::filesystem::path loss_network_file = resolveNetworkArgument(parsed.required("loss-network"));
+  const std::filesystem::path loss_network_file = lossNetworkArgument(parsed);
   {  // before any work: the outputs can be written and none of them is an input
     const std::filesystem::path checkpoint = settings.checkpointPath();
     std::vector<NamedPath> inputs = {{loss_network_file, "--loss-network"}};

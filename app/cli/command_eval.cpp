@@ -17,7 +17,7 @@ int runEval(const Args& args) {
   if (parsed.positional.empty()) throw UsageError("eval needs the clips to evaluate (files or folders)");
   style::DatasetOptions dataset;
   dataset.features.unit = lengthUnit(parsed);
-  const std::filesystem::path loss_network_file = resolveNetworkArgument(parsed.required("loss-network"));
+  const std::filesystem::path loss_network_file = lossNetworkArgument(parsed);
   const std::filesystem::path net_file = resolveNetworkArgument(parsed.required("net"));
   std::vector<NamedPath> read = {{loss_network_file, "--loss-network"}, {net_file, "--net"}};
   for (const std::string& clip : parsed.positional) read.push_back({clip, "an evaluated clip"});

@@ -137,4 +137,8 @@ int runModels(const Args& args) {
   return all_readable ? 0 : 2;
 }
 
+std::filesystem::path lossNetworkArgument(const ParsedArgs& parsed) {
+  return resolveNetworkArgument(parsed.value("loss-network").value_or(kShippedLossNetworkName));
+}
+
 }  // namespace motionstyle::cli

@@ -44,7 +44,7 @@ int runTrainStyle(const Args& args) {
   style::StyleTrainingConfig& config = job.config;
   config.settings = trainingSettings(
       parsed, {1e-3, quick ? style::kQuickStyleEpochs : style::kFullStyleEpochs, style::defaultContentAugmentation()});
-  config.loss_network = resolveNetworkArgument(parsed.required("loss-network"));
+  config.loss_network = lossNetworkArgument(parsed);
   for (const std::string& content : parsed.values("content")) config.content.emplace_back(content);
   for (const std::string& content : parsed.positional) config.content.emplace_back(content);  // --content A B
   if (config.content.empty()) throw UsageError("train-style needs --content DIR (folders or .bvh files)");

@@ -39,7 +39,7 @@ int runTransfer(const Args& args) {
   style::DatasetOptions dataset;
   dataset.features.unit = lengthUnit(parsed);
   const std::filesystem::path output = parsed.required("out");
-  const std::filesystem::path loss_network_file = resolveNetworkArgument(parsed.required("loss-network"));
+  const std::filesystem::path loss_network_file = lossNetworkArgument(parsed);
   const std::filesystem::path style_file = parsed.required("style");
   checkOutputPaths({{parsed.positional[0], "the input clip"}, {loss_network_file, "--loss-network"}, {style_file, "--style"}},
                    outputPaths(output_options, output));

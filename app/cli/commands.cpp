@@ -73,7 +73,7 @@ const std::vector<Command>& commands() {
        "                    with probability P)\n",
        runTrainLossNetwork, "train-ae"},
       {"train-style", "train a style network (transformation network) for one style",
-       "usage: motionstyle-cli train-style --loss-network LOSS --content DIR... --style CLIP.bvh [--style LABEL=CLIP.bvh ...]\n"
+       "usage: motionstyle-cli train-style [--loss-network LOSS] --content DIR... --style CLIP.bvh [--style LABEL=CLIP.bvh ...]\n"
        "                                   --out FILE [--weights content=1,style=100,foot=F,bone=B,traj=R]\n"
        "                                   [--epochs N | --quick] [--init NET] [--seed S] [--lr LR] [--resume] [options]\n\n"
        "Trains the transformation network T (3 convolutions, 128 units, width 25) so that T(content) keeps\n"
@@ -85,7 +85,7 @@ const std::vector<Command>& commands() {
        "without a clip; --style LABEL=CLIP pairs that label explicitly. Labels left without a style clip\n"
        "are an error that lists them. Without --style, --init NET retrains NET with the style targets it\n"
        "stores (networks from this version on), e.g. against a loss network adapted to your clips (adapt).\n\n"
-       "  --loss-network LOSS  the trained loss network (train-loss-network)\n"
+       "  --loss-network LOSS  the trained loss network (train-loss-network; default: the shipped one)\n"
        "  --content DIR|FILE  content clips (repeatable; more may follow as plain arguments)\n"
        "  --style [LABEL=]CLIP  style clip(s), at least 25 frames at 60 fps (repeatable)\n"
        "  --out FILE          the style network file (embeds the loss network)\n"
@@ -102,7 +102,7 @@ const std::vector<Command>& commands() {
        "  --keep-checkpoints, --holdout N, --skip-bad, --unit UNIT: as for train-loss-network\n",
        runTrainStyle},
       {"adapt", "fine-tune the loss network on your own clips (other studios, actors, rigs)",
-       "usage: motionstyle-cli adapt --loss-network LOSS --data DIR... --out FILE [--epochs N] [--lr LR]\n"
+       "usage: motionstyle-cli adapt [--loss-network LOSS] --data DIR... --out FILE [--epochs N] [--lr LR]\n"
        "                             [--replay DIR...] [--replay-ratio R] [--train-encoder] [options]\n\n"
        "Fine-tunes the loss network LOSS on your clips (no labels needed) so that it reconstructs them: the\n"
        "manifold projection then keeps their content, and 'info' reads them as familiar. By default only\n"
@@ -111,7 +111,7 @@ const std::vector<Command>& commands() {
        "Prints how familiar each clip was before and after. A checkpoint is written every epoch; Ctrl-C\n"
        "stops within a second and keeps it.\n\n"
        "  --loss-network LOSS\n"
-       "                     the loss network to adapt (a file, or loss_network for the shipped one)\n"
+       "                     the loss network to adapt (a file; default: loss_network, the shipped one)\n"
        "  --data DIR|FILE    your clips (repeatable; more may follow as plain arguments)\n"
        "  --out FILE         the adapted loss network (records what it was adapted on)\n"
        "  --epochs N         epochs (default 40)\n"
@@ -141,7 +141,7 @@ const std::vector<Command>& commands() {
        "  --unit UNIT     IN's length unit (default: guessed)\n" MOTIONSTYLE_OUTPUT_OPTIONS_HELP MOTIONSTYLE_BATCH_HELP,
        runStylize},
       {"transfer", "style transfer by optimisation (Holden et al. 2016), no style network needed",
-       "usage: motionstyle-cli transfer --loss-network LOSS --style CLIP.bvh IN.bvh --out OUT.bvh [--iterations N]\n\n"
+       "usage: motionstyle-cli transfer [--loss-network LOSS] --style CLIP.bvh IN.bvh --out OUT.bvh [--iterations N]\n\n"
        "Optimises the loss network's hidden units so that the decoded motion keeps IN's content and takes\n"
        "the style clip's Gram matrix (Adam, lr 0.01), starting from IN's own hidden units, then runs a\n"
        "constraint pass (feet, bone lengths, trajectory). OUT as for stylize (IK clean-up by default).\n"
@@ -175,7 +175,7 @@ const std::vector<Command>& commands() {
        MOTIONSTYLE_TIME_LIMIT_HELP MOTIONSTYLE_BATCH_HELP,
        runCleanup},
       {"eval", "evaluate a style network on held-out clips (JSON report)",
-       "usage: motionstyle-cli eval --loss-network LOSS --net NET --style CLIP.bvh [--style LABEL=CLIP.bvh ...] CLIPS...\n"
+       "usage: motionstyle-cli eval [--loss-network LOSS] --net NET --style CLIP.bvh [--style LABEL=CLIP.bvh ...] CLIPS...\n"
        "                            [--json FILE] [--path content|style] [--refine-steps N]\n\n"
        "For each clip (files or folders): the loss network's reconstruction error (normalised MSE, mean joint\n"
        "error in cm; the familiarity reading: familiar, unusual, far), the content distance (eq. 4) and style distance (eq. 5, against the paired style clip)\n"

@@ -13,6 +13,7 @@ struct StylizedClip;
 
 namespace motionstyle::cli {
 
+class ParsedArgs;
 using Args = std::vector<std::string>;
 
 struct Command {
@@ -42,5 +43,9 @@ int runModels(const Args& args);
 // VALUE is not a bare name; otherwise the shipped <resources>/models/VALUE.net (common/resource_paths.h).
 // Throws InputError naming VALUE and the shipped networks when a bare name matches neither.
 std::filesystem::path resolveNetworkArgument(const std::string& value);
+
+// --loss-network as a file (resolveNetworkArgument), the shipped loss network when it is not given:
+// as in the app, a first training or adaptation needs nothing but clips.
+std::filesystem::path lossNetworkArgument(const ParsedArgs& parsed);
 
 }  // namespace motionstyle::cli

@@ -148,6 +148,11 @@ expect 2 "--out" "$cli" adapt --loss-network "$work/ae.net" --data "$data/cmu_13
 expect 0 "before -> after" "$cli" adapt --loss-network "$work/ae.net" --data "$data/cmu_131_01.bvh" --out "$work/adapted.net" \
   --epochs 2 --threads 1
 expect 0 "adapted_on: cmu_131_01.bvh" "$cli" info "$work/adapted.net"
+# Without --loss-network: the shipped one, as the app preselects it (the option was required).
+expect 0 "before -> after" "$cli" adapt --data "$data/cmu_131_01.bvh" --out "$work/adapted_shipped.net" --epochs 1 --threads 1
+expect 0 "wrote $work/quick_shipped.net: 1 epochs" "$cli" train-style --content "$data/zombie.bvh" --style "$data/cmu_131_01.bvh" \
+  --out "$work/quick_shipped.net" $tiny
+expect 0 "256 hidden units" "$cli" info "$work/quick_shipped.net"
 expect 2 "stores no style targets\|--style" "$cli" train-style --loss-network "$work/adapted.net" --content "$data/cmu_131_01.bvh" \
   --out "$work/retrained.net" $tiny
 expect 0 "wrote" "$cli" train-style --loss-network "$work/adapted.net" --init "$work/style.net" --content "$data/cmu_131_01.bvh" \
