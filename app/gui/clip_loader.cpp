@@ -36,6 +36,20 @@ QString missingJoints(const Skeleton& skeleton) {
 }
 
 // Fills the mapping-dependent parts of `clip` (display space, contacts) from clip.mapping.
+// The contact tracks saved beside the clip, if any, as its overrides; contacts_note says what came of them.
+void readContactsBeside(LoadedClip& clip) {
+  clip.contacts_note.clear();
+  const std::filesystem::path file = contactTracksPath(clip.path.toStdString());
+  if (!clip.isMapped() || !std::filesystem::exists(file)) return;
+  const QString name = QString::fromStdString(file.filename().string());
+  try {
+    loadContactTracksBeside(clip);
+    clip.contacts_note = QObject::tr("contacts from %1").arg(name);
+  } catch (const InputError& error) {
+    clip.contacts_note = QObject::tr("%1 not used: %2").arg(name, QString::fromStdString(error.what()));
+  }
+}
+
 void prepare(LoadedClip& clip) {
   const Eigen::MatrixXd world = worldPositions(clip.motion);
   clip.detected_contacts.resize(0, 0);
@@ -105,15 +119,7 @@ LoadedClip loadClip(const std::filesystem::path& file) {
     clip.mapping_problem = missingJoints(clip.motion.skeleton);
   }
   prepare(clip);
-  if (clip.isMapped() && std::filesystem::exists(contactTracksPath(file))) {
-    const QString tracks_name = QString::fromStdString(contactTracksPath(file).filename().string());
-    try {
-      loadContactTracksBeside(clip);
-      clip.contacts_note = QObject::tr("contacts from %1").arg(tracks_name);
-    } catch (const InputError& error) {
-      clip.contacts_note = QObject::tr("%1 not used: %2").arg(tracks_name, QString::fromStdString(error.what()));
-    }
-  }
+  readContactsBeside(clip);
   return clip;
 }
 
@@ -147,6 +153,7 @@ void remapClip(LoadedClip& clip, const std::filesystem::path& mapping_file) {
   remapped.mapping = loadJointMapping(mapping_file, clip.motion.skeleton);
   remapped.mapping_problem.clear();
   prepare(remapped);
+  readContactsBeside(remapped);
   clip = std::move(remapped);
 }
 

@@ -74,7 +74,7 @@ void saveContactTracksBeside(LoadedClip& clip);
 LoadedClip loadClip(const std::filesystem::path& file);
 
 // Maps `clip` with a mapping file (mapping/mapping_file.h) and recomputes its display space and
-// contacts; overrides are reset. Throws InputError naming the mapping file; the clip is unchanged then.
+// contacts; the overrides are those saved beside it (or automatic). Throws InputError naming the mapping file; the clip is unchanged then.
 void remapClip(LoadedClip& clip, const std::filesystem::path& mapping_file);
 
 // The viewport's view of a clip in a role, resampled to `display_fps` (the timeline's rate, so that

@@ -307,7 +307,7 @@ void MainWindow::setRawOutputVisible(bool visible) {
 }
 
 bool MainWindow::loadMappingFile(int index, const QString& file) {
-  if (index < 0 || index >= clipCount()) return false;
+  if (index < 0 || index >= clipCount() || !keepContactEdits({index})) return false;  // contacts are found again
   try {
     remapClip(clips_[static_cast<size_t>(index)], file.toStdString());
   } catch (...) {

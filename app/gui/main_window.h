@@ -105,8 +105,8 @@ class MainWindow : public QMainWindow {
   void setContentClip(int index);
   void setStyleClip(int index);
   void removeClip(int index);
-  // Re-maps clip `index` with a joint mapping file (mapping/mapping_file.h); false and a report if the
-  // file does not fit the rig.
+  // Re-maps clip `index` with a joint mapping file (mapping/mapping_file.h); its contacts are found
+  // again (asking first about unsaved contact edits). False and a report if the file does not fit the rig.
   bool loadMappingFile(int index, const QString& file);
   // Writes clip `index`'s mapping (or the automatic mapping's guess, gaps empty) as a mapping file to
   // complete by hand (formatJointMappingTemplate); false (and a report) on failure.
