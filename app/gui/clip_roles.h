@@ -20,4 +20,15 @@ struct ClipRoles {
   std::function<double()> display_fps;                   // the timeline's rate (0: none yet)
 };
 
+// What a training trains on when no clip is in the training set and no folder is given: every open
+// clip that is mapped and is not the Style clip (an animator opens their takes and a style clip and
+// presses Train).
+inline QStringList defaultTrainingPaths(const ClipRoles& roles) {
+  QStringList paths;
+  const LoadedClip* style = roles.style();
+  for (const LoadedClip* clip : roles.clips())
+    if (clip != style && clip->isMapped() && !paths.contains(clip->path)) paths << clip->path;
+  return paths;
+}
+
 }  // namespace motionstyle

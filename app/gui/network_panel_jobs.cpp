@@ -101,9 +101,12 @@ bool NetworkPanel::startTraining(bool retrain) {
   style::StyleTrainingConfig& config = job.config;
   for (const QString& file : roles_.training_paths()) config.content.emplace_back(file.toStdString());
   for (const QString& folder : trainingFolders()) config.content.emplace_back(folder.toStdString());
+  if (config.content.empty())
+    for (const QString& file : defaultTrainingPaths(roles_)) config.content.emplace_back(file.toStdString());
   if (config.content.empty()) {
-    report(tr("No training set"), tr("Right-click clips in the Clips list and choose \"In the Training Set\", or add a "
-                                          "folder of BVH files on the Train tab."));
+    report(tr("No training set"), tr("Open the clips to train on (any clip but the Style clip is used), right-click "
+                                          "clips and choose \"In the Training Set\", or add a folder of BVH files on the "
+                                          "Train tab."));
     return false;
   }
   config.styles = styleSources();

@@ -45,6 +45,7 @@ TrainTab::TrainTab(ClipRoles roles, QWidget* parent)
 
   auto* data_box = new QGroupBox(tr("Content (training set)"), this);
   database_label_ = new QLabel(data_box);
+  database_label_->setObjectName(QStringLiteral("TrainingSetSummary"));
   database_label_->setWordWrap(true);
   folder_list_ = new QListWidget(data_box);
   folder_list_->setObjectName(QStringLiteral("TrainingFolders"));
@@ -259,7 +260,12 @@ std::vector<style::StyleSource> TrainTab::styleSources() const {
 void TrainTab::refreshSummary() {
   const int clips = static_cast<int>(roles_.training_paths().size());
   const int folders = folder_list_->count();
-  if (clips == 0 && folders == 0)
+  const int open = static_cast<int>(defaultTrainingPaths(roles_).size());
+  if (clips == 0 && folders == 0 && open > 0)
+    database_label_->setText(tr("None chosen: the %n open clip(s) other than the Style clip are used. To choose, "
+                                "right-click clips and choose \"In the Training Set\", or add a folder of BVH files.",
+                                nullptr, open));
+  else if (clips == 0 && folders == 0)
     database_label_->setText(tr("No training set yet: right-click clips and choose \"In the Training Set\", or add a "
                                 "folder of BVH files."));
   else

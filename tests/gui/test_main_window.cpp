@@ -572,6 +572,31 @@ class MainWindowTest : public QObject {
     QVERIFY(reports.empty());
   }
 
+  // An animator opens their takes and a style clip and presses Train: with no clip in the training set
+  // and no folder, the open clips other than the Style clip are trained on, and the Train tab says so
+  // (Train reported "No training set" until each was right-clicked into it).
+  void theOpenClipsAreTheTrainingSetWhenNoneIsChosen() {
+    MainWindow window(/*persist_settings=*/false);
+    std::vector<Report> reports;
+    window.setErrorReporter([&](const QString& title, const QString& message) { reports.push_back({title, message}); });
+    auto* summary = window.findChild<QLabel*>(QStringLiteral("TrainingSetSummary"));
+    QVERIFY(summary != nullptr);
+    QCOMPARE(window.openFiles({test::fixture(QStringLiteral("zombie.bvh"))}), 1);
+    window.setStyleClip(0);  // only the Style clip: nothing to train on
+    QVERIFY2(summary->text().startsWith(QStringLiteral("No training set")), qPrintable(summary->text()));
+    NetworkPanel* panel = window.networkPanel();
+    QVERIFY(!panel->startTraining(false));
+    QVERIFY2(reports.back().title == QStringLiteral("No training set"), qPrintable(reports.back().title));
+
+    QCOMPARE(window.openFiles({test::fixture(QStringLiteral("cmu_131_01.bvh"))}), 1);
+    QVERIFY2(summary->text().startsWith(QStringLiteral("None chosen: the 1 open clip")), qPrintable(summary->text()));
+    panel->setLossNetworkFile({});  // the next check fails instead: the training set was found
+    QVERIFY(!panel->startTraining(false));
+    QVERIFY2(reports.back().title == QStringLiteral("No loss network"), qPrintable(reports.back().title));
+    window.setTrainingClip(1, true);
+    QVERIFY2(summary->text().startsWith(QStringLiteral("1 clip")), qPrintable(summary->text()));
+  }
+
   // An animator exports a new take over a clip that is open: the list marks it, the status line says
   // so, and Reload from Disk shows the new take in the same role (the window went on showing the old
   // take, and stylizing it, without a word).

@@ -236,10 +236,13 @@ class TrainingTest : public QObject {
     const auto shipped = resources ? shippedNetworkFile(*resources, kShippedLossNetworkName) : std::nullopt;
     QCOMPARE(panel->lossNetworkFile(), shipped ? QString::fromStdString(shipped->string()) : QString());
 
-    // No training set yet.
+    // Nothing to train on: no clip open (with clips open and none chosen, those but the Style clip are used).
+    window->removeClip(1);
+    window->removeClip(0);
     QVERIFY(!panel->startTraining(false));
     QCOMPARE(reports_.size(), std::size_t{1});
     QVERIFY(reports_.back().title.contains(QStringLiteral("training set"), Qt::CaseInsensitive));
+    QCOMPARE(window->openFiles({test::fixture(QStringLiteral("cmu_131_01.bvh")), test::fixture(QStringLiteral("zombie.bvh"))}), 2);
     // No loss network.
     window->setTrainingClip(0, true);
     panel->setLossNetworkFile({});
