@@ -87,8 +87,8 @@ NetworkPanel::NetworkPanel(ClipRoles roles, QWidget* parent, bool persist_settin
   status_label_->setMinimumHeight(3 * status_label_->fontMetrics().lineSpacing());
   loss_curve_ = new LossCurveWidget(this);
 
-  auto* bottom = new QWidget(this);
-  auto* bottom_layout = new QVBoxLayout(bottom);
+  bottom_ = new QWidget(this);
+  auto* bottom_layout = new QVBoxLayout(bottom_);
   bottom_layout->setContentsMargins(0, 0, 0, 0);
   // Train, Retrain, Cancel and Resume stay in view under the (scrolling) form, next to the progress
   // they start; under the Optimise and Adapt forms, which have their own buttons, only while a
@@ -117,7 +117,7 @@ NetworkPanel::NetworkPanel(ClipRoles roles, QWidget* parent, bool persist_settin
   bottom_layout->addWidget(loss_curve_, 1);
   auto* splitter = new QSplitter(Qt::Vertical, this);
   splitter->addWidget(tabs_);
-  splitter->addWidget(bottom);
+  splitter->addWidget(bottom_);
   splitter->setStretchFactor(0, 3);
   splitter->setStretchFactor(1, 2);
   auto* layout = new QVBoxLayout(this);
@@ -200,6 +200,9 @@ void NetworkPanel::updateButtons() {
   resume_button_->setEnabled(!busy && canResumeTraining());
   const bool training_tab = tabs_->currentWidget() == network_list_ || tabs_->currentWidget()->isAncestorOf(train_tab_);
   run_row_->setVisible(training_tab || running_ == Running::Training);
+  // The Adapt form has its own progress and results: the training's progress, status and loss curve
+  // show under it only while a training or an optimisation runs.
+  bottom_->setVisible(!tabs_->currentWidget()->isAncestorOf(adapt_tab_) || running_ != Running::None);
   optimise_tab_->setRunState(!busy, running_ == Running::Transfer);
   if (busy != busy_) {
     busy_ = busy;

@@ -187,6 +187,7 @@ class NetworkPanel : public QWidget {
 
   QTabWidget* tabs_ = nullptr;
   QWidget* run_row_ = nullptr;  // Train, Retrain, Cancel, Resume
+  QWidget* bottom_ = nullptr;   // the run row, the progress, the status line and the loss curve
   NetworkList* network_list_ = nullptr;
   TrainTab* train_tab_ = nullptr;
   QPushButton* train_button_ = nullptr;

@@ -710,7 +710,9 @@ class TrainingTest : public QObject {
     QVERIFY(shownOn(QStringLiteral("Networks")));
     QVERIFY(shownOn(QStringLiteral("Train")));
     QVERIFY(!shownOn(QStringLiteral("Optimise")));
+    QVERIFY(panel->lossCurve()->isVisibleTo(panel));  // it plots the optimisation
     QVERIFY(!shownOn(QStringLiteral("Adapt")));
+    QVERIFY(!panel->lossCurve()->isVisibleTo(panel));  // the Adapt form has its own progress and results
     window->setTrainingClip(0, true);
     window->setTrainingClip(1, true);
     panel->setLossNetworkFile(loss_network_);
