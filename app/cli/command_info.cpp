@@ -183,8 +183,7 @@ int writeMappingTemplate(const std::string& clip, const std::filesystem::path& o
   const Skeleton skeleton = readBvh(clip).skeleton;
   const JointMapping guess = guessJointMapping(skeleton);
   writeFileAtomically(out, formatJointMappingTemplate(guess, skeleton, std::filesystem::path(clip).filename().string()));
-  std::string missing;
-  for (CanonicalJoint joint : guess.missing()) missing += (missing.empty() ? "" : ", ") + std::string(canonicalJointName(joint));
+  const std::string missing = guess.missingNames();
   std::cout << "wrote " << safeText(out.string()) << ": the automatic mapping found "
             << kCanonicalJointCount - static_cast<int>(guess.missing().size()) << " of " << kCanonicalJointCount
             << " joints" << (missing.empty() ? "" : "; fill in " + missing) << ", then pass it with --mapping\n";

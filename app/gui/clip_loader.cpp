@@ -29,10 +29,8 @@ std::uint64_t nextClipId() {
 }
 
 QString missingJoints(const Skeleton& skeleton) {
-  QStringList names;
-  for (const CanonicalJoint joint : guessJointMapping(skeleton).missing())
-    names << QString::fromUtf8(canonicalJointName(joint).data(), static_cast<qsizetype>(canonicalJointName(joint).size()));
-  return names.isEmpty() ? QStringLiteral("inconsistent joint chains") : QStringLiteral("missing ") + names.join(QStringLiteral(", "));
+  const std::string names = guessJointMapping(skeleton).missingNames();
+  return names.empty() ? QStringLiteral("inconsistent joint chains") : QStringLiteral("missing ") + QString::fromStdString(names);
 }
 
 // Fills the mapping-dependent parts of `clip` (display space, contacts) from clip.mapping.

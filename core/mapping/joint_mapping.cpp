@@ -279,18 +279,19 @@ std::vector<CanonicalJoint> JointMapping::missing() const {
   return result;
 }
 
+std::string JointMapping::missingNames() const {
+  std::string names;
+  for (CanonicalJoint joint : missing()) names += (names.empty() ? "" : ", ") + name(joint);
+  return names;
+}
+
 void JointMapping::validate(const Skeleton& skeleton) const {
   if (const std::optional<std::string> problem = describeMappingProblem(*this, skeleton))
     throw std::invalid_argument(*problem);
 }
 
 std::optional<std::string> describeMappingProblem(const JointMapping& mapping, const Skeleton& skeleton) {
-  const std::vector<CanonicalJoint> missing = mapping.missing();
-  if (!missing.empty()) {
-    std::string list;
-    for (CanonicalJoint joint : missing) list += (list.empty() ? "" : ", ") + name(joint);
-    return "missing " + list;
-  }
+  if (const std::string missing = mapping.missingNames(); !missing.empty()) return "missing " + missing;
   const int count = skeleton.jointCount();
   for (CanonicalJoint joint : kAllCanonicalJoints)
     if (mapping[joint] >= count)
@@ -332,10 +333,8 @@ JointMapping mapJoints(const Skeleton& skeleton, const std::string& source) {
   if (missing.empty()) return mapping;
 
   // "missing A, B (A: why; B: why)", joints sharing a reason grouped together.
-  std::string list;
   std::vector<std::pair<std::string, std::string>> reasons;  // (reason, joints)
   for (CanonicalJoint joint : missing) {
-    list += (list.empty() ? "" : ", ") + name(joint);
     auto group = std::find_if(reasons.begin(), reasons.end(), [&](const auto& r) { return r.first == finder.why(joint); });
     if (group == reasons.end()) reasons.emplace_back(finder.why(joint), name(joint));
     else group->second += ", " + name(joint);
@@ -343,7 +342,7 @@ JointMapping mapJoints(const Skeleton& skeleton, const std::string& source) {
   std::string explanation;
   for (const auto& [reason, joints] : reasons) explanation += (explanation.empty() ? "" : "; ") + joints + ": " + reason;
   throw InputError(source, 0,
-                   "cannot map the rig to the canonical skeleton: missing " + list + " (" + explanation +
+                   "cannot map the rig to the canonical skeleton: missing " + mapping.missingNames() + " (" + explanation +
                        "); provide a joint mapping file (motionstyle-cli info CLIP --write-mapping MAP.json writes one "
                        "to complete)");
 }

@@ -37,6 +37,8 @@ struct JointMapping {
 
   // Canonical joints without a rig joint (-1), in canonical order.
   std::vector<CanonicalJoint> missing() const;
+  // missing() as text: "LeftHip, LeftKnee" (empty when every joint is mapped), for messages.
+  std::string missingNames() const;
 
   // Throws std::invalid_argument describing the first problem (describeMappingProblem).
   void validate(const Skeleton& skeleton) const;

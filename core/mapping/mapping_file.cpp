@@ -170,13 +170,12 @@ std::string formatJointMapping(const JointMapping& mapping, const Skeleton& skel
 
 std::string formatJointMappingTemplate(const JointMapping& guess, const Skeleton& skeleton, const std::string& clip_name) {
   nlohmann::ordered_json joints = nlohmann::ordered_json::object();
-  std::string missing;
   for (CanonicalJoint joint : kAllCanonicalJoints) {
     const int rig_joint = guess[joint];
     const bool found = rig_joint >= 0 && rig_joint < static_cast<int>(skeleton.joints.size());
     joints[std::string(canonicalJointName(joint))] = found ? skeleton.joints[static_cast<size_t>(rig_joint)].name : "";
-    if (!found) missing += (missing.empty() ? "" : ", ") + std::string(canonicalJointName(joint));
   }
+  const std::string missing = guess.missingNames();
   nlohmann::ordered_json root;
   root["format"] = kJointMappingFormat;
   root["version"] = kJointMappingVersion;
