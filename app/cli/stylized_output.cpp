@@ -99,11 +99,8 @@ void writeStylizedOutput(const std::filesystem::path& content_file, const style:
   // in the app and in cleanup: read against the contacts detected as they detect them.
   const std::filesystem::path tracks_file = contactTracksPath(content_file);
   if (std::filesystem::exists(tracks_file)) {
-    Motion continued = content;  // over a leading rest pose, the motion continued (rest_pose_frames.h)
-    replaceRestPoseFrames(continued, leadingRestPoseFrames(content, job.mapping));
-    const ContactLabels detected = detectFileSpaceGround(continued, job.mapping, canonicalJointPositions(continued, job.mapping),
-                                                         stylized.anchor.convention.unit)
-                                       .contacts;
+    const ContactLabels detected =
+        detectClipGround(content, job.mapping, leadingRestPoseFrames(content, job.mapping), stylized.anchor.convention.unit).contacts;
     job.contact_overrides = contactOverridesFromTracks(loadContactTracks(tracks_file), detected, content.fps(), tracks_file);
     log << "contacts from " << tracks_file.string() << "\n";
   }

@@ -58,19 +58,15 @@ void prepare(LoadedClip& clip) {
     // The convention, floor and contacts as every clean-up front end finds them (foot_contacts.h), on
     // the motion continued over a leading rest pose, as the features and the clean-up see it.
     clip.rest_pose_frames = leadingRestPoseFrames(clip.motion, *clip.mapping);
-    std::optional<Motion> replaced;
+    FileSpaceGround ground;
     if (clip.rest_pose_frames > 0) {
-      replaced = clip.motion;
-      replaceRestPoseFrames(*replaced, clip.rest_pose_frames);
-    }
-    Eigen::MatrixXd canonical(world.rows(), 3 * kCanonicalJointCount);
-    if (replaced) {
-      canonical = canonicalJointPositions(*replaced, *clip.mapping);
-    } else {
+      ground = detectClipGround(clip.motion, *clip.mapping, clip.rest_pose_frames);
+    } else {  // the canonical joints are columns of the world positions already computed
+      Eigen::MatrixXd canonical(world.rows(), 3 * kCanonicalJointCount);
       for (int c = 0; c < kCanonicalJointCount; ++c)
         canonical.middleCols<3>(3 * c) = world.middleCols<3>(3 * clip.mapping->joints[static_cast<size_t>(c)]);
+      ground = detectFileSpaceGround(clip.motion, *clip.mapping, canonical);
     }
-    FileSpaceGround ground = detectFileSpaceGround(replaced ? *replaced : clip.motion, *clip.mapping, canonical);
     clip.display_space.convention = ground.convention;
     clip.display_space.floor_height = ground.floor_height;
     clip.detected_contacts = std::move(ground.contacts);

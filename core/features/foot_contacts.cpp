@@ -6,6 +6,9 @@
 #include <string>
 #include <vector>
 
+#include "features/representation.h"
+#include "features/rest_pose_frames.h"
+
 namespace motionstyle {
 namespace {
 
@@ -175,6 +178,14 @@ FileSpaceGround detectFileSpaceGround(const Motion& motion, const JointMapping& 
   ground.contacts = detectContacts(canonical_positions, canonicalContactJoints(), ground.up, ground.floor_height,
                                    motion.fps(), restPoseBodyHeight(motion.skeleton, ground.up));
   return ground;
+}
+
+FileSpaceGround detectClipGround(const Motion& motion, const JointMapping& mapping, int rest_pose_frames,
+                                 const std::optional<std::string>& unit) {
+  if (rest_pose_frames == 0) return detectFileSpaceGround(motion, mapping, canonicalJointPositions(motion, mapping), unit);
+  Motion continued = motion;
+  replaceRestPoseFrames(continued, rest_pose_frames);
+  return detectFileSpaceGround(continued, mapping, canonicalJointPositions(continued, mapping), unit);
 }
 
 }  // namespace motionstyle

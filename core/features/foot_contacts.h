@@ -103,4 +103,12 @@ FileSpaceGround detectFileSpaceGround(const Motion& motion, const JointMapping& 
                                       const Eigen::MatrixXd& canonical_positions,
                                       const std::optional<std::string>& unit = std::nullopt);
 
+// The ground as the features and the clean-up see the clip: detectFileSpaceGround on a copy of
+// `motion` whose first `rest_pose_frames` frames are replaced by the motion continued
+// (rest_pose_frames.h), so a CMU T-pose frame 0 neither lowers the floor nor reads as a contact.
+// Frames keep their times: the contacts index the clip's own frames. For callers that only read the
+// ground (the app's loader, stylize's saved contact tracks); cleanup replaces the frames in place.
+FileSpaceGround detectClipGround(const Motion& motion, const JointMapping& mapping, int rest_pose_frames,
+                                 const std::optional<std::string>& unit = std::nullopt);
+
 }  // namespace motionstyle

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "bvh/bvh_reader.h"
+#include "features/foot_contacts.h"
 #include "features/representation.h"
 #include "features/rest_pose_frames.h"
 #include "mapping/joint_mapping.h"
@@ -97,6 +98,27 @@ TEST(RestPoseFrames, AFrameOfTheRigsRestPoseIsFoundAndReplacedForTheFeatures) {
     EXPECT_EQ(features.values, expected.values) << name;
     EXPECT_EQ(features.contacts, expected.contacts) << name;
   }
+}
+
+// The ground the app's loader and stylize read: a T-pose frame 0 is seen through as the features see
+// it (not a contact, not the floor), the caller's clip is not changed, and no rest pose means the clip.
+TEST(RestPoseFrames, TheClipsGroundSeesThroughTheRestPose) {
+  const Motion motion = readBvh(test::fixture("cmu_131_01.bvh"));
+  const JointMapping mapping = mapJoints(motion.skeleton, "cmu_131_01.bvh");
+  const Motion with_rest = withRestPoseFrame(motion);
+  Motion replaced = with_rest;
+  replaceRestPoseFrames(replaced, 1);
+  const FileSpaceGround expected = detectFileSpaceGround(replaced, mapping, canonicalJointPositions(replaced, mapping));
+  const FileSpaceGround ground = detectClipGround(with_rest, mapping, 1);
+  EXPECT_EQ(ground.contacts, expected.contacts);
+  EXPECT_DOUBLE_EQ(ground.floor_height, expected.floor_height);
+  ASSERT_EQ(ground.contacts.rows(), with_rest.frameCount());
+  EXPECT_EQ(ground.contacts.bottomRows(motion.frameCount() - 1), expected.contacts.bottomRows(motion.frameCount() - 1));
+  // Read as motion, the T-pose's frame changes what is detected: the replacement is not a no-op here.
+  const FileSpaceGround as_motion = detectClipGround(with_rest, mapping, 0);
+  EXPECT_NE(as_motion.contacts, ground.contacts);
+  EXPECT_EQ(detectClipGround(motion, mapping, 0).contacts,
+            detectFileSpaceGround(motion, mapping, canonicalJointPositions(motion, mapping)).contacts);
 }
 
 // The clean-up of a clip with a rest-pose frame writes that frame back unchanged and cleans the
