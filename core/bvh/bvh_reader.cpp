@@ -1,10 +1,14 @@
 #include "bvh/bvh_reader.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <memory>
 #include <stdexcept>
+#include <string>
 
 #include "bvh/bvh_chunked_reader.h"
 #include "bvh/bvh_hierarchy.h"
@@ -34,6 +38,21 @@ class FileByteSource final : public bvh_detail::ByteSource {
   const std::string& name_;
 };
 
+// The format of a motion file that is not BVH, by its magic bytes or its extension, or nullptr: named in
+// the error so that a user who dropped an FBX knows what to do rather than read a parser's complaint.
+const char* otherMotionFormat(std::string_view prefix, const std::string& name) {
+  if (prefix.starts_with("Kaydara FBX Binary") || prefix.starts_with("; FBX")) return "an FBX file";
+  if (prefix.starts_with("glTF")) return "a binary glTF file (.glb)";
+  std::string extension = std::filesystem::path(name).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (extension == ".fbx") return "an FBX file";
+  if (extension == ".gltf" || extension == ".glb") return "a glTF file";
+  if (extension == ".c3d") return "a C3D marker file";
+  if (extension == ".blend") return "a Blender scene";
+  if (extension == ".ma" || extension == ".mb") return "a Maya scene";
+  return nullptr;
+}
+
 // The first non-blank line of every BVH is HIERARCHY (the parser demands it too): checked on the first
 // kBvhSniffBytes so that a device or a binary file is refused before anything more is read.
 void requireHierarchyFirst(std::string_view prefix, bool whole_file, const std::string& name) {
@@ -45,8 +64,14 @@ void requireHierarchyFirst(std::string_view prefix, bool whole_file, const std::
     throw InputError(name, cursor.lastLine(),
                      "expected HIERARCHY, got only blank lines in the first " + std::to_string(prefix.size()) + " bytes");
   }
-  if (!bvh_detail::equalsIgnoreCase(bvh_detail::trim(line), "HIERARCHY"))
-    throw InputError(name, number, "expected HIERARCHY as the first line, got " + bvh_detail::excerpt(bvh_detail::trim(line)));
+  if (!bvh_detail::equalsIgnoreCase(bvh_detail::trim(line), "HIERARCHY")) {
+    std::string problem = "expected HIERARCHY as the first line, got " + bvh_detail::excerpt(bvh_detail::trim(line));
+    if (const char* format = otherMotionFormat(prefix, name))
+      problem += std::string(": this is ") + format +
+                 ", not BVH; MotionStyle reads BVH (export the clip as BVH first, e.g. Blender's File > Export > "
+                 "Motion Capture (.bvh))";
+    throw InputError(name, number, problem);
+  }
 }
 
 // The hierarchy and then the MOTION section, whichever way `cursor` holds the text.

@@ -23,7 +23,7 @@ constexpr std::uint32_t kMaxStyleTargets = 64;
 constexpr std::string_view kStyleTargetPrefix = "style_target:";
 
 const char* kindName(NetworkKind kind) {
-  return kind == NetworkKind::LossNetwork ? "loss network" : "style (transformation network)";
+  return kind == NetworkKind::LossNetwork ? "a loss network" : "a style network (the paper's transformation network)";
 }
 
 // Writing.
@@ -305,8 +305,7 @@ Parsed parse(std::string_view bytes, const std::string& source, NetworkKind want
   p.version = header.version;
   p.kind = header.kind;
   if (p.kind != wanted)
-    r.fail(std::string("this file holds a ") + kindName(p.kind) + " network, not the expected " + kindName(wanted) +
-           " network");
+    r.fail(std::string("this file holds ") + kindName(p.kind) + ", where " + kindName(wanted) + " was expected");
   r.take(kHeaderBytes, "header");
   readMetadata(r, p);
   p.precision = readWeightEncoding(r, p.version);

@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <random>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "bvh/bvh_reader.h"
 #include "bvh_test_clips.h"
@@ -174,6 +176,45 @@ TEST(BvhReaderInvalid, DevicesAndBinaryFilesStopAtTheFirstRead) {
     EXPECT_NE(error.detail().find("NUL byte"), std::string::npos) << error.detail();
   }
   std::filesystem::remove(file);
+}
+
+// Another tool's motion file dropped on the app or given to the CLI: the error names its format and
+// what to do, by its magic bytes (whatever its name) or by its extension.
+TEST(BvhReaderInvalid, AnotherFormatIsNamedWithWhatToDo) {
+  const test::TempDir dir("other-formats");
+  const std::vector<std::pair<std::string, std::string>> files = {
+      {"take.fbx", "; FBX 7.4.0 project file\n"},
+      {"named-as-bvh.bvh", std::string("Kaydara FBX Binary  \0\x1a\0", 23) + std::string(64, '\x01')},
+      {"take.glb", std::string("glTF\x02\0\0\0", 8)},
+      {"take.gltf", "{\n  \"asset\": {\"version\": \"2.0\"}\n}\n"},
+      {"markers.c3d", "\x02P unused"}};
+  for (const auto& [name, bytes] : files) {
+    const std::filesystem::path file = dir / name;
+    std::FILE* out = std::fopen(file.c_str(), "wb");
+    ASSERT_NE(out, nullptr);
+    std::fwrite(bytes.data(), 1, bytes.size(), out);
+    std::fclose(out);
+    try {
+      readBvh(file);
+      ADD_FAILURE() << "read " << name;
+    } catch (const InputError& error) {
+      EXPECT_EQ(error.file(), file.string());
+      EXPECT_EQ(error.line(), 1) << error.what();
+      EXPECT_NE(error.detail().find("not BVH; MotionStyle reads BVH"), std::string::npos) << error.detail();
+    }
+  }
+  // A text file that is none of them keeps the parser's plain complaint.
+  const std::filesystem::path notes = dir / "notes.bvh";
+  std::FILE* out = std::fopen(notes.c_str(), "wb");
+  ASSERT_NE(out, nullptr);
+  std::fputs("shot 12, take 3\n", out);
+  std::fclose(out);
+  try {
+    readBvh(notes);
+    ADD_FAILURE() << "read notes.bvh";
+  } catch (const InputError& error) {
+    EXPECT_EQ(error.detail().find("not BVH"), std::string::npos) << error.detail();
+  }
 }
 
 TEST(BvhReaderInvalid, DuplicateJointNames) {

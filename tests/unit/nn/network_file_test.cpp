@@ -99,8 +99,8 @@ TEST(NetworkFileInvalid, WrongMagicFutureVersionWrongKindTrailingBytes) {
   putU32(future, 8, kNetworkFormatVersion + 1);
   fixCrc(future);
   expectInputError([&] { parseStyleModel(future, "net.msn"); }, "newer");
-  expectInputError([&] { parseLossNetwork(bytes, "net.msn"); }, "not the expected loss network");
-  expectInputError([&] { parseStyleModel(serialiseLossNetwork(smallLossNetwork()), "net.msn"); }, "not the expected style");
+  expectInputError([&] { parseLossNetwork(bytes, "net.msn"); }, "holds a style network (the paper's transformation network), where a loss network was expected");
+  expectInputError([&] { parseStyleModel(serialiseLossNetwork(smallLossNetwork()), "net.msn"); }, "holds a loss network, where a style network");
   expectInputError([&] { parseStyleModel(bytes + "extra", "net.msn"); }, "trailing");
 }
 
