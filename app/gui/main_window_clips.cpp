@@ -10,8 +10,10 @@
 #include <QProgressDialog>
 #include <QUrl>
 
+#include "bvh/bvh_reader.h"
 #include "clip_file_watcher.h"
 #include "error_text.h"
+#include "result_panel.h"
 
 namespace motionstyle {
 namespace {
@@ -88,8 +90,9 @@ int MainWindow::openFolder(const QString& folder) {
 }
 
 void MainWindow::dragEnterEvent(QDragEnterEvent* event) {
+  // Any local file: what cannot be opened is said on the drop, never refused without a word.
   for (const QUrl& url : event->mimeData()->urls()) {
-    if (url.isLocalFile() && (isBvhPath(url.toLocalFile()) || QFileInfo(url.toLocalFile()).isDir())) {
+    if (url.isLocalFile()) {
       event->acceptProposedAction();
       return;
     }
@@ -97,13 +100,24 @@ void MainWindow::dragEnterEvent(QDragEnterEvent* event) {
 }
 
 void MainWindow::dropEvent(QDropEvent* event) {
-  QStringList paths;  // folders and clips; anything else dropped with them is ignored
+  QStringList paths;     // folders and clips, and other tools' motion files (their error says what to do)
+  QStringList networks;  // style networks: used in the Result panel, as its "Open network file..." does
+  QStringList ignored;   // anything else (notes, videos); a clip's saved contact tracks are read with it
   for (const QUrl& url : event->mimeData()->urls()) {
+    if (!url.isLocalFile()) continue;
     const QString path = url.toLocalFile();
-    if (url.isLocalFile() && (QFileInfo(path).isDir() || isBvhPath(path))) paths << path;
+    if (QFileInfo(path).isDir() || isBvhPath(path) || otherMotionFormat({}, path.toStdString()) != nullptr) paths << path;
+    else if (path.endsWith(QStringLiteral(".net"), Qt::CaseInsensitive)) networks << path;
+    else if (!path.endsWith(QStringLiteral(".contacts.json"), Qt::CaseInsensitive)) ignored << QFileInfo(path).fileName();
   }
   event->acceptProposedAction();
+  if (paths.isEmpty() && networks.isEmpty() && !ignored.isEmpty()) {
+    report(tr("Nothing to open"), tr("%1: MotionStyle opens BVH clips (.bvh), folders of them and style networks (.net).")
+                                      .arg(ignored.join(QStringLiteral(", "))));
+    return;
+  }
   openPaths(paths);
+  for (const QString& network : networks) result_panel_->loadNetworkFile(network);
 }
 
 int MainWindow::openPaths(const QStringList& paths) {

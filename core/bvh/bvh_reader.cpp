@@ -38,21 +38,6 @@ class FileByteSource final : public bvh_detail::ByteSource {
   const std::string& name_;
 };
 
-// The format of a motion file that is not BVH, by its magic bytes or its extension, or nullptr: named in
-// the error so that a user who dropped an FBX knows what to do rather than read a parser's complaint.
-const char* otherMotionFormat(std::string_view prefix, const std::string& name) {
-  if (prefix.starts_with("Kaydara FBX Binary") || prefix.starts_with("; FBX")) return "an FBX file";
-  if (prefix.starts_with("glTF")) return "a binary glTF file (.glb)";
-  std::string extension = std::filesystem::path(name).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
-  if (extension == ".fbx") return "an FBX file";
-  if (extension == ".gltf" || extension == ".glb") return "a glTF file";
-  if (extension == ".c3d") return "a C3D marker file";
-  if (extension == ".blend") return "a Blender scene";
-  if (extension == ".ma" || extension == ".mb") return "a Maya scene";
-  return nullptr;
-}
-
 // The first non-blank line of every BVH is HIERARCHY (the parser demands it too): checked on the first
 // kBvhSniffBytes so that a device or a binary file is refused before anything more is read.
 void requireHierarchyFirst(std::string_view prefix, bool whole_file, const std::string& name) {
@@ -125,6 +110,19 @@ Motion parseBvh(std::string_view text, const std::string& source_name, int minim
     throw InputError(source_name, 0, bvh_detail::tooLargeDetail(std::to_string(text.size())));
   bvh_detail::LineCursor cursor(text);
   return parseLines(cursor, source_name, minimum_frames);
+}
+
+const char* otherMotionFormat(std::string_view first_bytes, const std::string& name) {
+  if (first_bytes.starts_with("Kaydara FBX Binary") || first_bytes.starts_with("; FBX")) return "an FBX file";
+  if (first_bytes.starts_with("glTF")) return "a binary glTF file (.glb)";
+  std::string extension = std::filesystem::path(name).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (extension == ".fbx") return "an FBX file";
+  if (extension == ".gltf" || extension == ".glb") return "a glTF file";
+  if (extension == ".c3d") return "a C3D marker file";
+  if (extension == ".blend") return "a Blender scene";
+  if (extension == ".ma" || extension == ".mb") return "a Maya scene";
+  return nullptr;
 }
 
 }  // namespace motionstyle

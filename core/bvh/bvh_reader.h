@@ -72,4 +72,9 @@ Motion readBvh(const std::filesystem::path& file, int minimum_frames = 0);
 // Motion::source.
 Motion parseBvh(std::string_view text, const std::string& source_name, int minimum_frames = 0);
 
+// Another tool's motion format ("an FBX file") for a file that is not BVH, by its first bytes (may be
+// empty: the extension alone) or its name's extension; nullptr when it is none of those known. readBvh
+// names it in its error with what to do, and the app names it for a file dropped on the window.
+const char* otherMotionFormat(std::string_view first_bytes, const std::string& name);
+
 }  // namespace motionstyle

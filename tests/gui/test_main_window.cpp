@@ -26,6 +26,7 @@
 #include <cstdio>
 
 #include "bvh/bvh_reader.h"
+#include "common/resource_paths.h"
 #include "contact_tracks.h"
 #include "ik/contact_file.h"
 #include "track_view.h"
@@ -171,21 +172,48 @@ class MainWindowTest : public QObject {
     QCOMPARE(recent.value(1), QFileInfo(cmu).absoluteFilePath());
   }
 
-  void droppedFilesAreOpened() {
+  // A drop opens what it can and says what it cannot: clips and folders open, a style network is used
+  // in the Result panel, another tool's motion file is named with what to do, notes dropped with them
+  // are passed over, and a drop of nothing usable is said, not refused without a word.
+  void droppedFilesAreOpenedOrExplained() {
     MainWindow window;
+    std::vector<Report> reports;
+    window.setErrorReporter([&](const QString& title, const QString& message) { reports.push_back({title, message}); });
     window.show();
     QVERIFY(QTest::qWaitForWindowExposed(&window));
-    QMimeData mime;
-    mime.setUrls({QUrl::fromLocalFile(test::fixture(QStringLiteral("zombie.bvh"))),
-                  QUrl::fromLocalFile(scratch_.filePath(QStringLiteral("notes.txt")))});
+    const auto resources = resourceDirectory();
+    QVERIFY(resources.has_value());
+    const auto elderly = shippedNetworkFile(*resources, "elderly");
+    QVERIFY(elderly.has_value());
+    const QString fbx = writeFile(scratch_, QStringLiteral("take.fbx"), "; FBX 7.4.0 project file\n");
+    const QString notes = writeFile(scratch_, QStringLiteral("notes.txt"), "shot 12\n");
     const QPoint centre = window.rect().center();
-    QDragEnterEvent enter(centre, Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
-    QApplication::sendEvent(&window, &enter);
-    QVERIFY(enter.isAccepted());
-    QDropEvent drop(centre, Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
-    QApplication::sendEvent(&window, &drop);
-    QCOMPARE(window.clipCount(), 1);  // the .txt is ignored
+    const auto drop = [&](const QStringList& files) {
+      QMimeData mime;
+      QList<QUrl> urls;
+      for (const QString& file : files) urls << QUrl::fromLocalFile(file);
+      mime.setUrls(urls);
+      QDragEnterEvent enter(centre, Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
+      QApplication::sendEvent(&window, &enter);
+      if (!enter.isAccepted()) return false;
+      QDropEvent dropped(centre, Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
+      QApplication::sendEvent(&window, &dropped);
+      return true;
+    };
+    QVERIFY(drop({test::fixture(QStringLiteral("zombie.bvh")), notes, fbx,
+                  QString::fromStdString(elderly->string())}));
+    QCOMPARE(window.clipCount(), 1);
     QCOMPARE(window.clip(0).name, QStringLiteral("zombie.bvh"));
+    QCOMPARE(window.resultPanel()->networkName(), QStringLiteral("Elderly"));
+    QCOMPARE(reports.size(), size_t{1});  // the FBX; the notes are passed over
+    QVERIFY2(reports[0].message.contains(QStringLiteral("take.fbx")) && reports[0].message.contains(QStringLiteral("an FBX file")) &&
+                 reports[0].message.contains(QStringLiteral("export the clip as BVH first")),
+             qPrintable(reports[0].message));
+    QVERIFY(drop({notes}));  // accepted, then said
+    QCOMPARE(reports.size(), size_t{2});
+    QCOMPARE(reports[1].title, QStringLiteral("Nothing to open"));
+    QVERIFY2(reports[1].message.contains(QStringLiteral("notes.txt")), qPrintable(reports[1].message));
+    QCOMPARE(window.clipCount(), 1);
   }
 
   // `motionstyle shots/ extra.bvh`: a folder on the command line is opened as a folder (it was read as
