@@ -28,6 +28,10 @@ int MainWindow::loadClips(const QStringList& paths, QProgressDialog* progress) {
   QStringList failures;
   QStringList loaded;
   bool cancelled = false;
+  // With a style network chosen the Style role plays no part (and is not drawn): a clip opened beside a
+  // content clip becomes the content, shown and stylized, rather than a Style clip nothing shows.
+  const bool style_role_unused = result_panel_->resultComesFromNetwork();
+  const int previous_content = content_;
   for (qsizetype i = 0; i < paths.size(); ++i) {
     if (progress) {
       if (progress->wasCanceled()) {
@@ -41,8 +45,8 @@ int MainWindow::loadClips(const QStringList& paths, QProgressDialog* progress) {
       clips_.push_back(loadClip(std::filesystem::path(path.toStdString())));
       loaded << clips_.back().path;
       file_watcher_->watch(clips_.back().path);
-      if (content_ < 0) content_ = clipCount() - 1;
-      else if (style_ < 0) style_ = clipCount() - 1;
+      if (content_ < 0 || (style_role_unused && content_ == previous_content)) content_ = clipCount() - 1;
+      else if (style_ < 0 && !style_role_unused) style_ = clipCount() - 1;
     } catch (...) {
       failures << errorText(std::current_exception(), path);
     }
@@ -57,7 +61,11 @@ int MainWindow::loadClips(const QStringList& paths, QProgressDialog* progress) {
   QStringList contact_notes;  // contacts read from the files beside the clips, or why not
   for (int i = clipCount() - static_cast<int>(loaded.size()); i < clipCount(); ++i)
     if (!clip(i).contacts_note.isEmpty()) contact_notes << clip(i).contacts_note;
-  showStatus((loaded.size() == 1 ? tr("Loaded 1 clip") : tr("Loaded %1 clips").arg(loaded.size())) +
+  const QString content_note = previous_content >= 0 && content_ != previous_content
+                                   ? tr("; %1 is the content now (%2 stays open: its menu's Use as Content goes back)")
+                                         .arg(clip(content_).name, clip(previous_content).name)
+                                   : QString();
+  showStatus((loaded.size() == 1 ? tr("Loaded 1 clip") : tr("Loaded %1 clips").arg(loaded.size())) + content_note +
              (failures.isEmpty() ? QString() : tr(", %1 failed").arg(failures.size())) +
              (cancelled ? tr("; cancelled") : QString()) +
              (contact_notes.isEmpty() ? QString() : QStringLiteral("; ") + contact_notes.join(QStringLiteral("; "))));

@@ -34,7 +34,7 @@ struct StylizeCleanupResult {
   Eigen::MatrixXd cleaned_world_positions;
   CleanupReport report;
   ClipMetrics raw_metrics;       // the raw output, judged by the content's contacts (60 fps)
-  ClipMetrics cleaned_metrics;   // the cleaned clip, judged by the contacts the clean-up locked
+  ClipMetrics cleaned_metrics;   // the cleaned clip; its skate over the contact tracks shown (stylized_cleanup.h)
   Eigen::MatrixXi contacts;      // frames x 4 at cleanup_fps: the labels the clean-up locked
   double cleanup_fps = 0.0;      // the clean-up's rate (stylized_cleanup.h): of contacts and cleaned_metrics
   double seconds = 0.0;          // wall clock of the whole job

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <optional>
 #include <stdexcept>
+#include <vector>
 
 #include "features/foot_contacts.h"
 #include "features/rest_pose_frames.h"
@@ -29,29 +30,42 @@ Eigen::MatrixXi overridesAtRate(const Eigen::MatrixXi& overrides, double content
 }
 
 // The content's contact segments on which the stylized foot really rests: a segment is kept when the
-// output's foot joint moves at most kLockableSpeedCmS on average over it (horizontally, the
-// character's cm per second). A
-// style that changes the stepping lifts a foot where the content's was down; locking it there pulls
-// the foot 15-30 cm off its targets for a whole stance (docs/decisions.md).
-constexpr double kLockableSpeedCmS = 20.0;
+// output's foot joint stays within kLockableSpreadCm of its median position over the segment
+// (horizontally, the character's cm). A style that moves a step further than that puts the foot
+// elsewhere for the stance; locking it there would drag the leg after a foot the network put 20+ cm
+// away. The spread, not the path length: the network's feet jitter by 0.5-1.5 cm a frame, which summed
+// over a stance reads as 30-100 cm/s of travel for a foot that stays put, and a rule on it (until the
+// twentieth session) locked 1-15 % of the content's stances and left the rest sliding
+// (docs/decisions.md, "Feet that slid where the tracks said planted").
+constexpr double kLockableSpreadCm = 20.0;
 
 Eigen::MatrixXi restingContacts(const Eigen::MatrixXi& content_contacts, const StylizedClip& stylized) {
   Eigen::MatrixXi kept = Eigen::MatrixXi::Zero(content_contacts.rows(), content_contacts.cols());
   const SpaceConvention& convention = stylized.anchor.convention;
   const Eigen::Vector3d up = convention.fileUp();
+  const Eigen::Vector3d across = up.unitOrthogonal();  // two horizontal axes
+  const Eigen::Vector3d ahead = up.cross(across);
+  std::vector<Eigen::Vector2d> feet;
+  std::vector<double> along;
   for (int label = 0; label < kContactCount; ++label) {
     const int column = 3 * index(kContactJoint[static_cast<std::size_t>(label)]);
     for (const ContactSegment& segment : contactSegments(content_contacts, label)) {
-      double travelled = 0.0;
-      for (int f = segment.first; f < segment.last; ++f) {
-        Eigen::Vector3d step = (stylized.world_positions.block<1, 3>(f + 1, column) -
-                                stylized.world_positions.block<1, 3>(f, column)).transpose();
-        step -= up.dot(step) * up;
-        travelled += step.norm();
+      feet.clear();
+      for (int f = segment.first; f <= segment.last; ++f) {
+        const Eigen::Vector3d p = stylized.world_positions.block<1, 3>(f, column).transpose();
+        feet.emplace_back(across.dot(p), ahead.dot(p));
       }
-      const double seconds = (segment.last - segment.first) / stylized.fps;
-      const double speed = seconds > 0.0 ? travelled * convention.cm_per_unit / seconds : 0.0;
-      if (speed <= kLockableSpeedCmS) kept.block(segment.first, label, segment.last - segment.first + 1, 1).setOnes();
+      Eigen::Vector2d median;
+      for (int axis = 0; axis < 2; ++axis) {
+        along.clear();
+        for (const Eigen::Vector2d& foot : feet) along.push_back(foot[axis]);
+        std::nth_element(along.begin(), along.begin() + static_cast<std::ptrdiff_t>(along.size() / 2), along.end());
+        median[axis] = along[along.size() / 2];
+      }
+      double spread = 0.0;
+      for (const Eigen::Vector2d& foot : feet) spread = std::max(spread, (foot - median).norm());
+      if (spread * convention.cm_per_unit <= kLockableSpreadCm)
+        kept.block(segment.first, label, segment.last - segment.first + 1, 1).setOnes();
     }
   }
   return kept;
@@ -128,9 +142,13 @@ StylizedCleanup cleanUpStylizedClip(const Motion& clip, const JointMapping& mapp
       restingContacts(content_contacts, stylized)
           .cwiseMax(detectContacts(stylized.world_positions, canonicalContactJoints(), up, floor, stylized.fps,
                                    restPoseBodyHeight(content.skeleton, up)));
-  if (contact_overrides.size() > 0)
-    contacts = applyContactOverrides(
-        contacts, overridesAtRate(contact_overrides, content.fps(), stylized.fps, stylized.frameCount()));
+  // The tracks the user sees and edits: the content's contacts under the user's overrides.
+  Eigen::MatrixXi tracks = content_contacts;
+  if (contact_overrides.size() > 0) {
+    const Eigen::MatrixXi overrides = overridesAtRate(contact_overrides, content.fps(), stylized.fps, stylized.frameCount());
+    contacts = applyContactOverrides(contacts, overrides);
+    tracks = applyContactOverrides(tracks, overrides);
+  }
 
   StylizedCleanup result;
   result.fps = solve_fps;
@@ -159,7 +177,8 @@ StylizedCleanup cleanUpStylizedClip(const Motion& clip, const JointMapping& mapp
   result.raw = computeMetrics(raw);
 
   MetricsInput after(cleaned_world, mapping.joints, skeletonBones(cleaned.skeleton));
-  after.contacts = result.contacts;
+  // Skate over the tracks the user sees: over the locks it is 0 by construction and says nothing.
+  after.contacts = fitRows(resampleRowsNearest(tracks, 1.0 / stylized.fps, solve_fps), at_rate.frameCount());
   after.targets = targets;
   after.up = up;
   after.floor_height = floor;

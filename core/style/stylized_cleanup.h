@@ -23,7 +23,10 @@ struct StylizedCleanup {
   Motion motion;          // content's skeleton, hierarchy, names, offsets and channel layout; output rate
   CleanupReport report;
   ClipMetrics raw;        // the network's output (21 canonical joints) judged by the CONTENT's contacts
-  ClipMetrics cleaned;    // the cleaned clip's canonical joints by `contacts`, bones of the whole skeleton
+  // The cleaned clip's canonical joints, bones of the whole skeleton; its skate over the contact tracks
+  // the user sees (the content's, under the overrides), not over the locks: a stance left unlocked (the
+  // style moved the step) and sliding counts.
+  ClipMetrics cleaned;
   Eigen::MatrixXi contacts;  // frames x 4 at `fps`: the labels the clean-up locked (see the .cpp)
   double fps = 0.0;          // the solve's rate: of `contacts` and of the `cleaned` metrics' tracks
 };

@@ -216,6 +216,29 @@ class MainWindowTest : public QObject {
     QCOMPARE(window.clipCount(), 1);
   }
 
+  // With a style network chosen the Style role plays no part and is not drawn: a clip opened then (an
+  // exported result opened to compare, the next take) becomes the content and is shown, where it was
+  // made the Style clip and not drawn at all. Without a network the second clip is the Style clip.
+  void aClipOpenedWithAStyleNetworkChosenIsTheContent() {
+    MainWindow window;
+    QCOMPARE(window.openFiles({test::fixture(QStringLiteral("zombie.bvh"))}), 1);
+    const auto resources = resourceDirectory();
+    QVERIFY(resources.has_value());
+    QVERIFY(window.resultPanel()->loadNetworkFile(QString::fromStdString(shippedNetworkFile(*resources, "sad")->string())));
+    QVERIFY(window.resultPanel()->resultComesFromNetwork());
+    QCOMPARE(window.openFiles({test::fixture(QStringLiteral("cmu_131_01.bvh"))}), 1);
+    QCOMPARE(window.contentClip(), 1);
+    QCOMPARE(window.styleClip(), -1);
+    QCOMPARE(window.viewport()->figureCount(), 1);  // the new content; its result is still to come
+    QVERIFY2(test::statusLine(window).contains(QStringLiteral("cmu_131_01.bvh is the content now (zombie.bvh stays open")),
+             qPrintable(test::statusLine(window)));
+    MainWindow without_network;
+    QCOMPARE(without_network.openFiles({test::fixture(QStringLiteral("zombie.bvh")), test::fixture(QStringLiteral("cmu_131_01.bvh"))}), 2);
+    QCOMPARE(without_network.contentClip(), 0);
+    QCOMPARE(without_network.styleClip(), 1);
+    QCOMPARE(without_network.viewport()->figureCount(), 2);
+  }
+
   // `motionstyle shots/ extra.bvh`: a folder on the command line is opened as a folder (it was read as
   // a clip: "cannot read: it is a directory"), and the order given is kept.
   void foldersAndClipsGivenTogetherAreOpenedInOrder() {

@@ -18,8 +18,10 @@
 #include <cstdio>
 #include <tuple>
 #include <utility>
+#include <vector>
 
 #include "bvh/bvh_reader.h"
+#include "ik/contacts.h"
 #include "features/feature_statistics.h"
 #include "features/representation.h"
 #include "mapping/joint_mapping.h"
@@ -133,6 +135,41 @@ TEST_F(CleanupStylized, RawOutputMeetsTheCleanUpGoals) {
     EXPECT_NEAR(run.motion.frameCount(), content.frameCount(), 1);
     EXPECT_DOUBLE_EQ(run.motion.fps(), content.fps());
   }
+}
+
+// Which of the content's stances are locked, and what the skate figure sees. The network's feet jitter
+// (0.5-1.5 cm a frame) on a stance they keep: it is locked (a rule on the path length read that
+// jitter as 180 cm/s of travel and locked almost nothing). A stance the style moved 60 cm is not locked,
+// and its sliding is in the cleaned skate, which is measured over the contacts the user sees (the
+// content's, under the overrides), not over the locks, where it was 0 by construction.
+TEST_F(CleanupStylized, AJitteringStanceIsLockedAndAMovedStepIsNotButItsSlidingCounts) {
+  const style::Stylizer stylizer(networkLikeModel(features, 11, 0.0f));  // the projection alone: feet nearly still
+  const style::StylizedClip plain = stylizer.stylize(features, 1.0);
+  const Eigen::MatrixXi content_contacts = (plain.contacts.transpose().array() > 0.5).cast<int>();
+  std::vector<ContactSegment> stances;
+  for (const ContactSegment& segment : contactSegments(content_contacts, 0))
+    if (segment.last - segment.first >= 12) stances.push_back(segment);
+  ASSERT_GE(stances.size(), 2u) << "the fixture walks: its left heel has stances of 0.2 s and more";
+  const ContactSegment jittered = stances[0], moved = stances[1];
+  const double units_per_cm = 1.0 / plain.anchor.convention.cm_per_unit;
+  const Eigen::RowVector3d side = plain.anchor.convention.fileUp().unitOrthogonal().transpose();
+  const int column = 3 * index(CanonicalJoint::LeftAnkle);
+  style::StylizedClip stylized = plain;
+  for (int f = jittered.first; f <= jittered.last; ++f)
+    stylized.world_positions.block<1, 3>(f, column) += (f % 2 == 0 ? 1.5 : -1.5) * units_per_cm * side;
+  for (int f = moved.first; f <= moved.last; ++f)
+    stylized.world_positions.block<1, 3>(f, column) +=
+        (60.0 * (f - moved.first) / (moved.last - moved.first) - 30.0) * units_per_cm * side;
+
+  const style::StylizedCleanup kept = style::cleanUpStylizedClip(content, mapping, plain);
+  const style::StylizedCleanup run = style::cleanUpStylizedClip(content, mapping, stylized);
+  ASSERT_EQ(run.contacts.rows(), plain.frameCount()) << "solved at the network's 60 fps";
+  for (int f = jittered.first; f <= jittered.last; ++f) EXPECT_EQ(run.contacts(f, 0), 1) << "jittered stance, frame " << f;
+  const int middle = (moved.first + moved.last) / 2;
+  EXPECT_EQ(run.contacts(middle, 0), 0) << "a stance the style moved 60 cm is not held at one point";
+  EXPECT_LE(kept.cleaned.foot_skate_cm_s, 0.5);
+  EXPECT_GT(run.cleaned.foot_skate_cm_s, 1.0) << "the moved stance slides (one stance of many), and the figure says so";
+  EXPECT_EQ(run.cleaned.contact_steps, kept.cleaned.contact_steps) << "the same tracks are judged";
 }
 
 // A 120 fps clip is solved at 60 fps: the clean-up's warnings still name the clip's own frames, the
