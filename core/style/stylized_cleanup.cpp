@@ -35,7 +35,7 @@ Eigen::MatrixXi overridesAtRate(const Eigen::MatrixXi& overrides, double content
 // elsewhere for the stance; locking it there would drag the leg after a foot the network put 20+ cm
 // away. The spread, not the path length: the network's feet jitter by 0.5-1.5 cm a frame, which summed
 // over a stance reads as 30-100 cm/s of travel for a foot that stays put, and a rule on it (until the
-// twentieth session) locked 1-15 % of the content's stances and left the rest sliding
+// twentieth session) locked 0-14 % of the content's stances and left the rest sliding
 // (docs/decisions.md, "Feet that slid where the tracks said planted").
 constexpr double kLockableSpreadCm = 20.0;
 
