@@ -24,7 +24,10 @@ ResultMetricsView::ResultMetricsView(QWidget* parent) : QWidget(parent) {
   table_->setHorizontalHeaderLabels({tr("Raw output"), tr("Cleaned")});
   table_->setVerticalHeaderLabels(
       {tr("Foot skate (cm/s)"), tr("Floor penetration (cm)"), tr("Bone error (cm)"), tr("Residual (cm)")});
-  table_->verticalHeaderItem(kSkateRow)->setToolTip(tr("Mean horizontal speed of a foot during contact"));
+  table_->verticalHeaderItem(kSkateRow)->setToolTip(
+      tr("Mean horizontal speed of a foot over the contacts on the timeline's foot tracks.\n"
+         "The clean-up holds every such contact unless the style moved that step more than 20 cm;\n"
+         "those count here (the Skate row of the timeline shows where)."));
   table_->verticalHeaderItem(kPenetrationRow)->setToolTip(tr("Deepest foot below the floor"));
   table_->verticalHeaderItem(kBoneErrorRow)->setToolTip(tr("Mean difference from the skeleton's bone lengths"));
   table_->verticalHeaderItem(kResidualRow)->setToolTip(tr("Mean distance of the mapped joints from the network's output"));
