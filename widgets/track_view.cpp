@@ -1,8 +1,10 @@
 #include "track_view.h"
 
+#include <QHelpEvent>
 #include <QMouseEvent>
 #include <QPainter>
 #include <QPainterPath>
+#include <QToolTip>
 
 #include <algorithm>
 #include <cmath>
@@ -26,7 +28,10 @@ TrackView::TrackView(QWidget* parent) : QWidget(parent) {
 
 void TrackView::setFrameCount(int frames) {
   frames_ = std::max(0, frames);
-  for (BoolTrack& track : bool_tracks_) track.values.resize(static_cast<size_t>(frames_), false);
+  for (BoolTrack& track : bool_tracks_) {
+    track.values.resize(static_cast<size_t>(frames_), false);
+    if (!track.unheld.empty()) track.unheld.resize(static_cast<size_t>(frames_), false);
+  }
   for (FloatTrack& track : float_tracks_) track.values.resize(static_cast<size_t>(frames_), track.minimum);
   playhead_ = std::clamp(playhead_, 0, std::max(0, frames_ - 1));
   update();
@@ -34,7 +39,7 @@ void TrackView::setFrameCount(int frames) {
 
 int TrackView::addBoolTrack(const QString& name, const QColor& color, std::vector<bool> values) {
   values.resize(static_cast<size_t>(frames_), false);
-  bool_tracks_.push_back({name, color, std::move(values)});
+  bool_tracks_.push_back({name, color, std::move(values), {}, {}});
   updateGeometry();
   update();
   return static_cast<int>(bool_tracks_.size()) - 1;
@@ -48,6 +53,40 @@ void TrackView::setBoolValues(int track, std::vector<bool> values) {
 
 const std::vector<bool>& TrackView::boolValues(int track) const {
   return bool_tracks_.at(static_cast<size_t>(track)).values;
+}
+
+void TrackView::setUnheldFrames(int track, std::vector<bool> unheld, const QString& tool_tip) {
+  BoolTrack& target = bool_tracks_.at(static_cast<size_t>(track));
+  if (!unheld.empty()) unheld.resize(static_cast<size_t>(frames_), false);
+  target.unheld = std::move(unheld);
+  target.unheld_tool_tip = tool_tip;
+  update();
+}
+
+const std::vector<bool>& TrackView::unheldFrames(int track) const {
+  return bool_tracks_.at(static_cast<size_t>(track)).unheld;
+}
+
+bool TrackView::isUnheld(int track, int frame) const {
+  const BoolTrack& t = bool_tracks_[static_cast<size_t>(track)];
+  const auto f = static_cast<size_t>(frame);
+  return frame >= 0 && f < t.unheld.size() && t.unheld[f] && t.values[f];
+}
+
+bool TrackView::event(QEvent* event) {
+  if (event->type() == QEvent::ToolTip) {
+    const auto* help = static_cast<QHelpEvent*>(event);
+    const int frame = frameAt(help->pos().x());
+    for (int t = 0; t < boolTrackCount(); ++t)
+      if (boolTrackRect(t).contains(help->pos()) && isUnheld(t, frame)) {
+        QToolTip::showText(help->globalPos(), bool_tracks_[static_cast<size_t>(t)].unheld_tool_tip, this);
+        return true;
+      }
+    QToolTip::hideText();
+    event->ignore();
+    return true;
+  }
+  return QWidget::event(event);
 }
 
 int TrackView::addFloatTrack(const QString& name, const QColor& color) {
@@ -172,6 +211,18 @@ void TrackView::paintEvent(QPaintEvent*) {
       painter.fillRect(run, track.color);
       f = end;
     }
+    // Unheld runs: the track's colour dimmed under a hatch, so an "on" the user did not get reads apart.
+    for (int f = 0; f < frames_ && !track.unheld.empty();) {
+      if (!isUnheld(t, f)) { ++f; continue; }
+      int end = f;
+      while (end < frames_ && isUnheld(t, end)) ++end;
+      const QRectF run(row.left() + f * cell, row.top() + 3, std::max(1.0, (end - f) * cell), row.height() - 6);
+      painter.fillRect(run, kRowBackground);
+      painter.fillRect(run, QBrush(track.color, Qt::BDiagPattern));
+      painter.setPen(QPen(track.color, 1));
+      painter.drawRect(run.adjusted(0, 0, -1, -1));
+      f = end;
+    }
   }
 
   for (int t = 0; t < floatTrackCount() && frames_ > 0; ++t) {
@@ -225,7 +276,8 @@ void TrackView::mousePressEvent(QMouseEvent* event) {
   if (!editable_) return;
   for (int t = 0; t < boolTrackCount(); ++t) {
     if (!boolTrackRect(t).contains(pos)) continue;
-    const bool value = !bool_tracks_[static_cast<size_t>(t)].values[static_cast<size_t>(frame)];
+    // A press toggles the frame, but on an unheld "on" it paints on: the user asks for it to be held.
+    const bool value = isUnheld(t, frame) || !bool_tracks_[static_cast<size_t>(t)].values[static_cast<size_t>(frame)];
     stroke_ = {t, value, frame, frame, frame};
     paintStroke(frame);
     return;

@@ -2,7 +2,9 @@
 // TrackView: per-frame tracks under the timeline's time axis.
 //   - a ruler with frame numbers (click or drag on it to scrub),
 //   - boolean tracks (e.g. left / right foot contact), editable by click-drag painting: the press
-//     toggles the frame under the cursor and the drag paints that value over every frame it crosses,
+//     toggles the frame under the cursor and the drag paints that value over every frame it crosses;
+//     frames marked "unheld" (on, but not acted on: a contact the clean-up does not hold) are drawn
+//     hatched, and a press on one paints "on" (asks for it to be held) instead of toggling it off,
 //   - float tracks (quality figures per frame, e.g. foot skate) drawn as filled curves,
 //   - a playhead across all of them.
 // Frames are cells: frame f covers [f, f+1) of the track area's width; the playhead sits on the centre.
@@ -34,6 +36,10 @@ class TrackView : public QWidget {
   int addBoolTrack(const QString& name, const QColor& color, std::vector<bool> values = {});
   void setBoolValues(int track, std::vector<bool> values);
   const std::vector<bool>& boolValues(int track) const;
+  // Frames of a boolean track that are on but not acted on (drawn hatched; a press there paints on;
+  // hovering one shows `tool_tip`). Empty: none. Resized to frameCount(); kept until set again.
+  void setUnheldFrames(int track, std::vector<bool> unheld, const QString& tool_tip = {});
+  const std::vector<bool>& unheldFrames(int track) const;
   int boolTrackCount() const { return static_cast<int>(bool_tracks_.size()); }
 
   // Adds a float track (drawn below the boolean ones) and returns its index; then its values, drawn
@@ -76,13 +82,17 @@ class TrackView : public QWidget {
   void mousePressEvent(QMouseEvent* event) override;
   void mouseMoveEvent(QMouseEvent* event) override;
   void mouseReleaseEvent(QMouseEvent* event) override;
+  bool event(QEvent* event) override;  // the unheld frames' tool tip
 
  private:
   struct BoolTrack {
     QString name;
     QColor color;
     std::vector<bool> values;
+    std::vector<bool> unheld;  // empty, or one per frame
+    QString unheld_tool_tip;
   };
+  bool isUnheld(int track, int frame) const;
   struct Stroke {
     int track = -1;
     bool value = false;

@@ -9,6 +9,7 @@
 
 #include "common/errors.h"
 #include "ik/contact_file.h"
+#include "motion/resample.h"
 #include "style/familiarity.h"
 #include "track_view.h"
 
@@ -29,6 +30,23 @@ std::vector<bool> footTrack(const ContactLabels& labels, int foot, int frames) {
   for (Eigen::Index f = 0; f < labels.rows() && f < frames; ++f)
     track[static_cast<size_t>(f)] = labels(f, heel) != 0 || labels(f, toe) != 0;
   return track;
+}
+
+ContactLabels locksAtRate(const Eigen::MatrixXi& locks, double locks_fps, double fps, int frames) {
+  if (locks.rows() == 0 || locks_fps <= 0.0 || fps <= 0.0 || frames <= 0) return {};
+  const Eigen::MatrixXi at_rate = resampleRowsNearest(locks, 1.0 / locks_fps, fps);
+  ContactLabels labels(frames, kContactCount);
+  for (int f = 0; f < frames; ++f) labels.row(f) = at_rate.row(std::min<Eigen::Index>(f, at_rate.rows() - 1));
+  return labels;
+}
+
+std::vector<bool> unheldFootTrack(const ContactLabels& contacts, const ContactLabels& held, int foot, int frames) {
+  if (held.rows() == 0) return {};
+  std::vector<bool> unheld(static_cast<size_t>(std::max(frames, 0)), false);
+  for (Eigen::Index f = 0; f < frames && f < contacts.rows() && f < held.rows(); ++f)
+    for (int label : footLabels(foot))
+      if (contacts(f, label) != 0 && held(f, label) == 0) unheld[static_cast<size_t>(f)] = true;
+  return unheld;
 }
 
 ContactTrackController::ContactTrackController(TrackView* tracks, ContentProvider content, ErrorReporter reporter,
@@ -59,6 +77,14 @@ void ContactTrackController::setQualityTracks(const QualityTracks& tracks) {
     return values.empty() ? floor : std::max(floor, *std::max_element(values.begin(), values.end()));
   };
   tracks_->setFloatValues(kSkateTrack, tracks.skate_cm_s, 0.0f, top(tracks.skate_cm_s, 5.0f));
+  // A contact the clean-up did not hold is hatched on its foot's track; a click there holds it.
+  const LoadedClip* clip = content_();
+  const ContactLabels contacts = clip != nullptr ? clip->effectiveContacts() : ContactLabels();
+  for (int foot : {kLeftFootTrack, kRightFootTrack}) {
+    tracks_->setUnheldFrames(foot, unheldFootTrack(contacts, tracks.held_contacts, foot, tracks_->frameCount()),
+                             tr("Not held by the clean-up: the style moved this step more than 20 cm, so the foot "
+                                "follows the network here.\nClick or drag over it to hold the foot planted."));
+  }
   tracks_->setFloatValues(kRawBoneErrorTrack, tracks.raw_bone_error_cm, 0.0f, top(tracks.raw_bone_error_cm, 2.0f));
   // Full height at the "far" threshold, so the row reads against the reading's scale.
   tracks_->setFloatValues(kFamiliarityTrack, tracks.familiarity_cm, 0.0f,

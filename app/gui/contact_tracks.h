@@ -30,7 +30,10 @@ class TrackView;
 
 // Per-frame quality of a result, one value per frame of the content.
 struct QualityTracks {
-  std::vector<float> skate_cm_s;         // the cleaned output: mean foot speed during contact
+  std::vector<float> skate_cm_s;         // the cleaned output: mean foot speed over the contact tracks
+  // The clean-up's locks per content frame (frames x 4, ContactLabel order); empty without a result.
+  // A contact of the content's that is not held (the style moved that step) is hatched on its track.
+  ContactLabels held_contacts;
   std::vector<float> raw_bone_error_cm;  // the raw network output: its largest bone-length error (the
                                          // cleaned clip's is zero by construction)
   std::vector<float> familiarity_cm;     // the content: the style network's loss network's
@@ -79,5 +82,13 @@ class ContactTrackController : public QObject {
 
 // Foot `foot` (0 left, 1 right) of contact labels (frames x 4) as a track of `frames` values.
 std::vector<bool> footTrack(const ContactLabels& labels, int foot, int frames);
+
+// QualityTracks::held_contacts from a result's locks (frames x 4 at `locks_fps`), at `fps` over
+// `frames` frames (each frame takes the lock row nearest in time).
+ContactLabels locksAtRate(const Eigen::MatrixXi& locks, double locks_fps, double fps, int frames);
+
+// Per frame of a foot's track: a contact of that foot (heel or toe, in `contacts`) that `held` does
+// not lock. Empty when `held` is.
+std::vector<bool> unheldFootTrack(const ContactLabels& contacts, const ContactLabels& held, int foot, int frames);
 
 }  // namespace motionstyle

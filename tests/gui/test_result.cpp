@@ -711,6 +711,28 @@ class ResultTest : public QObject {
     qInfo("demo with the bundled network: skate %.2f -> %.2f cm/s, residual %.2f cm",
           window.resultPanel()->result()->raw_metrics.foot_skate_cm_s, cleaned.foot_skate_cm_s, cleaned.residual_mean_cm);
     QVERIFY(cleaned.foot_skate_cm_s < 0.2 * window.resultPanel()->result()->raw_metrics.foot_skate_cm_s);
+    // The stances the clean-up left to the network (elderly moves steps of the MJ walk's last stand more
+    // than 20 cm) are hatched on the foot tracks; dragging over one holds the foot there.
+    TrackView* tracks = window.timeline()->trackView();
+    int track = -1, first = -1, last = -1;
+    for (int t : {ContactTrackController::kLeftFootTrack, ContactTrackController::kRightFootTrack}) {
+      const std::vector<bool>& unheld = tracks->unheldFrames(t);
+      const auto begin = std::find(unheld.begin(), unheld.end(), true);
+      if (begin == unheld.end()) continue;
+      track = t;
+      first = static_cast<int>(begin - unheld.begin());
+      last = static_cast<int>(std::find(begin, unheld.end(), false) - unheld.begin()) - 1;
+      break;
+    }
+    QVERIFY2(track >= 0, "the demo's result holds every contact: the hatch has nothing to show");
+    const double skate_before = cleaned.foot_skate_cm_s;
+    const int y = tracks->boolTrackRect(track).center().y();
+    QTest::mousePress(tracks, Qt::LeftButton, Qt::NoModifier, QPoint(static_cast<int>(tracks->xForFrame(first)), y));
+    QTest::mouseMove(tracks, QPoint(static_cast<int>(tracks->xForFrame(last)), y));
+    QTest::mouseRelease(tracks, Qt::LeftButton, Qt::NoModifier, QPoint(static_cast<int>(tracks->xForFrame(last)), y));
+    QVERIFY(QTest::qWaitFor([&] { return !window.resultPanel()->isBusy() && !window.resultPanel()->resultIsStale(); }, 20000));
+    for (int f = first; f <= last; ++f) QVERIFY2(!tracks->unheldFrames(track)[static_cast<size_t>(f)], qPrintable(QString::number(f)));
+    QVERIFY(window.resultPanel()->result()->cleaned_metrics.foot_skate_cm_s < skate_before);
     window.timeline()->setFrame(200);
     QTest::qWait(50);
     QVERIFY(window.saveScreenshot(screenshotPath(QStringLiteral("demo_result"))));

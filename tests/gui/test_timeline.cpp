@@ -226,6 +226,39 @@ class TimelineTest : public QObject {
     QVERIFY(!tracks.boolValues(0)[70]);
   }
 
+  // A contact the clean-up does not hold is drawn hatched (not as a held one), and a press on it paints
+  // "on" (holds it) where a press on a held contact would clear it.
+  void anUnheldContactIsHatchedAndAPressHoldsIt() {
+    TrackView tracks;
+    tracks.setFrameCount(100);
+    tracks.addBoolTrack(QStringLiteral("Left foot"), Qt::yellow, std::vector<bool>(100, true));
+    tracks.resize(84 + 6 + 500, tracks.sizeHint().height());  // 5 px per frame
+    tracks.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&tracks));
+    std::vector<bool> unheld(100, false);
+    for (int f = 40; f < 60; ++f) unheld[static_cast<size_t>(f)] = true;
+    QVERIFY_THROWS_EXCEPTION(std::out_of_range, tracks.setUnheldFrames(1, unheld));
+    const auto x = [&](int frame) { return static_cast<int>(tracks.xForFrame(frame)); };
+    const int y = tracks.boolTrackRect(0).center().y();
+    const QImage held_look = tracks.grab().toImage();
+    tracks.setUnheldFrames(0, unheld, QStringLiteral("not held"));
+    QCOMPARE(tracks.unheldFrames(0).size(), size_t{100});
+    const QImage unheld_look = tracks.grab().toImage();
+    QCOMPARE(unheld_look.pixel(x(20), y), held_look.pixel(x(20), y));  // a held contact: as before
+    bool differs = false;  // the hatch: some pixels of the unheld run are not the track's colour
+    for (int dx = -2; dx <= 2; ++dx) differs = differs || unheld_look.pixel(x(50) + dx, y) != held_look.pixel(x(50) + dx, y);
+    QVERIFY(differs);
+    QSignalSpy edited(&tracks, &TrackView::trackEdited);
+    QTest::mouseClick(&tracks, Qt::LeftButton, Qt::NoModifier, QPoint(x(50), y));
+    QCOMPARE(edited.count(), 1);
+    QCOMPARE(edited.at(0).at(3).toBool(), true);  // held, not cleared
+    QVERIFY(tracks.boolValues(0)[50]);
+    QTest::mouseClick(&tracks, Qt::LeftButton, Qt::NoModifier, QPoint(x(20), y));
+    QCOMPARE(edited.at(1).at(3).toBool(), false);  // a held contact still clears
+    tracks.setUnheldFrames(0, {});
+    QVERIFY(tracks.unheldFrames(0).empty());
+  }
+
   void floatTracksStackBelowTheBooleanOnes() {
     TrackView tracks;
     tracks.setFrameCount(50);
