@@ -11,6 +11,7 @@
 #include "ik/contact_file.h"
 #include "motion/resample.h"
 #include "style/familiarity.h"
+#include "style/stylized_cleanup.h"
 #include "track_view.h"
 
 namespace motionstyle {
@@ -82,8 +83,9 @@ void ContactTrackController::setQualityTracks(const QualityTracks& tracks) {
   const ContactLabels contacts = clip != nullptr ? clip->effectiveContacts() : ContactLabels();
   for (int foot : {kLeftFootTrack, kRightFootTrack}) {
     tracks_->setUnheldFrames(foot, unheldFootTrack(contacts, tracks.held_contacts, foot, tracks_->frameCount()),
-                             tr("Not held by the clean-up: the style moved this step more than 20 cm, so the foot "
-                                "follows the network here.\nClick or drag over it to hold the foot planted."));
+                             tr("Not held by the clean-up: the style moved this step more than %1 cm, so the foot "
+                                "follows the network here.\nClick or drag over it to hold the foot planted.")
+                                 .arg(style::kLockableSpreadCm));
   }
   tracks_->setFloatValues(kRawBoneErrorTrack, tracks.raw_bone_error_cm, 0.0f, top(tracks.raw_bone_error_cm, 2.0f));
   // Full height at the "far" threshold, so the row reads against the reading's scale.

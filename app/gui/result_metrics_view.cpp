@@ -10,6 +10,7 @@
 
 #include "ik/cleanup.h"
 #include "style/stylize_cleanup_job.h"
+#include "style/stylized_cleanup.h"
 
 namespace motionstyle {
 namespace {
@@ -26,8 +27,9 @@ ResultMetricsView::ResultMetricsView(QWidget* parent) : QWidget(parent) {
       {tr("Foot skate (cm/s)"), tr("Floor penetration (cm)"), tr("Bone error (cm)"), tr("Residual (cm)")});
   table_->verticalHeaderItem(kSkateRow)->setToolTip(
       tr("Mean horizontal speed of a foot over the contacts on the timeline's foot tracks.\n"
-         "The clean-up holds every such contact unless the style moved that step more than 20 cm;\n"
-         "those count here (the Skate row of the timeline shows where)."));
+         "The clean-up holds every such contact unless the style moved that step more than %1 cm;\n"
+         "those count here (hatched on the foot tracks; the Skate row shows where).")
+          .arg(style::kLockableSpreadCm));
   table_->verticalHeaderItem(kPenetrationRow)->setToolTip(tr("Deepest foot below the floor"));
   table_->verticalHeaderItem(kBoneErrorRow)->setToolTip(tr("Mean difference from the skeleton's bone lengths"));
   table_->verticalHeaderItem(kResidualRow)->setToolTip(tr("Mean distance of the mapped joints from the network's output"));

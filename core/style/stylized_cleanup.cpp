@@ -37,7 +37,6 @@ Eigen::MatrixXi overridesAtRate(const Eigen::MatrixXi& overrides, double content
 // over a stance reads as 30-100 cm/s of travel for a foot that stays put, and a rule on it (until the
 // twentieth session) locked 0-14 % of the content's stances and left the rest sliding
 // (docs/decisions.md, "Feet that slid where the tracks said planted").
-constexpr double kLockableSpreadCm = 20.0;
 
 Eigen::MatrixXi restingContacts(const Eigen::MatrixXi& content_contacts, const StylizedClip& stylized) {
   Eigen::MatrixXi kept = Eigen::MatrixXi::Zero(content_contacts.rows(), content_contacts.cols());
