@@ -204,6 +204,8 @@ StyleTrainingResult trainStyleNetwork(const StyleTrainingConfig& config, const T
   network.save = [&](const std::filesystem::path& file) { nn::saveStyleModel(model, file); };
   if (callbacks.style_snapshot) network.snapshot = [&] { callbacks.style_snapshot(model); };
   LoopSetup setup = startTraining(network, settings, fingerprint, optimiser, history, callbacks, started);
+  if (!config.init_model && settings.init.empty())  // fresh (a resumed fresh run keeps the same schedule)
+    setup.minimum_steps_per_epoch = static_cast<int>((kFreshStyleMinimumSteps + settings.epochs - 1) / settings.epochs);
 
   nn::LossNetwork<float> loss_network = loss.network;  // forward caches are per instance
   const FeatureStatistics normalisation = loss.normalisation;

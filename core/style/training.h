@@ -183,6 +183,11 @@ LossNetworkTrainingResult trainLossNetwork(const LossNetworkTrainingConfig& conf
 // inside the learning-rate warm-up and barely style; figures in docs/decisions.md).
 constexpr int kFullStyleEpochs = 100;
 constexpr int kQuickStyleEpochs = 6;
+// A fresh style network (no warm start) takes at least this many optimisation steps over its run, its
+// epochs passing over a small training set again: the quick style's steps over the shipped content
+// (6 epochs of 17). One short clip gave one step an epoch, six in all, and a network that destroyed
+// the motion (docs/decisions.md, "A quick style from one clip of content").
+constexpr long kFreshStyleMinimumSteps = 100;
 
 struct StyleTrainingConfig {
   TrainingSettings settings;

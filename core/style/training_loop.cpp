@@ -163,8 +163,8 @@ TrainingStatus runTrainingLoop(const LoopSetup& setup, std::vector<EpochRecord>&
                                const TrainingCallbacks& callbacks) {
   const TrainingSettings& settings = *setup.settings;
   const int batch = settings.batch_size;
-  const long total_steps =
-      static_cast<long>((setup.window_count + batch - 1) / batch) * (settings.epochs - setup.first_epoch + 1);
+  const auto stepsPerEpoch = [&](int windows) { return std::max((windows + batch - 1) / batch, setup.minimum_steps_per_epoch); };
+  const long total_steps = static_cast<long>(stepsPerEpoch(setup.window_count)) * (settings.epochs - setup.first_epoch + 1);
   long steps_done = 0;
   const auto loop_start = std::chrono::steady_clock::now();
   GradientAccumulator accumulator(setup.parameters);
@@ -181,14 +181,22 @@ TrainingStatus runTrainingLoop(const LoopSetup& setup, std::vector<EpochRecord>&
         return TrainingStatus::Cancelled;
       }
     }
-    const int steps_per_epoch = (window_count + batch - 1) / batch;
-    const std::vector<int> order = shuffledIndices(window_count, shuffle_rng);
+    const int steps_per_epoch = stepsPerEpoch(window_count);
+    std::vector<int> order = shuffledIndices(window_count, shuffle_rng);
+    if (steps_per_epoch > (window_count + batch - 1) / batch && window_count > 0) {  // too few: pass over them again
+      while (static_cast<int>(order.size()) < steps_per_epoch * batch) {
+        const std::vector<int> again = shuffledIndices(window_count, shuffle_rng);
+        order.insert(order.end(), again.begin(), again.end());
+      }
+      order.resize(static_cast<std::size_t>(steps_per_epoch * batch));
+    }
+    const int ordered = static_cast<int>(order.size());
     EpochRecord record;
     record.epoch = epoch;
     int clipped_steps = 0;
     for (int step = 0; step < steps_per_epoch; ++step) {
       const int begin = step * batch;
-      const int end = std::min(window_count, begin + batch);
+      const int end = std::min(ordered, begin + batch);
       accumulator.begin();
       StepLosses losses;
       for (int micro = begin; micro < end; micro += kMicroBatchWindows) {

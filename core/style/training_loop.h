@@ -55,6 +55,9 @@ struct LoopSetup {
   const TrainingSettings* settings = nullptr;
   int window_count = 0;  // windows per epoch (the first epoch's when begin_epoch changes it)
   int first_epoch = 1;  // 1-based; > 1 when resuming
+  // An epoch takes at least this many steps: when its windows give fewer, they are passed over again,
+  // reshuffled (a fresh style network on one short clip: style_training.cpp).
+  int minimum_steps_per_epoch = 1;
   std::vector<nn::Parameter<float>*> parameters;
   nn::Adam<float>* optimiser = nullptr;
   // Adds the gradient of the loss over `windows` (one micro-batch) into the parameters' gradients

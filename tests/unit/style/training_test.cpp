@@ -281,6 +281,29 @@ TEST(TrainStyleNetwork, LossDecreasesAndTheFileRecordsTheStyle) {
   EXPECT_TRUE(pairing_logged);
 }
 
+// A fresh network on a small training set still takes kFreshStyleMinimumSteps steps over its run, its
+// epochs passing over the windows again (one short clip gave one step an epoch: six Adam steps from
+// random weights, a network that destroyed the motion); a warm start keeps one pass an epoch.
+TEST(TrainStyleNetwork, AFreshNetworkOnLittleContentTakesTheMinimumSteps) {
+  TempDir dir;
+  auto config = tinyStyleConfig(dir, 4);
+  std::vector<int> steps_per_epoch;
+  style::TrainingCallbacks callbacks;
+  callbacks.progress = [&](const style::TrainingProgress& p) {
+    if (p.phase == style::TrainingProgress::Phase::Training && p.step == p.steps_per_epoch) steps_per_epoch.push_back(p.steps_per_epoch);
+  };
+  ASSERT_EQ(style::trainStyleNetwork(config, callbacks).status, style::TrainingStatus::Completed);
+  ASSERT_EQ(steps_per_epoch.size(), 4u);
+  const int minimum = static_cast<int>((style::kFreshStyleMinimumSteps + 3) / 4);
+  for (int steps : steps_per_epoch) EXPECT_EQ(steps, minimum);
+  config.settings.init = dir / "style.net";
+  config.settings.output = dir / "warm.net";
+  steps_per_epoch.clear();
+  ASSERT_EQ(style::trainStyleNetwork(config, callbacks).status, style::TrainingStatus::Completed);
+  ASSERT_EQ(steps_per_epoch.size(), 4u);
+  EXPECT_LT(steps_per_epoch.front(), minimum) << "the fixtures' windows are fewer than the minimum's batches";
+}
+
 TEST(TrainStyleNetwork, DeterministicResumableAndWarmStartable) {
   TempDir dir;
   auto config = tinyStyleConfig(dir, 2);
