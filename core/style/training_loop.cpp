@@ -163,7 +163,9 @@ TrainingStatus runTrainingLoop(const LoopSetup& setup, std::vector<EpochRecord>&
                                const TrainingCallbacks& callbacks) {
   const TrainingSettings& settings = *setup.settings;
   const int batch = settings.batch_size;
-  const auto stepsPerEpoch = [&](int windows) { return std::max((windows + batch - 1) / batch, setup.minimum_steps_per_epoch); };
+  const auto stepsPerEpoch = [&](int windows) {
+    return windows > 0 ? std::max((windows + batch - 1) / batch, setup.minimum_steps_per_epoch) : 0;
+  };
   const long total_steps = static_cast<long>(stepsPerEpoch(setup.window_count)) * (settings.epochs - setup.first_epoch + 1);
   long steps_done = 0;
   const auto loop_start = std::chrono::steady_clock::now();
