@@ -125,7 +125,7 @@ void MainWindow::dropEvent(QDropEvent* event) {
     return;
   }
   openPaths(paths);
-  for (const QString& network : networks) result_panel_->loadNetworkFile(network);
+  for (const QString& network : networks) result_panel_->openNetworkFile(network);
 }
 
 int MainWindow::openPaths(const QStringList& paths) {

@@ -80,6 +80,10 @@ class ResultPanel : public QWidget {
   void forgetNetwork(const QString& name);
   // Loads a style network file (checked against this build's representation). false + report on error.
   bool loadNetworkFile(const QString& file);
+  // The same without the GUI waiting for the file: the chooser lists it (by its name) and picks it,
+  // and it is read and prepared as a picked entry is (chooseNetwork); a file that fails to read leaves
+  // the chooser as it was, its entry removed, and is reported. Open..., File > Open Network and drops.
+  void openNetworkFile(const QString& file);
   bool hasNetwork() const { return stylizer_ != nullptr; }
   // Stylize runs the chosen network (not a clip stylized elsewhere): the Style clip plays no part.
   bool resultComesFromNetwork() const { return hasNetwork() && !given_stylized_; }
@@ -283,6 +287,7 @@ class ResultPanel : public QWidget {
   QStringList unreadable_files_;    // listed network files the look-ahead could not read: passed over
   JobRunner* reader_ = nullptr;  // reads the file of a network picked in the chooser
   QString reading_file_;         // the file it reads for the chooser's current entry, "" when none
+  QString listed_for_reading_;   // a file openNetworkFile added to the chooser, until it reads
   bool stylize_when_read_ = false;   // Stylize was pressed during the read
   qint64 chosen_ms_ = -1;        // when the entry being read was picked (clock_)
   std::shared_ptr<style::StylizeCleanupMemory> memory_;  // the last job on the content: an edit redoes what changed

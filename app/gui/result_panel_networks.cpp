@@ -108,6 +108,18 @@ bool ResultPanel::loadNetworkFile(const QString& file) {
   return false;
 }
 
+void ResultPanel::openNetworkFile(const QString& file) {
+  const QString path = QFileInfo(file).absoluteFilePath();
+  int index = network_choice_->findData(path);
+  if (index < 0) {
+    network_choice_->addItem(QFileInfo(path).completeBaseName(), path);
+    index = network_choice_->count() - 1;
+    listed_for_reading_ = path;
+  }
+  network_choice_->setCurrentIndex(index);
+  chooseNetwork(index);
+}
+
 void ResultPanel::chooseNetwork(int index) {
   const QString file = network_choice_->itemData(index).toString();
   const QString label = network_choice_->itemText(index);
@@ -154,6 +166,7 @@ std::shared_ptr<const style::Stylizer> ResultPanel::readNetworkFile(const QStrin
 
 void ResultPanel::onNetworkRead(std::shared_ptr<const style::Stylizer> stylizer, const QString& file) {
   if (!stylizers_.find(file)) stylizers_.store(file, stylizer);
+  if (listed_for_reading_ == file) listed_for_reading_.clear();  // it reads: it stays listed
   if (reading_file_ != file) return;  // another entry was picked since
   reading_file_.clear();
   const int listed = network_choice_->findData(file);
@@ -164,6 +177,12 @@ void ResultPanel::onNetworkRead(std::shared_ptr<const style::Stylizer> stylizer,
 }
 
 void ResultPanel::onNetworkReadFailed(const QString& title, const QString& message) {
+  // A file listed only to be read leaves the chooser: it holds no network.
+  if (!listed_for_reading_.isEmpty() && listed_for_reading_ == reading_file_) {
+    const int listed = network_choice_->findData(listed_for_reading_);
+    if (listed >= 0) network_choice_->removeItem(listed);
+  }
+  listed_for_reading_.clear();
   reading_file_.clear();
   stylize_when_read_ = false;
   // The chooser and the result go back to the network in use (the result shown again, or computed for
@@ -178,7 +197,7 @@ void ResultPanel::onNetworkReadFailed(const QString& title, const QString& messa
 void ResultPanel::browseNetwork() {
   const QString file = QFileDialog::getOpenFileName(this, tr("Open a style network"), QString(),
                                                     tr("Style networks (*.net);;All files (*)"));
-  if (!file.isEmpty()) loadNetworkFile(file);
+  if (!file.isEmpty()) openNetworkFile(file);
 }
 
 }  // namespace motionstyle

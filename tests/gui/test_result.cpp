@@ -583,6 +583,34 @@ class ResultTest : public QObject {
     QVERIFY(panel->result()->stylized.features != first);
   }
 
+  // A network opened by hand (Open..., a drop) is read on the reader, as a picked entry is: the window
+  // never waits for the file. One that reads is listed and used; one that does not is reported, its
+  // entry removed, and the chooser stays on the network in use.
+  void aNetworkOpenedByHandIsReadWithoutTheWindowWaiting() {
+    const std::filesystem::path good = writeTinyNetwork(scratch_, QStringLiteral("opened_style"), 5);
+    const QString bad = scratch_.filePath(QStringLiteral("not_a_network.net"));
+    QFile garbage(bad);
+    QVERIFY(garbage.open(QIODevice::WriteOnly) && garbage.write("not a network") > 0);
+    garbage.close();
+    MainWindow window(false);
+    std::vector<Report> reports;
+    window.setErrorReporter([&](const QString& title, const QString& message) { reports.push_back({title, message}); });
+    ResultPanel* panel = window.resultPanel();
+    const QComboBox* choice = panel->networkChoice();
+    panel->openNetworkFile(QString::fromStdString(good.string()));
+    QCOMPARE(choice->currentText(), QStringLiteral("opened_style"));  // listed at once
+    QTRY_COMPARE_WITH_TIMEOUT(panel->networkName(), QStringLiteral("opened_style"), 10000);
+    QVERIFY(reports.empty());
+    const int entries = choice->count();
+    panel->openNetworkFile(bad);
+    QVERIFY(reports.empty());  // the read's outcome comes later, from the reader: the call did not wait
+    QTRY_COMPARE_WITH_TIMEOUT(reports.size(), size_t{1}, 10000);
+    QVERIFY2(reports[0].message.contains(QStringLiteral("not_a_network.net")), qPrintable(reports[0].message));
+    QCOMPARE(choice->count(), entries);
+    QCOMPARE(choice->currentText(), QStringLiteral("opened_style"));
+    QCOMPARE(panel->networkName(), QStringLiteral("opened_style"));
+  }
+
   // A network without a file (trained in the session, from the Networks panel) keeps its entry in the
   // style chooser: picking that entry again, after another style, uses it again (the chooser once
   // showed it while the panel went on with the other style).
