@@ -286,7 +286,8 @@ void ResultPanel::runStylize() {
   std::shared_ptr<const style::StylizeCleanupMemory> seed;
   if (stylizer_ && !given_stylized_) {
     // This style's own job memory when a result of it on this clip is remembered (its network output
-    // serves any strength, path and contacts: a switch back after an edit runs only the clean-up);
+    // serves any strength and contacts: a switch back after such an edit runs only the clean-up; the
+    // job runs the network again for another path, whose root the contacts are planted under);
     // else, rather than another style's remembered one (which keeps its network output), a new one
     // seeded from it on the worker (its features and clean-up solutions).
     if (auto kept = recent_.memoryFor(content_->id, stylizer_)) {

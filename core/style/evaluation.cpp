@@ -135,10 +135,10 @@ EvaluationReport evaluateStyleNetwork(const nn::LossNetworkModel& loss_network, 
     e.reconstruction_joint_error_cm = familiarityFromReconstruction(content, reconstructed).mean_cm;
 
     const auto t0 = Clock::now();
-    const Eigen::MatrixXd own = stylizer.stylizeFeatures(content, 1.0, PathMode::Style);
+    const Eigen::MatrixXd& contacts = clip.features.contacts;
+    const Eigen::MatrixXd output = stylizer.stylizeFeatures(content, contacts, 1.0, path);
     e.stylize_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-    Eigen::MatrixXd output = own;
-    applyPathMode(output, content, path);
+    const Eigen::MatrixXd own = path == PathMode::Style ? output : stylizer.stylizeFeatures(content, contacts, 1.0, PathMode::Style);
     const RootPathComparison network_path = compareRootPaths(summariseRootPath(content), summariseRootPath(own));
     e.network_path_distance_ratio = network_path.distance_ratio;
     e.network_path_end_error_fraction = network_path.end_error_fraction;

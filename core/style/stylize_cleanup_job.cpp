@@ -70,6 +70,7 @@ void StylizeCleanupMemory::copyFrom(const StylizeCleanupMemory& other) {
   seedFrom(other);
   stylizer = other.stylizer;
   features = other.features;
+  path = other.path;
   network_output = other.network_output;
 }
 
@@ -87,13 +88,15 @@ StylizeCleanupResult StylizeCleanupJob::run(const std::atomic<bool>* cancel) con
     if (!memory) {
       result.stylized = stylizer->stylize(features, strength, path);
     } else {
-      result.network_output_kept = memory->stylizer == stylizer && memory->features.rows() == features.values.rows() &&
+      result.network_output_kept = memory->stylizer == stylizer && memory->path == path &&
+                                   memory->features.rows() == features.values.rows() &&
                                    memory->features.cols() == features.values.cols() &&
                                    memory->features == features.values;
       if (!result.network_output_kept) {
         memory->stylizer = nullptr;  // an exception below leaves no stale pairing
-        memory->network_output = stylizer->networkOutput(features.values, cancel);
+        memory->network_output = stylizer->networkOutput(features.values, features.contacts, path, cancel);
         memory->features = features.values;
+        memory->path = path;
         memory->stylizer = stylizer;
       }
       result.stylized = stylizer->stylize(features, memory->network_output, strength, path);

@@ -43,10 +43,10 @@ struct StylizeCleanupResult {
 
 // What a job keeps for the next one on the same content, so that a live edit redoes only what it
 // changed: the content's features (for a content and mapping equal bit for bit to the last job's), the
-// network's output for them (the strength and the path mode do not change it: stylizer.h,
-// networkOutput) and the clean-up's memory (ik/cleanup.h). A job reuses the network output only for
-// the same network and features equal bit for bit; anything else is computed and kept instead. Results
-// never depend on it. One job at a time per memory.
+// network's output for them (the strength does not change it: stylizer.h, networkOutput) and the
+// clean-up's memory (ik/cleanup.h). A job reuses the network output only for the same network, path
+// mode (the contacts are planted under its root path) and features equal bit for bit; anything else is
+// computed and kept instead. Results never depend on it. One job at a time per memory.
 struct StylizeCleanupMemory {
   CleanupMemory cleanup;
   Motion content;  // the clip and mapping content_features were extracted from
@@ -54,6 +54,7 @@ struct StylizeCleanupMemory {
   std::optional<MotionFeatures> content_features;
   std::shared_ptr<const Stylizer> stylizer;  // whose output network_output is
   Eigen::MatrixXd features;                  // the content's features it was computed from
+  PathMode path = PathMode::Content;         // and the path its contacts were planted under
   Eigen::MatrixXd network_output;
 
   // Starts from `other`'s clip, features and clean-up solutions (another network's memory on the same
@@ -80,7 +81,7 @@ struct StylizeCleanupJob {
   double output_fps = 0.0;  // the cleaned clip's rate (resampled): 0 = the content's own
   bool world_positions = false;  // also give the cleaned clip's world positions (for a viewer)
   // The previous job on this clip: after a small edit only what changed is computed again (the
-  // network not at all for a strength or path change, the clean-up only where its inputs moved, from
+  // network not at all for a strength change, the clean-up only where its inputs moved, from
   // the last solution). Null: compute everything.
   std::shared_ptr<StylizeCleanupMemory> memory;
   // When `memory` has nothing yet (new), it is first seeded from this one (StylizeCleanupMemory::

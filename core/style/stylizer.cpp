@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "common/errors.h"
+#include "style/cancellation.h"
 #include "style/training_windows.h"
 
 namespace motionstyle::style {
@@ -35,13 +36,17 @@ Eigen::MatrixXd cropEdges(const Eigen::MatrixXd& padded) {
 
 }  // namespace
 
-Stylizer::Stylizer(nn::StyleModel model, std::string source_name, StyleRefinement refinement)
-    : model_(std::move(model)), source_name_(std::move(source_name)), refinement_(refinement) {
+Stylizer::Stylizer(nn::StyleModel model, std::string source_name, StyleRefinement refinement,
+                   ContactProjection contact_projection)
+    : model_(std::move(model)), source_name_(std::move(source_name)), refinement_(refinement),
+      contact_projection_(contact_projection) {
   model_.normalisation.validate();
   refinement_.validate();
+  contact_projection_.validate();
   if (model_.transformation.shape().features != kFeatureCount || model_.loss_network.shape().features != kFeatureCount)
     throw std::invalid_argument("Stylizer: the networks must take 66 features");
   projection_ = sharedProjection(model_.loss_network);
+  planter_ = sharedContactPlanter(model_.loss_network);
   prototype_ = std::make_unique<const nn::FastStylizer>(model_.transformation, *projection_);
 }
 
@@ -70,22 +75,33 @@ void Stylizer::releaseIdleNetworks() const {
   }  // freed outside the lock
 }
 
-Eigen::MatrixXd Stylizer::networkOutput(const Eigen::MatrixXd& features, const std::atomic<bool>* cancel) const {
+Eigen::MatrixXd Stylizer::networkOutput(const Eigen::MatrixXd& features, const Eigen::MatrixXd& contacts, PathMode path,
+                                        const std::atomic<bool>* cancel) const {
   requireFeatures(features, "Stylizer::networkOutput");
+  const bool plant = contacts.size() > 0 && contact_projection_.iterations > 0;
+  if (plant && (contacts.rows() != kContactCount || contacts.cols() != features.cols()))
+    throw std::invalid_argument("Stylizer::networkOutput: the contacts must be 4 x the features' frames");
   const nn::Mat<float> input = model_.normalisation.normalized(padEdges(features));
   const bool refine = refinementSteps() > 0;
   const nn::Mat<float> styled = withNetwork([&](nn::FastStylizer& network) {
-    if (!refine) return network.stylize(input);
+    if (!refine && !plant) return network.stylize(input);
     // The clip's own pooled columns, between the edges' padding.
     const Eigen::Index first = kEdgePaddingFrames / 2, count = (features.cols() + 1) / 2;
-    const nn::Mat<float> content_hidden = network.encode(input).middleCols(first, count);
+    nn::Mat<float> content_hidden;
+    if (refine) content_hidden = network.encode(input).middleCols(first, count);
     nn::Mat<float> styled_padded;
     network.stylize(input, styled_padded, [&](nn::Mat<float>& hidden) {
-      nn::Mat<float> clip = hidden.middleCols(first, count);
-      const int target = nearestStyleTarget(model_.style_targets, clip);
-      refineHiddenUnits(clip, content_hidden, model_.style_targets[static_cast<std::size_t>(target)].gram, refinement_,
-                        cancel);
-      hidden.middleCols(first, count) = clip;
+      if (refine) {
+        nn::Mat<float> clip = hidden.middleCols(first, count);
+        const int target = nearestStyleTarget(model_.style_targets, clip);
+        refineHiddenUnits(clip, content_hidden, model_.style_targets[static_cast<std::size_t>(target)].gram,
+                          refinement_, cancel);
+        hidden.middleCols(first, count) = clip;
+      }
+      if (plant) {
+        throwIfCancelled(cancel);
+        planter_->plant(hidden, model_.normalisation, features, contacts, kEdgePaddingFrames, path, contact_projection_);
+      }
     });
     return styled_padded;
   });
@@ -110,11 +126,12 @@ Eigen::MatrixXd Stylizer::finishFeatures(const Eigen::MatrixXd& features, const 
   return result;
 }
 
-Eigen::MatrixXd Stylizer::stylizeFeatures(const Eigen::MatrixXd& features, double strength, PathMode path) const {
+Eigen::MatrixXd Stylizer::stylizeFeatures(const Eigen::MatrixXd& features, const Eigen::MatrixXd& contacts,
+                                          double strength, PathMode path) const {
   requireFeatures(features, "Stylizer::stylizeFeatures");
   if (!(strength >= 0.0 && strength <= 1.0)) throw std::invalid_argument("stylize strength must be in [0, 1]");
   if (strength == 0.0) return features;  // exactly the content, no network run
-  return finishFeatures(features, networkOutput(features), strength, path);
+  return finishFeatures(features, networkOutput(features, contacts, path), strength, path);
 }
 
 namespace {
@@ -133,7 +150,7 @@ StylizedClip clipOf(const MotionFeatures& content, Eigen::MatrixXd features, Pat
 }  // namespace
 
 StylizedClip Stylizer::stylize(const MotionFeatures& content, double strength, PathMode path) const {
-  return clipOf(content, stylizeFeatures(content.values, strength, path), path);
+  return clipOf(content, stylizeFeatures(content.values, content.contacts, strength, path), path);
 }
 
 StylizedClip Stylizer::stylize(const MotionFeatures& content, const Eigen::MatrixXd& network_output, double strength,
@@ -148,21 +165,36 @@ Eigen::MatrixXd Stylizer::projectFeatures(const Eigen::MatrixXd& features) const
   return cropEdges(model_.normalisation.denormalized(projected));
 }
 
-std::shared_ptr<const nn::FastStylizer> sharedProjection(const nn::LossNetwork<float>& loss_network) {
+namespace {
+
+// One Prepared(loss_network) per process for every caller with a loss network of the same weights while
+// any of them holds it.
+template <typename Prepared>
+std::shared_ptr<const Prepared> sharedFor(const nn::LossNetwork<float>& loss_network) {
   struct Entry {
     nn::LossNetwork<float> network;  // to recognise it (sameWeights)
-    std::weak_ptr<const nn::FastStylizer> projection;
+    std::weak_ptr<const Prepared> prepared;
   };
   static std::mutex mutex;
   static std::vector<Entry> entries;
   const std::lock_guard<std::mutex> lock(mutex);
-  std::erase_if(entries, [](const Entry& entry) { return entry.projection.expired(); });
+  std::erase_if(entries, [](const Entry& entry) { return entry.prepared.expired(); });
   for (const Entry& entry : entries)
     if (nn::sameWeights(entry.network, loss_network))
-      if (std::shared_ptr<const nn::FastStylizer> projection = entry.projection.lock()) return projection;
-  auto projection = std::make_shared<const nn::FastStylizer>(loss_network);
-  entries.push_back({loss_network, projection});
-  return projection;
+      if (std::shared_ptr<const Prepared> prepared = entry.prepared.lock()) return prepared;
+  auto prepared = std::make_shared<const Prepared>(loss_network);
+  entries.push_back({loss_network, prepared});
+  return prepared;
+}
+
+}  // namespace
+
+std::shared_ptr<const nn::FastStylizer> sharedProjection(const nn::LossNetwork<float>& loss_network) {
+  return sharedFor<nn::FastStylizer>(loss_network);
+}
+
+std::shared_ptr<const ContactPlanter> sharedContactPlanter(const nn::LossNetwork<float>& loss_network) {
+  return sharedFor<ContactPlanter>(loss_network);
 }
 
 Eigen::MatrixXd projectFeatures(const nn::LossNetworkModel& loss_network, const Eigen::MatrixXd& features) {

@@ -10,8 +10,9 @@
 //   result = content + s * (L(T(content)) - content)
 // so s = 0 returns the content's features exactly (bit for bit) and s = 1 the fully styled motion.
 //
-// The output is at the representation's rate (60 fps), with the CONTENT's foot contacts (the paper's
-// foot loss teaches T to respect them; the IK clean-up locks them). Its root path and timing are the
+// The output is at the representation's rate (60 fps), with the CONTENT's foot contacts: the paper's
+// foot loss teaches T to respect them, the contact projection (contact_projection.h) plants them on the
+// manifold when contacts are given, and the IK clean-up locks them. Its root path and timing are the
 // content's unless PathMode::Style lets the style change the pace (path_mode.h), and its bones have the
 // reference lengths exactly (enforceBoneLengths: every target is reachable by the character's limbs).
 
@@ -25,6 +26,7 @@
 #include "features/representation.h"
 #include "nn/fast_stylizer.h"
 #include "nn/network_file.h"
+#include "style/contact_projection.h"
 #include "style/path_mode.h"
 #include "style/style_refinement.h"
 
@@ -51,36 +53,41 @@ class Stylizer {
   // source_name names the network in errors (its file, where there is one).
   // `refinement` finishes T's output per clip (style_refinement.h); it needs the network's stored
   // style targets and is skipped for a network without them (files before format 3).
+  // `contact_projection` plants the contacts given to networkOutput / stylizeFeatures.
   explicit Stylizer(nn::StyleModel model, std::string source_name = "the style network",
-                    StyleRefinement refinement = {});
+                    StyleRefinement refinement = {}, ContactProjection contact_projection = {});
 
   const nn::StyleModel& model() const { return model_; }
   const StyleRefinement& refinement() const { return refinement_; }
+  const ContactProjection& contactProjection() const { return contact_projection_; }
   // The refinement steps networkOutput runs: refinement().iterations, or 0 for a network without
   // stored style targets.
   int refinementSteps() const { return model_.style_targets.empty() ? 0 : refinement_.iterations; }
 
   // features: 66 x frames (frames >= 1) in representation units. Returns the same shape and units.
+  // contacts: the content's foot contacts (4 x frames, 0/1), planted under `path`'s root path by the
+  // contact projection, or empty (0 x 0) for none.
   // Throws std::invalid_argument for a strength outside [0, 1] or NaN, or a wrong shape (the features
   // come from extractFeatures, already validated); InputError naming source_name when the output is
   // not physical: a value that is not finite or beyond kMaxPhysicalFeature (reference cm, or cm per
   // frame; a body is 170 cm) - only damaged weights produce one, and the clean-up cannot mend it.
   // Thread-safe: concurrent calls run on copies of the prepared networks (which share their kernel
   // spectra), made the first time a call finds every copy busy, and kept for later calls.
-  Eigen::MatrixXd stylizeFeatures(const Eigen::MatrixXd& features, double strength,
+  Eigen::MatrixXd stylizeFeatures(const Eigen::MatrixXd& features, const Eigen::MatrixXd& contacts, double strength,
                                   PathMode path = PathMode::Content) const;
 
   // The whole clip: features, contacts and world positions in the clip's file space.
   StylizedClip stylize(const MotionFeatures& content, double strength, PathMode path = PathMode::Content) const;
 
-  // stylizeFeatures in its two halves, for callers that change only the strength or the path mode
-  // (live edits): networkOutput(x) = L(T(x)) in representation units (refined), independent of both, and
-  // finishFeatures, the blend by strength, the path mode and the bone lengths, which
-  // stylizeFeatures(x, s, p) == finishFeatures(x, networkOutput(x), s, p) (bit for bit). Same throws
-  // as stylizeFeatures; finishFeatures also when network_output's shape is not the features'.
-  // `cancel`: OperationCancelled when it is set before a refinement step, so that a dropped job stops
-  // within a few ms instead of finishing the network.
-  Eigen::MatrixXd networkOutput(const Eigen::MatrixXd& features, const std::atomic<bool>* cancel = nullptr) const;
+  // stylizeFeatures in its two halves, for callers that change only the strength (live edits):
+  // networkOutput(x, c, p) = L(T(x)) in representation units (refined, contacts c planted under path p),
+  // independent of the strength, and finishFeatures, the blend by strength, the path mode and the bone
+  // lengths, which stylizeFeatures(x, c, s, p) == finishFeatures(x, networkOutput(x, c, p), s, p) (bit
+  // for bit). Same throws as stylizeFeatures; finishFeatures also when network_output's shape is not the
+  // features'. `cancel`: OperationCancelled when it is set before a refinement step, so that a dropped
+  // job stops within a few ms instead of finishing the network.
+  Eigen::MatrixXd networkOutput(const Eigen::MatrixXd& features, const Eigen::MatrixXd& contacts, PathMode path,
+                                const std::atomic<bool>* cancel = nullptr) const;
   Eigen::MatrixXd finishFeatures(const Eigen::MatrixXd& features, const Eigen::MatrixXd& network_output,
                                  double strength, PathMode path = PathMode::Content) const;
   StylizedClip stylize(const MotionFeatures& content, const Eigen::MatrixXd& network_output, double strength,
@@ -105,6 +112,7 @@ class Stylizer {
   nn::StyleModel model_;
   std::string source_name_;
   StyleRefinement refinement_;
+  ContactProjection contact_projection_;
   // Runs `run` on an idle prepared network, made from prototype_ when every one is busy, and puts it
   // back. Why not one network behind a lock: a batch's workers waited for each other's clips (its
   // speed-up on 2 cores, docs/decisions.md).
@@ -113,6 +121,7 @@ class Stylizer {
 
   std::shared_ptr<const nn::FastStylizer> projection_;  // its loss network's, shared (sharedProjection); never run
   std::unique_ptr<const nn::FastStylizer> prototype_;   // prepared once, never run: copied
+  std::shared_ptr<const ContactPlanter> planter_;       // its loss network's, shared (sharedContactPlanter)
   mutable std::mutex mutex_;                           // guards idle_
   mutable std::vector<std::unique_ptr<nn::FastStylizer>> idle_;
 };
@@ -121,6 +130,9 @@ class Stylizer {
 // every caller with a loss network of the same weights (nn::sameWeights) while any of them holds it:
 // Stylizers of networks trained against one loss network share its kernel spectra. Thread-safe.
 std::shared_ptr<const nn::FastStylizer> sharedProjection(const nn::LossNetwork<float>& loss_network);
+
+// The contact projection's operators (contact_projection.h) for `loss_network`, shared the same way.
+std::shared_ptr<const ContactPlanter> sharedContactPlanter(const nn::LossNetwork<float>& loss_network);
 
 // L(x) = decode(encode(x)) of a clip in representation units (66 x frames): the loss network's
 // reconstruction, used by eval and as the "projection only" preview. float32 fast path.

@@ -22,6 +22,7 @@
 #include "contact_tracks.h"
 #include "demo_scene.h"
 #include "features/feature_statistics.h"
+#include "features/representation.h"
 #include "gui_test_support.h"
 #include "tiny_style_network.h"
 #include "ik/cleanup.h"
@@ -34,6 +35,7 @@
 #include "nn/network_file.h"
 #include "result_panel.h"
 #include "style/motion_dataset.h"
+#include "style/stylizer.h"
 #include "style/training.h"
 #include "timeline_widget.h"
 #include "track_view.h"
@@ -739,21 +741,40 @@ class ResultTest : public QObject {
     qInfo("demo with the bundled network: skate %.2f -> %.2f cm/s, residual %.2f cm",
           window.resultPanel()->result()->raw_metrics.foot_skate_cm_s, cleaned.foot_skate_cm_s, cleaned.residual_mean_cm);
     QVERIFY(cleaned.foot_skate_cm_s < 0.2 * window.resultPanel()->result()->raw_metrics.foot_skate_cm_s);
-    // The stances the clean-up left to the network (elderly moves steps of the MJ walk's last stand more
-    // than 20 cm) are hatched on the foot tracks; dragging over one holds the foot there.
+    // The stylizer plants the content's contacts (contact_projection.h), so the clean-up holds every one:
+    // nothing is hatched on the foot tracks.
     TrackView* tracks = window.timeline()->trackView();
+    const auto firstUnheld = [&](int& track, int& first, int& last) {
+      track = first = last = -1;
+      for (int t : {ContactTrackController::kLeftFootTrack, ContactTrackController::kRightFootTrack}) {
+        const std::vector<bool>& unheld = tracks->unheldFrames(t);
+        const auto begin = std::find(unheld.begin(), unheld.end(), true);
+        if (begin == unheld.end()) continue;
+        track = t;
+        first = static_cast<int>(begin - unheld.begin());
+        last = static_cast<int>(std::find(begin, unheld.end(), false) - unheld.begin()) - 1;
+        return;
+      }
+    };
     int track = -1, first = -1, last = -1;
-    for (int t : {ContactTrackController::kLeftFootTrack, ContactTrackController::kRightFootTrack}) {
-      const std::vector<bool>& unheld = tracks->unheldFrames(t);
-      const auto begin = std::find(unheld.begin(), unheld.end(), true);
-      if (begin == unheld.end()) continue;
-      track = t;
-      first = static_cast<int>(begin - unheld.begin());
-      last = static_cast<int>(std::find(begin, unheld.end(), false) - unheld.begin()) - 1;
-      break;
-    }
-    QVERIFY2(track >= 0, "the demo's result holds every contact: the hatch has nothing to show");
-    const double skate_before = cleaned.foot_skate_cm_s;
+    firstUnheld(track, first, last);
+    QVERIFY2(track < 0, qPrintable(QStringLiteral("frames %1-%2 are not held").arg(first).arg(last)));
+    QVERIFY(cleaned.foot_skate_cm_s < 0.5);
+    // A clip stylized elsewhere, whose feet were not planted (this network without its contact
+    // projection: elderly moves steps of the MJ walk's last stand more than 20 cm), is cleaned as given:
+    // those stances are hatched, and dragging over one holds the foot there.
+    const MotionFeatures features =
+        extractFeatures(window.clip(window.contentClip()).motion, *window.clip(window.contentClip()).mapping);
+    style::ContactProjection unplanted;
+    unplanted.iterations = 0;
+    const style::Stylizer elsewhere(nn::loadStyleModel(*shippedNetworkFile(*resources, kDemoNetwork)), "elsewhere", {},
+                                    unplanted);
+    window.resultPanel()->setStylizedClip(elsewhere.stylize(features, 1.0), QStringLiteral("stylized elsewhere"));
+    QVERIFY(waitForJobs(ended, 2));
+    QVERIFY(window.resultPanel()->result() != nullptr);
+    firstUnheld(track, first, last);
+    QVERIFY2(track >= 0, "the unplanted clip's result holds every contact: the hatch has nothing to show");
+    const double skate_before = window.resultPanel()->result()->cleaned_metrics.foot_skate_cm_s;
     const int y = tracks->boolTrackRect(track).center().y();
     QTest::mousePress(tracks, Qt::LeftButton, Qt::NoModifier, QPoint(static_cast<int>(tracks->xForFrame(first)), y));
     QTest::mouseMove(tracks, QPoint(static_cast<int>(tracks->xForFrame(last)), y));

@@ -191,7 +191,7 @@ fs::path findStyleClip(const std::string& name, const fs::path& data) {
 
 struct NetworkFigures {
   double style_ratio = 0, projection_ratio = 0, content_after = 0, familiarity = 0, network_distance = 0;
-  double residual_mean = 0, residual_max = 0, skate = 0;
+  double residual_mean = 0, residual_max = 0, skate = 0, cleaned_style_ratio = 0;
   int unreachable = 0, cleaned = 0;
   double distance_ratio_min = 1e9, distance_ratio_max = 0, end_error_max = 0;
   int clips = 0;
@@ -250,6 +250,13 @@ nlohmann::json evaluateNetwork(const nn::StyleModel& model, const nn::LossNetwor
       for (const std::string& w : warningTexts(cleaned.report)) unreachable += w.find("unreachable") != std::string::npos;
       const RootPathComparison travelled =
           compareClipPaths(e.motion, cleaned.motion, e.mapping, e.clip.features.anchor.convention);
+      // The style the user gets: the cleaned clip's own features against the same style clip.
+      const Eigen::MatrixXd cleaned_features = style::makeMotionClip(cleaned.motion, e.mapping, e.clip.file).features.values;
+      const style::StyleDistances cleaned_distances = style::measureStyleDistances(
+          model.loss_network, model.normalisation, e.clip.features.values, cleaned_features,
+          style::styleGramOf(model.loss_network, model.normalisation, styles[static_cast<std::size_t>(pairing[i])].features.values));
+      c["cleaned_style_ratio"] = cleaned_distances.styleRatio();
+      figures.cleaned_style_ratio += cleaned_distances.styleRatio();
       c["residual_mean_cm"] = cleaned.cleaned.residual_mean_cm;
       c["residual_max_cm"] = cleaned.cleaned.residual_max_cm;
       c["skate_cm_s"] = cleaned.cleaned.foot_skate_cm_s;
@@ -277,8 +284,8 @@ void printFigures(const std::string& network, const std::string& set, const Netw
   std::printf("  %-10s %-22s style %.3f (proj %.3f) content %.3f fam %.2f net-path x%.2f", network.c_str(), set.c_str(),
               f.style_ratio / n, f.projection_ratio / n, f.content_after / n, f.familiarity / n, f.network_distance / n);
   if (f.cleaned > 0)
-    std::printf(" | residual %.2f max %.1f skate %.2f unreach %d | distance x%.2f-%.2f end %.0f%%",
-                f.residual_mean / f.cleaned, f.residual_max, f.skate, f.unreachable, f.distance_ratio_min,
+    std::printf(" | cleaned style %.3f residual %.2f max %.1f skate %.2f unreach %d | distance x%.2f-%.2f end %.0f%%",
+                f.cleaned_style_ratio / f.cleaned, f.residual_mean / f.cleaned, f.residual_max, f.skate, f.unreachable, f.distance_ratio_min,
                 f.distance_ratio_max, 100.0 * f.end_error_max);
   std::printf("\n");
 }

@@ -83,7 +83,7 @@ int main(int argc, char** argv) {
       const MotionFeatures features = extractFeatures(content, mapping);
       features_ms.push_back(msSince(start));
       const auto network_start = Clock::now();
-      const Eigen::MatrixXd network_output = stylizer->networkOutput(features.values);  // a new clip's cost
+      const Eigen::MatrixXd network_output = stylizer->networkOutput(features.values, features.contacts, job.path);  // a new clip's cost
       network_ms.push_back(msSince(network_start));
       const auto finish_start = Clock::now();
       const style::StylizedClip stylized = stylizer->stylize(features, network_output, strength, job.path);
@@ -127,7 +127,7 @@ int main(int argc, char** argv) {
         style::StylizeCleanupJob other = job;
         other.strength = 1.0;
         other.stylizer = std::make_shared<const style::Stylizer>(nn::loadStyleModel(*file), file->string());
-        other.stylizer->networkOutput(features.values);  // its first run's page faults: untimed
+        other.stylizer->networkOutput(features.values, features.contacts, job.path);  // its first run's page faults: untimed
         other.memory = std::make_shared<style::StylizeCleanupMemory>();
         other.seed = job.memory;
         auto start = Clock::now();

@@ -28,6 +28,7 @@
 #include "motion/resample.h"
 #include "nn/network_file.h"
 #include "style/stylized_cleanup.h"
+#include "style/evaluation.h"
 #include "style/stylizer.h"
 #include "style/training.h"
 #include "test_paths.h"
@@ -95,11 +96,41 @@ TEST_F(CleanupStylized, RejectsAStylizedClipOfAnotherLength) {
   EXPECT_THROW(style::cleanUpStylizedClip(content, mapping, stylized), std::invalid_argument);
 }
 
+// On a decoder that can plant feet (the low-pass one), the stylizer plants the content's contacts: its
+// raw output slides far less than the same network's without them, under either path.
+TEST_F(CleanupStylized, TheStylizerPlantsTheContentsContacts) {
+  // Solved to the end and without the swings' smoothness, which this three-tap decoder cannot meet
+  // together with the contacts (the shipped settings stop early: contact_projection.h).
+  style::ContactProjection solved;
+  solved.iterations = 300;
+  solved.smoothness = 0.0;
+  const style::Stylizer stylizer(networkLikeModel(features, 11, kDamage), "the test network", {}, solved);
+  // The network's output on the path it follows, in the reference proportions it is planted in (before
+  // the bone lengths are set, and before the clip's own proportions are put back: both move the feet a
+  // little frame by frame, which the clean-up's locks take up).
+  FeatureAnchor reference = features.anchor;
+  reference.proportions = referenceProportions();
+  reference.rig = {};
+  reference.retarget_height_shift = 0.0;
+  const auto skate = [&](const Eigen::MatrixXd& contacts, style::PathMode path) {
+    Eigen::MatrixXd output = stylizer.networkOutput(features.values, contacts, path);
+    style::applyPathMode(output, features.values, path);
+    return style::footSkate(output, features.contacts, reference);
+  };
+  for (const style::PathMode path : {style::PathMode::Content, style::PathMode::Style}) {
+    const double sliding = skate({}, path), planted = skate(features.contacts, path);
+    std::printf("[ figures  ] %s path: skate %.2f cm/s planted, %.2f without\n", style::pathModeName(path), planted,
+                sliding);
+    EXPECT_GT(sliding, 5.0);
+    EXPECT_LT(planted, 0.5 * sliding);
+  }
+}
+
 TEST_F(CleanupStylized, TheLowPassProjectionKeepsTheMotionButDamagesIt) {
   // Zero transformation output: what is left is the projection alone, which must be close to the content
   // (a few cm) but not exact, or the clean-up below would have nothing to repair.
   const nn::StyleModel model = networkLikeModel(features, 11, 0.0f);
-  const Eigen::MatrixXd projected = style::Stylizer(model).stylizeFeatures(features.values, 1.0);
+  const Eigen::MatrixXd projected = style::Stylizer(model).stylizeFeatures(features.values, {}, 1.0);
   const double mean_change = (projected - features.values).topRows(3 * kCanonicalJointCount).cwiseAbs().mean();
   EXPECT_GT(mean_change, 0.01);
   EXPECT_LT(mean_change, 2.0);
@@ -192,7 +223,11 @@ TEST_F(CleanupStylized, WarningsNameTheContentsFramesWhenSolvedAtAnotherRate) {
   ASSERT_GT(travel, 30.0) << "the content walks";  // cm
   Eigen::MatrixXi overrides = Eigen::MatrixXi::Constant(content.frameCount(), kContactCount, -1);
   overrides.block(kFirst, 0, kSpan, 2).setOnes();  // left heel and toe (ContactLabel order)
-  const style::StylizedClip stylized = style::Stylizer(networkLikeModel(features, 11, kDamage)).stylize(features, 1.0);
+  // The network's own contacts stay unplanted: the forced contact is then the clip's one large residual.
+  style::ContactProjection unplanted;
+  unplanted.iterations = 0;
+  const style::StylizedClip stylized =
+      style::Stylizer(networkLikeModel(features, 11, kDamage), "the test network", {}, unplanted).stylize(features, 1.0);
   const style::StylizedCleanup run = style::cleanUpStylizedClip(content, mapping, stylized, {}, 0.0, overrides);
   ASSERT_NEAR(run.fps, 60.0, 0.01);
   int named = 0;

@@ -177,9 +177,9 @@ TEST(PathModeTest, ContentCopiesTheRootVelocitiesAndStyleKeepsTheOutputs) {
 TEST(PathModeTest, TheStylizerKeepsTheContentsPathUnlessToldOtherwise) {
   const style::Stylizer stylizer(test::tinyStyleModel());
   const Eigen::MatrixXd& content = test::fixtureClips()[0].features.values;
-  const Eigen::MatrixXd kept = stylizer.stylizeFeatures(content, 1.0);
+  const Eigen::MatrixXd kept = stylizer.stylizeFeatures(content, {}, 1.0);
   EXPECT_EQ(kept.middleRows<3>(kSidewaysVelocity), content.middleRows<3>(kSidewaysVelocity));
-  const Eigen::MatrixXd free = stylizer.stylizeFeatures(content, 1.0, style::PathMode::Style);
+  const Eigen::MatrixXd free = stylizer.stylizeFeatures(content, {}, 1.0, style::PathMode::Style);
   EXPECT_NE(free.middleRows<3>(kSidewaysVelocity), content.middleRows<3>(kSidewaysVelocity));
   EXPECT_EQ(free.topRows(63), kept.topRows(63));
 }

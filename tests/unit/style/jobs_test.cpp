@@ -165,6 +165,23 @@ TEST(StylizeCleanupJob, ACopiedMemoryKeepsTheNetworkOutputAndLeavesTheOriginal) 
   EXPECT_EQ(first.memory->stylizer, first.stylizer);
 }
 
+// The contacts are planted under the path the output follows (contact_projection.h), so a path change
+// runs the network again, as the memory-less job does; a strength change after it keeps its output.
+TEST(StylizeCleanupJob, APathChangeRunsTheNetworkAgain) {
+  style::StylizeCleanupJob job = cleanupJobOnFixture(90);
+  job.memory = std::make_shared<style::StylizeCleanupMemory>();
+  job.run();
+  job.path = style::PathMode::Style;
+  style::StylizeCleanupJob fresh = job;
+  fresh.memory = nullptr;
+  const style::StylizeCleanupResult changed = job.run();
+  EXPECT_FALSE(changed.network_output_kept);
+  EXPECT_EQ(job.memory->path, style::PathMode::Style);
+  EXPECT_EQ(changed.stylized.features, fresh.run().stylized.features);
+  job.strength = 0.5;
+  EXPECT_TRUE(job.run().network_output_kept);
+}
+
 // The content's features are extracted once per clip: a strength step keeps them (the same object),
 // and a clip that differs by one value, or the same clip under another mapping, gets its own, so that
 // the stylized clip stays the memory-less job's bit for bit.

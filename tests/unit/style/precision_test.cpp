@@ -31,8 +31,8 @@ TEST(HalfPrecisionNetwork, StylizedOutputStaysWithinToleranceOfF32) {
   const nn::StyleModel half =
       nn::parseStyleModel(nn::serialiseStyleModel(model, nn::WeightPrecision::F16), "half.net");
   const Eigen::MatrixXd& content = test::fixtureClips()[0].features.values;  // CMU 131_01 at 60 fps
-  const Eigen::MatrixXd full_out = style::Stylizer(model).stylizeFeatures(content, 1.0);
-  const Eigen::MatrixXd half_out = style::Stylizer(half).stylizeFeatures(content, 1.0);
+  const Eigen::MatrixXd full_out = style::Stylizer(model).stylizeFeatures(content, {}, 1.0);
+  const Eigen::MatrixXd half_out = style::Stylizer(half).stylizeFeatures(content, {}, 1.0);
   const double range = (full_out.topRows(3 * kCanonicalJointCount).cwiseAbs()).maxCoeff();
   const double difference = maxPositionDifferenceCm(full_out, half_out);
   RecordProperty("max_position_difference_cm", std::to_string(difference));
@@ -42,7 +42,7 @@ TEST(HalfPrecisionNetwork, StylizedOutputStaysWithinToleranceOfF32) {
   EXPECT_LT(difference, 0.1) << "output range " << range << " cm";
   EXPECT_GT(difference, 0.0);  // the weights really were rounded
   // Strength 0 still returns the content exactly.
-  EXPECT_EQ(style::Stylizer(half).stylizeFeatures(content, 0.0), content);
+  EXPECT_EQ(style::Stylizer(half).stylizeFeatures(content, {}, 0.0), content);
 }
 
 }  // namespace

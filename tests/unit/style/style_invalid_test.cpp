@@ -303,10 +303,10 @@ TEST(StyleInvalid, BadSettingsAreRejectedBeforeAnyWork) {
 TEST(StyleInvalid, StrengthOutsideZeroToOneIsRejected) {
   const style::Stylizer stylizer(test::tinyStyleModel());
   const Eigen::MatrixXd& content = test::fixtureClips()[0].features.values;
-  EXPECT_THROW(stylizer.stylizeFeatures(content, -0.1), std::invalid_argument);
-  EXPECT_THROW(stylizer.stylizeFeatures(content, 1.5), std::invalid_argument);
-  EXPECT_THROW(stylizer.stylizeFeatures(content, std::numeric_limits<double>::quiet_NaN()), std::invalid_argument);
-  EXPECT_THROW(stylizer.stylizeFeatures(Eigen::MatrixXd::Zero(65, 10), 1.0), std::invalid_argument);
+  EXPECT_THROW(stylizer.stylizeFeatures(content, {}, -0.1), std::invalid_argument);
+  EXPECT_THROW(stylizer.stylizeFeatures(content, {}, 1.5), std::invalid_argument);
+  EXPECT_THROW(stylizer.stylizeFeatures(content, {}, std::numeric_limits<double>::quiet_NaN()), std::invalid_argument);
+  EXPECT_THROW(stylizer.stylizeFeatures(Eigen::MatrixXd::Zero(65, 10), {}, 1.0), std::invalid_argument);
 }
 
 }  // namespace

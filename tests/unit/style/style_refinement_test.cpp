@@ -128,10 +128,10 @@ TEST(StyleRefinement, ASetCancelFlagStopsIt) {
 
   const Eigen::MatrixXd& clip = test::fixtureClips()[0].features.values;
   const style::Stylizer refining(tinyModelWithTarget(), "tiny");
-  EXPECT_THROW(refining.networkOutput(clip, &cancel), OperationCancelled);
-  EXPECT_EQ(refining.networkOutput(clip, &go), refining.networkOutput(clip));
+  EXPECT_THROW(refining.networkOutput(clip, {}, style::PathMode::Content, &cancel), OperationCancelled);
+  EXPECT_EQ(refining.networkOutput(clip, {}, style::PathMode::Content, &go), refining.networkOutput(clip, {}, style::PathMode::Content));
   const style::Stylizer plain(test::tinyStyleModel(), "tiny");  // no style targets: no refinement
-  EXPECT_NO_THROW(plain.networkOutput(clip, &cancel));
+  EXPECT_NO_THROW(plain.networkOutput(clip, {}, style::PathMode::Content, &cancel));
 }
 
 TEST(StyleRefinement, TheStylizerRunsItOnlyWithTargetsAndItAddsStyle) {
@@ -144,21 +144,21 @@ TEST(StyleRefinement, TheStylizerRunsItOnlyWithTargetsAndItAddsStyle) {
   EXPECT_EQ(plain.refinementSteps(), 0);
   EXPECT_EQ(without_targets.refinementSteps(), 0);
   // No targets: the network's output as it is (the same network, the same bits).
-  EXPECT_EQ(without_targets.networkOutput(content), plain.networkOutput(content));
+  EXPECT_EQ(without_targets.networkOutput(content, {}, style::PathMode::Content), plain.networkOutput(content, {}, style::PathMode::Content));
 
   style::StyleRefinement on;
   on.iterations = 60;
   const style::Stylizer refined(model, "tiny", on);
   EXPECT_EQ(refined.refinementSteps(), 60);
-  const Eigen::MatrixXd before = plain.networkOutput(content);
-  const Eigen::MatrixXd after = refined.networkOutput(content);
+  const Eigen::MatrixXd before = plain.networkOutput(content, {}, style::PathMode::Content);
+  const Eigen::MatrixXd after = refined.networkOutput(content, {}, style::PathMode::Content);
   ASSERT_EQ(after.cols(), content.cols());
   const nn::Mat<float>& gram = model.style_targets[0].gram;
   const style::StyleDistances d_before = style::measureStyleDistances(model.loss_network, model.normalisation, content, before, gram);
   const style::StyleDistances d_after = style::measureStyleDistances(model.loss_network, model.normalisation, content, after, gram);
   EXPECT_LT(d_after.style_after, 0.9 * d_before.style_after);
   // Deterministic: the same clip, the same refined output.
-  EXPECT_EQ(refined.networkOutput(content), after);
+  EXPECT_EQ(refined.networkOutput(content, {}, style::PathMode::Content), after);
 }
 
 }  // namespace

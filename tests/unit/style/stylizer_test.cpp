@@ -38,7 +38,7 @@ TEST(Stylizer, RefusesANetworkWhoseOutputIsNotPhysical) {
     if (p->value.cols() == 1) p->value.setConstant(1e5f);
   const style::Stylizer stylizer(std::move(model), "damaged.net");
   try {
-    stylizer.stylizeFeatures(test::fixtureClips()[0].features.values, 1.0);
+    stylizer.stylizeFeatures(test::fixtureClips()[0].features.values, {}, 1.0);
     FAIL() << "no error";
   } catch (const InputError& error) {
     EXPECT_EQ(error.file(), "damaged.net");
@@ -61,8 +61,8 @@ TEST(Stylizer, StrengthZeroReturnsTheContentExactly) {
 TEST(Stylizer, StrengthBlendsLinearlyInFeatureSpaceThenSetsBoneLengths) {
   const style::Stylizer stylizer(test::tinyStyleModel());
   const Eigen::MatrixXd& content = test::fixtureClips()[0].features.values;
-  const Eigen::MatrixXd full = stylizer.stylizeFeatures(content, 1.0, style::PathMode::Style);
-  const Eigen::MatrixXd half = stylizer.stylizeFeatures(content, 0.5, style::PathMode::Style);
+  const Eigen::MatrixXd full = stylizer.stylizeFeatures(content, {}, 1.0, style::PathMode::Style);
+  const Eigen::MatrixXd half = stylizer.stylizeFeatures(content, {}, 0.5, style::PathMode::Style);
   EXPECT_GT((full - content).cwiseAbs().maxCoeff(), 1e-3);  // the network does something
   const auto velocities = [](const Eigen::MatrixXd& f) { return Eigen::MatrixXd(f.middleRows<3>(kSidewaysVelocity)); };
   EXPECT_TRUE(velocities(half).isApprox(0.5 * (velocities(content) + velocities(full)), 1e-9));
@@ -77,10 +77,30 @@ TEST(Stylizer, NetworkOutputThenFinishIsStylizeBitForBit) {
   const Eigen::MatrixXd& content = test::fixtureClips()[0].features.values;
   EXPECT_THROW(stylizer.finishFeatures(content, content.leftCols(content.cols() - 1), 0.5), std::invalid_argument);
   EXPECT_THROW(stylizer.finishFeatures(content, content, 1.5), std::invalid_argument);
-  const Eigen::MatrixXd output = stylizer.networkOutput(content);
-  for (const double strength : {0.0, 0.3, 1.0})
-    for (const style::PathMode path : {style::PathMode::Content, style::PathMode::Style})
-      EXPECT_EQ(stylizer.finishFeatures(content, output, strength, path), stylizer.stylizeFeatures(content, strength, path));
+  const Eigen::MatrixXd& contacts = test::fixtureClips()[0].features.contacts;
+  for (const style::PathMode path : {style::PathMode::Content, style::PathMode::Style}) {
+    const Eigen::MatrixXd output = stylizer.networkOutput(content, contacts, path);
+    for (const double strength : {0.0, 0.3, 1.0})
+      EXPECT_EQ(stylizer.finishFeatures(content, output, strength, path),
+                stylizer.stylizeFeatures(content, contacts, strength, path));
+  }
+}
+
+// Given the content's contacts, the stylizer plants them (contact_projection.h); on a random decoder,
+// which cannot plant them, its step along the solution is cut so that the feet slide no more than the
+// network's own (a planting decoder: cleanup_stylized_test). Contacts of another length are refused.
+TEST(Stylizer, ItsContactProjectionNeverAddsSliding) {
+  const style::Stylizer stylizer(test::tinyStyleModel());
+  const MotionFeatures& content = test::fixtureClips()[0].features;
+  EXPECT_THROW(stylizer.networkOutput(content.values, content.contacts.leftCols(10), style::PathMode::Content),
+               std::invalid_argument);
+  for (const style::PathMode path : {style::PathMode::Content, style::PathMode::Style}) {
+    const double sliding = style::footSkate(stylizer.stylizeFeatures(content.values, {}, 1.0, path), content.contacts,
+                                            content.anchor);
+    const double planted = style::footSkate(stylizer.stylizeFeatures(content.values, content.contacts, 1.0, path),
+                                            content.contacts, content.anchor);
+    EXPECT_LE(planted, sliding) << style::pathModeName(path);
+  }
 }
 
 // Concurrent callers (a batch's workers, the app's job and its familiarity reading) each run on a
@@ -90,14 +110,14 @@ TEST(Stylizer, ConcurrentCallsGiveTheSerialResults) {
   std::vector<Eigen::MatrixXd> clips, serial;
   for (const int frames : {180, 301, 64, 500}) {
     clips.push_back(longFeatures(frames));
-    serial.push_back(stylizer.networkOutput(clips.back()));
+    serial.push_back(stylizer.networkOutput(clips.back(), {}, style::PathMode::Content));
   }
   std::atomic<int> mismatches{0};
   const auto worker = [&](int offset) {
     for (int round = 0; round < 10; ++round)
       for (size_t i = 0; i < clips.size(); ++i) {
         const size_t k = (i + static_cast<size_t>(offset)) % clips.size();
-        if (stylizer.networkOutput(clips[k]) != serial[k]) ++mismatches;
+        if (stylizer.networkOutput(clips[k], {}, style::PathMode::Content) != serial[k]) ++mismatches;
         if (stylizer.projectFeatures(clips[k]).cols() != clips[k].cols()) ++mismatches;
       }
   };
@@ -112,7 +132,7 @@ TEST(Stylizer, OutputHasTheInputLengthForOddAndLongClips) {
   const style::Stylizer stylizer(test::tinyStyleModel());
   for (int frames : {1, 2, 25, 301, 1000}) {
     const Eigen::MatrixXd content = longFeatures(frames);
-    const Eigen::MatrixXd out = stylizer.stylizeFeatures(content, 1.0);
+    const Eigen::MatrixXd out = stylizer.stylizeFeatures(content, {}, 1.0);
     EXPECT_EQ(out.cols(), frames);
     EXPECT_EQ(out.rows(), kFeatureCount);
     EXPECT_TRUE(out.allFinite());
@@ -129,9 +149,9 @@ TEST(Stylizer, NoSeamsAwayFromACut) {
   model.metadata.representation = style::currentRepresentation();
   const style::Stylizer stylizer(model);
   const Eigen::MatrixXd content = longFeatures(1000);
-  const Eigen::MatrixXd whole = stylizer.stylizeFeatures(content, 1.0);
-  const Eigen::MatrixXd first = stylizer.stylizeFeatures(content.leftCols(500), 1.0);
-  const Eigen::MatrixXd second = stylizer.stylizeFeatures(content.rightCols(500), 1.0);
+  const Eigen::MatrixXd whole = stylizer.stylizeFeatures(content, {}, 1.0);
+  const Eigen::MatrixXd first = stylizer.stylizeFeatures(content.leftCols(500), {}, 1.0);
+  const Eigen::MatrixXd second = stylizer.stylizeFeatures(content.rightCols(500), {}, 1.0);
   const double scale = whole.cwiseAbs().maxCoeff();
   EXPECT_LT((whole.leftCols(380) - first.leftCols(380)).cwiseAbs().maxCoeff(), 1e-4 * scale);
   EXPECT_LT((whole.rightCols(380) - second.rightCols(380)).cwiseAbs().maxCoeff(), 1e-4 * scale);
@@ -282,10 +302,10 @@ TEST(SharedProjection, IsOnePerLossNetworkWhileHeld) {
   // Two Stylizers of the same network: the same output as ever (the projection is shared, not changed).
   const style::Stylizer a(model, "a"), b(model, "b");
   const Eigen::MatrixXd& content = test::fixtureClips()[0].features.values;
-  const Eigen::MatrixXd output = a.networkOutput(content);
-  EXPECT_EQ(output, b.networkOutput(content));
+  const Eigen::MatrixXd output = a.networkOutput(content, {}, style::PathMode::Content);
+  EXPECT_EQ(output, b.networkOutput(content, {}, style::PathMode::Content));
   a.releaseIdleNetworks();  // its prepared copies dropped: the next call makes one, the same output
-  EXPECT_EQ(a.networkOutput(content), output);
+  EXPECT_EQ(a.networkOutput(content, {}, style::PathMode::Content), output);
 }
 
 }  // namespace
