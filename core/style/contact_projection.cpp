@@ -6,6 +6,8 @@
 #include <string>
 
 #include "features/feature_layout.h"
+#include "nn/compute_pool.h"
+#include "nn/conv1d.h"
 #include "nn/layers.h"
 
 namespace motionstyle::style {
@@ -117,19 +119,20 @@ void ContactProjection::validate() const {
 }
 
 ContactPlanter::ContactPlanter(const nn::LossNetwork<float>& loss_network)
-    : rows_decoder_("contact rows", loss_network.shape().hidden, kRows, loss_network.shape().width, false),
-      encoder_bias_(loss_network.encoder.bias.value.col(0)),
+    : encoder_bias_(loss_network.encoder.bias.value.col(0)),
       hidden_(loss_network.shape().hidden),
       width_(loss_network.shape().width),
       reach_(loss_network.shape().width + 1) {
   if (loss_network.shape().features != kFeatureCount)
     throw std::invalid_argument("ContactPlanter: the loss network must take the representation's 66 features");
-  for (int row = 0; row < kRows; ++row)
-    rows_decoder_.weight.value.row(row) = loss_network.decoder.weight.value.row(featureRow(row));
+  rows_weight_.resize(kRows, hidden_ * width_);
+  for (int row = 0; row < kRows; ++row) rows_weight_.row(row) = loss_network.decoder.weight.value.row(featureRow(row));
+  adjoint_weight_.resize(hidden_, kRows * width_);
+  for (int k = 0; k < width_; ++k)
+    adjoint_weight_.middleCols((width_ - 1 - k) * kRows, kRows) = rows_weight_.middleCols(k * hidden_, hidden_).transpose();
   // K between decoded frames t and t': sum over the pooled columns both read of (their taps' W_k summed)
   // products, i.e. the sum of W_k W_k'^T over tap pairs that read the same pooled column.
-  weight_ = rows_decoder_.weight.value.cast<double>();
-  const Eigen::MatrixXd& weight = weight_;
+  const Eigen::MatrixXd weight = rows_weight_.cast<double>();
   std::vector<Eigen::MatrixXd> pair(static_cast<std::size_t>(width_ * width_));
   for (int k = 0; k < width_; ++k)
     for (int l = 0; l < width_; ++l)
@@ -165,10 +168,16 @@ void ContactPlanter::plant(nn::Mat<float>& hidden, const FeatureStatistics& norm
     scale(row) = normalisation.std(featureRow(row));
     mean(row) = normalisation.mean(featureRow(row));
   }
+  // The decoded rows now, physical, over the clip's frames and one either side ([from, to)): frame t
+  // reads the depooled frames t - width/2 .. t + width/2, all inside the padded clip.
+  const int from = first_frame - 1, to = first_frame + frames + 1, half = width_ / 2;
   nn::Mat<float> depooled = nn::AverageDepool2<float>::apply(hidden);
   depooled.colwise() -= encoder_bias_;
-  const Eigen::MatrixXd current =
-      (scale.asDiagonal() * rows_decoder_.apply(depooled, decoded).cast<double>()).colwise() + mean;
+  nn::Mat<float> decoded_rows(kRows, to - from);
+  nn::correlatePadded(rows_weight_, depooled.data() + static_cast<Eigen::Index>(from - half) * hidden_, hidden_, width_,
+                      decoded_rows.data(), to - from);
+  Eigen::MatrixXd current = Eigen::MatrixXd::Zero(kRows, decoded);
+  current.middleCols(from, to - from) = (scale.asDiagonal() * decoded_rows.cast<double>()).colwise() + mean;
 
   const bool own_root = path == PathMode::Style;
   std::vector<Contact> planted;
@@ -196,13 +205,13 @@ void ContactPlanter::plant(nn::Mat<float>& hidden, const FeatureStatistics& norm
 
   // M lambda = (A S K S A^T + d) lambda, S = diag(scale): A reads physical rows, K normalised ones.
   Eigen::MatrixXd rows(kRows, decoded), convolved(kRows, decoded);
-  const int from = std::max(first_frame - 1, 0), to = std::min(first_frame + frames + 1, decoded);
   // K runs in float (the networks' precision; a product per parity of 15 x 795 by 795 x frames/2).
   Eigen::MatrixXf rows_in(kRows, decoded), rows_out = Eigen::MatrixXf::Zero(kRows, decoded);
   const auto applyM = [&](const Eigen::VectorXd& lambda) {
     problem.transpose(lambda, rows);
     rows_in = (scale.asDiagonal() * rows).cast<float>();
-    for (int parity = 0; parity < 2; ++parity) {
+    nn::parallelItems(2, kRows * kRows * (2 * reach_ + 1) * (to - from) / 2, [&](int first_parity, int end_parity) {
+    for (int parity = first_parity; parity < end_parity; ++parity) {
       const int begin = from + ((from % 2) != parity ? 1 : 0);  // the first frame of this parity
       const int count = (to - begin + 1) / 2;
       if (count <= 0) continue;
@@ -214,6 +223,7 @@ void ContactPlanter::plant(nn::Mat<float>& hidden, const FeatureStatistics& norm
           rows_out.data() + static_cast<Eigen::Index>(begin) * kRows, kRows, count, Eigen::OuterStride<>(2 * kRows));
       out.noalias() = kernel_[static_cast<std::size_t>(parity)] * around;
     }
+    });
     convolved = scale.asDiagonal() * rows_out.cast<double>();
     return Eigen::VectorXd(problem.apply(convolved) + settings.damping * lambda);
   };
@@ -240,19 +250,15 @@ void ContactPlanter::plant(nn::Mat<float>& hidden, const FeatureStatistics& norm
   if (step == 0.0) return;
   lambda *= step;
 
-  // dH = D^T S A^T lambda: the decoder's adjoint, tap by tap, summed into the pooled columns (in double:
-  // lambda's near-null directions are large and must cancel).
+  // dH = D^T S A^T lambda: the decoder's adjoint, a correlation with the flipped, transposed kernel
+  // over the depooled frames [from - half, to + half), then the depooling's adjoint (pairs summed).
   problem.transpose(lambda, rows);
-  const Eigen::MatrixXd change = scale.asDiagonal() * rows.middleCols(from, to - from);
-  Eigen::MatrixXd delta = Eigen::MatrixXd::Zero(hidden_, pooled);
-  for (int k = 0; k < width_; ++k) {
-    const Eigen::MatrixXd tap = weight_.middleCols(k * hidden_, hidden_).transpose() * change;
-    for (int t = from; t < to; ++t) {
-      const int column = pooledOf(t, k, width_);
-      if (column >= 0 && column < pooled) delta.col(column) += tap.col(t - from);
-    }
-  }
-  hidden += delta.cast<float>();
+  nn::Mat<float> change = nn::Mat<float>::Zero(kRows, to - from + 4 * half);
+  change.middleCols(2 * half, to - from) = (scale.asDiagonal() * rows.middleCols(from, to - from)).cast<float>();
+  const int first_depooled = from - half, count = to - from + 2 * half;
+  nn::Mat<float> depooled_change(hidden_, count);
+  nn::correlatePadded(adjoint_weight_, change.data(), kRows, width_, depooled_change.data(), count);
+  for (int j = 0; j < count; ++j) hidden.col((first_depooled + j) / 2) += depooled_change.col(j);
 }
 
 }  // namespace motionstyle::style

@@ -26,7 +26,6 @@
 #include <vector>
 
 #include "features/feature_statistics.h"
-#include "nn/conv1d.h"
 #include "nn/loss_network.h"
 #include "nn/tensor.h"
 #include "style/path_mode.h"
@@ -67,9 +66,9 @@ class ContactPlanter {
              const Eigen::MatrixXd& contacts, int first_frame, PathMode path, const ContactProjection& settings) const;
 
  private:
-  nn::Conv1d<float> rows_decoder_;  // the decoder's rows the problem reads (no bias)
-  Eigen::MatrixXd weight_;          // its weights in double (the adjoint)
-  nn::Vec<float> encoder_bias_;     // b0: decode(H) = Conv(Depool(H) - b0)
+  nn::Mat<float> rows_weight_;     // the decoder's rows the problem reads: kRows x (hidden * width), tap-major
+  nn::Mat<float> adjoint_weight_;  // their adjoint: hidden x (kRows * width), taps reversed, transposed
+  nn::Vec<float> encoder_bias_;    // b0: decode(H) = Conv(Depool(H) - b0)
   int hidden_ = 0, width_ = 0, reach_ = 0;
   // kernel_[parity]: K's blocks between a decoded frame t of that parity and t + lag, lag = -reach_ ..
   // reach_ side by side (15 x 15 (2 reach_ + 1)): one product per parity applies K.
