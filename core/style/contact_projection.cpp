@@ -51,7 +51,8 @@ struct Swing {
 class PlantProblem {
  public:
   PlantProblem(std::vector<Contact> contacts, std::vector<Swing> swings, double smoothness, bool own_root)
-      : contacts_(std::move(contacts)), swings_(std::move(swings)), smooth_(std::sqrt(smoothness)), own_root_(own_root) {}
+      : contacts_(std::move(contacts)), swings_(std::move(swings)), smooth_(std::sqrt(smoothness)),
+        own_root_(own_root) {}
 
   Eigen::Index size() const { return 3 * static_cast<Eigen::Index>(contacts_.size() + swings_.size()); }
 
@@ -129,7 +130,8 @@ ContactPlanter::ContactPlanter(const nn::LossNetwork<float>& loss_network)
   for (int row = 0; row < kRows; ++row) rows_weight_.row(row) = loss_network.decoder.weight.value.row(featureRow(row));
   adjoint_weight_.resize(hidden_, kRows * width_);
   for (int k = 0; k < width_; ++k)
-    adjoint_weight_.middleCols((width_ - 1 - k) * kRows, kRows) = rows_weight_.middleCols(k * hidden_, hidden_).transpose();
+    adjoint_weight_.middleCols((width_ - 1 - k) * kRows, kRows) =
+        rows_weight_.middleCols(k * hidden_, hidden_).transpose();
   // K between decoded frames t and t': sum over the pooled columns both read of (their taps' W_k summed)
   // products, i.e. the sum of W_k W_k'^T over tap pairs that read the same pooled column.
   const Eigen::MatrixXd weight = rows_weight_.cast<double>();
@@ -187,8 +189,9 @@ void ContactPlanter::plant(nn::Mat<float>& hidden, const FeatureStatistics& norm
       if (contacts(label, t) < 0.5 || contacts(label, t + 1) < 0.5) continue;
       const int at = first_frame + t;
       const Contact k{label, at, turnAbout(own_root ? current(kFootRows + 2, at) : content(kTurningVelocity, t))};
-      const Eigen::Vector3d velocity = own_root ? Eigen::Vector3d(current(kFootRows, at), 0.0, current(kFootRows + 1, at))
-                                                : Eigen::Vector3d(content(kSidewaysVelocity, t), 0.0, content(kForwardVelocity, t));
+      const Eigen::Vector3d velocity =
+          own_root ? Eigen::Vector3d(current(kFootRows, at), 0.0, current(kFootRows + 1, at))
+                   : Eigen::Vector3d(content(kSidewaysVelocity, t), 0.0, content(kForwardVelocity, t));
       steps.push_back(velocity + k.turn * current.block<3, 1>(3 * label, at + 1) - current.block<3, 1>(3 * label, at));
       planted.push_back(k);
     }

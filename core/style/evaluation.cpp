@@ -138,7 +138,8 @@ EvaluationReport evaluateStyleNetwork(const nn::LossNetworkModel& loss_network, 
     const Eigen::MatrixXd& contacts = clip.features.contacts;
     const Eigen::MatrixXd output = stylizer.stylizeFeatures(content, contacts, 1.0, path);
     e.stylize_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-    const Eigen::MatrixXd own = path == PathMode::Style ? output : stylizer.stylizeFeatures(content, contacts, 1.0, PathMode::Style);
+    const Eigen::MatrixXd own =
+        path == PathMode::Style ? output : stylizer.stylizeFeatures(content, contacts, 1.0, PathMode::Style);
     const RootPathComparison network_path = compareRootPaths(summariseRootPath(content), summariseRootPath(own));
     e.network_path_distance_ratio = network_path.distance_ratio;
     e.network_path_end_error_fraction = network_path.end_error_fraction;

@@ -100,7 +100,8 @@ Eigen::MatrixXd Stylizer::networkOutput(const Eigen::MatrixXd& features, const E
       }
       if (plant) {
         throwIfCancelled(cancel);
-        planter_->plant(hidden, model_.normalisation, features, contacts, kEdgePaddingFrames, path, contact_projection_);
+        planter_->plant(hidden, model_.normalisation, features, contacts, kEdgePaddingFrames, path,
+                        contact_projection_);
       }
     });
     return styled_padded;

@@ -50,7 +50,8 @@ struct Fixture {
   // Decoded physical rows of the features (66 x decoded frames).
   Eigen::MatrixXd decoded(const nn::Mat<float>& h) const {
     Eigen::MatrixXd x = loss.decode(h, kPooled).cast<double>();
-    for (int f = 0; f < kFeatureCount; ++f) x.row(f) = x.row(f) * normalisation.std(f) + Eigen::RowVectorXd::Constant(x.cols(), normalisation.mean(f));
+    for (int f = 0; f < kFeatureCount; ++f)
+      x.row(f) = (x.row(f).array() * normalisation.std(f) + normalisation.mean(f)).matrix();
     return x;
   }
 
