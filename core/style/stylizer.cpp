@@ -78,9 +78,9 @@ void Stylizer::releaseIdleNetworks() const {
 Eigen::MatrixXd Stylizer::networkOutput(const Eigen::MatrixXd& features, const Eigen::MatrixXd& contacts, PathMode path,
                                         const std::atomic<bool>* cancel) const {
   requireFeatures(features, "Stylizer::networkOutput");
-  const bool plant = contacts.size() > 0 && contact_projection_.iterations > 0;
-  if (plant && (contacts.rows() != kContactCount || contacts.cols() != features.cols()))
+  if (contacts.size() > 0 && (contacts.rows() != kContactCount || contacts.cols() != features.cols()))
     throw std::invalid_argument("Stylizer::networkOutput: the contacts must be 4 x the features' frames");
+  const bool plant = contacts.size() > 0 && contact_projection_.iterations > 0;
   const nn::Mat<float> input = model_.normalisation.normalized(padEdges(features));
   const bool refine = refinementSteps() > 0;
   const nn::Mat<float> styled = withNetwork([&](nn::FastStylizer& network) {

@@ -226,6 +226,9 @@ nlohmann::json evaluateNetwork(const nn::StyleModel& model, const nn::LossNetwor
   if (clips.empty()) return out;
   const style::EvaluationReport report = style::evaluateStyleNetwork(loss_network, model, clips, styles, pairing, path, refinement);
   const style::Stylizer stylizer(model, "the style network", refinement);
+  std::vector<nn::Mat<float>> style_grams;  // each style clip's, for the cleaned clips' style ratio
+  for (const style::MotionClip& style : styles)
+    style_grams.push_back(style::styleGramOf(model.loss_network, model.normalisation, style.features.values));
   nlohmann::json per_clip = nlohmann::json::array();
   for (std::size_t i = 0; i < clips.size(); ++i) {
     const style::ClipEvaluation& ev = report.clips[i];
@@ -254,7 +257,7 @@ nlohmann::json evaluateNetwork(const nn::StyleModel& model, const nn::LossNetwor
       const Eigen::MatrixXd cleaned_features = style::makeMotionClip(cleaned.motion, e.mapping, e.clip.file).features.values;
       const style::StyleDistances cleaned_distances = style::measureStyleDistances(
           model.loss_network, model.normalisation, e.clip.features.values, cleaned_features,
-          style::styleGramOf(model.loss_network, model.normalisation, styles[static_cast<std::size_t>(pairing[i])].features.values));
+          style_grams[static_cast<std::size_t>(pairing[i])]);
       c["cleaned_style_ratio"] = cleaned_distances.styleRatio();
       figures.cleaned_style_ratio += cleaned_distances.styleRatio();
       c["residual_mean_cm"] = cleaned.cleaned.residual_mean_cm;

@@ -94,6 +94,11 @@ TEST(Stylizer, ItsContactProjectionNeverAddsSliding) {
   const MotionFeatures& content = test::fixtureClips()[0].features;
   EXPECT_THROW(stylizer.networkOutput(content.values, content.contacts.leftCols(10), style::PathMode::Content),
                std::invalid_argument);
+  style::ContactProjection off;
+  off.iterations = 0;  // refused all the same when nothing would be planted
+  EXPECT_THROW(style::Stylizer(test::tinyStyleModel(), "the test network", {}, off)
+                   .networkOutput(content.values, content.contacts.leftCols(10), style::PathMode::Content),
+               std::invalid_argument);
   for (const style::PathMode path : {style::PathMode::Content, style::PathMode::Style}) {
     const double sliding = style::footSkate(stylizer.stylizeFeatures(content.values, {}, 1.0, path), content.contacts,
                                             content.anchor);
