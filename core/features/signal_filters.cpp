@@ -45,6 +45,18 @@ Eigen::MatrixXd gaussianSmoothRows(const Eigen::MatrixXd& signal, double sigma_f
   return smoothed;
 }
 
+void removeFrameAlternation(Eigen::MatrixXd& features) {
+  const Eigen::Index frames = features.cols();
+  if (frames < 3) return;
+  Eigen::VectorXd previous = features.col(0);  // x_{t-1} before this column was overwritten
+  for (Eigen::Index t = 0; t < frames; ++t) {
+    const Eigen::VectorXd current = features.col(t);
+    const Eigen::Index next = std::min(t + 1, frames - 1);
+    features.col(t) = 0.25 * (previous + features.col(next)) + 0.5 * current;
+    previous = current;
+  }
+}
+
 double quantile(const Eigen::VectorXd& values, double q) {
   if (values.size() == 0) return 0.0;
   std::vector<double> sorted(values.data(), values.data() + values.size());

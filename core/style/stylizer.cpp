@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "common/errors.h"
+#include "features/signal_filters.h"
 #include "style/cancellation.h"
 #include "style/training_windows.h"
 
@@ -116,8 +117,9 @@ Eigen::MatrixXd Stylizer::finishFeatures(const Eigen::MatrixXd& features, const 
     throw std::invalid_argument("Stylizer::finishFeatures: the network output is not the features' shape");
   if (!(strength >= 0.0 && strength <= 1.0)) throw std::invalid_argument("stylize strength must be in [0, 1]");
   if (strength == 0.0) return features;  // exactly the content
-  Eigen::MatrixXd result = network_output;
-  if (strength != 1.0) result = features + strength * (result - features);
+  Eigen::MatrixXd change = network_output - features;
+  removeFrameAlternation(change);
+  Eigen::MatrixXd result = features + strength * change;
   applyPathMode(result, features, path);
   enforceBoneLengths(result, referenceProportions());
   if (!result.allFinite() || result.cwiseAbs().maxCoeff() > kMaxPhysicalFeature)

@@ -7,8 +7,12 @@
 // float32 fast path (nn/fast_stylizer.h).
 //
 // Strength s in [0, 1] blends in the representation's own units (cm, cm/frame, rad/frame):
-//   result = content + s * (L(T(content)) - content)
+//   result = content + s * F(L(T(content)) - content),   F = removeFrameAlternation ([1 2 1] / 4 in time)
 // so s = 0 returns the content's features exactly (bit for bit) and s = 1 the fully styled motion.
+// F: the projection's depooling repeats each hidden frame, so the decoded change alternates between
+// even and odd frames (each bone by about 1 cm, where the content's move 0.1-0.7 cm per frame); the
+// clip's own proportions and the bone lengths turn that into sliding feet (docs/decisions.md, "The
+// network's change, without its frame alternation"). F removes exactly that frequency.
 //
 // The output is at the representation's rate (60 fps), with the CONTENT's foot contacts: the paper's
 // foot loss teaches T to respect them, the contact projection (contact_projection.h) plants them on the

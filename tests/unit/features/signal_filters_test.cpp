@@ -1,5 +1,5 @@
 // Signal helpers of the representation (signal_filters.h): Gaussian smoothing against a direct clamped
-// convolution, the quantile and the median.
+// convolution, the alternation filter, the quantile and the median.
 
 #include <gtest/gtest.h>
 
@@ -65,6 +65,41 @@ TEST(GaussianSmoothRows, KeepsConstantsAndLinesAwayFromTheEdges) {
   for (Eigen::Index t = 0; t < 200; ++t) line(t, 0) = 0.5 * static_cast<double>(t) - 7.0;
   const Eigen::MatrixXd smoothed = gaussianSmoothRows(line, 3.0);  // symmetric kernel: lines pass through
   EXPECT_LT((smoothed.middleRows(10, 180) - line.middleRows(10, 180)).cwiseAbs().maxCoeff(), 1e-12);
+}
+
+TEST(RemoveFrameAlternation, LeavesClipsOfFewerThanThreeFramesAlone) {
+  for (int frames : {0, 1, 2}) {
+    Eigen::MatrixXd features = Eigen::MatrixXd::Random(66, frames);
+    const Eigen::MatrixXd before = features;
+    removeFrameAlternation(features);
+    EXPECT_EQ(features, before) << frames << " frames";
+  }
+}
+
+// y_t = (x_{t-1} + 2 x_t + x_{t+1}) / 4, edges clamped: gain cos^2(pi f / fps) inside the clip.
+TEST(RemoveFrameAlternation, CancelsTheAlternationAndScalesEachFrequencyByItsGain) {
+  constexpr int kFrames = 120;
+  constexpr double kPi = 3.14159265358979323846, kFps = 60.0, kHz = 5.0;
+  Eigen::MatrixXd features(3, kFrames);
+  for (int t = 0; t < kFrames; ++t) {
+    features(0, t) = (t % 2 == 0 ? 1.0 : -1.0) * 2.5;                  // the Nyquist frequency
+    features(1, t) = std::sin(2.0 * kPi * kHz * t / kFps + 0.3);       // 5 Hz
+    features(2, t) = 0.5 * t - 3.0;                                    // a line
+  }
+  const Eigen::MatrixXd before = features;
+  removeFrameAlternation(features);
+  const double gain = std::pow(std::cos(kPi * kHz / kFps), 2);
+  for (int t = 1; t + 1 < kFrames; ++t) {
+    EXPECT_NEAR(features(0, t), 0.0, 1e-12) << t;
+    EXPECT_NEAR(features(1, t), gain * before(1, t), 1e-12) << t;
+    EXPECT_NEAR(features(2, t), before(2, t), 1e-12) << t;
+  }
+  // The edges repeat the first and last frames.
+  EXPECT_NEAR(features(2, 0), (3.0 * before(2, 0) + before(2, 1)) / 4.0, 1e-12);
+  EXPECT_NEAR(features(2, kFrames - 1), (3.0 * before(2, kFrames - 1) + before(2, kFrames - 2)) / 4.0, 1e-12);
+  Eigen::MatrixXd constant = Eigen::MatrixXd::Constant(66, 7, -1.75);
+  removeFrameAlternation(constant);
+  EXPECT_EQ(constant, Eigen::MatrixXd::Constant(66, 7, -1.75));
 }
 
 TEST(Median, PicksTheMiddleValueAndTheUpperOfTwo) {

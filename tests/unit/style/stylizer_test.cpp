@@ -71,6 +71,23 @@ TEST(Stylizer, StrengthBlendsLinearlyInFeatureSpaceThenSetsBoneLengths) {
     EXPECT_LT((canonicalBoneLengths(*output) - reference).cwiseAbs().maxCoeff(), 1e-9);
 }
 
+// The projection's depooling leaves the decoded change alternating between even and odd frames; the
+// finish takes exactly that frequency out of the change (stylizer.h), so an output that differs from
+// another only by an alternation finishes the same inside the clip.
+TEST(Stylizer, FinishTakesTheFrameAlternationOutOfTheNetworksChange) {
+  const style::Stylizer stylizer(test::tinyStyleModel());
+  const Eigen::MatrixXd& content = test::fixtureClips()[0].features.values;
+  const Eigen::MatrixXd output = stylizer.networkOutput(content, {}, style::PathMode::Style);
+  Eigen::MatrixXd alternating = output;
+  for (Eigen::Index t = 0; t < alternating.cols(); ++t) alternating.col(t).array() += t % 2 == 0 ? 1.5 : -1.5;
+  const Eigen::MatrixXd smooth = stylizer.finishFeatures(content, output, 1.0, style::PathMode::Style);
+  const Eigen::MatrixXd finished = stylizer.finishFeatures(content, alternating, 1.0, style::PathMode::Style);
+  const Eigen::Index inside = content.cols() - 2;
+  ASSERT_GT(inside, 10);
+  EXPECT_LT((finished.middleCols(1, inside) - smooth.middleCols(1, inside)).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_GT((finished.col(0) - smooth.col(0)).cwiseAbs().maxCoeff(), 0.1);  // the clamped edge keeps half
+}
+
 // The two halves (live edits keep the network's output and redo only the blend) are the whole.
 TEST(Stylizer, NetworkOutputThenFinishIsStylizeBitForBit) {
   const style::Stylizer stylizer(test::tinyStyleModel());
