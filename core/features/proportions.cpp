@@ -1,5 +1,6 @@
 #include "features/proportions.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -112,6 +113,81 @@ void enforceBoneLengths(Eigen::MatrixXd& features, const Proportions& proportion
       target[joint] = target[parent] + proportions.bone_length[joint] * direction;
     }
     for (int c = 0; c < kCanonicalJointCount; ++c) features.col(f).segment<3>(3 * c) = target[static_cast<std::size_t>(c)];
+  }
+}
+
+namespace {
+
+// w per contact label and frame: 1 on a contact frame, 1 - k / (ramp + 1) k frames away (k <= ramp).
+Eigen::MatrixXd contactWeights(const Eigen::MatrixXd& contacts) {
+  const Eigen::Index frames = contacts.cols();
+  Eigen::MatrixXd weight = Eigen::MatrixXd::Zero(contacts.rows(), frames);
+  for (Eigen::Index label = 0; label < contacts.rows(); ++label)
+    for (Eigen::Index s = 0; s < frames; ++s) {
+      if (contacts(label, s) < 0.5) continue;
+      for (Eigen::Index t = std::max<Eigen::Index>(0, s - kKeptFootRampFrames);
+           t <= std::min<Eigen::Index>(frames - 1, s + kKeptFootRampFrames); ++t)
+        weight(label, t) = std::max(weight(label, t), 1.0 - static_cast<double>(std::abs(t - s)) / (kKeptFootRampFrames + 1));
+    }
+  return weight;
+}
+
+// The knee of a leg with hip joint h, thigh l1 and shin l2 whose ankle is at a, on the side of `pole`
+// (the plane through h, a and pole). False when a is at the hip or the pole on the line through both.
+bool kneeFor(const Eigen::Vector3d& h, const Eigen::Vector3d& a, const Eigen::Vector3d& pole, double l1, double l2,
+             Eigen::Vector3d& knee) {
+  const double d = (a - h).norm();
+  if (d < kMinimumBoneLengthCm) return false;
+  const Eigen::Vector3d u = (a - h) / d;
+  Eigen::Vector3d v = (pole - h) - (pole - h).dot(u) * u;
+  if (v.norm() < kMinimumBoneLengthCm) return false;
+  v.normalize();
+  const double along = (l1 * l1 - l2 * l2 + d * d) / (2.0 * d);
+  knee = h + along * u + std::sqrt(std::max(0.0, l1 * l1 - along * along)) * v;
+  return true;
+}
+
+}  // namespace
+
+void enforceBoneLengths(Eigen::MatrixXd& features, const Proportions& proportions, const Eigen::MatrixXd& contacts) {
+  if (contacts.size() > 0 && (contacts.rows() != kContactCount || contacts.cols() != features.cols()))
+    throw std::invalid_argument("enforceBoneLengths: the contacts must be 4 x the features' frames");
+  const Eigen::MatrixXd before = features;
+  enforceBoneLengths(features, proportions);
+  if (contacts.size() == 0) return;
+  const Eigen::MatrixXd weight = contactWeights(contacts);
+  for (const bool left : {true, false}) {
+    const int hip = index(left ? C::LeftHip : C::RightHip), knee = hip + 1, ankle = hip + 2, toe = hip + 3;
+    const int heel_label = static_cast<int>(left ? ContactLabel::LeftHeel : ContactLabel::RightHeel);
+    const int toe_label = static_cast<int>(left ? ContactLabel::LeftToe : ContactLabel::RightToe);
+    const double thigh = proportions.bone_length[static_cast<std::size_t>(knee)];
+    const double shin = proportions.bone_length[static_cast<std::size_t>(ankle)];
+    const double foot = proportions.bone_length[static_cast<std::size_t>(toe)];
+    // Reachable ankles: from just past the folded leg to just short of the straight one.
+    const double nearest = std::abs(thigh - shin) + 1e-3, furthest = (thigh + shin) * (1.0 - 1e-6);
+    for (Eigen::Index f = 0; f < features.cols(); ++f) {
+      const double heel_weight = weight(heel_label, f), toe_weight = weight(toe_label, f);
+      const double w = std::max(heel_weight, toe_weight);
+      if (w <= 0.0) continue;
+      const Eigen::Vector3d h = jointAt(features, f, hip), enforced_ankle = jointAt(features, f, ankle);
+      const Eigen::Vector3d foot_bone = jointAt(before, f, toe) - jointAt(before, f, ankle);
+      const Eigen::Vector3d direction =
+          foot_bone.norm() >= kMinimumBoneLengthCm ? Eigen::Vector3d(foot_bone.normalized())
+                                                   : Eigen::Vector3d(jointAt(features, f, toe) - enforced_ankle) / foot;
+      const Eigen::Vector3d kept =
+          toe_weight > heel_weight ? Eigen::Vector3d(jointAt(before, f, toe) - foot * direction) : jointAt(before, f, ankle);
+      Eigen::Vector3d a = enforced_ankle;
+      a.x() += w * (kept.x() - enforced_ankle.x());
+      a.z() += w * (kept.z() - enforced_ankle.z());
+      const double reach = (a - h).norm();
+      if (reach > furthest) a = h + (a - h) * (furthest / reach);
+      if (reach < nearest) continue;
+      Eigen::Vector3d k;
+      if (!kneeFor(h, a, jointAt(features, f, knee), thigh, shin, k)) continue;
+      features.col(f).segment<3>(3 * knee) = k;
+      features.col(f).segment<3>(3 * ankle) = a;
+      features.col(f).segment<3>(3 * toe) = a + foot * direction;
+    }
   }
 }
 

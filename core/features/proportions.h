@@ -68,4 +68,18 @@ void retargetFeatures(Eigen::MatrixXd& features, const Proportions& from, const 
 // exact: a target 2 cm beyond reach is a 2 cm residual). Throws std::invalid_argument as retargetFeatures.
 void enforceBoneLengths(Eigen::MatrixXd& features, const Proportions& proportions);
 
+// The same, keeping planted feet in place: rebuilt from the hips outward, a leg carries the sum of its
+// bones' errors to the foot (the network's decoded thigh is 35-42 cm where the reference's is 38.9),
+// so a foot that stood still through a contact slides once the lengths are set. Here, after
+// enforceBoneLengths, each leg's knee is solved again (two-bone IK in the plane of the enforced knee,
+// the bones' lengths exact) so that the ankle takes back its horizontal place from before, by weight
+// w = 1 on a contact frame of the ankle or toe, falling linearly to 0 over kKeptFootRampFrames either
+// side; where only the toe is planted, the ankle's place is the one that keeps the toe's. The height
+// stays the enforced one: it is the knee's bend, which is style (keeping it too weakened elderly, sad
+// and exhausted; docs/decisions.md). A place out of the leg's reach is pulled in to it. contacts: 4 x
+// frames (0/1, ContactLabel order), or empty for enforceBoneLengths alone. Throws std::invalid_argument
+// as enforceBoneLengths, and for contacts of another shape.
+inline constexpr int kKeptFootRampFrames = 4;
+void enforceBoneLengths(Eigen::MatrixXd& features, const Proportions& proportions, const Eigen::MatrixXd& contacts);
+
 }  // namespace motionstyle

@@ -110,18 +110,20 @@ Eigen::MatrixXd Stylizer::networkOutput(const Eigen::MatrixXd& features, const E
   return cropEdges(model_.normalisation.denormalized(styled));
 }
 
-Eigen::MatrixXd Stylizer::finishFeatures(const Eigen::MatrixXd& features, const Eigen::MatrixXd& network_output,
-                                         double strength, PathMode path) const {
+Eigen::MatrixXd Stylizer::finishFeatures(const Eigen::MatrixXd& features, const Eigen::MatrixXd& contacts,
+                                         const Eigen::MatrixXd& network_output, double strength, PathMode path) const {
   requireFeatures(features, "Stylizer::finishFeatures");
   if (network_output.rows() != features.rows() || network_output.cols() != features.cols())
     throw std::invalid_argument("Stylizer::finishFeatures: the network output is not the features' shape");
+  if (contacts.size() > 0 && (contacts.rows() != kContactCount || contacts.cols() != features.cols()))
+    throw std::invalid_argument("Stylizer::finishFeatures: the contacts must be 4 x the features' frames");
   if (!(strength >= 0.0 && strength <= 1.0)) throw std::invalid_argument("stylize strength must be in [0, 1]");
   if (strength == 0.0) return features;  // exactly the content
   Eigen::MatrixXd change = network_output - features;
   removeFrameAlternation(change);
   Eigen::MatrixXd result = features + strength * change;
   applyPathMode(result, features, path);
-  enforceBoneLengths(result, referenceProportions());
+  enforceBoneLengths(result, referenceProportions(), contacts);
   if (!result.allFinite() || result.cwiseAbs().maxCoeff() > kMaxPhysicalFeature)
     throw InputError(source_name_, 0,
                      "the network's output is not physical (a joint 100 m away, or not a number): its weights are "
@@ -134,7 +136,7 @@ Eigen::MatrixXd Stylizer::stylizeFeatures(const Eigen::MatrixXd& features, const
   requireFeatures(features, "Stylizer::stylizeFeatures");
   if (!(strength >= 0.0 && strength <= 1.0)) throw std::invalid_argument("stylize strength must be in [0, 1]");
   if (strength == 0.0) return features;  // exactly the content, no network run
-  return finishFeatures(features, networkOutput(features, contacts, path), strength, path);
+  return finishFeatures(features, contacts, networkOutput(features, contacts, path), strength, path);
 }
 
 namespace {
@@ -158,7 +160,7 @@ StylizedClip Stylizer::stylize(const MotionFeatures& content, double strength, P
 
 StylizedClip Stylizer::stylize(const MotionFeatures& content, const Eigen::MatrixXd& network_output, double strength,
                                PathMode path) const {
-  return clipOf(content, finishFeatures(content.values, network_output, strength, path), path);
+  return clipOf(content, finishFeatures(content.values, content.contacts, network_output, strength, path), path);
 }
 
 Eigen::MatrixXd Stylizer::projectFeatures(const Eigen::MatrixXd& features) const {

@@ -18,7 +18,8 @@
 // foot loss teaches T to respect them, the contact projection (contact_projection.h) plants them on the
 // manifold when contacts are given, and the IK clean-up locks them. Its root path and timing are the
 // content's unless PathMode::Style lets the style change the pace (path_mode.h), and its bones have the
-// reference lengths exactly (enforceBoneLengths: every target is reachable by the character's limbs).
+// reference lengths exactly (enforceBoneLengths: every target is reachable by the character's limbs),
+// set so that the content's contacts keep the feet where the projection planted them.
 
 #include <Eigen/Core>
 #include <atomic>
@@ -86,14 +87,16 @@ class Stylizer {
   // stylizeFeatures in its two halves, for callers that change only the strength (live edits):
   // networkOutput(x, c, p) = L(T(x)) in representation units (refined, contacts c planted under path p),
   // independent of the strength, and finishFeatures, the blend by strength, the path mode and the bone
-  // lengths, which stylizeFeatures(x, c, s, p) == finishFeatures(x, networkOutput(x, c, p), s, p) (bit
-  // for bit). Same throws as stylizeFeatures; finishFeatures also when network_output's shape is not the
-  // features'. `cancel`: OperationCancelled when it is set before a refinement step, so that a dropped
+  // lengths (keeping the feet planted where c says so: enforceBoneLengths with contacts), which
+  // stylizeFeatures(x, c, s, p) == finishFeatures(x, c, networkOutput(x, c, p), s, p) (bit for bit).
+  // Same throws as stylizeFeatures; finishFeatures also when network_output's or the contacts' shape is
+  // not the features'. `cancel`: OperationCancelled when it is set before a refinement step, so that a dropped
   // job stops within a few ms instead of finishing the network.
   Eigen::MatrixXd networkOutput(const Eigen::MatrixXd& features, const Eigen::MatrixXd& contacts, PathMode path,
                                 const std::atomic<bool>* cancel = nullptr) const;
-  Eigen::MatrixXd finishFeatures(const Eigen::MatrixXd& features, const Eigen::MatrixXd& network_output,
-                                 double strength, PathMode path = PathMode::Content) const;
+  Eigen::MatrixXd finishFeatures(const Eigen::MatrixXd& features, const Eigen::MatrixXd& contacts,
+                                 const Eigen::MatrixXd& network_output, double strength,
+                                 PathMode path = PathMode::Content) const;
   StylizedClip stylize(const MotionFeatures& content, const Eigen::MatrixXd& network_output, double strength,
                        PathMode path = PathMode::Content) const;
 

@@ -761,15 +761,34 @@ class ResultTest : public QObject {
     QVERIFY2(track < 0, qPrintable(QStringLiteral("frames %1-%2 are not held").arg(first).arg(last)));
     QVERIFY(cleaned.foot_skate_cm_s < 0.5);
     // A clip stylized elsewhere, whose feet were not planted (this network without its contact
-    // projection: elderly moves steps of the MJ walk's last stand more than 20 cm), is cleaned as given:
-    // those stances are hatched, and dragging over one holds the foot there.
+    // projection) and whose left foot slides 30 cm through its first long stance and swings back after
+    // it (more than a lock holds: kLockableSpreadCm), is cleaned as given: that stance is hatched, and
+    // dragging over it holds the foot there.
     const MotionFeatures features =
         extractFeatures(window.clip(window.contentClip()).motion, *window.clip(window.contentClip()).mapping);
     style::ContactProjection unplanted;
     unplanted.iterations = 0;
     const style::Stylizer elsewhere(nn::loadStyleModel(*shippedNetworkFile(*resources, kDemoNetwork)), "elsewhere", {},
                                     unplanted);
-    window.resultPanel()->setStylizedClip(elsewhere.stylize(features, 1.0), QStringLiteral("stylized elsewhere"));
+    style::StylizedClip sliding = elsewhere.stylize(features, 1.0);
+    const int heel = static_cast<int>(ContactLabel::LeftHeel);
+    int stance = -1, stance_end = -1;
+    for (int t = 0, run = 0; t < sliding.frameCount() && stance < 0; ++t) {
+      run = sliding.contacts(heel, t) > 0.5 ? run + 1 : 0;
+      if (run == 20) stance = t - 19;
+    }
+    QVERIFY(stance >= 0);
+    for (stance_end = stance; stance_end < sliding.frameCount() && sliding.contacts(heel, stance_end) > 0.5;) ++stance_end;
+    const int back = std::min(sliding.frameCount(), stance_end + (stance_end - stance));
+    const Eigen::Vector3d slide =
+        sliding.anchor.convention.toFile(Eigen::Vector3d(30.0, 0.0, 0.0)) - sliding.anchor.convention.toFile(Eigen::Vector3d::Zero());
+    for (int t = stance; t < back; ++t) {
+      const double along = t < stance_end ? double(t - stance) / (stance_end - 1 - stance)
+                                          : 1.0 - double(t - stance_end + 1) / (back - stance_end);
+      for (CanonicalJoint joint : {CanonicalJoint::LeftAnkle, CanonicalJoint::LeftToe})
+        sliding.world_positions.row(t).segment<3>(3 * index(joint)) += along * slide.transpose();
+    }
+    window.resultPanel()->setStylizedClip(sliding, QStringLiteral("stylized elsewhere"));
     QVERIFY(waitForJobs(ended, 2));
     QVERIFY(window.resultPanel()->result() != nullptr);
     firstUnheld(track, first, last);

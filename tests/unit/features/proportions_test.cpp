@@ -51,6 +51,9 @@ TEST(ProportionsInvalid, RejectsBadLengthsAndShapes) {
   EXPECT_THROW(measureProportions(Eigen::MatrixXd::Zero(kFeatureCount, 0)), std::invalid_argument);
   EXPECT_THROW(enforceBoneLengths(wrong, referenceProportions()), std::invalid_argument);
   EXPECT_THROW(enforceBoneLengths(features, legless), std::invalid_argument);
+  EXPECT_THROW(enforceBoneLengths(features, referenceProportions(), Eigen::MatrixXd::Zero(kContactCount, 2)),
+               std::invalid_argument);
+  EXPECT_THROW(enforceBoneLengths(features, referenceProportions(), Eigen::MatrixXd::Zero(3, 3)), std::invalid_argument);
 }
 
 TEST(Proportions, TheReferenceIsTheBandaiActorsAndValid) {
@@ -109,6 +112,57 @@ TEST(Proportions, EnforcingBoneLengthsSetsEveryFrameAndKeepsDirections) {
   Eigen::MatrixXd twice = fixed;
   enforceBoneLengths(twice, reference);
   EXPECT_LT((twice - fixed).cwiseAbs().maxCoeff(), 1e-9);
+}
+
+// With contacts, the bones are as exact, the legs' frames far from any contact are the plain
+// enforcement's, and on a contact frame the planted joint keeps its horizontal place from before (the
+// ankle where the heel is planted, the toe where only the toe is) while its height is the plain
+// enforcement's; in between, the place moves linearly with the weight.
+TEST(Proportions, EnforcingBoneLengthsKeepsPlantedFeetWhereTheyWere) {
+  Eigen::MatrixXd noisy = ownFeatures("zombie.bvh");
+  const Eigen::Index frames = noisy.cols();
+  ASSERT_GT(frames, 60);
+  std::mt19937 rng(11);
+  std::normal_distribution<double> noise(0.0, 1.5);
+  for (Eigen::Index f = 0; f < frames; ++f)
+    for (int r = 3; r < 63; ++r) noisy(r, f) += noise(rng);
+  Eigen::MatrixXd contacts = Eigen::MatrixXd::Zero(kContactCount, frames);
+  const int left_heel = static_cast<int>(ContactLabel::LeftHeel), right_toe = static_cast<int>(ContactLabel::RightToe);
+  contacts.block(left_heel, 20, 1, 10).setOnes();  // the left heel planted over frames 20-29
+  contacts.block(right_toe, 40, 1, 6).setOnes();   // the right toe alone over frames 40-45
+  const Proportions& reference = referenceProportions();
+  Eigen::MatrixXd plain = noisy, kept = noisy;
+  enforceBoneLengths(plain, reference);
+  enforceBoneLengths(kept, reference, contacts);
+  for (Eigen::Index f = 0; f < frames; ++f)
+    for (int c = 1; c < kCanonicalJointCount; ++c) {
+      const int parent = kCanonicalParent[static_cast<std::size_t>(c)];
+      const double length = (kept.col(f).segment<3>(3 * c) - kept.col(f).segment<3>(3 * parent)).norm();
+      ASSERT_NEAR(length, reference.bone_length[static_cast<std::size_t>(c)], 1e-9) << "bone " << c << " frame " << f;
+    }
+  const auto joint = [](const Eigen::MatrixXd& m, Eigen::Index f, CanonicalJoint j) {
+    return Eigen::Vector3d(m.col(f).segment<3>(3 * index(j)));
+  };
+  // Far from both contacts (more than kKeptFootRampFrames away) everything is the plain enforcement's.
+  for (Eigen::Index f : {Eigen::Index{0}, Eigen::Index{14}, Eigen::Index{35}, Eigen::Index{52}, frames - 1})
+    EXPECT_LT((kept.col(f) - plain.col(f)).cwiseAbs().maxCoeff(), 1e-9) << f;
+  for (Eigen::Index f = 20; f < 30; ++f) {
+    const Eigen::Vector3d ankle = joint(kept, f, CanonicalJoint::LeftAnkle), was = joint(noisy, f, CanonicalJoint::LeftAnkle);
+    EXPECT_NEAR(ankle.x(), was.x(), 1e-9) << f;
+    EXPECT_NEAR(ankle.z(), was.z(), 1e-9) << f;
+    EXPECT_NEAR(ankle.y(), joint(plain, f, CanonicalJoint::LeftAnkle).y(), 1e-9) << f;
+    EXPECT_LT((joint(kept, f, CanonicalJoint::RightKnee) - joint(plain, f, CanonicalJoint::RightKnee)).norm(), 1e-9);
+  }
+  for (Eigen::Index f = 40; f < 46; ++f) {
+    const Eigen::Vector3d toe = joint(kept, f, CanonicalJoint::RightToe), was = joint(noisy, f, CanonicalJoint::RightToe);
+    EXPECT_NEAR(toe.x(), was.x(), 1e-9) << f;
+    EXPECT_NEAR(toe.z(), was.z(), 1e-9) << f;
+  }
+  // Two frames before the heel's contact the weight is 1 - 2 / 5: the ankle moved 3 / 5 of the way.
+  const Eigen::Vector3d from = joint(plain, 18, CanonicalJoint::LeftAnkle), to = joint(noisy, 18, CanonicalJoint::LeftAnkle);
+  const Eigen::Vector3d at = joint(kept, 18, CanonicalJoint::LeftAnkle);
+  EXPECT_NEAR(at.x(), from.x() + 0.6 * (to.x() - from.x()), 1e-9);
+  EXPECT_NEAR(at.z(), from.z() + 0.6 * (to.z() - from.z()), 1e-9);
 }
 
 TEST(Proportions, RetargetingThereAndBackIsTheIdentity) {

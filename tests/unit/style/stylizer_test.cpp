@@ -80,8 +80,8 @@ TEST(Stylizer, FinishTakesTheFrameAlternationOutOfTheNetworksChange) {
   const Eigen::MatrixXd output = stylizer.networkOutput(content, {}, style::PathMode::Style);
   Eigen::MatrixXd alternating = output;
   for (Eigen::Index t = 0; t < alternating.cols(); ++t) alternating.col(t).array() += t % 2 == 0 ? 1.5 : -1.5;
-  const Eigen::MatrixXd smooth = stylizer.finishFeatures(content, output, 1.0, style::PathMode::Style);
-  const Eigen::MatrixXd finished = stylizer.finishFeatures(content, alternating, 1.0, style::PathMode::Style);
+  const Eigen::MatrixXd smooth = stylizer.finishFeatures(content, {}, output, 1.0, style::PathMode::Style);
+  const Eigen::MatrixXd finished = stylizer.finishFeatures(content, {}, alternating, 1.0, style::PathMode::Style);
   const Eigen::Index inside = content.cols() - 2;
   ASSERT_GT(inside, 10);
   EXPECT_LT((finished.middleCols(1, inside) - smooth.middleCols(1, inside)).cwiseAbs().maxCoeff(), 1e-9);
@@ -92,13 +92,15 @@ TEST(Stylizer, FinishTakesTheFrameAlternationOutOfTheNetworksChange) {
 TEST(Stylizer, NetworkOutputThenFinishIsStylizeBitForBit) {
   const style::Stylizer stylizer(test::tinyStyleModel());
   const Eigen::MatrixXd& content = test::fixtureClips()[0].features.values;
-  EXPECT_THROW(stylizer.finishFeatures(content, content.leftCols(content.cols() - 1), 0.5), std::invalid_argument);
-  EXPECT_THROW(stylizer.finishFeatures(content, content, 1.5), std::invalid_argument);
   const Eigen::MatrixXd& contacts = test::fixtureClips()[0].features.contacts;
+  EXPECT_THROW(stylizer.finishFeatures(content, {}, content.leftCols(content.cols() - 1), 0.5), std::invalid_argument);
+  EXPECT_THROW(stylizer.finishFeatures(content, {}, content, 1.5), std::invalid_argument);
+  EXPECT_THROW(stylizer.finishFeatures(content, contacts.leftCols(contacts.cols() - 1), content, 0.5),
+               std::invalid_argument);
   for (const style::PathMode path : {style::PathMode::Content, style::PathMode::Style}) {
     const Eigen::MatrixXd output = stylizer.networkOutput(content, contacts, path);
     for (const double strength : {0.0, 0.3, 1.0})
-      EXPECT_EQ(stylizer.finishFeatures(content, output, strength, path),
+      EXPECT_EQ(stylizer.finishFeatures(content, contacts, output, strength, path),
                 stylizer.stylizeFeatures(content, contacts, strength, path));
   }
 }
