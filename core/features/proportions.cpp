@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace motionstyle {
 namespace {
@@ -156,6 +157,7 @@ void enforceBoneLengths(Eigen::MatrixXd& features, const Proportions& proportion
   enforceBoneLengths(features, proportions);
   if (contacts.size() == 0) return;
   const Eigen::MatrixXd weight = contactWeights(contacts);
+  const Eigen::Index frames = features.cols();
   for (const bool left : {true, false}) {
     const int hip = index(left ? C::LeftHip : C::RightHip), knee = hip + 1, ankle = hip + 2, toe = hip + 3;
     const int heel_label = static_cast<int>(left ? ContactLabel::LeftHeel : ContactLabel::RightHeel);
@@ -163,30 +165,58 @@ void enforceBoneLengths(Eigen::MatrixXd& features, const Proportions& proportion
     const double thigh = proportions.bone_length[static_cast<std::size_t>(knee)];
     const double shin = proportions.bone_length[static_cast<std::size_t>(ankle)];
     const double foot = proportions.bone_length[static_cast<std::size_t>(toe)];
+    // Per frame: w, the foot's direction from before, and the ankle's place to keep.
+    Eigen::VectorXd w(frames);
+    std::vector<Eigen::Vector3d> direction(static_cast<std::size_t>(frames)), kept(static_cast<std::size_t>(frames));
+    for (Eigen::Index f = 0; f < frames; ++f) {
+      const auto i = static_cast<std::size_t>(f);
+      w(f) = std::max(weight(heel_label, f), weight(toe_label, f));
+      const Eigen::Vector3d foot_bone = jointAt(before, f, toe) - jointAt(before, f, ankle);
+      direction[i] = foot_bone.norm() >= kMinimumBoneLengthCm
+                         ? Eigen::Vector3d(foot_bone.normalized())
+                         : Eigen::Vector3d((jointAt(features, f, toe) - jointAt(features, f, ankle)) / foot);
+      kept[i] = weight(toe_label, f) > weight(heel_label, f) ? Eigen::Vector3d(jointAt(before, f, toe) - foot * direction[i])
+                                                             : jointAt(before, f, ankle);
+    }
+    // The height to add, w times: the kept height's difference to the enforced one, less its mean over
+    // the span's contact frames (a span: consecutive frames with w > 0).
+    Eigen::VectorXd rise = Eigen::VectorXd::Zero(frames);
+    for (Eigen::Index first = 0; first < frames;) {
+      if (w(first) <= 0.0) {
+        ++first;
+        continue;
+      }
+      Eigen::Index end = first;
+      double sum = 0.0;
+      int planted = 0;
+      for (; end < frames && w(end) > 0.0; ++end) {
+        rise(end) = kept[static_cast<std::size_t>(end)].y() - jointAt(features, end, ankle).y();
+        if (w(end) >= 1.0) {
+          sum += rise(end);
+          ++planted;
+        }
+      }
+      if (planted > 0) rise.segment(first, end - first).array() -= sum / planted;
+      first = end;
+    }
     // Reachable ankles: from just past the folded leg to just short of the straight one.
     const double nearest = std::abs(thigh - shin) + 1e-3, furthest = (thigh + shin) * (1.0 - 1e-6);
-    for (Eigen::Index f = 0; f < features.cols(); ++f) {
-      const double heel_weight = weight(heel_label, f), toe_weight = weight(toe_label, f);
-      const double w = std::max(heel_weight, toe_weight);
-      if (w <= 0.0) continue;
-      const Eigen::Vector3d h = jointAt(features, f, hip), enforced_ankle = jointAt(features, f, ankle);
-      const Eigen::Vector3d foot_bone = jointAt(before, f, toe) - jointAt(before, f, ankle);
-      const Eigen::Vector3d direction =
-          foot_bone.norm() >= kMinimumBoneLengthCm ? Eigen::Vector3d(foot_bone.normalized())
-                                                   : Eigen::Vector3d(jointAt(features, f, toe) - enforced_ankle) / foot;
-      const Eigen::Vector3d kept =
-          toe_weight > heel_weight ? Eigen::Vector3d(jointAt(before, f, toe) - foot * direction) : jointAt(before, f, ankle);
-      Eigen::Vector3d a = enforced_ankle;
-      a.x() += w * (kept.x() - enforced_ankle.x());
-      a.z() += w * (kept.z() - enforced_ankle.z());
+    for (Eigen::Index f = 0; f < frames; ++f) {
+      if (w(f) <= 0.0) continue;
+      const auto i = static_cast<std::size_t>(f);
+      const Eigen::Vector3d h = jointAt(features, f, hip);
+      Eigen::Vector3d a = jointAt(features, f, ankle);
+      a.x() += w(f) * (kept[i].x() - a.x());
+      a.z() += w(f) * (kept[i].z() - a.z());
+      a.y() += w(f) * rise(f);
       const double reach = (a - h).norm();
-      if (reach > furthest) a = h + (a - h) * (furthest / reach);
       if (reach < nearest) continue;
+      if (reach > furthest) a = h + (a - h) * (furthest / reach);
       Eigen::Vector3d k;
       if (!kneeFor(h, a, jointAt(features, f, knee), thigh, shin, k)) continue;
       features.col(f).segment<3>(3 * knee) = k;
       features.col(f).segment<3>(3 * ankle) = a;
-      features.col(f).segment<3>(3 * toe) = a + foot * direction;
+      features.col(f).segment<3>(3 * toe) = a + foot * direction[i];
     }
   }
 }

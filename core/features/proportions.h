@@ -74,11 +74,14 @@ void enforceBoneLengths(Eigen::MatrixXd& features, const Proportions& proportion
 // enforceBoneLengths, each leg's knee is solved again (two-bone IK in the plane of the enforced knee,
 // the bones' lengths exact) so that the ankle takes back its horizontal place from before, by weight
 // w = 1 on a contact frame of the ankle or toe, falling linearly to 0 over kKeptFootRampFrames either
-// side; where only the toe is planted, the ankle's place is the one that keeps the toe's. The height
-// stays the enforced one: it is the knee's bend, which is style (keeping it too weakened elderly, sad
-// and exhausted; docs/decisions.md). A place out of the leg's reach is pulled in to it. contacts: 4 x
-// frames (0/1, ContactLabel order), or empty for enforceBoneLengths alone. Throws std::invalid_argument
-// as enforceBoneLengths, and for contacts of another shape.
+// side; where only the toe is planted, the ankle's place is the one that keeps the toe's. Its height
+// takes back its changes from before, not its level: over each span of frames with w > 0 the ankle
+// rises by w (d - mean d), d the height from before less the enforced one, the mean over the span's
+// contact frames, so a planted foot keeps a still height while the knee's mean bend, which is style,
+// stays the enforced one (keeping the level too weakened elderly, sad and exhausted;
+// docs/decisions.md). A place out of the leg's reach is pulled in to it. contacts: 4 x frames (0/1,
+// ContactLabel order), or empty for enforceBoneLengths alone. Throws std::invalid_argument as
+// enforceBoneLengths, and for contacts of another shape.
 inline constexpr int kKeptFootRampFrames = 4;
 void enforceBoneLengths(Eigen::MatrixXd& features, const Proportions& proportions, const Eigen::MatrixXd& contacts);
 
