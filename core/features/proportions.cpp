@@ -175,8 +175,9 @@ void enforceBoneLengths(Eigen::MatrixXd& features, const Proportions& proportion
       direction[i] = foot_bone.norm() >= kMinimumBoneLengthCm
                          ? Eigen::Vector3d(foot_bone.normalized())
                          : Eigen::Vector3d((jointAt(features, f, toe) - jointAt(features, f, ankle)) / foot);
-      kept[i] = weight(toe_label, f) > weight(heel_label, f) ? Eigen::Vector3d(jointAt(before, f, toe) - foot * direction[i])
-                                                             : jointAt(before, f, ankle);
+      // Between the ankle from before and the one that keeps the toe's place, by the toe's share.
+      const double toe_share = w(f) > 0.0 ? weight(toe_label, f) / (weight(heel_label, f) + weight(toe_label, f)) : 0.0;
+      kept[i] = jointAt(before, f, ankle) + toe_share * (foot_bone.norm() - foot) * direction[i];
     }
     // The height to add, w times: the kept height's difference to the enforced one, less its mean over
     // the span's contact frames (a span: consecutive frames with w > 0).

@@ -74,7 +74,8 @@ void enforceBoneLengths(Eigen::MatrixXd& features, const Proportions& proportion
 // enforceBoneLengths, each leg's knee is solved again (two-bone IK in the plane of the enforced knee,
 // the bones' lengths exact) so that the ankle takes back its horizontal place from before, by weight
 // w = 1 on a contact frame of the ankle or toe, falling linearly to 0 over kKeptFootRampFrames either
-// side; where only the toe is planted, the ankle's place is the one that keeps the toe's. Its height
+// side; that place lies between the ankle's from before and the one that keeps the toe's, by the toe's
+// share of the two weights (only the toe planted: the toe's place; both: halfway). Its height
 // takes back its changes from before, not its level: over each span of frames with w > 0 the ankle
 // rises by w (d - mean d), d the height from before less the enforced one, the mean over the span's
 // contact frames, so a planted foot keeps a still height while the knee's mean bend, which is style,
