@@ -172,9 +172,10 @@ void enforceBoneLengths(Eigen::MatrixXd& features, const Proportions& proportion
       const auto i = static_cast<std::size_t>(f);
       w(f) = std::max(weight(heel_label, f), weight(toe_label, f));
       const Eigen::Vector3d foot_bone = jointAt(before, f, toe) - jointAt(before, f, ankle);
-      direction[i] = foot_bone.norm() >= kMinimumBoneLengthCm
-                         ? Eigen::Vector3d(foot_bone.normalized())
-                         : Eigen::Vector3d((jointAt(features, f, toe) - jointAt(features, f, ankle)) / foot);
+      const Eigen::Vector3d enforced_foot = jointAt(features, f, toe) - jointAt(features, f, ankle);
+      direction[i] = foot_bone.norm() >= kMinimumBoneLengthCm       ? Eigen::Vector3d(foot_bone.normalized())
+                     : enforced_foot.norm() >= kMinimumBoneLengthCm ? Eigen::Vector3d(enforced_foot.normalized())
+                                                                    : Eigen::Vector3d::Zero();
       // Between the ankle from before and the one that keeps the toe's place, by the toe's share.
       const double toe_share = w(f) > 0.0 ? weight(toe_label, f) / (weight(heel_label, f) + weight(toe_label, f)) : 0.0;
       kept[i] = jointAt(before, f, ankle) + toe_share * (foot_bone.norm() - foot) * direction[i];

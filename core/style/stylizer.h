@@ -90,8 +90,8 @@ class Stylizer {
   // lengths (keeping the feet planted where c says so: enforceBoneLengths with contacts), which
   // stylizeFeatures(x, c, s, p) == finishFeatures(x, c, networkOutput(x, c, p), s, p) (bit for bit).
   // Same throws as stylizeFeatures; finishFeatures also when network_output's or the contacts' shape is
-  // not the features'. `cancel`: OperationCancelled when it is set before a refinement step, so that a dropped
-  // job stops within a few ms instead of finishing the network.
+  // not the features'. `cancel`: OperationCancelled when it is set before a refinement step, so that a
+  // dropped job stops within a few ms instead of finishing the network.
   Eigen::MatrixXd networkOutput(const Eigen::MatrixXd& features, const Eigen::MatrixXd& contacts, PathMode path,
                                 const std::atomic<bool>* cancel = nullptr) const;
   Eigen::MatrixXd finishFeatures(const Eigen::MatrixXd& features, const Eigen::MatrixXd& contacts,

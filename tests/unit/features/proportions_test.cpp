@@ -178,6 +178,18 @@ TEST(Proportions, EnforcingBoneLengthsKeepsPlantedFeetWhereTheyWere) {
     EXPECT_NEAR(toe.z(), was.z(), 1e-9) << f;
   }
   EXPECT_GE(toe_within, 2);
+  // Proportions without toes (a rig that ends at the ankles): the toes collapse onto the ankles, nothing
+  // goes NaN.
+  Proportions toeless = reference;
+  for (CanonicalJoint j : {CanonicalJoint::LeftToe, CanonicalJoint::RightToe})
+    toeless.bone_length[static_cast<std::size_t>(index(j))] = 0.0;
+  Eigen::MatrixXd collapsed = noisy;
+  for (CanonicalJoint j : {CanonicalJoint::LeftToe, CanonicalJoint::RightToe})
+    collapsed.middleRows<3>(3 * index(j)) = collapsed.middleRows<3>(3 * (index(j) - 1));
+  enforceBoneLengths(collapsed, toeless, contacts);
+  EXPECT_TRUE(collapsed.allFinite());
+  EXPECT_LT((collapsed.middleRows<3>(3 * index(CanonicalJoint::RightToe)) -
+             collapsed.middleRows<3>(3 * index(CanonicalJoint::RightAnkle))).cwiseAbs().maxCoeff(), 1e-9);
   // Two frames before the heel's contact the weight is 1 - 2 / 5: the ankle moved 3 / 5 of the way.
   const Eigen::Vector3d from = joint(plain, 18, CanonicalJoint::LeftAnkle), to = joint(noisy, 18, CanonicalJoint::LeftAnkle);
   const Eigen::Vector3d at = joint(kept, 18, CanonicalJoint::LeftAnkle);
