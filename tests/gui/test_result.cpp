@@ -34,6 +34,7 @@
 #include "motion/kinematics.h"
 #include "nn/network_file.h"
 #include "result_panel.h"
+#include "sliding_stance.h"
 #include "style/motion_dataset.h"
 #include "style/stylizer.h"
 #include "style/training.h"
@@ -771,23 +772,7 @@ class ResultTest : public QObject {
     const style::Stylizer elsewhere(nn::loadStyleModel(*shippedNetworkFile(*resources, kDemoNetwork)), "elsewhere", {},
                                     unplanted);
     style::StylizedClip sliding = elsewhere.stylize(features, 1.0);
-    const int heel = static_cast<int>(ContactLabel::LeftHeel);
-    int stance = -1, stance_end = -1;
-    for (int t = 0, run = 0; t < sliding.frameCount() && stance < 0; ++t) {
-      run = sliding.contacts(heel, t) > 0.5 ? run + 1 : 0;
-      if (run == 20) stance = t - 19;
-    }
-    QVERIFY(stance >= 0);
-    for (stance_end = stance; stance_end < sliding.frameCount() && sliding.contacts(heel, stance_end) > 0.5;) ++stance_end;
-    const int back = std::min(sliding.frameCount(), stance_end + (stance_end - stance));
-    const Eigen::Vector3d slide =
-        sliding.anchor.convention.toFile(Eigen::Vector3d(30.0, 0.0, 0.0)) - sliding.anchor.convention.toFile(Eigen::Vector3d::Zero());
-    for (int t = stance; t < back; ++t) {
-      const double along = t < stance_end ? double(t - stance) / (stance_end - 1 - stance)
-                                          : 1.0 - double(t - stance_end + 1) / (back - stance_end);
-      for (CanonicalJoint joint : {CanonicalJoint::LeftAnkle, CanonicalJoint::LeftToe})
-        sliding.world_positions.row(t).segment<3>(3 * index(joint)) += along * slide.transpose();
-    }
+    QVERIFY(test::slideTheLeftFootThroughAStance(sliding, 30.0));
     window.resultPanel()->setStylizedClip(sliding, QStringLiteral("stylized elsewhere"));
     QVERIFY(waitForJobs(ended, 2));
     QVERIFY(window.resultPanel()->result() != nullptr);
