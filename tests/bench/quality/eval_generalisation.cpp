@@ -189,10 +189,13 @@ fs::path findStyleClip(const std::string& name, const fs::path& data) {
   return {};
 }
 
+// Issue 12's goal for the clean-up's worst residual per clip.
+constexpr double kWorstResidualGoalCm = 8.0;
+
 struct NetworkFigures {
   double style_ratio = 0, projection_ratio = 0, content_after = 0, familiarity = 0, network_distance = 0;
   double residual_mean = 0, residual_max = 0, skate = 0, cleaned_style_ratio = 0;
-  int unreachable = 0, cleaned = 0;
+  int unreachable = 0, cleaned = 0, over_goal = 0;  // over_goal: clips whose worst residual is over kWorstResidualGoalCm
   double distance_ratio_min = 1e9, distance_ratio_max = 0, end_error_max = 0;
   int clips = 0;
 };
@@ -269,6 +272,7 @@ nlohmann::json evaluateNetwork(const nn::StyleModel& model, const nn::LossNetwor
       c["heading_error_deg"] = travelled.heading_error * 180.0 / 3.14159265358979;
       figures.residual_mean += cleaned.cleaned.residual_mean_cm;
       figures.residual_max = std::max(figures.residual_max, cleaned.cleaned.residual_max_cm);
+      figures.over_goal += cleaned.cleaned.residual_max_cm > kWorstResidualGoalCm;
       figures.skate = std::max(figures.skate, cleaned.cleaned.foot_skate_cm_s);
       figures.unreachable += unreachable;
       figures.distance_ratio_min = std::min(figures.distance_ratio_min, travelled.distance_ratio);
@@ -287,9 +291,11 @@ void printFigures(const std::string& network, const std::string& set, const Netw
   std::printf("  %-10s %-22s style %.3f (proj %.3f) content %.3f fam %.2f net-path x%.2f", network.c_str(), set.c_str(),
               f.style_ratio / n, f.projection_ratio / n, f.content_after / n, f.familiarity / n, f.network_distance / n);
   if (f.cleaned > 0)
-    std::printf(" | cleaned style %.3f residual %.2f max %.1f skate %.2f unreach %d | distance x%.2f-%.2f end %.0f%%",
-                f.cleaned_style_ratio / f.cleaned, f.residual_mean / f.cleaned, f.residual_max, f.skate, f.unreachable, f.distance_ratio_min,
-                f.distance_ratio_max, 100.0 * f.end_error_max);
+    std::printf(" | cleaned style %.3f residual %.2f max %.1f (%d of %d clips over %.0f) skate %.2f unreach %d | distance "
+                "x%.2f-%.2f end %.0f%%",
+                f.cleaned_style_ratio / f.cleaned, f.residual_mean / f.cleaned, f.residual_max, f.over_goal, f.cleaned,
+                kWorstResidualGoalCm, f.skate, f.unreachable, f.distance_ratio_min, f.distance_ratio_max,
+                100.0 * f.end_error_max);
   std::printf("\n");
 }
 
