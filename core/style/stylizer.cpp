@@ -19,6 +19,12 @@ void requireFeatures(const Eigen::MatrixXd& features, const char* what) {
                                 std::to_string(features.rows()) + " x " + std::to_string(features.cols()));
 }
 
+// Contacts are empty (none) or 4 x the features' frames.
+void requireContacts(const Eigen::MatrixXd& contacts, const Eigen::MatrixXd& features, const char* what) {
+  if (contacts.size() > 0 && (contacts.rows() != kContactCount || contacts.cols() != features.cols()))
+    throw std::invalid_argument(std::string(what) + ": the contacts must be 4 x the features' frames");
+}
+
 // Frames of the first and last pose added at each end before the networks run (then cropped): the
 // convolutions see a clip's edges as the training windows had them (cutWindow's padding, standing
 // poses) instead of the zero padding of a bare convolution. It covers the receptive field of the
@@ -79,8 +85,7 @@ void Stylizer::releaseIdleNetworks() const {
 Eigen::MatrixXd Stylizer::networkOutput(const Eigen::MatrixXd& features, const Eigen::MatrixXd& contacts, PathMode path,
                                         const std::atomic<bool>* cancel) const {
   requireFeatures(features, "Stylizer::networkOutput");
-  if (contacts.size() > 0 && (contacts.rows() != kContactCount || contacts.cols() != features.cols()))
-    throw std::invalid_argument("Stylizer::networkOutput: the contacts must be 4 x the features' frames");
+  requireContacts(contacts, features, "Stylizer::networkOutput");
   const bool plant = contacts.size() > 0 && contact_projection_.iterations > 0;
   const nn::Mat<float> input = model_.normalisation.normalized(padEdges(features));
   const bool refine = refinementSteps() > 0;
@@ -115,8 +120,7 @@ Eigen::MatrixXd Stylizer::finishFeatures(const Eigen::MatrixXd& features, const 
   requireFeatures(features, "Stylizer::finishFeatures");
   if (network_output.rows() != features.rows() || network_output.cols() != features.cols())
     throw std::invalid_argument("Stylizer::finishFeatures: the network output is not the features' shape");
-  if (contacts.size() > 0 && (contacts.rows() != kContactCount || contacts.cols() != features.cols()))
-    throw std::invalid_argument("Stylizer::finishFeatures: the contacts must be 4 x the features' frames");
+  requireContacts(contacts, features, "Stylizer::finishFeatures");
   if (!(strength >= 0.0 && strength <= 1.0)) throw std::invalid_argument("stylize strength must be in [0, 1]");
   if (strength == 0.0) return features;  // exactly the content
   Eigen::MatrixXd change = network_output - features;
