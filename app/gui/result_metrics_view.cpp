@@ -32,7 +32,9 @@ ResultMetricsView::ResultMetricsView(QWidget* parent) : QWidget(parent) {
           .arg(style::kLockableSpreadCm));
   table_->verticalHeaderItem(kPenetrationRow)->setToolTip(tr("Deepest foot below the floor"));
   table_->verticalHeaderItem(kBoneErrorRow)->setToolTip(tr("Mean difference from the skeleton's bone lengths"));
-  table_->verticalHeaderItem(kResidualRow)->setToolTip(tr("Mean distance of the mapped joints from the network's output"));
+  table_->verticalHeaderItem(kResidualRow)->setToolTip(
+      tr("Distance of the mapped joints from the network's output: the mean, and in brackets the worst\n"
+         "joint at the worst frame (where the clean-up changed the style most to plant the feet)"));
   table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
   table_->setSelectionMode(QAbstractItemView::NoSelection);
   table_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
@@ -89,7 +91,8 @@ void ResultMetricsView::showResult(const style::StylizeCleanupResult* result) {
   put(kBoneErrorRow, kCleanedColumn, cm(cleaned.bone_error_mean_cm, 4));
   // The raw output IS the target of the clean-up: its residual is zero by definition.
   put(kResidualRow, kRawColumn, raw.has_residual ? cm(raw.residual_mean_cm) : QStringLiteral("0 (target)"));
-  put(kResidualRow, kCleanedColumn, cleaned.has_residual ? cm(cleaned.residual_mean_cm) : none);
+  put(kResidualRow, kCleanedColumn,
+      cleaned.has_residual ? tr("%1 (max %2)").arg(cm(cleaned.residual_mean_cm), cm(cleaned.residual_max_cm, 1)) : none);
   // A few lines in the panel, all of them in the tooltip: a long list would push the table away.
   // A warning that names frames links to its first one (the link keeps the warnings' colour).
   constexpr qsizetype kShownWarnings = 3;

@@ -258,7 +258,9 @@ class ResultTest : public QObject {
     QVERIFY2(result->cleaned_metrics.foot_skate_cm_s < result->raw_metrics.foot_skate_cm_s,
              qPrintable(QStringLiteral("skate %1 -> %2 cm/s").arg(result->raw_metrics.foot_skate_cm_s).arg(result->cleaned_metrics.foot_skate_cm_s)));
     QVERIFY(result->cleaned_metrics.penetration_max_cm < 0.5);
-    QVERIFY(std::isfinite(cellValue(metrics, ResultPanel::kResidualRow, ResultPanel::kCleanedColumn)));
+    // The residual cell: the mean, then the worst joint at the worst frame, as the clean-up measured them.
+    QCOMPARE(metrics->item(ResultPanel::kResidualRow, ResultPanel::kCleanedColumn)->text(),
+             QStringLiteral("%1 (max %2)").arg(result->cleaned_metrics.residual_mean_cm, 0, 'f', 2).arg(result->cleaned_metrics.residual_max_cm, 0, 'f', 1));
     qInfo("metrics raw -> cleaned: skate %.2f -> %.2f cm/s, penetration %.2f -> %.2f cm, bone %.3f -> %.1e cm, "
           "residual %.2f cm, %.2f s",
           result->raw_metrics.foot_skate_cm_s, result->cleaned_metrics.foot_skate_cm_s,
