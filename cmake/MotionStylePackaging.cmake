@@ -1,7 +1,8 @@
 # Install layout and the Debian package (CPack DEB). Included from the top CMakeLists.txt after the
 # targets exist. The executables install themselves (app/cli, app/gui: bin/); this file adds the data:
 #
-#   share/motionstyle/models/     shipped networks (*.net) with their NOTICE and recipe
+#   share/motionstyle/models/     shipped networks (*.net), the loss network's reconstruction memory
+#                                 (*.memory) with their NOTICE and recipe
 #   share/motionstyle/samples/    demo clips with their licences
 #   share/applications/           motionstyle.desktop
 #   share/icons/hicolor/          motionstyle.svg (scalable) and a 256 px PNG
@@ -25,7 +26,7 @@ set(MOTIONSTYLE_DATA_INSTALL_DIR "${CMAKE_INSTALL_DATADIR}/motionstyle")
 # --- data ---------------------------------------------------------------------------------------
 # Only the files meant to ship: training leaves *.checkpoint and logs next to the networks.
 install(DIRECTORY "${_resources}/models/" DESTINATION "${MOTIONSTYLE_DATA_INSTALL_DIR}/models"
-        FILES_MATCHING PATTERN "*.net" PATTERN "*.png" PATTERN "NOTICE" PATTERN "README.md" PATTERN "*.sh")
+        FILES_MATCHING PATTERN "*.net" PATTERN "*.memory" PATTERN "*.png" PATTERN "NOTICE" PATTERN "README.md" PATTERN "*.sh")
 install(DIRECTORY "${_resources}/samples/" DESTINATION "${MOTIONSTYLE_DATA_INSTALL_DIR}/samples"
         FILES_MATCHING PATTERN "*.bvh" PATTERN "LICENSE*" PATTERN "README.md")
 

@@ -73,13 +73,14 @@ installed_kib=$(dpkg-deb -f "$deb" Installed-Size)
 contents=$(dpkg-deb -c "$deb" | awk '{print $NF}')
 expected=(./usr/bin/motionstyle ./usr/bin/motionstyle-cli
   ./usr/share/motionstyle/samples/cmu_131_01_walk.bvh ./usr/share/motionstyle/samples/zombie_walk.bvh
-  ./usr/share/motionstyle/models/NOTICE ./usr/share/applications/motionstyle.desktop
+  ./usr/share/motionstyle/models/NOTICE ./usr/share/motionstyle/models/loss_network.memory
+  ./usr/share/applications/motionstyle.desktop
   ./usr/share/icons/hicolor/scalable/apps/motionstyle.svg ./usr/share/icons/hicolor/256x256/apps/motionstyle.png
   ./usr/share/mime/packages/motionstyle.xml ./usr/share/man/man1/motionstyle-cli.1.gz
   ./usr/share/man/man1/motionstyle.1.gz ./usr/share/doc/motionstyle/copyright)
 missing_files=()
 for path in "${expected[@]}"; do grep -qxF "$path" <<<"$contents" || missing_files+=("$path"); done
-if [ ${#missing_files[@]} -eq 0 ]; then pass "package holds the programs, samples, desktop entry, icons, MIME type, man pages and licences"
+if [ ${#missing_files[@]} -eq 0 ]; then pass "package holds the programs, samples, the loss network's memory, desktop entry, icons, MIME type, man pages and licences"
 else fail "package lacks: ${missing_files[*]}"; fi
 shipped_nets=$(grep -c '^\./usr/share/motionstyle/models/.*\.net$' <<<"$contents" || true)
 echo "shipped networks in the package: $shipped_nets"

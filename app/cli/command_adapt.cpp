@@ -16,7 +16,7 @@ int runAdapt(const Args& args) {
   const ParsedArgs parsed = parseArgs(args, {{"loss-network"}, {"data", true, true}, {"out"}, {"epochs"}, {"lr"}, {"seed"},
                                              {"replay", true, true}, {"replay-ratio"}, {"train-encoder", false},
                                              {"threads"}, {"skip-bad", false}, {"unit"}, {"checkpoint"},
-                                             {"keep-checkpoints", false}});
+                                             {"keep-checkpoints", false}, {"memory"}, {"memory-weight"}});
   style::AdaptationJob job;
   style::AdaptationSettings& settings = job.settings;
   settings.output = parsed.required("out");
@@ -25,6 +25,7 @@ int runAdapt(const Args& args) {
   settings.seed = static_cast<std::uint32_t>(parsed.integer("seed", 1, 0, std::numeric_limits<int>::max()));
   settings.replay_ratio = parsed.number("replay-ratio", settings.replay_ratio, {0.0, 100.0});
   settings.train_encoder = parsed.has("train-encoder");
+  settings.memory_weight = parsed.number("memory-weight", settings.memory_weight, {0.0, 1000.0});
   if (auto checkpoint = parsed.value("checkpoint")) settings.checkpoint = *checkpoint;
   settings.keep_checkpoint = parsed.has("keep-checkpoints");
   if (parsed.has("threads")) applyThreadOption(parsed.integer("threads", 0));
@@ -62,6 +63,24 @@ int runAdapt(const Args& args) {
     job.replay = style::loadMotionClips(replay, replay_options, &warnings, guard.flag());
   }
   for (const std::string& warning : warnings) bar.line("warning: " + warning);
+  const std::string memory_choice = parsed.value("memory").value_or("");
+  if (memory_choice == "none" || (memory_choice.empty() && settings.train_encoder)) {
+    if (job.replay.empty())
+      bar.line("note: no reconstruction memory and no --replay clips: the network may forget some of what it knew");
+  } else if (!memory_choice.empty()) {  // asked for: it must fit
+    if (settings.train_encoder) throw UsageError("--memory keeps the encoder: it cannot go with --train-encoder");
+    job.memory = style::loadReconstructionMemory(memory_choice);
+    try {
+      job.memory->requireMatches(job.loss_network, memory_choice);
+    } catch (const std::invalid_argument& error) {
+      throw InputError(memory_choice, 0, error.what());
+    }
+  } else {  // the default: a memory beside the network, or the shipped one, that fits
+    job.memory = style::findMatchingMemory(job.loss_network, loss_network_file);
+    if (!job.memory && job.replay.empty())
+      bar.line("note: no reconstruction memory fits this loss network and no --replay clips are given: it may "
+               "forget some of what it knew (motionstyle-cli remember writes a memory)");
+  }
 
   TrainingReporter reporter(bar);
   style::TrainingCallbacks callbacks;

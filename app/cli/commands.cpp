@@ -103,25 +103,44 @@ const std::vector<Command>& commands() {
        runTrainStyle},
       {"adapt", "fine-tune the loss network on your own clips (other studios, actors, rigs)",
        "usage: motionstyle-cli adapt [--loss-network LOSS] --data DIR... --out FILE [--epochs N] [--lr LR]\n"
-       "                             [--replay DIR...] [--replay-ratio R] [--train-encoder] [options]\n\n"
+       "                             [--replay DIR...] [--memory FILE|none] [--train-encoder] [options]\n\n"
        "Fine-tunes the loss network LOSS on your clips (no labels needed) so that it reconstructs them: the\n"
        "manifold projection then keeps their content, and 'info' reads them as familiar. By default only\n"
        "the decoder learns and the encoder is kept, so every style network keeps its style targets:\n"
        "retrain one against FILE on your clips with 'train-style --loss-network FILE --init STYLE --content DIR'.\n"
-       "Prints how familiar each clip was before and after. A checkpoint is written every epoch; Ctrl-C\n"
-       "stops within a second and keeps it.\n\n"
+       "Nothing it knew is forgotten: its reconstruction memory (shipped with the loss network) stands in for\n"
+       "the clips it learnt from, or --replay mixes them in. Prints how familiar each clip was before and\n"
+       "after. A checkpoint is written every epoch; Ctrl-C stops within a second and keeps it.\n\n"
        "  --loss-network LOSS\n"
        "                     the loss network to adapt (a file; default: loss_network, the shipped one)\n"
        "  --data DIR|FILE    your clips (repeatable; more may follow as plain arguments)\n"
        "  --out FILE         the adapted loss network (records what it was adapted on)\n"
-       "  --epochs N         epochs (default 40)\n"
+       "  --epochs N         epochs (default 200)\n"
        "  --lr LR            Adam learning rate at the start, cosine decay (default 0.0005)\n"
        "  --replay DIR|FILE  clips of the original training data to mix in, so nothing is forgotten\n"
        "  --replay-ratio R   replay frames per frame of yours (default 1)\n"
+       "  --memory FILE|none the loss network's reconstruction memory (remember): its training clips kept\n"
+       "                     without the clips themselves (default: LOSS's .memory beside it, else the\n"
+       "                     shipped one, when it fits LOSS's encoder; none: off)\n"
+       "  --memory-weight W  the memory's clips count as W times your frames (default 10)\n"
        "  --train-encoder    let the encoder learn too (style networks then need their style clips again)\n"
        "  --seed S, --threads T, --checkpoint FILE, --keep-checkpoints, --skip-bad, --unit UNIT: as for\n"
        "  train-loss-network\n",
        runAdapt},
+      {"remember", "write a loss network's reconstruction memory of the clips it learnt from (for adapt)",
+       "usage: motionstyle-cli remember [--loss-network LOSS] --data DIR... --out FILE.memory [--holdout N]\n\n"
+       "Encodes the clips with LOSS and writes what its decoder must go on reconstructing: the hidden units'\n"
+       "second moments over time and against the clips (core/style/reconstruction_memory.h), a few MB\n"
+       "however many clips. adapt then keeps what LOSS reconstructs of them without the clips themselves.\n"
+       "Write it beside LOSS (LOSS.net -> LOSS.memory) for adapt to find it.\n\n"
+       "  --loss-network LOSS  the loss network (a file; default: loss_network, the shipped one)\n"
+       "  --data DIR|FILE      the clips it learnt from (repeatable)\n"
+       "  --out FILE           the memory file (written atomically)\n"
+       "  --holdout N          leave out every N-th file, as train-loss-network --holdout N did (default 0)\n"
+       "  --description TEXT   what it remembers, recorded in the file and in adapted networks\n"
+       "  --precision P        f16 (default: half the size) or f32\n"
+       "  --threads T, --skip-bad, --unit UNIT: as for train-loss-network\n",
+       runRemember},
       {"stylize", "apply a trained style network to a clip",
        "usage: motionstyle-cli stylize --net NET [--loss-network LOSS] IN.bvh --out OUT.bvh [--strength S]\n"
        "                              [--no-cleanup] [--metrics FILE.json] [--fps N]\n"

@@ -31,6 +31,7 @@ int runConvert(const Args& args);
 int runTrainLossNetwork(const Args& args);
 int runTrainStyle(const Args& args);
 int runAdapt(const Args& args);
+int runRemember(const Args& args);
 int runStylize(const Args& args);
 int runTransfer(const Args& args);
 int runEval(const Args& args);

@@ -25,6 +25,8 @@
 #include "error_text.h"
 #include "item_view_layout.h"
 #include "job_runner.h"
+#include "style/adaptation.h"
+#include "style/reconstruction_memory.h"
 #include "style/training.h"
 
 namespace motionstyle {
@@ -54,7 +56,8 @@ AdaptTab::AdaptTab(ClipsProvider clips, NetworksProvider networks, QWidget* pare
   runner_ = new JobRunner(this);
   auto* intro = new QLabel(tr("Make the networks hold on your own clips (another studio, actor or rig): the loss "
                               "network learns to reconstruct them, then the styles you choose are retrained on "
-                              "them. Ten clips and one style take about 15 s."),
+                              "them. What the networks knew is kept (the loss network's memory of the data it "
+                              "learnt from). Ten clips and one style take about 20 s."),
                            this);
   intro->setWordWrap(true);
   clip_list_ = new QListWidget(this);
@@ -75,7 +78,7 @@ AdaptTab::AdaptTab(ClipsProvider clips, NetworksProvider networks, QWidget* pare
   style_list_->setToolTip(tr("The styles to retrain on your clips (networks that store their style targets)"));
   loss_epochs_ = new QSpinBox(this);
   loss_epochs_->setRange(1, 1000);
-  loss_epochs_->setValue(40);
+  loss_epochs_->setValue(style::AdaptationSettings{}.epochs);
   loss_epochs_->setFocusPolicy(Qt::StrongFocus);  // the wheel changes it only with focus
   style_epochs_ = new QSpinBox(this);
   style_epochs_->setRange(1, 1000);
@@ -314,6 +317,8 @@ bool AdaptTab::start() {
       for (style::MotionClip& clip : style::loadMotionClips(*folders, options, nullptr, callbacks.cancel))
         job.loss.clips.push_back(std::move(clip));
     }
+    // What the loss network knew stays (reconstruction_memory.h): the shipped memory, when it fits.
+    if (!job.loss.settings.train_encoder) job.loss.memory = style::findMatchingMemory(job.loss.loss_network, {});
     auto result = std::make_shared<style::AdaptNetworksJob::Result>(job.run(callbacks));
     if (result->status != style::TrainingStatus::Completed) return nullptr;
     return [this, result] { showResult(*result); };
@@ -352,11 +357,15 @@ void AdaptTab::showResult(const style::AdaptNetworksJob::Result& result) {
   put(row, 0, tr("All clips"));
   put(row, 1, figure(result.loss.mean_before_cm));
   put(row, 2, figure(result.loss.mean_after_cm));
-  status_->setText(tr("Adapted in %1: familiarity %2 -> %3 cm. The adapted networks are in the Networks list "
+  const QString kept = result.loss.memory.empty()
+                          ? tr("No memory of the data it learnt from fits this loss network: some of it may be forgotten.")
+                          : tr("What it knew is kept (its memory of %1).").arg(QString::fromStdString(result.loss.memory));
+  status_->setText(tr("Adapted in %1: familiarity %2 -> %3 cm. %4 The adapted networks are in the Networks list "
                       "(unsaved).")
                        .arg(duration(result.seconds))
                        .arg(result.loss.mean_before_cm, 0, 'f', 2)
-                       .arg(result.loss.mean_after_cm, 0, 'f', 2));
+                       .arg(result.loss.mean_after_cm, 0, 'f', 2)
+                       .arg(kept));
   emit statusMessage(status_->text());
   emit adapted(std::make_shared<const nn::LossNetworkModel>(result.loss.model), result.styles);
 }

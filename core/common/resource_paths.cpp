@@ -89,6 +89,14 @@ std::optional<fs::path> shippedNetworkFile(const fs::path& resources, std::strin
   return file;
 }
 
+std::optional<fs::path> shippedMemoryFile(const fs::path& resources, std::string_view name) {
+  if (!isValidNetworkName(name)) return std::nullopt;
+  const fs::path file = resources / "models" / (std::string(name) + ".memory");
+  std::error_code error;
+  if (!fs::is_regular_file(file, error)) return std::nullopt;
+  return file;
+}
+
 std::vector<fs::path> shippedNetworkFiles(const fs::path& resources) {
   std::vector<fs::path> files;
   std::error_code error;

@@ -60,6 +60,10 @@ bool isValidNetworkName(std::string_view name);
 // <resources>/models/<name>.net if `name` is valid and that file exists, else nullopt.
 std::optional<std::filesystem::path> shippedNetworkFile(const std::filesystem::path& resources, std::string_view name);
 
+// <resources>/models/<name>.memory (a loss network's reconstruction memory, style/reconstruction_memory.h)
+// if `name` is valid and that file exists, else nullopt.
+std::optional<std::filesystem::path> shippedMemoryFile(const std::filesystem::path& resources, std::string_view name);
+
 // The shipped network files (<resources>/models/*.net with valid names), sorted by name. Empty if
 // the folder is missing or unreadable.
 std::vector<std::filesystem::path> shippedNetworkFiles(const std::filesystem::path& resources);

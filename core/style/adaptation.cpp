@@ -63,6 +63,8 @@ void AdaptationSettings::validate() const {
     throw std::invalid_argument("adaptation learning rate must be in (0, 1]");
   if (!(replay_ratio >= 0.0) || !std::isfinite(replay_ratio) || replay_ratio > 100.0)
     throw std::invalid_argument("replay ratio must be in [0, 100]");
+  if (!(memory_weight >= 0.0) || !std::isfinite(memory_weight) || memory_weight > 1000.0)
+    throw std::invalid_argument("memory weight must be in [0, 1000]");
   if (output.empty() && checkpoint.empty())
     throw std::invalid_argument("adaptation needs an output file (or at least a checkpoint path)");
 }
@@ -81,6 +83,11 @@ void AdaptationJob::validate() const {
   for (const MotionClip& clip : clips)
     if (clip.frameCount() < 1 || clip.features.values.rows() != kFeatureCount || !clip.features.values.allFinite())
       throw InputError(clip.file.string(), 0, "the clip's features are empty or not finite");
+  if (memory) {
+    memory->validate();
+    if (settings.train_encoder) throw std::invalid_argument("a reconstruction memory keeps the encoder: it cannot train it");
+    memory->requireMatches(loss_network, "the reconstruction memory");
+  }
 }
 
 std::vector<MotionClip> AdaptationJob::replayToMix() const {
@@ -107,9 +114,14 @@ AdaptationResult AdaptationJob::run(const TrainingCallbacks& callbacks) const {
   config.sparsity = loss_network.metadata.training.sparsity;
   config.dropout = loss_network.metadata.training.dropout;
   config.train_encoder = settings.train_encoder;
+  if (memory) {
+    config.memory = &*memory;
+    config.memory_weight = settings.memory_weight;
+  }
   if (callbacks.log)
     callbacks.log("adapting on " + std::to_string(clips.size()) + " clip(s) (" + std::to_string(frameCount(clips)) +
-                  " frames) with " + std::to_string(mixed.size()) + " replay clip(s) mixed in; " +
+                  " frames) with " + std::to_string(mixed.size()) + " replay clip(s) mixed in" +
+                  (memory && settings.memory_weight > 0.0 ? " and the memory of " + memory->description : std::string()) + "; " +
                   (settings.train_encoder ? "encoder and decoder learn" : "the decoder learns, the encoder is kept"));
 
   AdaptationResult result;
@@ -117,12 +129,16 @@ AdaptationResult AdaptationJob::run(const TrainingCallbacks& callbacks) const {
   result.status = trained.status;
   result.model = std::move(trained.model);
   result.replay_clips = static_cast<int>(mixed.size());
+  if (memory && settings.memory_weight > 0.0) result.memory = memory->description;
   nn::NetworkMetadata& metadata = result.model.metadata;
   metadata.properties.emplace_back("adapted_from", loss_network_name);
   metadata.properties.emplace_back("adapted_on", fileList(clips));
   metadata.properties.emplace_back("adapted_clips", std::to_string(clips.size()));
   metadata.properties.emplace_back("adapted_frames", std::to_string(frameCount(clips)));
   metadata.properties.emplace_back("adapted_replay_clips", std::to_string(mixed.size()));
+  if (memory && settings.memory_weight > 0.0)
+    metadata.properties.emplace_back("adapted_memory", memory->description + " (" + std::to_string(memory->clips) +
+                                                           " clips, weight " + std::to_string(settings.memory_weight) + ")");
   metadata.properties.emplace_back("adapted_encoder", settings.train_encoder ? "trained" : "kept");
   metadata.properties.emplace_back("adapted_date", today());
   if (result.status == TrainingStatus::Completed) {

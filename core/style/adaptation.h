@@ -8,7 +8,8 @@
 //     its style targets and can be retrained against the adapted network on the user's clips without
 //     the style clip it was made from (style targets: nn::StyleModel::style_targets).
 //   - Nothing is forgotten: clips of the original training data, when given (`replay`), are mixed in,
-//     replay_ratio times the user's frames; every epoch sees all of the user's windows.
+//     replay_ratio times the user's frames; every epoch sees all of the user's windows. Without them,
+//     the network's reconstruction memory (`memory`, reconstruction_memory.h) stands in for them.
 //   - Training as trainLossNetwork (training.h): a warm start from the given network, a checkpoint
 //     every epoch, cancellation within a second (the last good checkpoint is kept), progress, and the
 //     learning-rate schedule; deterministic for a seed and thread count.
@@ -16,21 +17,26 @@
 // it came from, file names, clip and frame counts, replay counts, the date).
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "nn/network_file.h"
 #include "style/familiarity.h"
 #include "style/motion_dataset.h"
+#include "style/reconstruction_memory.h"
 #include "style/training.h"
 
 namespace motionstyle::style {
 
 struct AdaptationSettings {
-  int epochs = 40;
+  int epochs = 200;
   double learning_rate = 5e-4;      // Adam, cosine decay over the run
   bool train_encoder = false;       // see the top of this file
   double replay_ratio = 1.0;        // replay frames per user frame (when replay clips are given)
+  // The reconstruction memory's weight (AdaptationJob::memory): its clips count as memory_weight times
+  // the user's frames. 10: the original clips kept as well as by mixing them in (docs/decisions.md).
+  double memory_weight = 10.0;
   std::uint32_t seed = 1;
   std::filesystem::path output;     // the adapted network file (written at the end); may be empty
   std::filesystem::path checkpoint; // default: output + ".checkpoint"
@@ -55,6 +61,7 @@ struct AdaptationResult {
   double mean_before_cm = 0.0;           // frame-weighted over the user's clips
   double mean_after_cm = 0.0;
   int replay_clips = 0;                  // replay clips mixed in
+  std::string memory;                    // the reconstruction memory kept (its description); empty: none
   double seconds = 0.0;
 };
 
@@ -64,6 +71,9 @@ struct AdaptationJob {
   std::string loss_network_name;           // for the metadata ("loss_network", a file name)
   std::vector<MotionClip> clips;           // the user's clips (at least one frame each)
   std::vector<MotionClip> replay;          // clips of the original training data; may be empty
+  // What the loss network must go on reconstructing (reconstruction_memory.h): the shipped network's
+  // memory of its training data when the data itself is not at hand. Must match loss_network's encoder.
+  std::optional<ReconstructionMemory> memory;
   AdaptationSettings settings;
 
   // Throws std::invalid_argument for empty clips, bad settings or a loss network that is not valid.

@@ -4,6 +4,7 @@
 
 #include "common/errors.h"
 #include "style/cancellation.h"
+#include "style/reconstruction_memory.h"
 #include "style/training.h"
 #include "style/training_loop.h"
 #include "style/training_state.h"
@@ -100,9 +101,16 @@ LossNetworkTrainingResult trainLossNetwork(const LossNetworkTrainingConfig& conf
       model.network.encoder.weight.zeroGrad();
       model.network.encoder.bias.zeroGrad();
     }
-    if (config.foot_weight > 0.0)
-      return StepLosses{terms.total, {{"mse", terms.mse}, {"sparsity", terms.sparsity}, {"foot", terms.foot}}};
-    return StepLosses{terms.total, {{"mse", terms.mse}, {"sparsity", terms.sparsity}}};
+    StepLosses losses{terms.total, {{"mse", terms.mse}, {"sparsity", terms.sparsity}}};
+    if (config.foot_weight > 0.0) losses.terms.emplace_back("foot", terms.foot);
+    if (config.memory != nullptr && config.memory_weight > 0.0) {  // once per step: the micro-batch fractions sum to 1
+      Eigen::MatrixXf gradient;
+      const double remembered = memoryError(*config.memory, model.network.decoder.weight.value, &gradient);
+      model.network.decoder.weight.grad += static_cast<float>(config.memory_weight) * gradient;
+      losses.total += config.memory_weight * remembered;
+      losses.terms.emplace_back("memory", remembered);
+    }
+    return losses;
   };
   const auto metadata = [&](const std::vector<EpochRecord>& so_far) {
     nn::NetworkMetadata m = trainingMetadata(settings, so_far, data);

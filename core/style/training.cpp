@@ -1,6 +1,8 @@
 // Shared pieces of the training API: settings validation, the representation stamp, model loading.
 #include "style/training.h"
 
+#include "style/reconstruction_memory.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -66,6 +68,14 @@ void LossNetworkTrainingConfig::validate() const {
   if (shape.features != kFeatureCount) throw std::invalid_argument("the loss network must take 66 features");
   if (shape.hidden < 1 || shape.width < 1 || shape.width % 2 == 0)
     throw std::invalid_argument("loss network hidden units must be >= 1 and the width odd");
+  if (!std::isfinite(memory_weight) || memory_weight < 0 || memory_weight > 1000)
+    throw std::invalid_argument("memory weight must be in [0, 1000]");
+  if (memory != nullptr && memory_weight > 0) {
+    if (train_encoder) throw std::invalid_argument("a reconstruction memory keeps the encoder: it cannot train it");
+    if (!init_model) throw std::invalid_argument("a reconstruction memory needs the network it was made with to start from");
+    memory->validate();
+    memory->requireMatches(*init_model, "the reconstruction memory");
+  }
 }
 
 void StyleTrainingConfig::validate() const {

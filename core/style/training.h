@@ -148,6 +148,8 @@ struct TrainingResult {
 
 // ---- Loss network -------------------------------------------------------------------------------
 
+struct ReconstructionMemory;  // reconstruction_memory.h
+
 struct LossNetworkTrainingConfig {
   TrainingSettings settings;
   // Folders and/or files (ignored when `clips` is not empty), featurised without rig canonicalisation:
@@ -163,6 +165,11 @@ struct LossNetworkTrainingConfig {
   // false: only the decoder (eq. 2's W~0) learns; the encoder (W0, b0), and with it every content and
   // style target computed through it, stays as it was (adaptation.h).
   bool train_encoder = true;
+  // What the network must go on reconstructing (reconstruction_memory.h): memory_weight * E(W~0) added
+  // to the loss, the memory's clips as if mixed in memory_weight times the training clips' frames.
+  // Needs train_encoder false (the memory holds the encoder's hidden units) and a matching encoder.
+  const ReconstructionMemory* memory = nullptr;
+  double memory_weight = 0.0;
 
   void validate() const;
 };

@@ -5,7 +5,7 @@
 #   bash resources/models/train_models.sh [STEP...]
 #
 # STEP: loss_network (formerly ae), a style name (elderly exhausted angry proud youthful feminine masculine sad happy), pack,
-# eval, or nothing for all of them in that order. Environment:
+# memory, eval, or nothing for all of them in that order. Environment:
 #   DATA  the dataset root holding dataset-1/ and dataset-2/ (default: ../shared/data/bandai)
 #   CLI   motionstyle-cli (default: build/release/app/cli/motionstyle-cli)
 #   EVAL  eval_generalisation (default: build/release/tests/bench/quality/eval_generalisation)
@@ -98,13 +98,23 @@ evaluate() {
   cat "$WORK/eval.log"
 }
 
+# The shipped loss network's reconstruction memory of its training clips (style/reconstruction_memory.h):
+# adapt keeps what the network reconstructs of them without the clips. Made with the SHIPPED (packed)
+# loss network, whose encoder it must match, over the same split as train_loss_network.
+remember() {
+  timed memory "$CLI" remember --loss-network "$OUT/loss_network.net" --data "$D1" "$D2" --holdout 10 --threads $THREADS \
+    --description "the Bandai Namco Research motion datasets 1 and 2, training split (CC BY-NC 4.0)" \
+    --out "$OUT/loss_network.memory"
+}
+
 ALL_STYLES="elderly exhausted angry proud youthful feminine masculine sad happy"
 steps=("$@")
-[[ ${#steps[@]} -gt 0 ]] || steps=(loss_network $ALL_STYLES pack eval)
+[[ ${#steps[@]} -gt 0 ]] || steps=(loss_network $ALL_STYLES pack memory eval)
 for step in "${steps[@]}"; do
   case $step in
     loss_network | ae) train_loss_network ;;  # ae: its former name
     pack) pack ;;
+    memory) remember ;;
     eval) evaluate ;;
     *) train_style "$step" ;;
   esac

@@ -148,8 +148,25 @@ expect 2 "--out" "$cli" adapt --loss-network "$work/ae.net" --data "$data/cmu_13
 expect 0 "before -> after" "$cli" adapt --loss-network "$work/ae.net" --data "$data/cmu_131_01.bvh" --out "$work/adapted.net" \
   --epochs 2 --threads 1
 expect 0 "adapted_on: cmu_131_01.bvh" "$cli" info "$work/adapted.net"
-# Without --loss-network: the shipped one, as the app preselects it (the option was required).
-expect 0 "before -> after" "$cli" adapt --data "$data/cmu_131_01.bvh" --out "$work/adapted_shipped.net" --epochs 1 --threads 1
+# The reconstruction memory: bad input first, then one written beside the network, which adapt finds,
+# keeps and records; one of another network is refused.
+expect 2 "remember needs --data" "$cli" remember --loss-network "$work/ae.net" --out "$work/ae.memory"
+expect 2 "--out is --loss-network" "$cli" remember --loss-network "$work/ae.net" --data "$data/zombie.bvh" --out "$work/ae.net"
+expect 2 "no-such.memory" "$cli" adapt --loss-network "$work/ae.net" --data "$data/zombie.bvh" --out "$work/a.net" \
+  --memory "$work/no-such.memory" --epochs 1
+expect 2 "/dev/zero: not a reconstruction memory" timeout 20 "$cli" adapt --loss-network "$work/ae.net" --data "$data/zombie.bvh" \
+  --out "$work/a.net" --memory /dev/zero --epochs 1
+expect 0 "reconstruction memory of 1 clips" "$cli" remember --loss-network "$work/ae.net" --data "$data/cmu_131_01.bvh" \
+  --description "the CMU sample" --out "$work/ae.memory" --threads 1
+expect 2 "cannot go with --train-encoder" "$cli" adapt --loss-network "$work/ae.net" --data "$data/zombie.bvh" --out "$work/a.net" \
+  --memory "$work/ae.memory" --train-encoder --epochs 1
+expect 0 "memory of the CMU sample" "$cli" adapt --loss-network "$work/ae.net" --data "$data/zombie.bvh" \
+  --out "$work/adapted_kept.net" --epochs 2 --threads 1
+expect 0 "adapted_memory: the CMU sample" "$cli" info "$work/adapted_kept.net"
+expect 2 "another loss network" "$cli" adapt --data "$data/zombie.bvh" --out "$work/a.net" --memory "$work/ae.memory" --epochs 1
+# Without --loss-network: the shipped one, as the app preselects it (the option was required), with
+# its shipped memory.
+expect 0 "memory of the Bandai" "$cli" adapt --data "$data/cmu_131_01.bvh" --out "$work/adapted_shipped.net" --epochs 1 --threads 1
 expect 0 "wrote $work/quick_shipped.net: 1 epochs" "$cli" train-style --content "$data/zombie.bvh" --style "$data/cmu_131_01.bvh" \
   --out "$work/quick_shipped.net" $tiny
 expect 0 "256 hidden units" "$cli" info "$work/quick_shipped.net"

@@ -296,6 +296,20 @@ class FamiliarityTest : public QObject {
     QVERIFY(!networks->networkList()->isNetworkSaved(networks->networkList()->networkCount() - 1));
     QVERIFY(networks->networkList()->currentNetworkName().startsWith(QStringLiteral("tiny_style adapted")));
     QVERIFY(test::saveScreenshot(window.grab().toImage(), QStringLiteral("adapt_tab")).size() > 0);
+    // The tiny network has no memory of what it learnt from, and the status says what that means.
+    QVERIFY2(tab->statusText().contains(QStringLiteral("may be forgotten")), qPrintable(tab->statusText()));
+
+    // A shipped style: its loss network's shipped memory keeps what it knew, and the status says so.
+    tab->setStyleChecked(QStringLiteral("tiny_style"), false);
+    tab->setStyleChecked(QStringLiteral("elderly"), true);
+    tab->setEpochs(2, 1);
+    QTest::mouseClick(adapt, Qt::LeftButton);
+    QVERIFY(QTest::qWaitFor([&] { return adapted.count() >= 2 || reports.size() > 1; }, kJobTimeoutMs));
+    QVERIFY2(reports.size() == 1, qPrintable(reports.back()));
+    QVERIFY(QTest::qWaitFor([&] { return !tab->isBusy(); }, kJobTimeoutMs));
+    QVERIFY2(tab->statusText().contains(QStringLiteral("What it knew is kept (its memory of the Bandai")),
+             qPrintable(tab->statusText()));
+    QCOMPARE(networks->networkList()->networkCount(), listed + 2);
 
     // Cancel stops a run within a second and changes nothing.
     tab->setEpochs(1000, 2);
@@ -307,7 +321,7 @@ class FamiliarityTest : public QObject {
     QVERIFY(QTest::qWaitFor([&] { return !tab->isBusy(); }, 5000));
     qInfo("adaptation stopped %lld ms after Cancel", static_cast<long long>(timer.elapsed()));
     QVERIFY(QTest::qWaitFor([&] { return test::statusLine(window).startsWith(QStringLiteral("Adaptation stopped")); }, 5000));
-    QCOMPARE(networks->networkList()->networkCount(), listed + 1);
+    QCOMPARE(networks->networkList()->networkCount(), listed + 2);
 
     // The adaptation's checkpoints go with the window (they piled up in /tmp, one folder per session).
     QVERIFY(!QDir(temp.path()).entryList({QStringLiteral("motionstyle-adapt-*")}, QDir::Dirs).isEmpty());

@@ -3,7 +3,12 @@
 // style ratio on them, and what the loss network forgets (its Bandai held-out error before and after).
 //
 //   bench_adaptation [--models DIR] [--style elderly] [--fixtures SHARED_FIXTURES] [--data BANDAI_ROOT]
-//                    [--loss-epochs N] [--style-epochs N]
+//                    [--loss-epochs N] [--style-epochs N] [--loss-lr LR]
+//                    [--memory shipped|off|bandai|FILE] [--memory-weight W] [--replay on] [--replay-ratio R]
+//
+// --memory: the shipped loss network's reconstruction memory (the default, as adapt uses it), none,
+// one computed here from the Bandai training split, or a file; --replay on mixes the Bandai training
+// split's clips in instead (or as well).
 //
 // The ten clips: the five ../shared/fixtures/cmu_walks clips as published (rest-pose frame 0 held) and
 // ../shared/fixtures/cmu/131_01.bvh cut into five pieces: CMU's studio, skeleton and 120 fps, other
@@ -87,6 +92,11 @@ int main(int argc, char** argv) {
   std::string style_name = "elderly";
   int loss_epochs = style::AdaptationSettings{}.epochs;
   int style_epochs = style::kDefaultStyleAdaptationEpochs;
+  std::string memory_source = "shipped";
+  double loss_lr = style::AdaptationSettings{}.learning_rate;
+  double memory_weight = style::AdaptationSettings{}.memory_weight;
+  bool replay = false;
+  double replay_ratio = 1.0;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i], v = argv[i + 1];
     if (a == "--models") models = v;
@@ -95,6 +105,11 @@ int main(int argc, char** argv) {
     else if (a == "--data") data = v;
     else if (a == "--loss-epochs") loss_epochs = std::stoi(v);
     else if (a == "--style-epochs") style_epochs = std::stoi(v);
+    else if (a == "--memory") memory_source = v;
+    else if (a == "--memory-weight") memory_weight = std::stod(v);
+    else if (a == "--loss-lr") loss_lr = std::stod(v);
+    else if (a == "--replay") replay = v == "on";
+    else if (a == "--replay-ratio") replay_ratio = std::stod(v);
     else { std::fprintf(stderr, "unknown argument %s\n", a.c_str()); return 2; }
   }
   if (!fs::is_directory(fixtures / "cmu_walks") || !fs::exists(fixtures / "cmu" / "131_01.bvh")) {
@@ -108,6 +123,30 @@ int main(int argc, char** argv) {
     job.loss.loss_network_name = style_name + "'s loss network";
     job.loss.clips = newStudioClips(fixtures);
     job.loss.settings.epochs = loss_epochs;
+    job.loss.settings.memory_weight = memory_weight;
+    job.loss.settings.learning_rate = loss_lr;
+    job.loss.settings.replay_ratio = replay_ratio;
+    const fs::path d1 = data / "dataset-1" / "data", d2 = data / "dataset-2" / "data";
+    if (replay)
+      for (const fs::path& f : style::splitHoldout(style::findBvhFiles({d1, d2}), 10).training)
+        job.loss.replay.push_back(style::loadMotionClip(f));
+    if (memory_source == "bandai") {
+      style::DatasetOptions as_trained;
+      as_trained.features.canonical_rig = false;
+      std::vector<style::MotionClip> original;
+      for (const fs::path& f : style::splitHoldout(style::findBvhFiles({d1, d2}), 10).training)
+        original.push_back(style::loadMotionClip(f, as_trained));
+      const auto remember_start = std::chrono::steady_clock::now();
+      job.loss.memory = style::rememberReconstruction(job.loss.loss_network, original, "Bandai training clips");
+      std::printf("memory of %zu clips in %.1f s\n", original.size(),
+                  std::chrono::duration<double>(std::chrono::steady_clock::now() - remember_start).count());
+    } else if (memory_source == "shipped") {
+      job.loss.memory = style::findMatchingMemory(job.loss.loss_network, {});
+    } else if (memory_source != "off") {
+      job.loss.memory = style::loadReconstructionMemory(memory_source);
+    }
+    std::printf("reconstruction memory: %s; replay clips: %zu\n",
+                job.loss.memory ? job.loss.memory->description.c_str() : "none", job.loss.replay.size());
     const fs::path scratch = fs::temp_directory_path() / ("motionstyle-bench-adaptation-" + std::to_string(::getpid()));
     fs::create_directories(scratch);
     job.loss.settings.output = scratch / "adapted.net";
@@ -124,7 +163,6 @@ int main(int argc, char** argv) {
     std::printf("familiarity of the ten clips: %.2f -> %.2f cm\n", result.loss.mean_before_cm, result.loss.mean_after_cm);
     std::printf("%s style ratio on them: %.3f -> %.3f\n", style_name.c_str(), meanStyleRatio(style_model, job.loss.clips),
                 meanStyleRatio(result.styles.front().model, job.loss.clips));
-    const fs::path d1 = data / "dataset-1" / "data", d2 = data / "dataset-2" / "data";
     if (fs::is_directory(d1) && fs::is_directory(d2)) {
       std::vector<style::MotionClip> held;
       for (const fs::path& f : style::splitHoldout(style::findBvhFiles({d1, d2}), 10).held_out) held.push_back(style::loadMotionClip(f));
