@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <ctime>
 #include <random>
 #include <stdexcept>
@@ -136,9 +137,12 @@ AdaptationResult AdaptationJob::run(const TrainingCallbacks& callbacks) const {
   metadata.properties.emplace_back("adapted_clips", std::to_string(clips.size()));
   metadata.properties.emplace_back("adapted_frames", std::to_string(frameCount(clips)));
   metadata.properties.emplace_back("adapted_replay_clips", std::to_string(mixed.size()));
-  if (memory && settings.memory_weight > 0.0)
-    metadata.properties.emplace_back("adapted_memory", memory->description + " (" + std::to_string(memory->clips) +
-                                                           " clips, weight " + std::to_string(settings.memory_weight) + ")");
+  if (memory && settings.memory_weight > 0.0) {
+    char weight[32];
+    std::snprintf(weight, sizeof weight, "%g", settings.memory_weight);
+    metadata.properties.emplace_back("adapted_memory",
+                                     memory->description + " (" + std::to_string(memory->clips) + " clips, weight " + weight + ")");
+  }
   metadata.properties.emplace_back("adapted_encoder", settings.train_encoder ? "trained" : "kept");
   metadata.properties.emplace_back("adapted_date", today());
   if (result.status == TrainingStatus::Completed) {

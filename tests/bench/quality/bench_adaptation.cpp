@@ -168,6 +168,19 @@ int main(int argc, char** argv) {
       for (const fs::path& f : style::splitHoldout(style::findBvhFiles({d1, d2}), 10).held_out) held.push_back(style::loadMotionClip(f));
       std::printf("forgetting: Bandai held-out familiarity %.2f -> %.2f cm (%zu clips)\n",
                   meanFamiliarity(job.loss.loss_network, held), meanFamiliarity(result.loss.model, held), held.size());
+      // The retrained style on the Bandai clips its own training held out (train_models.sh's split:
+      // every 5th normal-style dataset-2 walk, run and turn), against the same walk target.
+      std::vector<fs::path> normal;
+      for (const fs::path& f : style::findBvhFiles({d2})) {
+        const std::string name = f.filename().string();
+        for (const char* kind : {"walk_normal_", "run_normal_", "walk-turn-left_normal_", "walk-turn-right_normal_"})
+          if (name.rfind(std::string("dataset-2_") + kind, 0) == 0) normal.push_back(f);
+      }
+      std::vector<style::MotionClip> style_held;
+      for (const fs::path& f : style::splitHoldout(normal, 5).held_out) style_held.push_back(style::loadMotionClip(f));
+      std::printf("forgetting: %s style ratio on Bandai held-out %.3f -> %.3f (%zu clips)\n", style_name.c_str(),
+                  meanStyleRatio(style_model, style_held), meanStyleRatio(result.styles.front().model, style_held),
+                  style_held.size());
     }
     std::error_code ignored;
     fs::remove_all(scratch, ignored);
