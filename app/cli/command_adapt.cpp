@@ -43,9 +43,12 @@ int runAdapt(const Args& args) {
     std::vector<NamedPath> inputs = {{loss_network_file, "--loss-network"}};
     for (const auto& value : data) inputs.push_back({value, "--data"});
     for (const std::string& value : parsed.values("replay")) inputs.push_back({value, "--replay"});
-    checkOutputPaths(inputs, {{settings.output, "--out"},
-                              {checkpoint, "the checkpoint"},
-                              {style::statePath(checkpoint), "the checkpoint's state"}});
+    if (const auto memory = parsed.value("memory"); memory && *memory != "none") inputs.push_back({*memory, "--memory"});
+    std::vector<NamedPath> outputs = {{settings.output, "--out"},
+                                      {checkpoint, "the checkpoint"},
+                                      {style::statePath(checkpoint), "the checkpoint's state"}};
+    if (!settings.train_encoder) outputs.push_back({style::memoryFileBeside(settings.output), "the memory beside --out"});
+    checkOutputPaths(inputs, outputs);
   }
   job.loss_network = style::loadCompatibleLossNetwork(loss_network_file, dataset.features);
   job.loss_network_name = loss_network_file.filename().string();
@@ -100,6 +103,9 @@ int runAdapt(const Args& args) {
   std::printf("  %-40s %5.2f -> %5.2f (%s -> %s)\n", "all clips", result.mean_before_cm, result.mean_after_cm,
               style::familiarityName(style::familiarityLevel(result.mean_before_cm)),
               style::familiarityName(style::familiarityLevel(result.mean_after_cm)));
+  if (!result.memory_file.empty())
+    std::printf("wrote %s, what it must not forget when adapted again (%s)\n", result.memory_file.string().c_str(),
+                result.memory_after->description.c_str());
   std::printf("wrote %s in %s; retrain a style against it with\n  motionstyle-cli train-style --loss-network %s --init STYLE "
               "--content YOUR_CLIPS... --out STYLE_ADAPTED.net\n",
               settings.output.string().c_str(), formatDuration(result.seconds).c_str(), settings.output.string().c_str());

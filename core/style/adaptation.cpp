@@ -7,6 +7,7 @@
 #include <random>
 #include <stdexcept>
 
+#include "common/atomic_file.h"
 #include "common/errors.h"
 #include "style/training_loop.h"
 #include "style/training_state.h"
@@ -55,6 +56,17 @@ std::string fileList(const std::vector<MotionClip>& clips) {
 double meanFamiliarity(const nn::LossNetworkModel& model, const MotionClip& clip) {
   return measureFamiliarity(model, clip.features.values).mean_cm;
 }
+
+// A memory's file in f16 (half the size), or in f32 where a value is beyond f16's range.
+std::string compactMemoryBytes(const ReconstructionMemory& memory) {
+  try {
+    return serialiseReconstructionMemory(memory, nn::WeightPrecision::F16);
+  } catch (const std::invalid_argument&) {
+    return serialiseReconstructionMemory(memory, nn::WeightPrecision::F32);
+  }
+}
+
+constexpr std::size_t kMaxMemoryDescription = 2000;  // the file format reads up to 4096
 
 }  // namespace
 
@@ -155,8 +167,27 @@ AdaptationResult AdaptationJob::run(const TrainingCallbacks& callbacks) const {
     }
     result.mean_before_cm = before / static_cast<double>(frameCount(clips));
     result.mean_after_cm = after / static_cast<double>(frameCount(clips));
-    if (!settings.output.empty()) {
-      nn::saveLossNetwork(result.model, settings.output);
+    if (!settings.train_encoder) {
+      std::vector<MotionClip> adapted_on = clips;
+      adapted_on.insert(adapted_on.end(), mixed.begin(), mixed.end());
+      ReconstructionMemory learnt = rememberReconstruction(
+          result.model, adapted_on, "the " + std::to_string(clips.size()) + " clip(s) it was adapted on (" + fileList(clips) + ")");
+      if (memory && settings.memory_weight > 0.0) {
+        std::string both = memory->description + "; " + learnt.description;
+        if (both.size() > kMaxMemoryDescription) both = both.substr(0, kMaxMemoryDescription - 3) + "...";
+        result.memory_after = mergeMemories(*memory, settings.memory_weight, learnt, 1.0, std::move(both));
+      } else {
+        result.memory_after = std::move(learnt);
+      }
+    }
+    if (!settings.output.empty()) {  // the network and its memory: both or neither
+      AtomicFileBatch batch;
+      batch.stage(settings.output, nn::serialiseLossNetwork(result.model));
+      if (result.memory_after) {
+        result.memory_file = memoryFileBeside(settings.output);
+        batch.stage(result.memory_file, compactMemoryBytes(*result.memory_after));
+      }
+      batch.commit();
       if (!settings.keep_checkpoint) removeCheckpoint(training.checkpoint);
     }
   }

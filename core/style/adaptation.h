@@ -62,6 +62,12 @@ struct AdaptationResult {
   double mean_after_cm = 0.0;
   int replay_clips = 0;                  // replay clips mixed in
   std::string memory;                    // the reconstruction memory kept (its description); empty: none
+  // What the adapted network must go on reconstructing (Completed, encoder kept): the memory kept,
+  // merged with the clips it was adapted on as the adaptation weighed them (mergeMemories). Written
+  // beside settings.output (memoryFileBeside) with the network, both or neither, so that adapting the
+  // adapted network again keeps these clips too.
+  std::optional<ReconstructionMemory> memory_after;
+  std::filesystem::path memory_file;     // where memory_after was written; empty: not written
   double seconds = 0.0;
 };
 

@@ -151,10 +151,17 @@ double memoryError(const ReconstructionMemory& memory, const Eigen::MatrixXf& de
   return (quadratic - 2.0 * linear + memory.squared_norm) / features;
 }
 
+std::filesystem::path memoryFileBeside(const std::filesystem::path& network_file) {
+  std::filesystem::path beside = network_file;
+  beside.replace_extension(".memory");
+  if (beside == network_file) beside += ".memory";  // a network named *.memory
+  return beside;
+}
+
 std::optional<ReconstructionMemory> findMatchingMemory(const nn::LossNetworkModel& model,
                                                        const std::filesystem::path& network_file) {
   std::vector<std::filesystem::path> candidates;
-  if (!network_file.empty()) candidates.push_back(std::filesystem::path(network_file).replace_extension(".memory"));
+  if (!network_file.empty()) candidates.push_back(memoryFileBeside(network_file));
   if (const auto resources = resourceDirectory())
     if (const auto shipped = shippedMemoryFile(*resources, kShippedLossNetworkName)) candidates.push_back(*shipped);
   for (const std::filesystem::path& candidate : candidates) {
@@ -171,8 +178,33 @@ std::optional<ReconstructionMemory> findMatchingMemory(const nn::LossNetworkMode
   return std::nullopt;
 }
 
+ReconstructionMemory mergeMemories(const ReconstructionMemory& kept, double kept_weight, const ReconstructionMemory& added,
+                                   double added_weight, std::string description) {
+  kept.validate();
+  added.validate();
+  if (kept.features != added.features || kept.hidden != added.hidden || kept.width != added.width ||
+      kept.encoder_fingerprint != added.encoder_fingerprint)
+    throw std::invalid_argument("mergeMemories: the memories were made with different loss networks");
+  if (!(kept_weight > 0.0) || !(added_weight > 0.0) || !std::isfinite(kept_weight) || !std::isfinite(added_weight))
+    throw std::invalid_argument("mergeMemories: the weights must be > 0 and finite");
+  const double a = kept_weight / (kept_weight + added_weight), b = added_weight / (kept_weight + added_weight);
+  ReconstructionMemory merged = kept;
+  for (std::size_t m = 0; m < merged.lags.size(); ++m)
+    merged.lags[m] = static_cast<float>(a) * kept.lags[m] + static_cast<float>(b) * added.lags[m];
+  merged.cross = a * kept.cross + b * added.cross;
+  merged.squared_norm = a * kept.squared_norm + b * added.squared_norm;
+  merged.frames = kept.frames + added.frames;
+  merged.clips = kept.clips + added.clips;
+  merged.description = std::move(description);
+  return merged;
+}
+
 void saveReconstructionMemory(const ReconstructionMemory& memory, const std::filesystem::path& file,
                               nn::WeightPrecision precision) {
+  writeFileAtomically(file, serialiseReconstructionMemory(memory, precision));
+}
+
+std::string serialiseReconstructionMemory(const ReconstructionMemory& memory, nn::WeightPrecision precision) {
   memory.validate();
   nn::ByteWriter out;
   out.raw(kMagic);
@@ -189,7 +221,7 @@ void saveReconstructionMemory(const ReconstructionMemory& memory, const std::fil
   for (std::size_t m = 0; m < memory.lags.size(); ++m) out.tensor("lag" + std::to_string(m), memory.lags[m], precision);
   out.tensor("cross", memory.cross.cast<float>(), precision);
   out.u32(nn::crc32(out.bytes()));
-  writeFileAtomically(file, out.bytes());
+  return out.bytes();
 }
 
 ReconstructionMemory loadReconstructionMemory(const std::filesystem::path& file) {

@@ -58,13 +58,22 @@ std::uint64_t encoderFingerprint(const nn::LossNetworkModel& model);
 ReconstructionMemory rememberReconstruction(const nn::LossNetworkModel& model, const std::vector<MotionClip>& clips,
                                             std::string description, const std::atomic<bool>* cancel = nullptr);
 
+// What a network adapted with `kept` must go on reconstructing: (kept_weight * kept + added_weight *
+// added) / (kept_weight + added_weight), term by term, the objective the adaptation minimised (its
+// clips counted once, the memory kept_weight times). Frames and clips add up. Throws
+// std::invalid_argument unless both are valid, of one shape and one encoder, and the weights > 0.
+ReconstructionMemory mergeMemories(const ReconstructionMemory& kept, double kept_weight, const ReconstructionMemory& added,
+                                   double added_weight, std::string description);
+
 // E(W) and, when `gradient` is not null, dE/dW into it (features x width*hidden). decoder_weight: the
 // decoder's W~0. Throws std::invalid_argument for a weight of another shape.
 double memoryError(const ReconstructionMemory& memory, const Eigen::MatrixXf& decoder_weight,
                    Eigen::MatrixXf* gradient = nullptr);
 
-// The memory that fits `model` (requireMatches), looked for beside its file (network.net ->
-// network.memory), then the shipped loss network's (common/resource_paths.h); nullopt when none fits or
+// The memory file that goes with a network file: network.net -> network.memory.
+std::filesystem::path memoryFileBeside(const std::filesystem::path& network_file);
+
+// The memory that fits `model` (requireMatches), looked for beside its file (memoryFileBeside), then the shipped loss network's (common/resource_paths.h); nullopt when none fits or
 // can be read. An adapted network keeps its encoder, so the memory of the one it came from still fits.
 std::optional<ReconstructionMemory> findMatchingMemory(const nn::LossNetworkModel& model,
                                                        const std::filesystem::path& network_file);
@@ -73,6 +82,9 @@ std::optional<ReconstructionMemory> findMatchingMemory(const nn::LossNetworkMode
 // `precision` (f16 halves the file; the shipped memory uses it), a CRC-32 at the end.
 void saveReconstructionMemory(const ReconstructionMemory& memory, const std::filesystem::path& file,
                               nn::WeightPrecision precision = nn::WeightPrecision::F32);
+// The file's bytes (for writing it together with another file: AtomicFileBatch).
+std::string serialiseReconstructionMemory(const ReconstructionMemory& memory,
+                                          nn::WeightPrecision precision = nn::WeightPrecision::F32);
 // Throws InputError naming the file for a file that is not one, is cut short or fails validate().
 ReconstructionMemory loadReconstructionMemory(const std::filesystem::path& file);
 

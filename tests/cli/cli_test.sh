@@ -163,6 +163,12 @@ expect 2 "cannot go with --train-encoder" "$cli" adapt --loss-network "$work/ae.
 expect 0 "memory of the CMU sample" "$cli" adapt --loss-network "$work/ae.net" --data "$data/zombie.bvh" \
   --out "$work/adapted_kept.net" --epochs 2 --threads 1
 expect 0 "adapted_memory: the CMU sample" "$cli" info "$work/adapted_kept.net"
+# Its own memory is written beside it; adapting it again keeps the CMU sample and the zombie.
+[ -f "$work/adapted_kept.memory" ] || fail "adapt wrote no memory beside its output"
+expect 0 "memory of the CMU sample; the 1 clip(s) it was adapted on (zombie.bvh)" "$cli" adapt \
+  --loss-network "$work/adapted_kept.net" --data "$data/cmu_131_01.bvh" --out "$work/adapted_twice.net" --epochs 1 --threads 1
+expect 2 "the memory beside --out" "$cli" adapt --loss-network "$work/ae.net" --data "$data/zombie.bvh" \
+  --memory "$work/adapted_kept.memory" --out "$work/adapted_kept.net" --epochs 1
 expect 2 "another loss network" "$cli" adapt --data "$data/zombie.bvh" --out "$work/a.net" --memory "$work/ae.memory" --epochs 1
 # Without --loss-network: the shipped one, as the app preselects it (the option was required), with
 # its shipped memory.

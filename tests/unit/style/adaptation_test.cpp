@@ -82,6 +82,7 @@ TEST(AdaptationTest, CancellationKeepsTheCheckpointAndWritesNothing) {
   const style::AdaptationResult result = job.run(test::cancelAtEndOfEpoch(2));
   EXPECT_EQ(result.status, style::TrainingStatus::Cancelled);
   EXPECT_FALSE(std::filesystem::exists(dir / "adapted.net"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "adapted.memory"));
   EXPECT_TRUE(std::filesystem::exists(dir / "adapted.net.checkpoint"));
 }
 

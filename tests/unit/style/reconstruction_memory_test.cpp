@@ -193,6 +193,28 @@ TEST(ReconstructionMemoryTest, AnAdaptationThatKeepsItForgetsLess) {
   for (const auto& [key, value] : with.model.metadata.properties)
     recorded |= key == "adapted_memory" && value.find("the CMU clip") != std::string::npos;
   EXPECT_TRUE(recorded);
+  // The adapted network's own memory, written beside it: the CMU clip's kept ten times over the
+  // zombie's, the objective the adaptation minimised, term by term.
+  ASSERT_TRUE(with.memory_after.has_value());
+  EXPECT_EQ(with.memory_file, dir / "with.memory");
+  const style::ReconstructionMemory written = style::loadReconstructionMemory(dir / "with.memory");
+  EXPECT_NO_THROW(written.requireMatches(with.model, "with.memory"));
+  EXPECT_NE(written.description.find("the CMU clip; the 1 clip(s) it was adapted on"), std::string::npos) << written.description;
+  EXPECT_EQ(written.clips, 2);
+  const Eigen::MatrixXf& adapted = with.model.network.decoder.weight.value;
+  const double objective = (reconstructionError(with.model, zombie) + 10.0 * reconstructionError(with.model, cmu)) / 11.0;
+  EXPECT_NEAR(style::memoryError(written, adapted), objective, 0.02 * objective);
+  // Found beside the adapted network when it is adapted again.
+  const std::optional<style::ReconstructionMemory> found = style::findMatchingMemory(with.model, dir / "with.net");
+  ASSERT_TRUE(found.has_value());
+  EXPECT_EQ(found->description, written.description);
+  // Without a memory kept, the memory written is the clips' alone.
+  ASSERT_TRUE(without.memory_after.has_value());
+  EXPECT_EQ(without.memory_after->clips, 1);
+  // Memories of two encoders do not merge; nor with a weight of zero.
+  const style::ReconstructionMemory other = style::rememberReconstruction(test::tinyLossNetworkModel(9), {cmu}, "other");
+  EXPECT_THROW(style::mergeMemories(written, 1.0, other, 1.0, "both"), std::invalid_argument);
+  EXPECT_THROW(style::mergeMemories(written, 0.0, written, 1.0, "both"), std::invalid_argument);
   // A memory of another encoder is refused before any work.
   style::AdaptationJob mismatched;
   mismatched.loss_network = knows_cmu;
