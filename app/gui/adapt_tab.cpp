@@ -254,16 +254,25 @@ bool AdaptTab::start() {
   }
   style::AdaptNetworksJob job;
   std::vector<NamedNetwork> panel = networks_();
+  // What the loss network must not forget: the first style's own memory (an adapted network), else one
+  // beside its file or the shipped one that fits (found on the worker).
+  std::shared_ptr<const style::ReconstructionMemory> first_memory;
+  std::filesystem::path first_file;
   try {
     for (int i = 0; i < style_list_->count(); ++i) {
       const QListWidgetItem* item = style_list_->item(i);
       if (item->checkState() != Qt::Checked) continue;
       const QString key = item->data(kPathRole).toString();
+      const bool first = job.styles.empty();
       if (key.startsWith(QStringLiteral("panel:"))) {
         for (const NamedNetwork& network : panel)
-          if (network.name == item->text()) job.styles.push_back({network.name.toStdString(), *network.model});
+          if (network.name == item->text()) {
+            job.styles.push_back({network.name.toStdString(), *network.model});
+            if (first) first_memory = network.memory;
+          }
       } else {
         job.styles.push_back({item->text().toStdString(), style::loadCompatibleStyleModel(key.toStdString())});
+        if (first) first_file = key.toStdString();
       }
     }
     // The loss network to adapt: the first style's own (every chosen style must share its encoder),
@@ -305,7 +314,8 @@ bool AdaptTab::start() {
   table_->setRowCount(0);
   progress_->setRange(0, 0);
   status_->setText(tr("Reading your clips..."));
-  return runner_->start(title, [this, job = std::move(job), sources, folders](const JobRunner::Context& context) mutable
+  return runner_->start(title, [this, job = std::move(job), sources, folders, first_memory,
+                                first_file](const JobRunner::Context& context) mutable
                                    -> JobRunner::Completion {
     const style::TrainingCallbacks callbacks = context.trainingCallbacks(
         [this](const style::TrainingProgress& p) { onProgress(p); }, [this](const QString& line) { status_->setText(line); });
@@ -317,8 +327,9 @@ bool AdaptTab::start() {
       for (style::MotionClip& clip : style::loadMotionClips(*folders, options, nullptr, callbacks.cancel))
         job.loss.clips.push_back(std::move(clip));
     }
-    // What the loss network knew stays (reconstruction_memory.h): the shipped memory, when it fits.
-    if (!job.loss.settings.train_encoder) job.loss.memory = style::findMatchingMemory(job.loss.loss_network, {});
+    // What the loss network knew stays (reconstruction_memory.h).
+    if (first_memory) job.loss.memory = *first_memory;
+    else job.loss.memory = style::findMatchingMemory(job.loss.loss_network, first_file);
     auto result = std::make_shared<style::AdaptNetworksJob::Result>(job.run(callbacks));
     if (result->status != style::TrainingStatus::Completed) return nullptr;
     return [this, result] { showResult(*result); };
@@ -367,7 +378,9 @@ void AdaptTab::showResult(const style::AdaptNetworksJob::Result& result) {
                        .arg(result.loss.mean_after_cm, 0, 'f', 2)
                        .arg(kept));
   emit statusMessage(status_->text());
-  emit adapted(std::make_shared<const nn::LossNetworkModel>(result.loss.model), result.styles);
+  emit adapted(std::make_shared<const nn::LossNetworkModel>(result.loss.model), result.styles,
+               result.loss.memory_after ? std::make_shared<const style::ReconstructionMemory>(*result.loss.memory_after)
+                                        : nullptr);
 }
 
 }  // namespace motionstyle

@@ -43,6 +43,7 @@ class AdaptTab : public QWidget {
   struct NamedNetwork {
     QString name;
     std::shared_ptr<const nn::StyleModel> model;
+    std::shared_ptr<const style::ReconstructionMemory> memory;  // an adapted network's own; may be null
   };
   using ClipsProvider = std::function<std::vector<const LoadedClip*>()>;   // the app's loaded clips
   using NetworksProvider = std::function<std::vector<NamedNetwork>()>;     // besides the shipped ones
@@ -66,8 +67,10 @@ class AdaptTab : public QWidget {
   QString statusText() const;
 
  signals:
+  // `memory`: what the adapted networks must go on reconstructing when adapted again (may be null).
   void adapted(std::shared_ptr<const nn::LossNetworkModel> loss_network,
-               std::vector<motionstyle::style::StyleToRetrain> styles);
+               std::vector<motionstyle::style::StyleToRetrain> styles,
+               std::shared_ptr<const motionstyle::style::ReconstructionMemory> memory);
   void errorOccurred(const QString& title, const QString& message);
   void busyChanged(bool busy);
   // How a run ended, as the tab's status line says it (for the window's status bar).

@@ -17,6 +17,7 @@
 #include <exception>
 #include <filesystem>
 
+#include "common/atomic_file.h"
 #include "error_text.h"
 #include "item_view_layout.h"
 #include "remembered_folder.h"
@@ -154,8 +155,13 @@ QString NetworkList::uniqueName(const QString& base, const Entry* except) const 
   return name;
 }
 
-void NetworkList::addNetwork(std::shared_ptr<const nn::StyleModel> model, const QString& name) {
-  addEntry({std::move(model), name, QString(), false});
+void NetworkList::addNetwork(std::shared_ptr<const nn::StyleModel> model, const QString& name,
+                             std::shared_ptr<const style::ReconstructionMemory> memory) {
+  addEntry({std::move(model), name, QString(), false, std::move(memory)});
+}
+
+std::shared_ptr<const style::ReconstructionMemory> NetworkList::networkMemory(int index) const {
+  return index >= 0 && index < networkCount() ? networks_[static_cast<std::size_t>(index)].memory : nullptr;
 }
 
 void NetworkList::addEntry(Entry entry) {
@@ -177,7 +183,17 @@ bool NetworkList::loadNetworkFile(const QString& file) {
   try {
     rememberFolder(QFileInfo(absolute).absolutePath());
     auto model = std::make_shared<const nn::StyleModel>(style::loadCompatibleStyleModel(path));
-    addEntry({std::move(model), QFileInfo(absolute).completeBaseName(), absolute, true});
+    // Its memory, when one beside it fits its loss network (an adapted network saved here).
+    std::shared_ptr<const style::ReconstructionMemory> memory;
+    if (const std::filesystem::path beside = style::memoryFileBeside(path); std::filesystem::is_regular_file(beside)) {
+      try {
+        auto found = std::make_shared<const style::ReconstructionMemory>(style::loadReconstructionMemory(beside));
+        found->requireMatches(nn::embeddedLossNetwork(*model), beside.string());
+        memory = std::move(found);
+      } catch (const std::exception&) {  // another network's, or damaged: the network loads without it
+      }
+    }
+    addEntry({std::move(model), QFileInfo(absolute).completeBaseName(), absolute, true, std::move(memory)});
     emit statusMessage(tr("Loaded %1").arg(absolute));
     return true;
   } catch (...) {
@@ -207,7 +223,11 @@ bool NetworkList::saveNetwork(int index, const QString& file, bool overwrite_con
           QMessageBox::Yes)
     return false;
   try {
-    nn::saveStyleModel(*entry.model, std::filesystem::path(absolute.toStdString()));  // atomic
+    const std::filesystem::path path(absolute.toStdString());
+    AtomicFileBatch batch;  // the network and its memory: both or neither
+    batch.stage(path, nn::serialiseStyleModel(*entry.model));
+    if (entry.memory) batch.stage(style::memoryFileBeside(path), style::serialiseReconstructionMemory(*entry.memory));
+    batch.commit();
   } catch (...) {
     report(tr("Could not save the network"), errorText(std::current_exception(), absolute));
     return false;

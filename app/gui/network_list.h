@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "nn/network_file.h"
+#include "style/reconstruction_memory.h"
 
 class QLabel;
 class QPushButton;
@@ -51,13 +52,18 @@ class NetworkList : public QWidget {
   bool isNetworkSaved(int index) const;
 
   // A network made in this session (trained, adapted), unsaved, under `name` or, when taken, "name (2)",
-  // "name (3)", ...; it becomes the current one.
-  void addNetwork(std::shared_ptr<const nn::StyleModel> model, const QString& name);
+  // "name (3)", ...; it becomes the current one. `memory`: what its loss network must go on
+  // reconstructing when adapted again (an adapted network's, style/reconstruction_memory.h), saved and
+  // loaded beside its file (network.memory); may be null.
+  void addNetwork(std::shared_ptr<const nn::StyleModel> model, const QString& name,
+                  std::shared_ptr<const style::ReconstructionMemory> memory = nullptr);
+  std::shared_ptr<const style::ReconstructionMemory> networkMemory(int index) const;  // null: none
   // Loads a style network file and selects it (an already listed file is only selected). A loss
   // network file is announced as lossNetworkFileLoaded() instead. Errors are reported; false then.
   bool loadNetworkFile(const QString& file);
-  // Saves atomically; an existing file is replaced only after the Confirmer answers Yes (or when
-  // `overwrite_confirmed`, e.g. after a file dialog asked). false (and a report) on failure.
+  // Saves atomically, with its memory beside it (both or neither); an existing file is replaced only
+  // after the Confirmer answers Yes (or when `overwrite_confirmed`, e.g. after a file dialog asked).
+  // false (and a report) on failure.
   bool saveNetwork(int index, const QString& file, bool overwrite_confirmed = false);
   // Asks before dropping an unsaved network; false when the user keeps it.
   bool removeNetwork(int index);
@@ -91,6 +97,7 @@ class NetworkList : public QWidget {
     QString name;
     QString file;
     bool saved = false;
+    std::shared_ptr<const style::ReconstructionMemory> memory;
   };
 
   void addEntry(Entry entry);

@@ -15,7 +15,7 @@ AdaptTab* NetworkPanel::createAdaptTab() {
   const auto networks = [this] {
     std::vector<AdaptTab::NamedNetwork> all;
     for (int i = 0; i < network_list_->networkCount(); ++i)
-      all.push_back({network_list_->networkName(i), network_list_->network(i)});
+      all.push_back({network_list_->networkName(i), network_list_->network(i), network_list_->networkMemory(i)});
     return all;
   };
   adapt_tab_ = new AdaptTab(roles_.clips, networks, this);
@@ -23,7 +23,8 @@ AdaptTab* NetworkPanel::createAdaptTab() {
   connect(adapt_tab_, &AdaptTab::statusMessage, this, &NetworkPanel::statusMessage);
   connect(adapt_tab_, &AdaptTab::busyChanged, this, [this](bool) { updateButtons(); });
   connect(adapt_tab_, &AdaptTab::adapted, this,
-          [this](std::shared_ptr<const nn::LossNetworkModel> loss, std::vector<style::StyleToRetrain> styles) {
+          [this](std::shared_ptr<const nn::LossNetworkModel> loss, std::vector<style::StyleToRetrain> styles,
+                 std::shared_ptr<const style::ReconstructionMemory> memory) {
             // The adapted loss network is saved in the scratch folder and becomes the Train tab's, so
             // that new styles train against it; the retrained styles join the list, unsaved.
             const std::filesystem::path file = scratchFile(QStringLiteral("adapted-loss-network.net"));
@@ -39,7 +40,8 @@ AdaptTab* NetworkPanel::createAdaptTab() {
               // The last one becomes current: the Result panel uses it.
               network_list_->addNetwork(std::make_shared<const nn::StyleModel>(std::move(style.model)),
                                         tr("%1 adapted %2").arg(QString::fromStdString(style.name),
-                                                                QDateTime::currentDateTime().toString(QStringLiteral("MM-dd hh:mm"))));
+                                                                QDateTime::currentDateTime().toString(QStringLiteral("MM-dd hh:mm"))),
+                                        memory);
             }
           });
   return adapt_tab_;

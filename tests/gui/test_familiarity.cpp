@@ -5,6 +5,7 @@
 #include <QCheckBox>
 #include <QDir>
 #include <QElapsedTimer>
+#include <QFileInfo>
 #include <QLabel>
 #include <QListWidget>
 #include <QPushButton>
@@ -20,6 +21,7 @@
 #include <memory>
 
 #include "adapt_tab.h"
+#include "network_list.h"
 #include "bvh/bvh_reader.h"
 #include "bvh/bvh_writer.h"
 #include "common/resource_paths.h"
@@ -310,6 +312,27 @@ class FamiliarityTest : public QObject {
     QVERIFY2(tab->statusText().contains(QStringLiteral("What it knew is kept (its memory of the Bandai")),
              qPrintable(tab->statusText()));
     QCOMPARE(networks->networkList()->networkCount(), listed + 2);
+    // The adapted network carries its own memory (the Bandai clips' and the user's), saved beside it and
+    // read back with it, and adapting it again keeps both.
+    NetworkList* list = networks->networkList();
+    const int adapted_index = list->networkCount() - 1;
+    QVERIFY(list->networkMemory(adapted_index) != nullptr);
+    QTemporaryDir saved;
+    const QString file = saved.filePath(QStringLiteral("elderly_mine.net"));
+    QVERIFY(list->saveNetwork(adapted_index, file));
+    QVERIFY(QFileInfo::exists(saved.filePath(QStringLiteral("elderly_mine.memory"))));
+    QVERIFY(list->removeNetwork(adapted_index));
+    QVERIFY(list->loadNetworkFile(file));
+    QVERIFY(list->networkMemory(list->networkCount() - 1) != nullptr);
+    tab->refresh();
+    tab->setStyleChecked(QStringLiteral("elderly"), false);
+    tab->setStyleChecked(QStringLiteral("elderly_mine"), true);
+    QTest::mouseClick(adapt, Qt::LeftButton);
+    QVERIFY(QTest::qWaitFor([&] { return adapted.count() >= 3 || reports.size() > 1; }, kJobTimeoutMs));
+    QVERIFY(QTest::qWaitFor([&] { return !tab->isBusy(); }, kJobTimeoutMs));
+    QVERIFY2(tab->statusText().contains(QStringLiteral("the 2 clip(s) it was adapted on")), qPrintable(tab->statusText()));
+    QCOMPARE(list->networkCount(), listed + 3);
+    QVERIFY(saved.remove());  // the user's folder, not the app's leftovers checked below
 
     // Cancel stops a run within a second and changes nothing.
     tab->setEpochs(1000, 2);
@@ -321,7 +344,7 @@ class FamiliarityTest : public QObject {
     QVERIFY(QTest::qWaitFor([&] { return !tab->isBusy(); }, 5000));
     qInfo("adaptation stopped %lld ms after Cancel", static_cast<long long>(timer.elapsed()));
     QVERIFY(QTest::qWaitFor([&] { return test::statusLine(window).startsWith(QStringLiteral("Adaptation stopped")); }, 5000));
-    QCOMPARE(networks->networkList()->networkCount(), listed + 2);
+    QCOMPARE(networks->networkList()->networkCount(), listed + 3);
 
     // The adaptation's checkpoints go with the window (they piled up in /tmp, one folder per session).
     QVERIFY(!QDir(temp.path()).entryList({QStringLiteral("motionstyle-adapt-*")}, QDir::Dirs).isEmpty());
