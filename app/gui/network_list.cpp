@@ -317,7 +317,11 @@ bool NetworkList::prepareToClose() {
   for (int i : unsaved) {  // never over an existing file: "name (2).net" when "name.net" is taken
     const QString name = networkName(i);
     QString file = QDir(folder).filePath(name + QStringLiteral(".net"));
-    for (int counter = 2; QFileInfo::exists(file); ++counter)
+    const auto taken = [](const QString& path) {  // the network's file, or its memory's beside it
+      return QFileInfo::exists(path) ||
+             std::filesystem::exists(style::memoryFileBeside(std::filesystem::path(path.toStdString())));
+    };
+    for (int counter = 2; taken(file); ++counter)
       file = QDir(folder).filePath(QStringLiteral("%1 (%2).net").arg(name).arg(counter));
     if (!saveNetwork(i, file, /*overwrite_confirmed=*/false)) return false;
   }
