@@ -22,6 +22,7 @@
 #include "nn/network_file.h"
 #include "style/familiarity.h"
 #include "style/motion_dataset.h"
+#include "style/reconstruction_memory.h"
 #include "stylized_output.h"
 #include "style/training.h"
 
@@ -169,12 +170,27 @@ void printText(const nlohmann::ordered_json& info) {
                 text(info["familiarity"]["loss_network"]).c_str());
 }
 
-// A network file starts with the magic "MSTYLNET" (core/nn/NETWORK_FORMAT.md); anything else is read as BVH.
-bool isNetworkFile(const std::string& path) {
+// Whether the file starts with `magic`: a network file "MSTYLNET" (core/nn/NETWORK_FORMAT.md), a
+// reconstruction memory "MSRMEMORY" (style/reconstruction_memory.h); anything else is read as BVH.
+bool startsWith(const std::string& path, std::string_view magic) {
   std::ifstream in(path, std::ios::binary);
-  char magic[8] = {};
-  in.read(magic, sizeof magic);
-  return in.gcount() == static_cast<std::streamsize>(sizeof magic) && std::string(magic, sizeof magic) == "MSTYLNET";
+  std::string head(magic.size(), '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  return in.gcount() == static_cast<std::streamsize>(head.size()) && head == magic;
+}
+bool isNetworkFile(const std::string& path) { return startsWith(path, "MSTYLNET"); }
+bool isMemoryFile(const std::string& path) { return startsWith(path, "MSRMEMORY"); }
+
+std::string describeMemoryFile(const std::string& path) {
+  const style::ReconstructionMemory memory = style::loadReconstructionMemory(path);  // validated
+  char text[256];
+  std::snprintf(text, sizeof text,
+                "MotionStyle reconstruction memory (for adapt: what a loss network must go on reconstructing)\n"
+                "  loss network: %d features, %d hidden units, width %d (encoder fingerprint %016llx)\n"
+                "  remembers: %d clips, %.0f frames at 60 fps\n",
+                memory.features, memory.hidden, memory.width, static_cast<unsigned long long>(memory.encoder_fingerprint),
+                memory.clips, memory.frames);
+  return std::string(text) + "  description: " + memory.description + "\n";
 }
 
 // --write-mapping: the automatic mapping of the clip's rig as a file to complete (mapping_file.h).
@@ -214,10 +230,10 @@ int runInfo(const Args& args) {
   }
   for (const std::string& argument : files) {
     const std::string path = resolveNetworkArgument(argument).string();  // "elderly": a shipped network
-    if (isNetworkFile(path)) {
-      const std::string description = nn::describeNetworkFile(path);
+    if (isNetworkFile(path) || isMemoryFile(path)) {
+      const std::string description = isNetworkFile(path) ? nn::describeNetworkFile(path) : describeMemoryFile(path);
       if (parsed.has("json"))
-        all.push_back({{"file", safeText(path)}, {"network", safeLines(description)}});
+        all.push_back({{"file", safeText(path)}, {isNetworkFile(path) ? "network" : "memory", safeLines(description)}});
       else
         std::cout << safeText(path) << "\n" << safeLines(description)
                   << (description.empty() || description.back() == '\n' ? "" : "\n");

@@ -16,6 +16,7 @@ const std::vector<Command>& commands() {
        "1.5 cm, unusual up to 2.5 cm, far beyond: results will be weak; adapt the networks to such clips).\n"
        "For a network file (train-loss-network, train-style): its kind, shapes, representation, training settings,\n"
        "style clips and loss history, and the file's format version and weight precision (f32/f16, see pack).\n"
+       "For a reconstruction memory (remember, adapt): the loss network it fits and what it remembers.\n"
        "A skeleton-only BVH (Frames: 0) is described as far as a skeleton goes (joints, mapping); the\n"
        "commands that need motion (convert --fps, cleanup, stylize, transfer) refuse it with exit code 2.\n\n"
        "  --json            print JSON instead of text\n"

@@ -158,6 +158,7 @@ expect 2 "/dev/zero: not a reconstruction memory" timeout 20 "$cli" adapt --loss
   --out "$work/a.net" --memory /dev/zero --epochs 1
 expect 0 "reconstruction memory of 1 clips" "$cli" remember --loss-network "$work/ae.net" --data "$data/cmu_131_01.bvh" \
   --description "the CMU sample" --out "$work/ae.memory" --threads 1
+expect 0 "remembers: 1 clips" "$cli" info "$work/ae.memory"
 expect 2 "cannot go with --train-encoder" "$cli" adapt --loss-network "$work/ae.net" --data "$data/zombie.bvh" --out "$work/a.net" \
   --memory "$work/ae.memory" --train-encoder --epochs 1
 expect 0 "memory of the CMU sample" "$cli" adapt --loss-network "$work/ae.net" --data "$data/zombie.bvh" \
