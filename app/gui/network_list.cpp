@@ -226,7 +226,7 @@ bool NetworkList::saveNetwork(int index, const QString& file, bool overwrite_con
     const std::filesystem::path path(absolute.toStdString());
     AtomicFileBatch batch;  // the network and its memory: both or neither
     batch.stage(path, nn::serialiseStyleModel(*entry.model));
-    if (entry.memory) batch.stage(style::memoryFileBeside(path), style::serialiseReconstructionMemory(*entry.memory));
+    if (entry.memory) batch.stage(style::memoryFileBeside(path), style::serialiseReconstructionMemoryCompactly(*entry.memory));
     batch.commit();
   } catch (...) {
     report(tr("Could not save the network"), errorText(std::current_exception(), absolute));

@@ -57,15 +57,6 @@ double meanFamiliarity(const nn::LossNetworkModel& model, const MotionClip& clip
   return measureFamiliarity(model, clip.features.values).mean_cm;
 }
 
-// A memory's file in f16 (half the size), or in f32 where a value is beyond f16's range.
-std::string compactMemoryBytes(const ReconstructionMemory& memory) {
-  try {
-    return serialiseReconstructionMemory(memory, nn::WeightPrecision::F16);
-  } catch (const std::invalid_argument&) {
-    return serialiseReconstructionMemory(memory, nn::WeightPrecision::F32);
-  }
-}
-
 constexpr std::size_t kMaxMemoryDescription = 2000;  // the file format reads up to 4096
 
 }  // namespace
@@ -185,7 +176,7 @@ AdaptationResult AdaptationJob::run(const TrainingCallbacks& callbacks) const {
       batch.stage(settings.output, nn::serialiseLossNetwork(result.model));
       if (result.memory_after) {
         result.memory_file = memoryFileBeside(settings.output);
-        batch.stage(result.memory_file, compactMemoryBytes(*result.memory_after));
+        batch.stage(result.memory_file, serialiseReconstructionMemoryCompactly(*result.memory_after));
       }
       batch.commit();
       if (!settings.keep_checkpoint) removeCheckpoint(training.checkpoint);

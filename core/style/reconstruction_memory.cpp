@@ -204,6 +204,14 @@ void saveReconstructionMemory(const ReconstructionMemory& memory, const std::fil
   writeFileAtomically(file, serialiseReconstructionMemory(memory, precision));
 }
 
+std::string serialiseReconstructionMemoryCompactly(const ReconstructionMemory& memory) {
+  try {
+    return serialiseReconstructionMemory(memory, nn::WeightPrecision::F16);
+  } catch (const std::invalid_argument&) {  // a value beyond f16's range (validate() passed above it)
+    return serialiseReconstructionMemory(memory, nn::WeightPrecision::F32);
+  }
+}
+
 std::string serialiseReconstructionMemory(const ReconstructionMemory& memory, nn::WeightPrecision precision) {
   memory.validate();
   nn::ByteWriter out;

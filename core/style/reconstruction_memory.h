@@ -85,6 +85,9 @@ void saveReconstructionMemory(const ReconstructionMemory& memory, const std::fil
 // The file's bytes (for writing it together with another file: AtomicFileBatch).
 std::string serialiseReconstructionMemory(const ReconstructionMemory& memory,
                                           nn::WeightPrecision precision = nn::WeightPrecision::F32);
+// The same in f16 (half the size: the shipped memory's figures do not move), or in f32 where a value
+// is beyond f16's range.
+std::string serialiseReconstructionMemoryCompactly(const ReconstructionMemory& memory);
 // Throws InputError naming the file for a file that is not one, is cut short or fails validate().
 ReconstructionMemory loadReconstructionMemory(const std::filesystem::path& file);
 
