@@ -377,7 +377,10 @@ void NetworkList::showDetails() {
           .arg(training.learning_rate, 0, 'g', 4)
           .arg(training.batch_windows)
           .arg(training.window_frames)
-          .arg(entry.model->transformation.shape().hidden));
+          .arg(entry.model->transformation.shape().hidden) +
+      (entry.memory ? tr("<br>Keeps when adapted again (saved beside it): %1")
+                          .arg(QString::fromStdString(entry.memory->description).toHtmlEscaped())
+                    : QString()));
 }
 
 void NetworkList::updateButtons() {
