@@ -188,9 +188,8 @@ bool NetworkList::loadNetworkFile(const QString& file) {
     if (const std::filesystem::path beside = style::memoryFileBeside(path); std::filesystem::is_regular_file(beside)) {
       try {
         auto found = std::make_shared<const style::ReconstructionMemory>(style::loadReconstructionMemory(beside));
-        found->requireMatches(nn::embeddedLossNetwork(*model), beside.string());
-        memory = std::move(found);
-      } catch (const std::exception&) {  // another network's, or damaged: the network loads without it
+        if (found->fits(nn::embeddedLossNetwork(*model))) memory = std::move(found);  // else another network's
+      } catch (const std::exception&) {  // damaged: the network loads without it
       }
     }
     addEntry({std::move(model), QFileInfo(absolute).completeBaseName(), absolute, true, std::move(memory)});

@@ -90,10 +90,14 @@ void ReconstructionMemory::validate() const {
     throw std::invalid_argument("reconstruction memory: no frames, or its totals are not finite");
 }
 
-void ReconstructionMemory::requireMatches(const nn::LossNetworkModel& model, const std::string& memory_name) const {
+bool ReconstructionMemory::fits(const nn::LossNetworkModel& model) const {
   const nn::LossNetworkShape& shape = model.network.shape();
-  if (shape.features != features || shape.hidden != hidden || shape.width != width ||
-      encoderFingerprint(model) != encoder_fingerprint)
+  return shape.features == features && shape.hidden == hidden && shape.width == width &&
+         encoderFingerprint(model) == encoder_fingerprint;
+}
+
+void ReconstructionMemory::requireMatches(const nn::LossNetworkModel& model, const std::string& memory_name) const {
+  if (!fits(model))
     throw std::invalid_argument(memory_name + " was made with another loss network (its encoder or normalisation differ)");
 }
 
@@ -169,9 +173,7 @@ std::optional<ReconstructionMemory> findMatchingMemory(const nn::LossNetworkMode
     if (!std::filesystem::is_regular_file(candidate, error)) continue;
     try {
       ReconstructionMemory memory = loadReconstructionMemory(candidate);
-      if (memory.features == model.network.shape().features && memory.hidden == model.network.shape().hidden &&
-          memory.width == model.network.shape().width && memory.encoder_fingerprint == encoderFingerprint(model))
-        return memory;
+      if (memory.fits(model)) return memory;
     } catch (const Error&) {  // unreadable: not a memory to use
     }
   }

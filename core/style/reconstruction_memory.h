@@ -45,7 +45,9 @@ struct ReconstructionMemory {
 
   // Throws std::invalid_argument naming the first inconsistency (shapes, non-finite values, no frames).
   void validate() const;
-  // Throws std::invalid_argument unless `model`'s shape and encoderFingerprint match.
+  // Whether `model`'s shape and encoderFingerprint are the memory's.
+  bool fits(const nn::LossNetworkModel& model) const;
+  // Throws std::invalid_argument naming `memory_name` unless it fits(model).
   void requireMatches(const nn::LossNetworkModel& model, const std::string& memory_name) const;
 };
 
