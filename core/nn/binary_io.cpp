@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cstring>
+#include <fstream>
 #include <stdexcept>
 
 #include "common/errors.h"
@@ -187,6 +188,21 @@ ByteReader::Tensor ByteReader::tensor(WeightPrecision precision) {
     std::memcpy(t.value.data() + i, &bits, sizeof bits);
   }
   return t;
+}
+
+std::string readFileBytes(const std::filesystem::path& file, std::uintmax_t max_bytes, const std::string& what) {
+  std::error_code error;
+  if (std::filesystem::exists(file, error) && !std::filesystem::is_regular_file(file, error))
+    throw InputError(file.string(), 0, "not a " + what + " (not a regular file)");
+  const std::uintmax_t size = std::filesystem::file_size(file, error);
+  if (error) throw InputError(file.string(), 0, "cannot read " + what + ": " + error.message());
+  if (size > max_bytes) throw InputError(file.string(), 0, "not a " + what + ": " + std::to_string(size) + " bytes is too large");
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError(file.string(), 0, "cannot open " + what);
+  std::string bytes(static_cast<std::size_t>(size), '\0');
+  in.read(bytes.data(), static_cast<std::streamsize>(size));
+  if (static_cast<std::uintmax_t>(in.gcount()) != size) throw InputError(file.string(), 0, "cannot read " + what);
+  return bytes;
 }
 
 }  // namespace motionstyle::nn

@@ -4,6 +4,7 @@
 // allocates, throwing InputError (file name, line 0) instead. Plus CRC-32 and an FNV-1a content hash.
 
 #include <cstdint>
+#include <filesystem>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -27,6 +28,10 @@ std::uint32_t crc32(std::string_view bytes);
 
 // FNV-1a 64-bit of the bytes as "fnv1a64:" + 16 lowercase hex digits: identifies a style clip's file.
 std::string contentHash(std::string_view bytes);
+
+// The whole of `file`, refused before a byte is read when it is not a regular file (a device, a
+// folder) or holds more than max_bytes: InputError naming the file and `what` ("network file").
+std::string readFileBytes(const std::filesystem::path& file, std::uintmax_t max_bytes, const std::string& what);
 
 class ByteWriter {
  public:

@@ -318,19 +318,7 @@ Parsed parse(std::string_view bytes, const std::string& source, NetworkKind want
   return p;
 }
 
-std::string readWholeFile(const std::filesystem::path& file) {
-  std::error_code error;
-  const std::uintmax_t size = std::filesystem::file_size(file, error);
-  if (error) throw InputError(file.string(), 0, "cannot read network file: " + error.message());
-  if (size > kMaxFileBytes)
-    throw InputError(file.string(), 0, "not a network file: " + std::to_string(size) + " bytes is too large");
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError(file.string(), 0, "cannot open network file");
-  std::string bytes(static_cast<std::size_t>(size), '\0');
-  in.read(bytes.data(), static_cast<std::streamsize>(size));
-  if (static_cast<std::uintmax_t>(in.gcount()) != size) throw InputError(file.string(), 0, "cannot read network file");
-  return bytes;
-}
+std::string readWholeFile(const std::filesystem::path& file) { return readFileBytes(file, kMaxFileBytes, "network file"); }
 
 }  // namespace
 

@@ -1,7 +1,6 @@
 #include "style/reconstruction_memory.h"
 
 #include <cmath>
-#include <fstream>
 #include <stdexcept>
 
 #include "common/atomic_file.h"
@@ -235,17 +234,8 @@ std::string serialiseReconstructionMemory(const ReconstructionMemory& memory, nn
 }
 
 ReconstructionMemory loadReconstructionMemory(const std::filesystem::path& file) {
-  // Its size first: a device or a huge file is refused before a byte is read (the shipped one: 4 MB).
-  std::error_code status;
-  if (!std::filesystem::is_regular_file(file, status)) throw InputError(file.string(), 0, "not a reconstruction memory file");
-  const std::uintmax_t size = std::filesystem::file_size(file, status);
-  if (status || size > kMaxFileBytes)
-    throw InputError(file.string(), 0, "not a reconstruction memory: " + std::to_string(size) + " bytes is too large");
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError(file.string(), 0, "cannot open the reconstruction memory");
-  std::string bytes(static_cast<std::size_t>(size), '\0');
-  in.read(bytes.data(), static_cast<std::streamsize>(size));
-  if (static_cast<std::uintmax_t>(in.gcount()) != size) throw InputError(file.string(), 0, "cannot read the reconstruction memory");
+  // A device or a huge file is refused before a byte is read (the shipped memory: 4 MB).
+  const std::string bytes = nn::readFileBytes(file, kMaxFileBytes, "reconstruction memory");
   nn::ByteReader reader(bytes, file.string());
   if (reader.take(kMagic.size(), "the file's signature") != kMagic) reader.fail("not a reconstruction memory (no MSRMEMORY signature)");
   if (bytes.size() < kMagic.size() + 4) reader.fail("cut short");
