@@ -230,10 +230,11 @@ int runInfo(const Args& args) {
   }
   for (const std::string& argument : files) {
     const std::string path = resolveNetworkArgument(argument).string();  // "elderly": a shipped network
-    if (isNetworkFile(path) || isMemoryFile(path)) {
-      const std::string description = isNetworkFile(path) ? nn::describeNetworkFile(path) : describeMemoryFile(path);
+    const bool network = isNetworkFile(path);
+    if (network || isMemoryFile(path)) {
+      const std::string description = network ? nn::describeNetworkFile(path) : describeMemoryFile(path);
       if (parsed.has("json"))
-        all.push_back({{"file", safeText(path)}, {isNetworkFile(path) ? "network" : "memory", safeLines(description)}});
+        all.push_back({{"file", safeText(path)}, {network ? "network" : "memory", safeLines(description)}});
       else
         std::cout << safeText(path) << "\n" << safeLines(description)
                   << (description.empty() || description.back() == '\n' ? "" : "\n");

@@ -38,6 +38,15 @@ bool isInside(const fs::path& path, const fs::path& directory) {
   return parent_end == parent.end() || (std::next(parent_end) == parent.end() && parent_end->empty());
 }
 
+// <resources>/models/<name><extension> if `name` is a valid network name and that file exists.
+std::optional<fs::path> shippedModelsFile(const fs::path& resources, std::string_view name, std::string_view extension) {
+  if (!isValidNetworkName(name)) return std::nullopt;
+  const fs::path file = resources / "models" / (std::string(name) + std::string(extension));
+  std::error_code error;
+  if (!fs::is_regular_file(file, error)) return std::nullopt;
+  return file;
+}
+
 }  // namespace
 
 ResourceSearch currentResourceSearch() {
@@ -82,19 +91,11 @@ bool isValidNetworkName(std::string_view name) {
 }
 
 std::optional<fs::path> shippedNetworkFile(const fs::path& resources, std::string_view name) {
-  if (!isValidNetworkName(name)) return std::nullopt;
-  const fs::path file = resources / "models" / (std::string(name) + kNetworkFileExtension);
-  std::error_code error;
-  if (!fs::is_regular_file(file, error)) return std::nullopt;
-  return file;
+  return shippedModelsFile(resources, name, kNetworkFileExtension);
 }
 
 std::optional<fs::path> shippedMemoryFile(const fs::path& resources, std::string_view name) {
-  if (!isValidNetworkName(name)) return std::nullopt;
-  const fs::path file = resources / "models" / (std::string(name) + ".memory");
-  std::error_code error;
-  if (!fs::is_regular_file(file, error)) return std::nullopt;
-  return file;
+  return shippedModelsFile(resources, name, ".memory");
 }
 
 std::vector<fs::path> shippedNetworkFiles(const fs::path& resources) {

@@ -1,7 +1,6 @@
 #include "nn/network_file.h"
 
 #include <cmath>
-#include <fstream>
 #include <iterator>
 #include <sstream>
 

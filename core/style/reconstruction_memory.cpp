@@ -239,10 +239,9 @@ ReconstructionMemory loadReconstructionMemory(const std::filesystem::path& file)
   nn::ByteReader reader(bytes, file.string());
   if (reader.take(kMagic.size(), "the file's signature") != kMagic) reader.fail("not a reconstruction memory (no MSRMEMORY signature)");
   if (bytes.size() < kMagic.size() + 4) reader.fail("cut short");
-  const std::uint32_t stored_crc = static_cast<std::uint32_t>(
-      static_cast<unsigned char>(bytes[bytes.size() - 4]) | static_cast<unsigned char>(bytes[bytes.size() - 3]) << 8 |
-      static_cast<unsigned char>(bytes[bytes.size() - 2]) << 16 | static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[bytes.size() - 1])) << 24);
-  if (nn::crc32(std::string_view(bytes).substr(0, bytes.size() - 4)) != stored_crc) reader.fail("its checksum does not match: the file is damaged");
+  const std::string_view all(bytes);
+  if (nn::crc32(all.substr(0, all.size() - 4)) != nn::ByteReader(all.substr(all.size() - 4), file.string()).u32("checksum"))
+    reader.fail("its checksum does not match: the file is damaged");
   if (reader.u32("format") != kFormat) reader.fail("a reconstruction memory format this version cannot read");
   ReconstructionMemory memory;
   memory.features = static_cast<int>(reader.u32("features"));
