@@ -69,24 +69,37 @@ ContentFootHeights contentFootHeights(const CleanupInput& input, const Eigen::Ma
 // The height above the floor of one lock: the content's own height of that joint over the segment
 // where the content has it planted, else the clip's rest height. Why per segment: captured floors are
 // not flat (CMU 07_01's left ankle rests 6.0 cm up in one step and 8.9 in the next); one clip-wide
-// height lifted or sank every step by the difference. But where the targets hold the joint more than
-// kLockHeightToleranceCm from the content's height over the segment, the content's foot was not
-// standing on its sole there (a kneel: CMU 131_01's ankle planted 15 cm up on its instep, while a style
-// network stands the character up), so the content's height says nothing of the floor under the
-// target's foot, and the lock takes the rest height (docs/decisions.md).
+// height lifted or sank every step by the difference. Where the targets hold the joint more than
+// kLockHeightToleranceCm from the content's height over the segment, the content's height is not the
+// target foot's:
+//   - the targets hold it LOWER: the content's foot was not standing on its sole there (a kneel: CMU
+//     131_01's ankle planted 15 cm up on its instep, while a style network stands the character up),
+//     so the content's height says nothing of the floor under the target's foot: the rest height;
+//   - the targets hold it HIGHER: the style raised it (a run on the forefoot, the heel 8-14 cm up
+//     through the content's heel contact): the lock keeps it still where the targets hold it, the
+//     median of their heights (`raised`). Locked on the floor it was pulled 8-14 cm down, most of the
+//     other studios' runs' worst residual (docs/decisions.md, "A heel the style raises").
 constexpr double kLockHeightToleranceCm = 5.0;
 
-double lockHeight(const ContentFootHeights& feet, const CleanupInput& input, const Eigen::MatrixXd& feet_world, int label,
-                  const ContactSegment& range) {
+struct LockHeight {
+  double above_floor = 0.0;  // file units
+  bool raised = false;       // the targets' height, above the content's
+};
+
+LockHeight lockHeight(const ContentFootHeights& feet, const CleanupInput& input, const Eigen::MatrixXd& feet_world,
+                      int label, const ContactSegment& range) {
   const double rest = feet.rest[static_cast<size_t>(label)];
   const std::optional<double> planted = plantedHeight(feet.planted, input, feet_world, label, range.first, range.last);
-  if (!planted) return rest;
+  if (!planted) return {rest, false};
   const int column = 3 * index(kContactJoint[static_cast<size_t>(label)]);
   std::vector<double> heights;
   for (int f = range.first; f <= range.last; ++f)
     heights.push_back(input.up.dot(input.targets.block<1, 3>(f, column).transpose()) - input.floor_height);
   const double target_height = median(std::move(heights));
-  return std::abs(target_height - *planted) * input.cm_per_unit > kLockHeightToleranceCm ? rest : *planted;
+  const double above_content_cm = (target_height - *planted) * input.cm_per_unit;
+  if (above_content_cm > kLockHeightToleranceCm) return {target_height, true};
+  if (above_content_cm < -kLockHeightToleranceCm) return {rest, false};
+  return {*planted, false};
 }
 
 double smoothstep(double x) {
@@ -104,13 +117,18 @@ struct LockSegment {
   int label = 0;
   ContactSegment frames;
   Eigen::Vector3d lock = Eigen::Vector3d::Zero();  // file units
+  bool raised = false;                               // LockHeight::raised
 };
 
 // Heel and toe locks of one foot that are active together must sit as far apart as the foot is long,
 // or the solver, unable to meet both, moves the toe when the heel lock lets go (a visible skate).
-// The later of two overlapping segments is moved along the floor so that the two locks lie the foot's
-// length apart (their heights kept); segments are visited in start order so chains of overlaps stay
-// consistent.
+// Segments are visited in start order, so that chains of overlaps stay consistent, and the later of
+// two overlapping segments is moved along the floor so that the two locks lie the foot's length apart
+// (their heights kept). But where one of the two is raised (lockHeight) and the other is not, the
+// raised one moves, up or down: the foot pivots on the joint that is down, so the raised lock keeps its
+// place over the floor and takes the height at which it lies the foot's length from the other. Moved
+// along the floor instead, a heel raised 15 cm toward a toe on the floor came 12 cm from its targets
+// (docs/decisions.md). An earlier raised lock already placed against its own partner is not moved again.
 void makeFootLocksConsistent(std::vector<LockSegment>& segments, int heel, int toe, double foot_length,
                              const Eigen::Vector3d& up) {
   std::vector<LockSegment*> foot;
@@ -119,9 +137,10 @@ void makeFootLocksConsistent(std::vector<LockSegment>& segments, int heel, int t
   std::sort(foot.begin(), foot.end(), [](const LockSegment* a, const LockSegment* b) {
     return a->frames.first < b->frames.first;
   });
+  std::vector<bool> placed(foot.size(), false);  // moved to lie the foot's length from a partner
   for (size_t i = 0; i < foot.size(); ++i) {
     LockSegment& later = *foot[i];
-    const LockSegment* anchor = nullptr;
+    size_t anchor = i;
     int best_overlap = 0;
     for (size_t j = 0; j < i; ++j) {
       if (foot[j]->label == later.label) continue;
@@ -129,16 +148,33 @@ void makeFootLocksConsistent(std::vector<LockSegment>& segments, int heel, int t
                           std::max(foot[j]->frames.first, later.frames.first) + 1;
       if (overlap > best_overlap) {
         best_overlap = overlap;
-        anchor = foot[j];
+        anchor = j;
       }
     }
-    if (!anchor) continue;
-    Eigen::Vector3d along = later.lock - anchor->lock;
+    if (anchor == i) continue;
+    const bool raise_later = later.raised && !foot[anchor]->raised;
+    const bool raise_anchor = foot[anchor]->raised && !later.raised && !placed[anchor];
+    if (raise_later || raise_anchor) {
+      LockSegment& raised = raise_later ? later : *foot[anchor];
+      const LockSegment& down = raise_later ? *foot[anchor] : later;
+      Eigen::Vector3d across = raised.lock - down.lock;
+      across -= up.dot(across) * up;
+      const double horizontal = across.norm();
+      if (horizontal < foot_length)
+        raised.lock = down.lock + across + std::sqrt(foot_length * foot_length - horizontal * horizontal) * up;
+      else if (horizontal > 1e-9)  // further than the foot is long: brought in, level with the other
+        raised.lock = down.lock + across * (foot_length / horizontal);
+      placed[raise_later ? i : anchor] = true;
+      continue;
+    }
+    const LockSegment& fixed = *foot[anchor];
+    Eigen::Vector3d along = later.lock - fixed.lock;
     const double height = up.dot(along);
     along -= height * up;
     if (along.norm() < 1e-9) continue;  // no direction to keep: leave it
     const double horizontal_length = std::sqrt(std::max(0.0, foot_length * foot_length - height * height));
-    later.lock = anchor->lock + along.normalized() * horizontal_length + height * up;
+    later.lock = fixed.lock + along.normalized() * horizontal_length + height * up;
+    placed[i] = true;
   }
 }
 
@@ -163,8 +199,9 @@ ContactLocks contactLocks(const CleanupInput& input, const CleanupOptions& optio
         }
         segment.lock[axis] = median(values);
       }
-      segment.lock = segment.lock - up.dot(segment.lock) * up +
-                     (input.floor_height + lockHeight(feet, input, feet_world, label, range)) * up;
+      const LockHeight height = lockHeight(feet, input, feet_world, label, range);
+      segment.lock = segment.lock - up.dot(segment.lock) * up + (input.floor_height + height.above_floor) * up;
+      segment.raised = height.raised;
       segments.push_back(segment);
     }
   }

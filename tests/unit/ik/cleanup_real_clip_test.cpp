@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <optional>
 #include <string>
@@ -194,6 +195,63 @@ TEST(CleanupLockHeight, AKneelDoesNotHoldAStandingTargetFootAtItsHeight) {
     const double cleaned = heightCm(result_world, ankle, f), target = heightCm(targets, target_ankle, f);
     ASSERT_LT(cleaned, kneel_cm - 5.0) << "frame " << f << ": the ankle held at the kneel's " << kneel_cm << " cm";
     ASSERT_NEAR(cleaned, target, 4.0) << "frame " << f << " of the kneel's contact " << kneel->first << "-" << kneel->last;
+  }
+}
+
+// The other way round: a style that raises a planted heel (a run on the forefoot) through the content's
+// heel contact, the foot pivoting on its toe. The lock keeps the heel still where the targets hold it
+// rather than pulling it down to the content's height (it was pulled the 10 cm down, the targets'
+// whole rise), and lies the foot's length from the toe's lock (the toe's place kept).
+TEST(CleanupLockHeight, AHeelTheTargetsRaiseIsLockedRaised) {
+  const Motion clip = readBvh(test::fixture("cmu_131_01.bvh"));
+  const JointMapping mapping = mapJoints(clip.skeleton, clip.source);
+  const Eigen::Vector3d up = Eigen::Vector3d::UnitY();
+  const double cm = 2.54 / 0.45, rise_cm = 10.0;
+  const Eigen::MatrixXd world = worldPositions(clip);
+  const std::array<int, kContactCount> feet = contactJoints(mapping);
+  const double floor = estimateFloorHeight(world, feet, up);
+  const Eigen::MatrixXi contacts = detectContacts(world, feet, up, floor, clip.fps(), restPoseBodyHeight(clip.skeleton, up));
+  const int heel = static_cast<int>(ContactLabel::LeftHeel), toe = static_cast<int>(ContactLabel::LeftToe);
+  const int ankle = feet[static_cast<size_t>(heel)];
+  const auto heightCm = [&](const Eigen::MatrixXd& positions, int column, int f) {
+    return (up.dot(positions.block<1, 3>(f, 3 * column).transpose()) - floor) * cm;
+  };
+  // The longest heel contact on the floor (the ankle's median height under 10 cm) that the toe's overlaps.
+  std::optional<ContactSegment> stance;
+  for (const ContactSegment& segment : contactSegments(contacts, heel)) {
+    std::vector<double> heights;
+    bool toe_down = false;
+    for (int f = segment.first; f <= segment.last; ++f) {
+      heights.push_back(heightCm(world, ankle, f));
+      toe_down = toe_down || contacts(f, toe) != 0;
+    }
+    std::sort(heights.begin(), heights.end());
+    if (toe_down && heights[heights.size() / 2] < 10.0 && (!stance || segment.last - segment.first > stance->last - stance->first))
+      stance = segment;
+  }
+  ASSERT_TRUE(stance.has_value() && stance->last - stance->first >= 10) << "a left heel contact of 10+ frames on the floor";
+  // The targets: the clip, but over that contact the left ankle turned up about the toe until it is
+  // rise_cm higher (the foot's length kept).
+  Eigen::MatrixXd targets = test::canonicalPositions(world, mapping);
+  const int target_ankle = index(CanonicalJoint::LeftAnkle), target_toe = index(CanonicalJoint::LeftToe);
+  for (int f = stance->first; f <= stance->last; ++f) {
+    const Eigen::Vector3d toe_at = targets.block<1, 3>(f, 3 * target_toe).transpose();
+    const Eigen::Vector3d foot = targets.block<1, 3>(f, 3 * target_ankle).transpose() - toe_at;
+    const Eigen::Vector3d back = (foot - up.dot(foot) * up).normalized();
+    const double height = std::min(up.dot(foot) + rise_cm / cm, 0.95 * foot.norm());
+    const Eigen::Vector3d raised = toe_at + back * std::sqrt(foot.squaredNorm() - height * height) + up * height;
+    targets.block<1, 3>(f, 3 * target_ankle) = raised.transpose();
+  }
+  const Motion result = cleanupMotion(CleanupInput{clip, mapping, targets, contacts, up, floor, cm}, {}, nullptr);
+  const Eigen::MatrixXd result_world = worldPositions(result);
+  const Eigen::Vector3d first = result_world.block<1, 3>(stance->first, 3 * ankle).transpose();
+  for (int f = stance->first; f <= stance->last; ++f) {
+    const double cleaned = heightCm(result_world, ankle, f), target = heightCm(targets, target_ankle, f);
+    EXPECT_NEAR(cleaned, target, 3.0) << "frame " << f << " of the heel's contact " << stance->first << "-" << stance->last
+                                      << ": the content's ankle at " << heightCm(world, ankle, f) << " cm";
+    Eigen::Vector3d moved = result_world.block<1, 3>(f, 3 * ankle).transpose() - first;
+    moved -= up.dot(moved) * up;
+    EXPECT_LT(moved.norm() * cm, 1.0) << "frame " << f << ": the raised heel slid";
   }
 }
 
