@@ -55,8 +55,10 @@ struct CleanupOptions {
   // --- Contacts. Inside a contact segment the lock has contact_weight. Over contact_blend_seconds
   // before and after it (rounded to frames, at least 1) the lock's share of the pull on the joint,
   // a = w_lock^2 / (w_lock^2 + position_weight^2), ramps with a smoothstep between 0 and 1, so the
-  // joint glides between its lock and its targets instead of popping.
-  double contact_blend_seconds = 0.06;
+  // joint glides between its lock and its targets instead of popping. 0.04 s (one frame at 30 fps, two at
+  // 60): at 0.06 a foot that a style lifts off quickly lagged 8-10 cm behind its targets for the ramp
+  // (most of the worst residuals at stance ends); shorter still adds pops (docs/decisions.md).
+  double contact_blend_seconds = 0.04;
   bool lock_contacts = true;
   bool keep_above_floor = true;
 

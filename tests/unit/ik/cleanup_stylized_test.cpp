@@ -237,7 +237,7 @@ TEST_F(CleanupStylized, WarningsNameTheContentsFramesWhenSolvedAtAnotherRate) {
     const std::size_t at = warning.find(" at frames ");
     if (warning.find("large residual: Left") == std::string::npos || at == std::string::npos) continue;
     ASSERT_EQ(std::sscanf(warning.c_str() + at, " at frames %d-%d", &first, &last), 2) << warning;
-    // Within the forced contact, give or take its blend (0.06 s: 8 frames at 120 fps).
+    // Within the forced contact, give or take its blend (contact_blend_seconds, 0.04 s: 5 frames at 120 fps).
     EXPECT_GE(first, kFirst - 8) << warning;
     EXPECT_LE(last, kLast + 8) << warning;
     ++named;
