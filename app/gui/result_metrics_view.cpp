@@ -6,9 +6,11 @@
 #include <QTableWidget>
 #include <QVBoxLayout>
 
+#include <cmath>
 #include <vector>
 
 #include "ik/cleanup.h"
+#include "mapping/canonical_joints.h"
 #include "style/stylize_cleanup_job.h"
 #include "style/stylized_cleanup.h"
 
@@ -53,6 +55,10 @@ ResultMetricsView::ResultMetricsView(QWidget* parent) : QWidget(parent) {
     const int frame = link.toInt(&ok);
     if (ok) emit frameRequested(frame);
   });
+  // A click on the cleaned residual goes to its worst frame.
+  connect(table_, &QTableWidget::cellClicked, this, [this](int row, int column) {
+    if (row == kResidualRow && column == kCleanedColumn && worst_residual_frame_ >= 0) emit frameRequested(worst_residual_frame_);
+  });
   auto* layout = new QVBoxLayout(this);
   layout->setContentsMargins(0, 0, 0, 0);
   layout->addWidget(table_);
@@ -79,6 +85,8 @@ void ResultMetricsView::showResult(const style::StylizeCleanupResult* result) {
       for (int column : {kRawColumn, kCleanedColumn}) put(row, column, none);
     warnings_label_->clear();
     warnings_label_->setToolTip(QString());
+    worst_residual_frame_ = -1;
+    table_->item(kResidualRow, kCleanedColumn)->setToolTip(QString());
     return;
   }
   const ClipMetrics& raw = result->raw_metrics;
@@ -93,6 +101,19 @@ void ResultMetricsView::showResult(const style::StylizeCleanupResult* result) {
   put(kResidualRow, kRawColumn, raw.has_residual ? cm(raw.residual_mean_cm) : QStringLiteral("0 (target)"));
   put(kResidualRow, kCleanedColumn,
       cleaned.has_residual ? tr("%1 (max %2)").arg(cm(cleaned.residual_mean_cm), cm(cleaned.residual_max_cm, 1)) : none);
+  // Where the worst is, in the frames of the clip given back (as the warnings name them,
+  // CleanupOptions::warning_fps): the metrics are at the clean-up's rate.
+  worst_residual_frame_ = -1;
+  QString where;
+  if (cleaned.has_residual && cleaned.residual_max_frame >= 0 && result->cleanup_fps > 0.0 && result->cleaned.fps() > 0.0) {
+    worst_residual_frame_ =
+        static_cast<int>(std::floor(cleaned.residual_max_frame * result->cleaned.fps() / result->cleanup_fps));
+    where = tr("Worst: %1 at frame %2 (%3 s). Click to go there.")
+                .arg(QString::fromUtf8(canonicalJointName(static_cast<CanonicalJoint>(cleaned.residual_max_joint))))
+                .arg(worst_residual_frame_)
+                .arg(QString::number(worst_residual_frame_ / result->cleaned.fps(), 'f', 2));
+  }
+  table_->item(kResidualRow, kCleanedColumn)->setToolTip(where);
   // A few lines in the panel, all of them in the tooltip: a long list would push the table away.
   // A warning that names frames links to its first one (the link keeps the warnings' colour).
   constexpr qsizetype kShownWarnings = 3;

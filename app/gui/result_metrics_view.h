@@ -2,7 +2,8 @@
 // The Result panel's quality figures of one result: a table of foot skate, floor penetration, bone
 // error and residual for the raw network output and the cleaned clip, and the clean-up's warnings
 // below it (the first few; all of them in the tooltip), each one that names frames a link to its
-// first frame (frameRequested: the timeline goes there). Shows "-" without a result.
+// first frame (frameRequested: the timeline goes there), as is a click on the cleaned residual (to its
+// worst frame, named with its joint in the cell's tooltip). Shows "-" without a result.
 
 #include <QWidget>
 
@@ -27,13 +28,14 @@ class ResultMetricsView : public QWidget {
   QTableWidget* table() const { return table_; }
 
  signals:
-  // A warning's link was clicked: show this frame of the content (the clean-up names the frames of the
-  // clip it gives back, CleanupOptions::warning_fps).
+  // A warning's link or the cleaned residual was clicked: show this frame of the content (the frames of
+  // the clip the clean-up gives back, CleanupOptions::warning_fps).
   void frameRequested(int frame);
 
  private:
   QTableWidget* table_ = nullptr;
   QLabel* warnings_label_ = nullptr;
+  int worst_residual_frame_ = -1;  // of the result shown, in the clip's frames; -1: none
 };
 
 }  // namespace motionstyle

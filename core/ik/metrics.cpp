@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "features/signal_filters.h"
+#include "mapping/canonical_joints.h"
 
 namespace motionstyle {
 namespace {
@@ -175,7 +176,11 @@ void MetricsAccumulator::add(const MetricsInput& block) {
         const Eigen::Vector3d target = block.targets.block<1, 3>(t - kept, 3 * c).transpose();
         const double error = (at(p, t, canonical_joints_[static_cast<size_t>(c)]) - target).norm() * cm;
         residual_sum_ += error;
-        m.residual_max_cm = std::max(m.residual_max_cm, error);
+        if (error > m.residual_max_cm || m.residual_max_frame < 0) {
+          m.residual_max_cm = error;
+          m.residual_max_frame = base + static_cast<int>(t);
+          m.residual_max_joint = c;
+        }
       }
     }
     // Jerk: the window of four frames that ends here.
@@ -221,6 +226,8 @@ std::string metricsToJson(const ClipMetrics& metrics, bool include_tracks) {
   if (metrics.has_residual) {
     json["position_residual_mean_cm"] = metrics.residual_mean_cm;
     json["position_residual_max_cm"] = metrics.residual_max_cm;
+    json["position_residual_max_frame"] = metrics.residual_max_frame;
+    json["position_residual_max_joint"] = std::string(canonicalJointName(static_cast<CanonicalJoint>(metrics.residual_max_joint)));
   }
   json["jerk_mean_cm_s3"] = metrics.jerk_mean_cm_s3;
   if (include_tracks) {

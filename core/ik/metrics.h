@@ -14,7 +14,7 @@
 //   floor penetration depth below the floor (cm) of the four contact joints, max over all frames and
 //                     mean over the samples that are below it;
 //   bone error        | |p_joint - p_parent| - reference length | (cm), mean and max over bones and frames;
-//   position residual |p_canonical - target| (cm) over the 21 canonical joints, mean and max;
+//   position residual |p_canonical - target| (cm) over the 21 canonical joints, mean and max (and where);
 //   jerk              mean |p(t+3) - 3 p(t+2) + 3 p(t+1) - p(t)| * fps^3 (cm/s^3) over canonical joints.
 
 #include <Eigen/Core>
@@ -81,6 +81,9 @@ struct ClipMetrics {
   bool has_residual = false;
   double residual_mean_cm = 0.0;
   double residual_max_cm = 0.0;
+  // Where residual_max_cm is (the first such frame): so that a front end can show it. -1: no residual.
+  int residual_max_frame = -1;
+  int residual_max_joint = -1;  // canonical joint index (CanonicalJoint order)
   double jerk_mean_cm_s3 = 0.0;
   // Per-frame tracks for the GUI (length `frames`): the mean skate of the joints in contact over the
   // step from this frame to the next (cm/s, 0 when none), and the largest bone error (cm).

@@ -28,11 +28,13 @@
 #include "ik/cleanup.h"
 #include "ik/contact_file.h"
 #include "main_window.h"
+#include "mapping/canonical_joints.h"
 #include "network_panel.h"
 #include "network_list.h"
 #include "mapping/mapping_file.h"
 #include "motion/kinematics.h"
 #include "nn/network_file.h"
+#include "result_metrics_view.h"
 #include "result_panel.h"
 #include "sliding_stance.h"
 #include "style/motion_dataset.h"
@@ -390,8 +392,9 @@ class ResultTest : public QObject {
   }
 
   // The clean-up's warnings name the clip's own frames (120 fps here, solved at 60) and each links
-  // there: a click puts the timeline on its first frame.
-  void aCleanUpWarningLinksToItsFrameOnTheTimeline() {
+  // there: a click puts the timeline on its first frame. So does a click on the cleaned residual, to
+  // its worst frame, which its tooltip names with the joint.
+  void cleanUpWarningsAndTheWorstResidualLinkToTheirFrames() {
     const auto resources = resourceDirectory();
     QVERIFY2(resources.has_value(), "the repository's resources/ (shipped networks) were not found");
     const auto trained = shippedNetworkFile(*resources, kDemoNetwork);
@@ -421,6 +424,24 @@ class ResultTest : public QObject {
     window.timeline()->setFrame(0);
     emit label->linkActivated(QString::number(linked));
     QCOMPARE(window.timeline()->frame(), linked);
+
+    // The worst residual: clicked as a user clicks the cell.
+    const ClipMetrics& cleaned = panel->result()->cleaned_metrics;
+    QVERIFY(cleaned.residual_max_frame >= 0 && cleaned.residual_max_joint >= 0);
+    const int worst = static_cast<int>(std::floor(cleaned.residual_max_frame * 120.0 / panel->result()->cleanup_fps));
+    auto* table = panel->findChild<QTableWidget*>(QStringLiteral("MetricsTable"));
+    QVERIFY(table != nullptr);
+    QTableWidgetItem* cell = table->item(ResultMetricsView::kResidualRow, ResultMetricsView::kCleanedColumn);
+    QVERIFY(cell != nullptr);
+    const QString joint = QString::fromUtf8(canonicalJointName(static_cast<CanonicalJoint>(cleaned.residual_max_joint)));
+    QVERIFY2(cell->toolTip().contains(QStringLiteral("%1 at frame %2 ").arg(joint).arg(worst)), qPrintable(cell->toolTip()));
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    window.timeline()->setFrame(0);
+    const QRect rect = table->visualItemRect(cell);
+    QVERIFY2(table->viewport()->rect().contains(rect.center()), "the residual cell is out of sight");
+    QTest::mouseClick(table->viewport(), Qt::LeftButton, {}, rect.center());
+    QCOMPARE(window.timeline()->frame(), worst);
   }
 
   void strengthZeroKeepsTheContentAndAStylizedClipIsCleanedAsGiven() {

@@ -16,8 +16,9 @@
 // The networks run as `stylize` runs them, with the style refinement's defaults (style_refinement.h)
 // unless the --refine* options change them (--refine 0: the network's output as it is).
 // Per network and clip: style distance ratio and content distance (eval's definitions), familiarity
-// (style/familiarity.h), and unless --no-cleanup the IK clean-up's residual, skate and "unreachable"
-// warnings, and the cleaned output's root path against the content's (features/root_path.h).
+// (style/familiarity.h), and unless --no-cleanup the IK clean-up's residual (its worst: where, in the
+// JSON), skate and "unreachable" warnings, and the cleaned output's root path against the content's
+// (features/root_path.h).
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -30,6 +31,7 @@
 #include "bvh/bvh_reader.h"
 #include "common/resource_paths.h"
 #include "features/root_path.h"
+#include "mapping/canonical_joints.h"
 #include "mapping/joint_mapping.h"
 #include "style/evaluation.h"
 #include "style/familiarity.h"
@@ -265,6 +267,11 @@ nlohmann::json evaluateNetwork(const nn::StyleModel& model, const nn::LossNetwor
       figures.cleaned_style_ratio += cleaned_distances.styleRatio();
       c["residual_mean_cm"] = cleaned.cleaned.residual_mean_cm;
       c["residual_max_cm"] = cleaned.cleaned.residual_max_cm;
+      // Where: the clean-up's frame (its rate, stylized_cleanup.h) and the canonical joint.
+      c["residual_max_frame"] = cleaned.cleaned.residual_max_frame;
+      c["residual_max_seconds"] = cleaned.cleaned.residual_max_frame / cleaned.fps;
+      c["residual_max_joint"] =
+          std::string(canonicalJointName(static_cast<CanonicalJoint>(std::max(0, cleaned.cleaned.residual_max_joint))));
       c["skate_cm_s"] = cleaned.cleaned.foot_skate_cm_s;
       c["unreachable_warnings"] = unreachable;
       c["distance_ratio"] = travelled.distance_ratio;

@@ -171,6 +171,8 @@ TEST_F(CleanupBlocks, MetricsInBlocksEqualMetricsOfTheWhole) {
     EXPECT_EQ(got.bone_error_max_cm, expected.bone_error_max_cm);
     EXPECT_EQ(got.residual_mean_cm, expected.residual_mean_cm);
     EXPECT_EQ(got.residual_max_cm, expected.residual_max_cm);
+    EXPECT_EQ(got.residual_max_frame, expected.residual_max_frame);
+    EXPECT_EQ(got.residual_max_joint, expected.residual_max_joint);
     EXPECT_EQ(got.jerk_mean_cm_s3, expected.jerk_mean_cm_s3);
     EXPECT_EQ(got.skate_track_cm_s, expected.skate_track_cm_s);
     EXPECT_EQ(got.bone_error_track_cm, expected.bone_error_track_cm);

@@ -129,6 +129,18 @@ TEST(Metrics, ResidualAndJerkHaveKnownValues) {
   EXPECT_TRUE(r.has_residual);
   EXPECT_NEAR(r.residual_max_cm, 0.6, 1e-12);
   EXPECT_NEAR(r.residual_mean_cm, 0.6 / 21.0, 1e-12);
+  EXPECT_EQ(r.residual_max_frame, 0);  // the first of equal worsts
+  EXPECT_EQ(r.residual_max_joint, index(CanonicalJoint::Hips));
+
+  // Where the worst is: the left toe 2 units off at frame 5, the hips' 0.3 everywhere else.
+  residual_input.targets(5, 3 * index(CanonicalJoint::LeftToe) + 1) -= 2.0;
+  const ClipMetrics w = computeMetrics(residual_input);
+  EXPECT_NEAR(w.residual_max_cm, 4.0, 1e-12);
+  EXPECT_EQ(w.residual_max_frame, 5);
+  EXPECT_EQ(w.residual_max_joint, index(CanonicalJoint::LeftToe));
+  const nlohmann::json json = nlohmann::json::parse(metricsToJson(w));
+  EXPECT_EQ(json["position_residual_max_frame"], 5);
+  EXPECT_EQ(json["position_residual_max_joint"], "LeftToe");
 }
 
 TEST(Metrics, JsonHoldsTheFigures) {
