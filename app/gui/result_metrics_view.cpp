@@ -57,7 +57,8 @@ ResultMetricsView::ResultMetricsView(QWidget* parent) : QWidget(parent) {
   });
   // A click on the cleaned residual goes to its worst frame.
   connect(table_, &QTableWidget::cellClicked, this, [this](int row, int column) {
-    if (row == kResidualRow && column == kCleanedColumn && worst_residual_frame_ >= 0) emit frameRequested(worst_residual_frame_);
+    if (row == kResidualRow && column == kCleanedColumn && worst_residual_frame_ >= 0)
+      emit frameRequested(worst_residual_frame_);
   });
   auto* layout = new QVBoxLayout(this);
   layout->setContentsMargins(0, 0, 0, 0);
@@ -105,13 +106,14 @@ void ResultMetricsView::showResult(const style::StylizeCleanupResult* result) {
   // CleanupOptions::warning_fps): the metrics are at the clean-up's rate.
   worst_residual_frame_ = -1;
   QString where;
-  if (cleaned.has_residual && cleaned.residual_max_frame >= 0 && result->cleanup_fps > 0.0 && result->cleaned.fps() > 0.0) {
-    worst_residual_frame_ =
-        static_cast<int>(std::floor(cleaned.residual_max_frame * result->cleaned.fps() / result->cleanup_fps));
+  const double clip_fps = result->cleaned.fps();
+  if (cleaned.has_residual && cleaned.residual_max_frame >= 0 && result->cleanup_fps > 0.0 && clip_fps > 0.0) {
+    worst_residual_frame_ = static_cast<int>(std::floor(cleaned.residual_max_frame * clip_fps / result->cleanup_fps));
+    const auto joint = static_cast<CanonicalJoint>(cleaned.residual_max_joint);
     where = tr("Worst: %1 at frame %2 (%3 s). Click to go there.")
-                .arg(QString::fromUtf8(canonicalJointName(static_cast<CanonicalJoint>(cleaned.residual_max_joint))))
+                .arg(QString::fromUtf8(canonicalJointName(joint)))
                 .arg(worst_residual_frame_)
-                .arg(QString::number(worst_residual_frame_ / result->cleaned.fps(), 'f', 2));
+                .arg(QString::number(worst_residual_frame_ / clip_fps, 'f', 2));
   }
   table_->item(kResidualRow, kCleanedColumn)->setToolTip(where);
   // A few lines in the panel, all of them in the tooltip: a long list would push the table away.

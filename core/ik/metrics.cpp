@@ -227,7 +227,8 @@ std::string metricsToJson(const ClipMetrics& metrics, bool include_tracks) {
     json["position_residual_mean_cm"] = metrics.residual_mean_cm;
     json["position_residual_max_cm"] = metrics.residual_max_cm;
     json["position_residual_max_frame"] = metrics.residual_max_frame;
-    json["position_residual_max_joint"] = std::string(canonicalJointName(static_cast<CanonicalJoint>(metrics.residual_max_joint)));
+    json["position_residual_max_joint"] =
+        std::string(canonicalJointName(static_cast<CanonicalJoint>(metrics.residual_max_joint)));
   }
   json["jerk_mean_cm_s3"] = metrics.jerk_mean_cm_s3;
   if (include_tracks) {
