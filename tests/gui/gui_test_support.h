@@ -1,6 +1,6 @@
 #pragma once
-// Helpers shared by the QTest GUI programs: fixture and screenshot paths, pixel checks, and a main()
-// that installs the viewport's OpenGL format before QApplication exists (QTEST_MAIN cannot).
+// Helpers shared by the QTest GUI programs: fixture and screenshot paths, waiting for jobs, pixel checks,
+// and a main() that installs the viewport's OpenGL format before QApplication exists (QTEST_MAIN cannot).
 
 #include <QApplication>
 #include <QColor>
@@ -9,6 +9,7 @@
 #include <QLabel>
 #include <QMainWindow>
 #include <QPointF>
+#include <QSignalSpy>
 #include <QString>
 #include <QTest>
 
@@ -18,12 +19,24 @@ namespace motionstyle::test {
 
 inline QString fixture(const QString& name) { return QDir(QStringLiteral(MOTIONSTYLE_TEST_DATA_DIR)).filePath(name); }
 
+// <build>/screenshots/<name>.png (the folder is created).
+inline QString screenshotPath(const QString& name) {
+  QDir dir(QStringLiteral(MOTIONSTYLE_SCREENSHOT_DIR));
+  dir.mkpath(QStringLiteral("."));
+  return dir.filePath(name + QStringLiteral(".png"));
+}
+
 // Saves `image` as <build>/screenshots/<name>.png and returns the path (empty on failure).
 inline QString saveScreenshot(const QImage& image, const QString& name) {
-  QDir dir(QStringLiteral(MOTIONSTYLE_SCREENSHOT_DIR));
-  if (!dir.mkpath(QStringLiteral("."))) return {};
-  const QString path = dir.filePath(name + QStringLiteral(".png"));
+  const QString path = screenshotPath(name);
   return image.save(path, "PNG") ? path : QString();
+}
+
+// Waits until `ended` has seen `jobs` jobs end: a guard against a hang, not a timing (software GL,
+// two shared cores).
+inline bool waitForJobs(QSignalSpy& ended, int jobs = 1) {
+  constexpr int kHangGuardMs = 120000;
+  return QTest::qWaitFor([&] { return ended.count() >= jobs; }, kHangGuardMs);
 }
 
 // What the window's status bar says (MainWindow's "StatusLine"), empty if it has none.

@@ -36,7 +36,6 @@
 #include "nn/network_file.h"
 #include "result_metrics_view.h"
 #include "result_panel.h"
-#include "sliding_stance.h"
 #include "style/motion_dataset.h"
 #include "style/stylizer.h"
 #include "style/training.h"
@@ -51,9 +50,6 @@ struct Report {
   QString title;
   QString message;
 };
-
-// Generous: a guard against a hang, not a speed test (software GL, two shared cores).
-constexpr int kJobTimeoutMs = 120000;
 
 // An untrained but valid tiny style network (16 hidden units, width 5) with the fixtures' statistics.
 std::filesystem::path writeTinyNetwork(const QTemporaryDir& dir, const QString& name = QStringLiteral("tiny_style"),
@@ -71,18 +67,6 @@ double cellValue(const QTableWidget* table, int row, int column) {
   bool ok = false;
   const double value = table->item(row, column)->text().toDouble(&ok);
   return ok ? value : std::nan("");
-}
-
-// <build>/screenshots/<name>.png (the folder is created).
-QString screenshotPath(const QString& name) {
-  QDir dir(QStringLiteral(MOTIONSTYLE_SCREENSHOT_DIR));
-  dir.mkpath(QStringLiteral("."));
-  return dir.filePath(name + QStringLiteral(".png"));
-}
-
-// Waits until `ended` has seen `jobs` jobs end (a hang guard, not a timing).
-bool waitForJobs(QSignalSpy& ended, int jobs = 1) {
-  return QTest::qWaitFor([&] { return ended.count() >= jobs; }, kJobTimeoutMs);
 }
 
 }  // namespace
@@ -240,7 +224,7 @@ class ResultTest : public QObject {
     QSignalSpy ended(panel, &ResultPanel::jobEnded);
     QTest::mouseClick(button, Qt::LeftButton);
     QVERIFY(panel->isBusy());  // the click returned while the worker runs
-    QVERIFY(waitForJobs(ended));
+    QVERIFY(test::waitForJobs(ended));
     QCOMPARE(ended.count(), 1);
     QVERIFY2(ended.at(0).at(0).toBool(), reports.empty() ? "" : qPrintable(reports.back().message));
     QVERIFY(reports.empty());
@@ -293,7 +277,7 @@ class ResultTest : public QObject {
     QVERIFY(std::all_of(skate.begin(), skate.end(), [](float v) { return std::isfinite(v) && v >= 0.0f; }));
     window.timeline()->setFrame(300);
     QTest::qWait(50);
-    QVERIFY(window.saveScreenshot(screenshotPath(QStringLiteral("with_result"))));
+    QVERIFY(window.saveScreenshot(test::screenshotPath(QStringLiteral("with_result"))));
     window.setRawOutputVisible(false);
     QCOMPARE(window.viewport()->figureCount(), 2);
 
@@ -356,7 +340,7 @@ class ResultTest : public QObject {
 
     QSignalSpy ended(panel, &ResultPanel::jobEnded);
     panel->stylize();
-    QVERIFY(waitForJobs(ended));
+    QVERIFY(test::waitForJobs(ended));
     QVERIFY(panel->result() != nullptr);
     const Eigen::MatrixXi& locked = panel->result()->contacts;
     QCOMPARE(locked.col(0).sum() + locked.col(1).sum(), 0);  // the left foot was never locked
@@ -409,7 +393,7 @@ class ResultTest : public QObject {
     emit window.timeline()->trackView()->trackEdited(ContactTrackController::kLeftFootTrack, kFirst, kLast, true);
     QSignalSpy ended(panel, &ResultPanel::jobEnded);
     panel->stylize();
-    QVERIFY(waitForJobs(ended));
+    QVERIFY(test::waitForJobs(ended));
     QVERIFY(panel->result() != nullptr);
     // (The network's own output also leaves the kneel, frames 370-400, far off: not this check's.)
     int linked = -1;
@@ -455,7 +439,7 @@ class ResultTest : public QObject {
     QCOMPARE(panel->strength(), 0.0);
     QSignalSpy ended(panel, &ResultPanel::jobEnded);
     panel->stylize();
-    QVERIFY(waitForJobs(ended));
+    QVERIFY(test::waitForJobs(ended));
     QVERIFY(panel->result() != nullptr);
     // Strength 0 is the content itself: the clean-up hands back nearly the same clip (issue 4: a clean
     // real clip changes by at most 1 cm on average).
@@ -478,7 +462,7 @@ class ResultTest : public QObject {
     const Eigen::MatrixXd targets = half.world_positions;
     panel->setStylizedClip(std::move(half), QStringLiteral("optimised"));
     QVERIFY(panel->isBusy());
-    QVERIFY(waitForJobs(ended, 2));
+    QVERIFY(test::waitForJobs(ended, 2));
     QVERIFY(panel->result() != nullptr);
     QCOMPARE(panel->networkName(), QStringLiteral("optimised"));
     QVERIFY(panel->result()->stylized.world_positions == targets);
@@ -496,7 +480,7 @@ class ResultTest : public QObject {
     for (const bool remove : {false, true}) {
       QSignalSpy ended(panel, &ResultPanel::jobEnded);
       panel->stylize();
-      QVERIFY(waitForJobs(ended));
+      QVERIFY(test::waitForJobs(ended));
       QVERIFY(panel->result() != nullptr);
       const QString stylized = window.clip(window.contentClip()).name;
       QVERIFY2(test::statusLine(window).startsWith(QStringLiteral("Stylized")), qPrintable(test::statusLine(window)));
@@ -520,7 +504,7 @@ class ResultTest : public QObject {
     QVERIFY(panel->loadNetworkFile(QString::fromStdString(network_.string())));
     QSignalSpy ended(panel, &ResultPanel::jobEnded);
     panel->stylize();
-    QVERIFY(waitForJobs(ended));
+    QVERIFY(test::waitForJobs(ended));
     const style::StylizeCleanupResult* first = panel->result();
     QVERIFY(first != nullptr && !panel->resultIsStale());
     QVERIFY(panel->resultFigures(false).front().name.contains(QStringLiteral("tiny_style")));
@@ -540,10 +524,10 @@ class ResultTest : public QObject {
     QVERIFY(!QFile::exists(exported));
     window.show();
     QVERIFY(QTest::qWaitForWindowExposed(&window));
-    QVERIFY(window.saveScreenshot(screenshotPath(QStringLiteral("result_out_of_date"))));
+    QVERIFY(window.saveScreenshot(test::screenshotPath(QStringLiteral("result_out_of_date"))));
 
     // The new style's result replaces it.
-    QVERIFY(waitForJobs(ended, 2));
+    QVERIFY(test::waitForJobs(ended, 2));
     QVERIFY(ended.at(1).at(0).toBool());
     QVERIFY(panel->result() != nullptr && panel->result() != first);
     QVERIFY(!panel->resultIsStale());
@@ -564,7 +548,7 @@ class ResultTest : public QObject {
     }
     QVERIFY(panel->loadNetworkFile(QString::fromStdString(other.string())));
     QCOMPARE(ended.count(), 2);
-    QVERIFY(waitForJobs(ended, 4));
+    QVERIFY(test::waitForJobs(ended, 4));
     QVERIFY(ended.at(2).at(0).toBool() && ended.at(3).at(0).toBool());
     QTest::qWait(300);
     QCOMPARE(ended.count(), 4);  // no job for the inputs in between
@@ -585,13 +569,13 @@ class ResultTest : public QObject {
     QSignalSpy ended(panel, &ResultPanel::jobEnded);
     QVERIFY(panel->loadNetworkFile(QString::fromStdString(file.string())));
     panel->stylize();
-    QVERIFY(waitForJobs(ended));
+    QVERIFY(test::waitForJobs(ended));
     const Eigen::MatrixXd first = panel->result()->stylized.features;
 
     QVERIFY(panel->loadNetworkFile(QString::fromStdString(file.string())));  // the same network: nothing to redo
     QVERIFY(!panel->isBusy());
     QVERIFY(panel->loadNetworkFile(QString::fromStdString(other.string())));
-    QVERIFY(waitForJobs(ended, 2));
+    QVERIFY(test::waitForJobs(ended, 2));
     // Back: the network from the cache, and its result for these inputs remembered: shown, no job.
     QVERIFY(panel->loadNetworkFile(QString::fromStdString(file.string())));
     QVERIFY(!panel->isBusy());
@@ -605,7 +589,7 @@ class ResultTest : public QObject {
     QVERIFY(!panel->isBusy());  // its result is remembered too
     QVERIFY(panel->loadNetworkFile(QString::fromStdString(file.string())));
     QVERIFY2(panel->isBusy(), "a rewritten network file must be read again, and its result redone");
-    QVERIFY(waitForJobs(ended, 3));
+    QVERIFY(test::waitForJobs(ended, 3));
     QVERIFY(panel->result()->stylized.features != first);
   }
 
@@ -698,120 +682,6 @@ class ResultTest : public QObject {
     // A second job starts at once, and the window is destroyed while it may still run.
     panel->stylize();
     QVERIFY(panel->isBusy());
-  }
-
-  // Issue 14: Open Demo asks before it changes the user's roles and result, and never lists a clip twice.
-  void openDemoAsksFirstAndReusesOpenSamples() {
-    if (!resourceDirectory()) QSKIP("no resources directory next to this build");
-    MainWindow window(false);
-    window.setErrorReporter([](const QString& title, const QString& message) { QFAIL(qPrintable(title + message)); });
-    int asked = 0;
-    bool answer = false;
-    QString question;
-    window.setConfirmer([&](const QString&, const QString& text) {
-      ++asked;
-      question = text;
-      return answer;
-    });
-    QVERIFY(window.openDemoScene());  // nothing of the user's yet: no question
-    QCOMPARE(asked, 0);
-    QCOMPARE(window.clipCount(), 2);
-
-    QCOMPARE(window.openFiles({test::fixture(QStringLiteral("zombie.bvh"))}), 1);
-    window.setContentClip(2);
-    QVERIFY(!window.openDemoScene());  // declined: nothing changes
-    QCOMPARE(asked, 1);
-    QVERIFY(question.contains(QStringLiteral("lose their roles")));
-    QCOMPARE(window.contentClip(), 2);
-    QCOMPARE(window.clipCount(), 3);
-
-    answer = true;
-    QVERIFY(window.openDemoScene());
-    QCOMPARE(asked, 2);
-    QCOMPARE(window.clipCount(), 3);  // the samples already open were reused
-    QCOMPARE(window.clip(window.contentClip()).name, QStringLiteral("cmu_131_01_walk.bvh"));
-    QCOMPARE(window.clip(window.styleClip()).name, QStringLiteral("zombie_walk.bvh"));
-  }
-
-  void demoLoadsTheSamplesAndTheBundledNetworkWhenPresent() {
-    const auto resources = resourceDirectory();
-    if (!resources) QSKIP("no resources directory next to this build");
-    MainWindow window(false);
-    std::vector<Report> reports;
-    window.setErrorReporter([&](const QString& title, const QString& message) { reports.push_back({title, message}); });
-    const DemoOutcome outcome = openDemo(window, *window.resultPanel());
-    QVERIFY2(outcome.clips_loaded, qPrintable(outcome.message));
-    QCOMPARE(window.clipCount(), 2);
-    QCOMPARE(window.clip(window.contentClip()).name, QStringLiteral("cmu_131_01_walk.bvh"));
-    QCOMPARE(window.clip(window.styleClip()).name, QStringLiteral("zombie_walk.bvh"));
-    const bool bundled = shippedNetworkFile(*resources, kDemoNetwork).has_value();
-    QCOMPARE(outcome.network_loaded, bundled);
-    QCOMPARE(window.resultPanel()->hasNetwork(), bundled);
-    QVERIFY(!outcome.message.isEmpty());
-    QVERIFY(reports.empty());
-    if (!bundled) return;
-    // The network goes by its label in the style list ("Elderly"), as one chosen there or computed ahead.
-    const auto* choice = window.resultPanel()->findChild<QComboBox*>(QStringLiteral("NetworkChoice"));
-    QVERIFY(choice != nullptr);
-    QCOMPARE(window.resultPanel()->networkName(), choice->currentText());
-    // One click gives a result with the shipped network.
-    window.show();
-    QVERIFY(QTest::qWaitForWindowExposed(&window));
-    QSignalSpy ended(window.resultPanel(), &ResultPanel::jobEnded);
-    QTest::mouseClick(window.resultPanel()->findChild<QPushButton*>(QStringLiteral("StylizeButton")), Qt::LeftButton);
-    QVERIFY(waitForJobs(ended));
-    QVERIFY2(window.resultPanel()->result() != nullptr, reports.empty() ? "" : qPrintable(reports.back().message));
-    const ClipMetrics& cleaned = window.resultPanel()->result()->cleaned_metrics;
-    qInfo("demo with the bundled network: skate %.2f -> %.2f cm/s, residual %.2f cm",
-          window.resultPanel()->result()->raw_metrics.foot_skate_cm_s, cleaned.foot_skate_cm_s, cleaned.residual_mean_cm);
-    QVERIFY(cleaned.foot_skate_cm_s < 0.2 * window.resultPanel()->result()->raw_metrics.foot_skate_cm_s);
-    // The stylizer plants the content's contacts (contact_projection.h), so the clean-up holds every one:
-    // nothing is hatched on the foot tracks.
-    TrackView* tracks = window.timeline()->trackView();
-    const auto firstUnheld = [&](int& track, int& first, int& last) {
-      track = first = last = -1;
-      for (int t : {ContactTrackController::kLeftFootTrack, ContactTrackController::kRightFootTrack}) {
-        const std::vector<bool>& unheld = tracks->unheldFrames(t);
-        const auto begin = std::find(unheld.begin(), unheld.end(), true);
-        if (begin == unheld.end()) continue;
-        track = t;
-        first = static_cast<int>(begin - unheld.begin());
-        last = static_cast<int>(std::find(begin, unheld.end(), false) - unheld.begin()) - 1;
-        return;
-      }
-    };
-    int track = -1, first = -1, last = -1;
-    firstUnheld(track, first, last);
-    QVERIFY2(track < 0, qPrintable(QStringLiteral("frames %1-%2 are not held").arg(first).arg(last)));
-    QVERIFY(cleaned.foot_skate_cm_s < 0.5);
-    // A clip stylized elsewhere, whose feet were not planted (this network without its contact
-    // projection) and whose left foot slides 30 cm through its first long stance and swings back after
-    // it (more than a lock holds: kLockableSpreadCm), is cleaned as given: that stance is hatched, and
-    // dragging over it holds the foot there.
-    const MotionFeatures features =
-        extractFeatures(window.clip(window.contentClip()).motion, *window.clip(window.contentClip()).mapping);
-    style::ContactProjection unplanted;
-    unplanted.iterations = 0;
-    const style::Stylizer elsewhere(nn::loadStyleModel(*shippedNetworkFile(*resources, kDemoNetwork)), "elsewhere", {},
-                                    unplanted);
-    style::StylizedClip sliding = elsewhere.stylize(features, 1.0);
-    QVERIFY(test::slideTheLeftFootThroughAStance(sliding, 30.0));
-    window.resultPanel()->setStylizedClip(sliding, QStringLiteral("stylized elsewhere"));
-    QVERIFY(waitForJobs(ended, 2));
-    QVERIFY(window.resultPanel()->result() != nullptr);
-    firstUnheld(track, first, last);
-    QVERIFY2(track >= 0, "the unplanted clip's result holds every contact: the hatch has nothing to show");
-    const double skate_before = window.resultPanel()->result()->cleaned_metrics.foot_skate_cm_s;
-    const int y = tracks->boolTrackRect(track).center().y();
-    QTest::mousePress(tracks, Qt::LeftButton, Qt::NoModifier, QPoint(static_cast<int>(tracks->xForFrame(first)), y));
-    QTest::mouseMove(tracks, QPoint(static_cast<int>(tracks->xForFrame(last)), y));
-    QTest::mouseRelease(tracks, Qt::LeftButton, Qt::NoModifier, QPoint(static_cast<int>(tracks->xForFrame(last)), y));
-    QVERIFY(QTest::qWaitFor([&] { return !window.resultPanel()->isBusy() && !window.resultPanel()->resultIsStale(); }, 20000));
-    for (int f = first; f <= last; ++f) QVERIFY2(!tracks->unheldFrames(track)[static_cast<size_t>(f)], qPrintable(QString::number(f)));
-    QVERIFY(window.resultPanel()->result()->cleaned_metrics.foot_skate_cm_s < skate_before);
-    window.timeline()->setFrame(200);
-    QTest::qWait(50);
-    QVERIFY(window.saveScreenshot(screenshotPath(QStringLiteral("demo_result"))));
   }
 };
 
