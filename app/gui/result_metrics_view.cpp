@@ -6,7 +6,6 @@
 #include <QTableWidget>
 #include <QVBoxLayout>
 
-#include <cmath>
 #include <vector>
 
 #include "ik/cleanup.h"
@@ -108,7 +107,7 @@ void ResultMetricsView::showResult(const style::StylizeCleanupResult* result) {
   QString where;
   const double clip_fps = result->cleaned.fps();
   if (cleaned.has_residual && cleaned.residual_max_frame >= 0 && result->cleanup_fps > 0.0 && clip_fps > 0.0) {
-    worst_residual_frame_ = static_cast<int>(std::floor(cleaned.residual_max_frame * clip_fps / result->cleanup_fps));
+    worst_residual_frame_ = frameAtRate(cleaned.residual_max_frame, clip_fps / result->cleanup_fps);
     const auto joint = static_cast<CanonicalJoint>(cleaned.residual_max_joint);
     where = tr("Worst: %1 at frame %2 (%3 s). Click to go there.")
                 .arg(QString::fromUtf8(canonicalJointName(joint)))

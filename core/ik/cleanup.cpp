@@ -238,6 +238,8 @@ ContactLocks contactLocks(const CleanupInput& input, const CleanupOptions& optio
 
 }  // namespace
 
+int frameAtRate(int frame, double rate_ratio) { return static_cast<int>(std::floor(frame * rate_ratio + 1e-9)); }
+
 void CleanupOptions::validate() const {
   requireWeight(position_weight, "position_weight");
   requireWeight(hips_weight, "hips_weight");

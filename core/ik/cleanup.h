@@ -151,6 +151,11 @@ struct CleanupWarning {
   int last_frame = -1;
 };
 
+// The first frame, at a rate `rate_ratio` times the solve's, that overlaps solve frame `frame` in time:
+// floor(frame * rate_ratio), 1e-9 added so that 2 x 67 stays 134 whatever the ratio's rounding. How a
+// warning names its first frame (CleanupOptions::warning_fps), and how a front end names any solve frame.
+int frameAtRate(int frame, double rate_ratio);
+
 struct CleanupReport {
   CleanupTermCosts final_costs;
   int frames = 0;

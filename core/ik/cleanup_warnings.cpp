@@ -64,7 +64,7 @@ void RunReporter::closeRun() {
   if (run_first_ < 0) return;
   if (static_cast<size_t>(runs_) < kMaxRunsPerWarning) {
     // The named frames overlapping the run in time (1e-9: 2 x 67 stays 134 whatever the rounding).
-    const int first = static_cast<int>(std::floor(run_first_ * frame_scale_ + 1e-9));
+    const int first = frameAtRate(run_first_, frame_scale_);
     const int last = std::max(first, static_cast<int>(std::ceil((run_last_ + 1) * frame_scale_ - 1e-9)) - 1);
     const std::string span = last > first ? "frames " + std::to_string(first) + "-" + std::to_string(last)
                                           : "frame " + std::to_string(first);

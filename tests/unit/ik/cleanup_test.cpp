@@ -158,6 +158,16 @@ TEST_F(CleanupHumanoid, UnreachableTargetsGiveAWarningAndABestEffortResult) {
 
 // The user's clip may be at another rate than the solve (120 fps content is solved at 60 fps): a
 // warning names the frames of the rate it is asked for, all those that overlap the run in time.
+// A solve frame named at another rate: the first frame there that overlaps it, a ratio rounded just
+// under 2 still doubling it (what the Result panel's worst residual and the warnings both use).
+TEST(CleanupFrameAtRate, NamesTheFirstOverlappingFrame) {
+  EXPECT_EQ(frameAtRate(67, 2.0), 134);
+  EXPECT_EQ(frameAtRate(67, 2.0 - 1e-12), 134);
+  EXPECT_EQ(frameAtRate(5, 0.5), 2);
+  EXPECT_EQ(frameAtRate(0, 0.4), 0);
+  EXPECT_EQ(frameAtRate(7, 1.0), 7);
+}
+
 TEST_F(CleanupHumanoid, WarningsNameTheFramesOfTheRateAskedFor) {
   const Eigen::MatrixXd stretched = leftWristPulledAway();
   const auto named = [&](double warning_fps) {
