@@ -19,6 +19,12 @@ namespace motionstyle::test {
 
 inline QString fixture(const QString& name) { return QDir(QStringLiteral(MOTIONSTYLE_TEST_DATA_DIR)).filePath(name); }
 
+// An error the window reported (MainWindow::setErrorReporter): what its dialog would have said.
+struct Report {
+  QString title;
+  QString message;
+};
+
 // <build>/screenshots/<name>.png (the folder is created).
 inline QString screenshotPath(const QString& name) {
   QDir dir(QStringLiteral(MOTIONSTYLE_SCREENSHOT_DIR));

@@ -27,10 +27,7 @@ using namespace motionstyle;
 
 namespace {
 
-struct Report {
-  QString title;
-  QString message;
-};
+using test::Report;
 
 }  // namespace
 

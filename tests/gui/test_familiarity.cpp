@@ -109,7 +109,7 @@ class FamiliarityTest : public QObject {
     QVERIFY(keep != nullptr && keep->isChecked());
     QSignalSpy ended(panel, &ResultPanel::jobEnded);
     QTest::mouseClick(panel->findChild<QPushButton*>(QStringLiteral("StylizeButton")), Qt::LeftButton);
-    QVERIFY(QTest::qWaitFor([&] { return ended.count() >= 1; }, kJobTimeoutMs));
+    QVERIFY(test::waitForJobs(ended, 1));
     const MotionFeatures content = extractFeatures(window.clip(0).motion, *window.clip(0).mapping);
     const auto velocities = [](const Eigen::MatrixXd& f) { return Eigen::MatrixXd(f.middleRows<3>(kSidewaysVelocity)); };
     QVERIFY(panel->result() != nullptr);
@@ -117,7 +117,7 @@ class FamiliarityTest : public QObject {
     // Unticking it runs again and lets the network set the pace.
     QTest::mouseClick(keep, Qt::LeftButton, {}, QPoint(8, keep->height() / 2));
     QVERIFY(!keep->isChecked());
-    QVERIFY(QTest::qWaitFor([&] { return ended.count() >= 2; }, kJobTimeoutMs));
+    QVERIFY(test::waitForJobs(ended, 2));
     QVERIFY(panel->pathMode() == style::PathMode::Style);
     QVERIFY(velocities(panel->result()->stylized.features) != velocities(content.values));
 
@@ -237,7 +237,7 @@ class FamiliarityTest : public QObject {
     QVERIFY2(label->text().contains(QStringLiteral("rest pose")), qPrintable(label->text()));
     QSignalSpy ended(panel, &ResultPanel::jobEnded);
     QTest::mouseClick(panel->findChild<QPushButton*>(QStringLiteral("StylizeButton")), Qt::LeftButton);
-    QVERIFY(QTest::qWaitFor([&] { return ended.count() >= 1; }, kJobTimeoutMs));
+    QVERIFY(test::waitForJobs(ended, 1));
     QVERIFY(panel->result() != nullptr);
     const Motion& cleaned = panel->result()->cleaned;
     QCOMPARE(cleaned.frameCount(), motion.frameCount());

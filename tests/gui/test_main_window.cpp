@@ -42,10 +42,7 @@ using namespace motionstyle;
 
 namespace {
 
-struct Report {
-  QString title;
-  QString message;
-};
+using test::Report;
 
 QString writeFile(const QTemporaryDir& dir, const QString& name, const QByteArray& content) {
   const QString path = dir.filePath(name);

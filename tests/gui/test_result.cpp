@@ -46,10 +46,7 @@ using namespace motionstyle;
 
 namespace {
 
-struct Report {
-  QString title;
-  QString message;
-};
+using test::Report;
 
 // An untrained but valid tiny style network (16 hidden units, width 5) with the fixtures' statistics.
 std::filesystem::path writeTinyNetwork(const QTemporaryDir& dir, const QString& name = QStringLiteral("tiny_style"),

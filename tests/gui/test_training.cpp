@@ -49,10 +49,7 @@ constexpr qint64 kCancelBoundMs = 1000;
 #endif
 constexpr int kJobTimeoutMs = 60000;
 
-struct Report {
-  QString title;
-  QString message;
-};
+using test::Report;
 
 QByteArray readAll(const QString& path) {
   QFile file(path);

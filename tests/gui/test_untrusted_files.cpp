@@ -19,9 +19,7 @@ using namespace motionstyle;
 
 namespace {
 
-struct Report {
-  QString title, message;
-};
+using test::Report;
 
 // A copy of `fixture` whose text is changed by `edit`.
 QString editedCopy(const QTemporaryDir& dir, const QString& fixture, const QString& name,
