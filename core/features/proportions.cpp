@@ -181,7 +181,9 @@ void enforceBoneLengths(Eigen::MatrixXd& features, const Proportions& proportion
       kept[i] = jointAt(before, f, ankle) + toe_share * (foot_bone.norm() - foot) * direction[i];
     }
     // The height to add, w times: the kept height's difference to the enforced one, less its mean over
-    // the span's contact frames (a span: consecutive frames with w > 0).
+    // the span's contact frames (a span: consecutive frames with w > 0) where that mean is negative (the
+    // enforcement raised the foot: its level is the enforced one); where it is positive (the enforcement
+    // sank the foot) nothing is taken off: the span keeps its level from before too.
     Eigen::VectorXd rise = Eigen::VectorXd::Zero(frames);
     for (Eigen::Index first = 0; first < frames;) {
       if (w(first) <= 0.0) {
@@ -198,7 +200,7 @@ void enforceBoneLengths(Eigen::MatrixXd& features, const Proportions& proportion
           ++planted;
         }
       }
-      if (planted > 0) rise.segment(first, end - first).array() -= sum / planted;
+      if (planted > 0) rise.segment(first, end - first).array() -= std::min(0.0, sum / planted);
       first = end;
     }
     // Reachable ankles: from just past the folded leg to just short of the straight one.

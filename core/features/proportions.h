@@ -76,11 +76,13 @@ void enforceBoneLengths(Eigen::MatrixXd& features, const Proportions& proportion
 // w = 1 on a contact frame of the ankle or toe, falling linearly to 0 over kKeptFootRampFrames either
 // side; that place lies between the ankle's from before and the one that keeps the toe's, by the toe's
 // share of the two weights (only the toe planted: the toe's place; both: halfway). Its height
-// takes back its changes from before, not its level: over each span of frames with w > 0 the ankle
-// rises by w (d - mean d), d the height from before less the enforced one, the mean over the span's
-// contact frames, so a planted foot keeps a still height while the knee's mean bend, which is style,
-// stays the enforced one (keeping the level too weakened elderly, sad and exhausted;
-// docs/decisions.md). A place out of the leg's reach is pulled in to it. contacts: 4 x frames (0/1,
+// takes back its changes from before, and its level only where the enforcement sank it: over each
+// span of frames with w > 0 the ankle rises by w (d - min(mean d, 0)), d the height from before less
+// the enforced one, the mean over the span's contact frames. A planted foot keeps a still height; where
+// the enforcement raised it the knee's mean bend, which is style, stays the enforced one (keeping that
+// level too weakened elderly, sad and exhausted); where it sank it, into the floor the projection had
+// planted it on, the clean-up lifted it back and the depth was residual (docs/decisions.md, "A planted
+// foot the bones sank"). A place out of the leg's reach is pulled in to it. contacts: 4 x frames (0/1,
 // ContactLabel order), or empty for enforceBoneLengths alone. Throws std::invalid_argument as
 // enforceBoneLengths, and for contacts of another shape.
 inline constexpr int kKeptFootRampFrames = 4;

@@ -117,7 +117,8 @@ TEST(Proportions, EnforcingBoneLengthsSetsEveryFrameAndKeepsDirections) {
 // With contacts, the bones are as exact, the legs' frames far from any contact are the plain
 // enforcement's, and on a contact frame the planted joint keeps its horizontal place from before (the
 // ankle where the heel is planted, the toe where only the toe is) and its height's changes, at the
-// plain enforcement's mean height; in between, the place moves linearly with the weight.
+// plain enforcement's mean height where that is higher than before (else at its height from before:
+// EnforcingBoneLengthsNeverSinksAPlantedFoot); in between, the place moves linearly with the weight.
 TEST(Proportions, EnforcingBoneLengthsKeepsPlantedFeetWhereTheyWere) {
   Eigen::MatrixXd noisy = ownFeatures("zombie.bvh");
   const Eigen::Index frames = noisy.cols();
@@ -164,7 +165,7 @@ TEST(Proportions, EnforcingBoneLengthsKeepsPlantedFeetWhereTheyWere) {
     }
     EXPECT_NEAR(ankle.x(), was.x(), 1e-9) << f;
     EXPECT_NEAR(ankle.z(), was.z(), 1e-9) << f;
-    EXPECT_NEAR(ankle.y() - was.y(), rise, 1e-9) << f;
+    EXPECT_NEAR(ankle.y() - was.y(), std::max(rise, 0.0), 1e-9) << f;
     ++within;
   }
   EXPECT_GE(within, 5);
@@ -195,6 +196,40 @@ TEST(Proportions, EnforcingBoneLengthsKeepsPlantedFeetWhereTheyWere) {
   const Eigen::Vector3d at = joint(kept, 18, CanonicalJoint::LeftAnkle);
   EXPECT_NEAR(at.x(), from.x() + 0.6 * (to.x() - from.x()), 1e-9);
   EXPECT_NEAR(at.z(), from.z() + 0.6 * (to.z() - from.z()), 1e-9);
+}
+
+// A planted foot whose leg the output has short (the foot 3 cm up its shin) comes out of the plain
+// enforcement 3 cm lower: into the floor it stood on. With contacts it keeps its height from before.
+// Where the leg is long, the enforcement raises the foot, and that level (the knee's bend) stays.
+TEST(Proportions, EnforcingBoneLengthsNeverSinksAPlantedFoot) {
+  Eigen::MatrixXd own = ownFeatures("zombie.bvh");
+  retargetFeatures(own, measureProportions(own), referenceProportions());  // legs of the reference's length
+  const Eigen::Index frames = own.cols();
+  ASSERT_GT(frames, 40);
+  Eigen::MatrixXd contacts = Eigen::MatrixXd::Zero(kContactCount, frames);
+  contacts.block(static_cast<int>(ContactLabel::LeftHeel), 20, 1, 10).setOnes();
+  const int ankle = index(CanonicalJoint::LeftAnkle), hip = index(CanonicalJoint::LeftHip);
+  const double reach = referenceProportions().bone_length[static_cast<std::size_t>(ankle - 1)] +
+                       referenceProportions().bone_length[static_cast<std::size_t>(ankle)];
+  for (const double up_the_shin : {3.0, -3.0}) {
+    Eigen::MatrixXd before = own;
+    for (const int joint : {ankle, ankle + 1}) before.row(3 * joint + 1).array() += up_the_shin;
+    Eigen::MatrixXd plain = before, kept = before;
+    enforceBoneLengths(plain, referenceProportions());
+    enforceBoneLengths(kept, referenceProportions(), contacts);
+    double plain_rise = 0.0;  // the plain enforcement's mean height over the contact less the one before
+    for (Eigen::Index f = 20; f < 30; ++f) plain_rise += (plain(3 * ankle + 1, f) - before(3 * ankle + 1, f)) / 10.0;
+    if (up_the_shin > 0.0) EXPECT_LT(plain_rise, -2.0);  // the short leg's foot sinks
+    else EXPECT_GT(plain_rise, 2.0);                     // the long leg's rises
+    int within = 0;
+    for (Eigen::Index f = 20; f < 30; ++f) {
+      if ((kept.col(f).segment<3>(3 * ankle) - kept.col(f).segment<3>(3 * hip)).norm() > reach * (1.0 - 1e-5)) continue;
+      ++within;
+      const double height_change = kept(3 * ankle + 1, f) - before(3 * ankle + 1, f);
+      EXPECT_NEAR(height_change, up_the_shin > 0.0 ? 0.0 : plain_rise, 1e-9) << up_the_shin << " frame " << f;
+    }
+    EXPECT_GE(within, 5) << up_the_shin;
+  }
 }
 
 TEST(Proportions, RetargetingThereAndBackIsTheIdentity) {
