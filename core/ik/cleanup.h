@@ -50,7 +50,12 @@ struct CleanupOptions {
   double root_smoothness_weight = 0.5;  // root position second difference (per frame), per cm
   double rotation_smoothness_weight = 5.0;  // solved rotation second difference (per frame), per radian
   double prior_weight_mapped = 2.0;     // rotation vs the content's, joints that are canonical joints, per rad
-  double prior_weight_unmapped = 20.0;  // rotation vs the content's, other joints (clavicles, ...), per rad
+  // The rig's joints between canonical ones (clavicles, extra spine and neck segments), per rad: held
+  // closer to the content than the canonical joints, yet free enough to carry a style's shoulders (the
+  // girdle moves 24-26 degrees in Bandai's styles). At 20 the clavicles stayed within 8 degrees of the
+  // content's and an angry zombie's shoulder 8.5 cm from its target; at 10 they swing up to 26, at 5 up
+  // to 55 (docs/decisions.md, "The clavicles' prior").
+  double prior_weight_unmapped = 10.0;
 
   // --- Contacts. Inside a contact segment the lock has contact_weight. Over contact_blend_seconds
   // before and after it (rounded to frames, at least 1) the lock's share of the pull on the joint,

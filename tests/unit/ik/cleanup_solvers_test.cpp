@@ -346,7 +346,8 @@ TEST_F(CleanupSolvers, AWarmSolveCarriesTheFrameBeforesCorrection) {
   EXPECT_LT(static_cast<double>(warm.total_iterations) / warm.solves, 1.5);
   EXPECT_GT(static_cast<double>(cold.total_iterations) / cold.solves, 2.5);
   const Motion full = cleanupMotion(CleanupInput{clip, mapping, moved, contacts, up, floor, cm}, options, nullptr);
-  EXPECT_LT((worldPositions(again) - worldPositions(full)).cwiseAbs().maxCoeff() * cm, 0.1);  // the solver's tolerance
+  // The solver's tolerance: 2 mm at the clavicles' prior of 10 per rad (under 1 mm at 20).
+  EXPECT_LT((worldPositions(again) - worldPositions(full)).cwiseAbs().maxCoeff() * cm, 0.25);
 }
 
 TEST_F(CleanupSolvers, ACleanupWithMemoryOfAnotherClipSolvesEverything) {
