@@ -208,12 +208,13 @@ TEST(Proportions, EnforcingBoneLengthsNeverSinksAPlantedFoot) {
   ASSERT_GT(frames, 40);
   Eigen::MatrixXd contacts = Eigen::MatrixXd::Zero(kContactCount, frames);
   contacts.block(static_cast<int>(ContactLabel::LeftHeel), 20, 1, 10).setOnes();
-  const int ankle = index(CanonicalJoint::LeftAnkle), hip = index(CanonicalJoint::LeftHip);
-  const double reach = referenceProportions().bone_length[static_cast<std::size_t>(ankle - 1)] +
-                       referenceProportions().bone_length[static_cast<std::size_t>(ankle)];
+  const int hip = index(CanonicalJoint::LeftHip), knee = index(CanonicalJoint::LeftKnee);
+  const int ankle = index(CanonicalJoint::LeftAnkle), toe = index(CanonicalJoint::LeftToe);
+  const double reach = referenceProportions().bone_length[static_cast<std::size_t>(knee)] +
+                       referenceProportions().bone_length[static_cast<std::size_t>(ankle)];  // thigh + shin
   for (const double up_the_shin : {3.0, -3.0}) {
     Eigen::MatrixXd before = own;
-    for (const int joint : {ankle, ankle + 1}) before.row(3 * joint + 1).array() += up_the_shin;
+    for (const int joint : {ankle, toe}) before.row(3 * joint + 1).array() += up_the_shin;
     Eigen::MatrixXd plain = before, kept = before;
     enforceBoneLengths(plain, referenceProportions());
     enforceBoneLengths(kept, referenceProportions(), contacts);
