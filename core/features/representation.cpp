@@ -110,7 +110,7 @@ MotionFeatures extractFeatures(const Motion& clip, const JointMapping& mapping, 
   // Floor: a soft minimum (5th percentile) of the lowest foot joint per frame.
   Eigen::VectorXd lowest_foot = Eigen::VectorXd::Constant(frames, std::numeric_limits<double>::infinity());
   for (CanonicalJoint foot : kContactJoint) lowest_foot = lowest_foot.cwiseMin(world.col(3 * index(foot) + 1));
-  anchor.floor_height = quantile(lowest_foot, 0.05);
+  anchor.floor_height = options.derived_from ? options.derived_from->floor_height : quantile(lowest_foot, 0.05);
   for (int c = 0; c < kJoints; ++c) world.col(3 * c + 1).array() -= anchor.floor_height;
 
   // Root: hips on the floor, smoothed. Facing: across hips + shoulders, crossed with up, smoothed.
@@ -179,18 +179,24 @@ MotionFeatures extractFeatures(const Motion& clip, const JointMapping& mapping, 
                         .cast<double>();
   if (options.retarget_proportions) {
     try {
-      anchor.proportions = measureProportions(result.values);
+      const FeatureAnchor* source = options.derived_from ? &*options.derived_from : nullptr;
+      anchor.proportions = source ? source->proportions : measureProportions(result.values);
       retargetFeatures(result.values, anchor.proportions, referenceProportions());
       if (options.canonical_rig) {
-        anchor.rig = measureRigCorrection(result.values);
+        anchor.rig = source ? source->rig : measureRigCorrection(result.values);
         applyRigCorrection(result.values, anchor.rig);
       }
-      anchor.retarget_height_shift = -softFloor(result.values);
-      shiftHeights(result.values, anchor.retarget_height_shift);
-      const double stance = stanceToeHeight(result.values, result.contacts);
-      if (std::isfinite(stance)) {
-        anchor.retarget_height_shift += kReferenceStanceToeHeightCm - stance;
-        shiftHeights(result.values, kReferenceStanceToeHeightCm - stance);
+      if (source) {
+        anchor.retarget_height_shift = source->retarget_height_shift;
+        shiftHeights(result.values, anchor.retarget_height_shift);
+      } else {
+        anchor.retarget_height_shift = -softFloor(result.values);
+        shiftHeights(result.values, anchor.retarget_height_shift);
+        const double stance = stanceToeHeight(result.values, result.contacts);
+        if (std::isfinite(stance)) {
+          anchor.retarget_height_shift += kReferenceStanceToeHeightCm - stance;
+          shiftHeights(result.values, kReferenceStanceToeHeightCm - stance);
+        }
       }
     } catch (const std::invalid_argument& error) {
       throw InputError(motion.source, 0, std::string("cannot retarget the skeleton's proportions: ") + error.what());

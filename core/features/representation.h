@@ -36,17 +36,6 @@
 
 namespace motionstyle {
 
-struct FeatureOptions {
-  double fps = kDefaultFeatureFps;
-  std::optional<std::string> unit;  // override the guessed length unit ("cm", "m", "inch", "cmu", ...)
-  double root_smoothing_frames = 3.0;
-  double facing_smoothing_frames = 20.0;
-  bool retarget_proportions = true;  // step 7; off only to reproduce networks trained without it
-  // Step 8, for content clips (what the networks transform, and how familiar it is); off for style
-  // clips, whose girdle posture is part of the style, and the loss network's own training data.
-  bool canonical_rig = true;
-};
-
 // Everything needed to map features back to the clip's file space.
 struct FeatureAnchor {
   SpaceConvention convention;
@@ -68,6 +57,23 @@ struct FeatureAnchor {
   // Leading frames of the clip that are its rig's rest pose, not motion (rest_pose_frames.h): the
   // features see the motion continued backward over them, and the clean-up puts them back.
   int rest_pose_frames = 0;
+};
+
+struct FeatureOptions {
+  double fps = kDefaultFeatureFps;
+  std::optional<std::string> unit;  // override the guessed length unit ("cm", "m", "inch", "cmu", ...)
+  double root_smoothing_frames = 3.0;
+  double facing_smoothing_frames = 20.0;
+  bool retarget_proportions = true;  // step 7; off only to reproduce networks trained without it
+  // Step 8, for content clips (what the networks transform, and how familiar it is); off for style
+  // clips, whose girdle posture is part of the style, and the loss network's own training data.
+  bool canonical_rig = true;
+  // A clip derived from another on the same skeleton (a cleaned or edited result of it): that clip's
+  // anchor. Its floor (step 4), proportions (7), girdle correction (8) and height shift (9) are used
+  // instead of being measured on this clip, so that the two are compared in one frame: measured anew,
+  // a cleaned run's few toe contacts moved its step-9 shift by 6 cm and its style distance 4x
+  // (docs/decisions.md, "The lock at the stance's minimax point").
+  std::optional<FeatureAnchor> derived_from;
 };
 
 // Step 9's target: the planted toes' height above the floor in the reference actor's clips, reference

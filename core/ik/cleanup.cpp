@@ -17,6 +17,7 @@
 #include "ik/cleanup_solver.h"
 #include "ik/cleanup_warnings.h"
 #include "ik/contacts.h"
+#include "ik/lock_centre.h"
 #include "motion/kinematics.h"
 
 namespace motionstyle {
@@ -178,8 +179,8 @@ void makeFootLocksConsistent(std::vector<LockSegment>& segments, int heel, int t
   }
 }
 
-// One lock point per contact segment: the median of the targets over the segment (per axis, on the
-// floor plane), at floor + lockHeight. Its weight is full inside the segment; on either side the
+// One lock point per contact segment: the minimax point of the targets over the segment on the floor
+// plane (lock_centre.h), at floor + lockHeight. Its weight is full inside the segment; on either side the
 // lock's share of the pull ramps down (CleanupOptions::contact_blend_seconds); where two ramps meet,
 // the nearer segment wins.
 ContactLocks contactLocks(const CleanupInput& input, const CleanupOptions& options, const ContentFootHeights& feet,
@@ -191,16 +192,10 @@ ContactLocks contactLocks(const CleanupInput& input, const CleanupOptions& optio
     const int column = 3 * index(kContactJoint[static_cast<size_t>(label)]);
     for (const ContactSegment& range : contactSegments(input.contacts, label)) {
       LockSegment segment{label, range, {}};
-      for (int axis = 0; axis < 3; ++axis) {
-        std::vector<double> values;
-        for (int f = range.first; f <= range.last; ++f) {
-          const Eigen::Vector3d p = input.targets.block<1, 3>(f, column).transpose();
-          values.push_back((p - up.dot(p) * up)[axis]);
-        }
-        segment.lock[axis] = median(values);
-      }
+      std::vector<Eigen::Vector3d> targets;
+      for (int f = range.first; f <= range.last; ++f) targets.push_back(input.targets.block<1, 3>(f, column).transpose());
       const LockHeight height = lockHeight(feet, input, feet_world, label, range);
-      segment.lock = segment.lock - up.dot(segment.lock) * up + (input.floor_height + height.above_floor) * up;
+      segment.lock = smallestFloorCircle(targets, up).centre + (input.floor_height + height.above_floor) * up;
       segment.raised = height.raised;
       segments.push_back(segment);
     }

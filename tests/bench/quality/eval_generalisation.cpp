@@ -258,8 +258,12 @@ nlohmann::json evaluateNetwork(const nn::StyleModel& model, const nn::LossNetwor
       for (const std::string& w : warningTexts(cleaned.report)) unreachable += w.find("unreachable") != std::string::npos;
       const RootPathComparison travelled =
           compareClipPaths(e.motion, cleaned.motion, e.mapping, e.clip.features.anchor.convention);
-      // The style the user gets: the cleaned clip's own features against the same style clip.
-      const Eigen::MatrixXd cleaned_features = style::makeMotionClip(cleaned.motion, e.mapping, e.clip.file).features.values;
+      // The style the user gets: the cleaned clip's features against the same style clip, measured in
+      // the content's frame (its floor, proportions, girdle correction and height shift).
+      style::DatasetOptions same_frame;
+      same_frame.features.derived_from = e.clip.features.anchor;
+      const Eigen::MatrixXd cleaned_features =
+          style::makeMotionClip(cleaned.motion, e.mapping, e.clip.file, same_frame).features.values;
       const style::StyleDistances cleaned_distances = style::measureStyleDistances(
           model.loss_network, model.normalisation, e.clip.features.values, cleaned_features,
           style_grams[static_cast<std::size_t>(pairing[i])]);

@@ -119,6 +119,35 @@ TEST(Representation, FeaturesAreInvariantToWhereTheClipIsOnTheFloor) {
               0.0, 1e-6);
 }
 
+// A clip derived from another (a cleaned result) is measured in that clip's frame: raised 5 units, it
+// reads that much higher, where measured on its own its floor and stance are found again.
+TEST(Representation, ADerivedClipIsMeasuredInTheFrameOfTheClipItCameFrom) {
+  Motion motion = readBvh(test::fixture("cmu_131_01.bvh"));
+  const JointMapping mapping = mapJoints(motion.skeleton);
+  const MotionFeatures original = extractFeatures(motion, mapping);
+  FeatureOptions derived;
+  derived.derived_from = original.anchor;
+  EXPECT_LT((extractFeatures(motion, mapping, derived).values - original.values).cwiseAbs().maxCoeff(), 1e-9);
+
+  LocalPoses poses = localPoses(motion);
+  const Eigen::Vector3d up = original.anchor.convention.fileUp();
+  for (int f = 0; f < poses.frames; ++f) poses.translation(f, 0) += 5.0 * up;
+  setLocalPoses(poses, motion);
+  const MotionFeatures remeasured = extractFeatures(motion, mapping);
+  EXPECT_LT((remeasured.values - original.values).cwiseAbs().maxCoeff(), 1e-6);
+  const MotionFeatures in_frame = extractFeatures(motion, mapping, derived);
+  EXPECT_EQ(in_frame.anchor.floor_height, original.anchor.floor_height);
+  EXPECT_EQ(in_frame.anchor.retarget_height_shift, original.anchor.retarget_height_shift);
+  // In reference cm, then scaled with the hips' height to the reference legs (proportions.h).
+  const double raised_cm = 5.0 * original.anchor.convention.cm_per_unit * original.anchor.scale *
+                           referenceProportions().legLength() / original.anchor.proportions.legLength();
+  for (int row = 0; row < kFeatureCount; ++row) {
+    const bool height = row < 3 * kCanonicalJointCount && row % 3 == 1;
+    const Eigen::ArrayXd change = in_frame.values.row(row).array() - original.values.row(row).array();
+    EXPECT_LT((change - (height ? raised_cm : 0.0)).abs().maxCoeff(), 1e-6) << "row " << row;
+  }
+}
+
 TEST(Representation, FeaturesAreAtTheReferenceScaleWhateverTheCharacterSize) {
   Motion motion = readBvh(test::fixture("cmu_131_01.bvh"));
   const JointMapping mapping = mapJoints(motion.skeleton);

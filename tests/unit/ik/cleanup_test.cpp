@@ -2,6 +2,7 @@
 // locked contacts, the floor, unmapped joints untouched, unreachable targets, bounded time, Z-up.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -121,6 +122,34 @@ TEST_F(CleanupHumanoid, AFootLiftingOffQuicklyIsLetGoWithinTheBlend) {
   const double residual = (result_world.block<1, 3>(after, 3 * ankle) -
                            lifted.block<1, 3>(after, 3 * index(CanonicalJoint::LeftAnkle))).norm();
   EXPECT_LT(residual, 4.0) << "the ankle " << residual << " cm behind its targets at frame " << after;
+}
+
+// A foot the targets hold still for most of a stance and then slide 12 cm (a network drifting a planted
+// foot): the lock sits at the middle of the slide, so the foot is never more than half of it from its
+// targets (locked at the still part, the median of the targets, it was 12 cm away at the stance's end).
+TEST_F(CleanupHumanoid, AFootSlidThroughItsStanceIsLockedHalfWayAlongTheSlide) {
+  Eigen::MatrixXi contacts = no_contacts;
+  contacts.block(20, 0, 51, 2).setOnes();  // left heel and toe, frames 20-70
+  Eigen::MatrixXd sliding = targets;
+  const int foot_joints[] = {index(CanonicalJoint::LeftAnkle), index(CanonicalJoint::LeftToe)};
+  for (int f = 0; f < kFrames; ++f)
+    for (int joint : foot_joints) {  // still where frame 20 has it, then 0.8 cm a frame over frames 56-70
+      sliding.block<1, 3>(f, 3 * joint) = targets.block<1, 3>(std::min(f, 20), 3 * joint);
+      sliding(f, 3 * joint + 2) += 0.8 * std::clamp(f - 55, 0, 15);
+    }
+  const Motion result = cleanupMotion(input(sliding, contacts, -50.0), {}, nullptr);
+  const Eigen::MatrixXd result_world = worldPositions(result);
+  const int ankle = mapping[CanonicalJoint::LeftAnkle];
+  double worst = 0.0, moved = 0.0;
+  for (int f = 20; f <= 70; ++f) {
+    const Eigen::Vector3d p = result_world.block<1, 3>(f, 3 * ankle).transpose();
+    const Eigen::Vector3d t = sliding.block<1, 3>(f, 3 * index(CanonicalJoint::LeftAnkle)).transpose();
+    worst = std::max(worst, std::hypot(p.x() - t.x(), p.z() - t.z()));
+    const Eigen::Vector3d start = result_world.block<1, 3>(20, 3 * ankle).transpose();
+    moved = std::max(moved, std::hypot(p.x() - start.x(), p.z() - start.z()));
+  }
+  EXPECT_LT(worst, 6.5) << "the ankle held " << worst << " cm from its sliding targets";
+  EXPECT_LT(moved, 0.2) << "the locked ankle moved " << moved << " cm through its stance";
 }
 
 TEST_F(CleanupHumanoid, FeetStayAboveTheFloor) {
