@@ -1,10 +1,13 @@
 #include "style/style_refinement.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
 
+#include "features/feature_layout.h"
+#include "features/proportions.h"
 #include "nn/losses.h"
 #include "style/cancellation.h"
 #include "style/hidden_style_descent.h"
@@ -19,6 +22,21 @@ void StyleRefinement::validate() const {
   if (!std::isfinite(content_weight) || !std::isfinite(style_weight) || content_weight < 0 || style_weight < 0 ||
       content_weight + style_weight <= 0)
     throw std::invalid_argument("refinement weights must be finite, >= 0 and not both 0");
+}
+
+std::vector<float> transformationShare(const Eigen::MatrixXd& content, Eigen::Index columns) {
+  if (content.rows() != kFeatureCount || content.cols() < 1 || columns < 0)
+    throw std::invalid_argument("transformationShare: expected 66 x frames features and columns >= 0");
+  const double leg = referenceProportions().legLength();
+  const Eigen::Index last = content.cols() - 1;
+  const int hips_height = 3 * static_cast<int>(CanonicalJoint::Hips) + 1;
+  std::vector<float> share(static_cast<std::size_t>(columns));
+  for (Eigen::Index k = 0; k < columns; ++k) {
+    const double hips = 0.5 * (content(hips_height, std::min(2 * k, last)) + content(hips_height, std::min(2 * k + 1, last)));
+    const double x = std::clamp((hips / leg - kCrouchedHipRatio) / (kUprightHipRatio - kCrouchedHipRatio), 0.0, 1.0);
+    share[static_cast<std::size_t>(k)] = static_cast<float>(x * x * (3.0 - 2.0 * x));
+  }
+  return share;
 }
 
 int nearestStyleTarget(const std::vector<nn::StyleTarget>& targets, const nn::Mat<float>& hidden) {

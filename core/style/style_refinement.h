@@ -3,12 +3,15 @@
 // studio's clips; on a clip unlike them it stops short of the style. A few steps of the same
 // objective's content and style terms on this clip's own hidden units (HiddenStyleDescent), from
 // where T left them, finish the job:
-//   H0 = encode(T(x)),  H = H0 - Adam steps on  c * mean((H - encode(x))^2) + s * mean((Gram(H) - G)^2),
+//   H0 = encode(T(x)) (where the content crouches, its own encode(x): transformationShare below),
+//   H = H0 - Adam steps on  c * mean((H - encode(x))^2) + s * mean((Gram(H) - G)^2),
 //   output = decode(H)
 // with c, s eq. 10's content and style weights (what T was trained on) and G the network's stored
-// style target nearest to Gram(H0). Zero iterations give decode(H0), the network's output as it was. Why here and not in the
-// training: augmenting one actor's content did not close the gap to other studios (docs/decisions.md).
+// style target nearest to Gram(H0). Zero iterations give decode(encode(T(x))), the network's output as
+// it was, crouch or not. Why here and not in the training: augmenting one actor's content did not close
+// the gap to other studios (docs/decisions.md).
 
+#include <Eigen/Core>
 #include <atomic>
 #include <vector>
 
@@ -31,6 +34,22 @@ struct StyleRefinement {
 // The index of the target whose Gram matrix is nearest Gram(hidden) (mean squared difference);
 // -1 when there are none. hidden: hidden x frames; every target hidden x hidden.
 int nearestStyleTarget(const std::vector<nn::StyleTarget>& targets, const nn::Mat<float>& hidden);
+
+// Where the refinement starts, per pooled column k (clip frames 2k and 2k + 1): T's share u_k of
+//   H0_k = Hc_k + u_k (encode(T(x))_k - Hc_k),   Hc = encode(x)
+// u = smoothstep((r - kCrouchedHipRatio) / (kUprightHipRatio - kCrouchedHipRatio)) clamped to [0, 1], r the
+// content's hip height over the reference leg length (the mean of the column's two frames). Why: T
+// learnt upright locomotion only and stands a kneeling or crouching character up (CMU 131_01's kneel,
+// hips 0.51: T's output hips at 0.99); started from the content's own hidden units there, the
+// refinement styles the kneel instead. No Bandai locomotion clip's hips go below 0.83 nor a plain CMU
+// walk's or run's below 0.88, so they start where T left them (docs/decisions.md, "A kneel kept").
+constexpr double kUprightHipRatio = 0.80;   // at and above: T's output (u = 1)
+constexpr double kCrouchedHipRatio = 0.65;  // at and below: the content's (u = 0)
+
+// u for `columns` pooled columns of a clip whose features (66 x frames) are `content`; a column past
+// the clip's last frame reads that frame. Throws std::invalid_argument when content has not 66 rows or
+// no frame, or columns < 0.
+std::vector<float> transformationShare(const Eigen::MatrixXd& content, Eigen::Index columns);
 
 // Refines `hidden` (hidden x frames, T's output encoded) in place toward `target` with content
 // `content_hidden` (the same shape). Throws std::invalid_argument for mismatched shapes and

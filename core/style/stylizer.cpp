@@ -99,6 +99,10 @@ Eigen::MatrixXd Stylizer::networkOutput(const Eigen::MatrixXd& features, const E
     network.stylize(input, styled_padded, [&](nn::Mat<float>& hidden) {
       if (refine) {
         nn::Mat<float> clip = hidden.middleCols(first, count);
+        const std::vector<float> share = transformationShare(features, count);
+        for (Eigen::Index k = 0; k < count; ++k)
+          if (share[static_cast<std::size_t>(k)] < 1.0f)
+            clip.col(k) = content_hidden.col(k) + share[static_cast<std::size_t>(k)] * (clip.col(k) - content_hidden.col(k));
         const int target = nearestStyleTarget(model_.style_targets, clip);
         refineHiddenUnits(clip, content_hidden, model_.style_targets[static_cast<std::size_t>(target)].gram,
                           refinement_, cancel);

@@ -7,8 +7,10 @@
 #include <limits>
 #include <random>
 #include <stdexcept>
+#include <vector>
 
 #include "common/errors.h"
+#include "features/proportions.h"
 #include "nn/losses.h"
 #include "nn/transformation_objective.h"
 #include "style/evaluation.h"
@@ -66,6 +68,63 @@ TEST(StyleRefinementInvalid, RefusesBadSettingsAndShapes) {
   EXPECT_THROW(style::nearestStyleTarget({{"walk", randomHidden(7, 7, 4)}}, hidden), std::invalid_argument);
   EXPECT_EQ(style::nearestStyleTarget({}, hidden), -1);
   EXPECT_THROW(style::Stylizer(test::tinyStyleModel(), "tiny", style::StyleRefinement{-1}), std::invalid_argument);
+  EXPECT_THROW(style::transformationShare(Eigen::MatrixXd::Zero(65, 10), 5), std::invalid_argument);
+  EXPECT_THROW(style::transformationShare(Eigen::MatrixXd::Zero(kFeatureCount, 0), 5), std::invalid_argument);
+  EXPECT_THROW(style::transformationShare(Eigen::MatrixXd::Zero(kFeatureCount, 10), -1), std::invalid_argument);
+}
+
+// A clip of `frames` frames whose hips stand at `ratios` (per frame, cycled) of the reference leg length.
+Eigen::MatrixXd hipsAt(const std::vector<double>& ratios, int frames) {
+  Eigen::MatrixXd features = Eigen::MatrixXd::Zero(kFeatureCount, frames);
+  for (int t = 0; t < frames; ++t) features(1, t) = ratios[static_cast<std::size_t>(t) % ratios.size()] * referenceProportions().legLength();
+  return features;
+}
+
+TEST(StyleRefinement, TheTransformationsShareFallsFromUprightToCrouchedHips) {
+  const auto share = [](double ratio) { return style::transformationShare(hipsAt({ratio}, 2), 1)[0]; };
+  EXPECT_EQ(share(1.05), 1.0f);  // a walk
+  EXPECT_EQ(share(style::kUprightHipRatio), 1.0f);
+  EXPECT_FLOAT_EQ(share(0.5 * (style::kUprightHipRatio + style::kCrouchedHipRatio)), 0.5f);
+  EXPECT_EQ(share(style::kCrouchedHipRatio), 0.0f);
+  EXPECT_EQ(share(0.51), 0.0f);  // 131_01's kneel
+  for (double r = 0.60; r < 0.85; r += 0.01) EXPECT_LE(share(r), share(r + 0.01)) << r;
+  // A column is its two frames' mean; columns past the clip read its last frame.
+  const std::vector<float> columns = style::transformationShare(hipsAt({0.5, 1.1, 1.1}, 3), 3);
+  ASSERT_EQ(columns.size(), 3u);
+  EXPECT_GT(columns[0], 0.5f);  // (0.5 + 1.1) / 2 = 0.8
+  EXPECT_EQ(columns[1], 1.0f);
+  EXPECT_EQ(columns[2], 1.0f);
+}
+
+// Where the content crouches the refinement starts from the content's own hidden units: with a step too
+// small to move anything, the output is the content's projection; upright, it is T's output. Compared
+// away from the clip's ends, where the decoder also reads the edge padding's columns (T's).
+TEST(StyleRefinement, ACrouchingClipStartsFromTheContentAndAnUprightOneFromTheNetwork) {
+  const nn::StyleModel model = tinyModelWithTarget();
+  Eigen::MatrixXd upright = test::fixtureClips()[0].features.values;
+  upright.row(1).setConstant(1.05 * referenceProportions().legLength());
+  Eigen::MatrixXd crouched = upright;
+  crouched.row(1).setConstant(0.5 * referenceProportions().legLength());
+  style::StyleRefinement still;
+  still.iterations = 1;
+  still.learning_rate = 1e-12;
+  const style::Stylizer starting(model, "tiny", still);
+  style::StyleRefinement off;
+  off.iterations = 0;
+  const style::Stylizer network(model, "tiny", off);
+  constexpr int kEdge = 32;
+  ASSERT_GT(upright.cols(), 4 * kEdge);
+  const auto difference = [&](const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+    return (a - b).middleCols(kEdge, a.cols() - 2 * kEdge).cwiseAbs().maxCoeff();
+  };
+  const double network_change = difference(network.networkOutput(crouched, {}, style::PathMode::Content),
+                                           starting.projectFeatures(crouched));
+  ASSERT_GT(network_change, 0.01);  // T moves the clip, or the test could not tell the two starts apart
+  EXPECT_LT(difference(starting.networkOutput(crouched, {}, style::PathMode::Content), starting.projectFeatures(crouched)),
+            0.05 * network_change);
+  EXPECT_LT(difference(starting.networkOutput(upright, {}, style::PathMode::Content),
+                       network.networkOutput(upright, {}, style::PathMode::Content)),
+            0.05 * network_change);
 }
 
 // The descent's own eq. 5 (split over the cores by chunks of columns) is nn::styleLoss's, value and
