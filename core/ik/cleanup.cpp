@@ -179,8 +179,8 @@ void makeFootLocksConsistent(std::vector<LockSegment>& segments, int heel, int t
   }
 }
 
-// One lock point per contact segment: the minimax point of the targets over the segment on the floor
-// plane (lock_centre.h), at floor + lockHeight. Its weight is full inside the segment; on either side the
+// One lock point per contact segment: the targets' median moved toward their minimax point on the
+// floor plane by at most lock_shift_cm (lock_centre.h), at floor + lockHeight. Its weight is full inside the segment; on either side the
 // lock's share of the pull ramps down (CleanupOptions::contact_blend_seconds); where two ramps meet,
 // the nearer segment wins.
 ContactLocks contactLocks(const CleanupInput& input, const CleanupOptions& options, const ContentFootHeights& feet,
@@ -195,7 +195,8 @@ ContactLocks contactLocks(const CleanupInput& input, const CleanupOptions& optio
       std::vector<Eigen::Vector3d> targets;
       for (int f = range.first; f <= range.last; ++f) targets.push_back(input.targets.block<1, 3>(f, column).transpose());
       const LockHeight height = lockHeight(feet, input, feet_world, label, range);
-      segment.lock = smallestFloorCircle(targets, up).centre + (input.floor_height + height.above_floor) * up;
+      segment.lock = lockPoint(targets, up, options.lock_shift_cm / input.cm_per_unit) +
+                     (input.floor_height + height.above_floor) * up;
       segment.raised = height.raised;
       segments.push_back(segment);
     }
@@ -248,6 +249,8 @@ void CleanupOptions::validate() const {
   requireWeight(residual_warning_cm, "residual_warning_cm");
   if (!std::isfinite(contact_blend_seconds) || contact_blend_seconds < 0.0)
     throw std::invalid_argument("cleanup options: contact_blend_seconds must be finite and >= 0");
+  if (!std::isfinite(lock_shift_cm) || lock_shift_cm < 0.0)
+    throw std::invalid_argument("cleanup options: lock_shift_cm must be finite and >= 0");
   if (window_frames < 1) throw std::invalid_argument("cleanup options: window_frames must be >= 1");
   if (window_overlap < 0 || window_overlap >= window_frames)
     throw std::invalid_argument("cleanup options: window_overlap must lie in [0, window_frames)");

@@ -64,6 +64,11 @@ struct CleanupOptions {
   // 60): at 0.06 a foot that a style lifts off quickly lagged 8-10 cm behind its targets for the ramp
   // (most of the worst residuals at stance ends); shorter still adds pops (docs/decisions.md).
   double contact_blend_seconds = 0.04;
+  // How far a lock may move from its stance's median toward the point nearest all its targets, cm
+  // (ik/lock_centre.h): enough for a foot the network slides through a long stance (the shifts that
+  // halve such slides were all under 3 cm), not enough to pull a stance's still part off its targets
+  // toward a step inside it.
+  double lock_shift_cm = 5.0;
   bool lock_contacts = true;
   bool keep_above_floor = true;
 
@@ -112,7 +117,7 @@ struct CleanupOptions {
   // Throws std::invalid_argument for a negative or non-finite weight, an empty window, an overlap not
   // smaller than the window, a window over 1 frame for the tree solver, max_iterations < 1, a
   // non-positive budget, chunk_frames < 1, chunk_lead_in < 0, threads < 0, block_frames < 1 or a
-  // negative or non-finite warning_fps.
+  // negative or non-finite warning_fps or lock_shift_cm.
   void validate() const;
 };
 

@@ -5,6 +5,8 @@
 #include <random>
 #include <stdexcept>
 
+#include "features/signal_filters.h"
+
 namespace motionstyle {
 namespace {
 
@@ -59,6 +61,21 @@ FloorCircle smallestFloorCircle(const std::vector<Eigen::Vector3d>& points, cons
     }
   }
   return circle;
+}
+
+Eigen::Vector3d lockPoint(const std::vector<Eigen::Vector3d>& targets, const Eigen::Vector3d& up, double max_shift) {
+  if (!std::isfinite(max_shift) || max_shift < 0.0)
+    throw std::invalid_argument("lockPoint: max_shift must be finite and >= 0");
+  const Eigen::Vector3d centre = smallestFloorCircle(targets, up).centre;  // validates
+  Eigen::Vector3d median_point;
+  std::vector<double> values(targets.size());
+  for (int axis = 0; axis < 3; ++axis) {
+    for (std::size_t i = 0; i < targets.size(); ++i) values[i] = (targets[i] - up.dot(targets[i]) * up)[axis];
+    median_point[axis] = median(values);
+  }
+  const Eigen::Vector3d shift = centre - median_point;
+  const double length = shift.norm();
+  return length > max_shift ? Eigen::Vector3d(median_point + shift * (max_shift / length)) : centre;
 }
 
 }  // namespace motionstyle

@@ -124,32 +124,62 @@ TEST_F(CleanupHumanoid, AFootLiftingOffQuicklyIsLetGoWithinTheBlend) {
   EXPECT_LT(residual, 4.0) << "the ankle " << residual << " cm behind its targets at frame " << after;
 }
 
-// A foot the targets hold still for most of a stance and then slide 12 cm (a network drifting a planted
+// The targets of the left foot through a stance (frames 20-70): still where frame 20 has it, then moving
+// `speed` cm a frame along z over frames 56-70.
+Eigen::MatrixXd footMovingLateInItsStance(const Eigen::MatrixXd& targets, double speed) {
+  Eigen::MatrixXd moving = targets;
+  for (int f = 0; f < static_cast<int>(targets.rows()); ++f)
+    for (CanonicalJoint joint : {CanonicalJoint::LeftAnkle, CanonicalJoint::LeftToe}) {
+      moving.block<1, 3>(f, 3 * index(joint)) = targets.block<1, 3>(std::min(f, 20), 3 * index(joint));
+      moving(f, 3 * index(joint) + 2) += speed * std::clamp(f - 55, 0, 15);
+    }
+  return moving;
+}
+
+// Over frames 20-70: the ankle's largest distance on the floor from its targets, over the still part
+// (20-55) and over the whole stance, and how far the locked ankle moved.
+struct StanceFigures {
+  double still_worst = 0.0, worst = 0.0, moved = 0.0;
+};
+StanceFigures stanceFigures(const Eigen::MatrixXd& result_world, const Eigen::MatrixXd& targets, int ankle) {
+  StanceFigures s;
+  const Eigen::Vector3d start = result_world.block<1, 3>(20, 3 * ankle).transpose();
+  for (int f = 20; f <= 70; ++f) {
+    const Eigen::Vector3d p = result_world.block<1, 3>(f, 3 * ankle).transpose();
+    const Eigen::Vector3d t = targets.block<1, 3>(f, 3 * index(CanonicalJoint::LeftAnkle)).transpose();
+    const double off = std::hypot(p.x() - t.x(), p.z() - t.z());
+    s.worst = std::max(s.worst, off);
+    if (f <= 55) s.still_worst = std::max(s.still_worst, off);
+    s.moved = std::max(s.moved, std::hypot(p.x() - start.x(), p.z() - start.z()));
+  }
+  return s;
+}
+
+// A foot the targets hold still for most of a stance and then slide 8 cm (a network drifting a planted
 // foot): the lock sits at the middle of the slide, so the foot is never more than half of it from its
-// targets (locked at the still part, the median of the targets, it was 12 cm away at the stance's end).
+// targets (locked at the still part, the median of the targets, it was 8 cm away at the stance's end).
 TEST_F(CleanupHumanoid, AFootSlidThroughItsStanceIsLockedHalfWayAlongTheSlide) {
   Eigen::MatrixXi contacts = no_contacts;
   contacts.block(20, 0, 51, 2).setOnes();  // left heel and toe, frames 20-70
-  Eigen::MatrixXd sliding = targets;
-  const int foot_joints[] = {index(CanonicalJoint::LeftAnkle), index(CanonicalJoint::LeftToe)};
-  for (int f = 0; f < kFrames; ++f)
-    for (int joint : foot_joints) {  // still where frame 20 has it, then 0.8 cm a frame over frames 56-70
-      sliding.block<1, 3>(f, 3 * joint) = targets.block<1, 3>(std::min(f, 20), 3 * joint);
-      sliding(f, 3 * joint + 2) += 0.8 * std::clamp(f - 55, 0, 15);
-    }
+  const Eigen::MatrixXd sliding = footMovingLateInItsStance(targets, 8.0 / 15.0);
   const Motion result = cleanupMotion(input(sliding, contacts, -50.0), {}, nullptr);
-  const Eigen::MatrixXd result_world = worldPositions(result);
-  const int ankle = mapping[CanonicalJoint::LeftAnkle];
-  double worst = 0.0, moved = 0.0;
-  for (int f = 20; f <= 70; ++f) {
-    const Eigen::Vector3d p = result_world.block<1, 3>(f, 3 * ankle).transpose();
-    const Eigen::Vector3d t = sliding.block<1, 3>(f, 3 * index(CanonicalJoint::LeftAnkle)).transpose();
-    worst = std::max(worst, std::hypot(p.x() - t.x(), p.z() - t.z()));
-    const Eigen::Vector3d start = result_world.block<1, 3>(20, 3 * ankle).transpose();
-    moved = std::max(moved, std::hypot(p.x() - start.x(), p.z() - start.z()));
-  }
-  EXPECT_LT(worst, 6.5) << "the ankle held " << worst << " cm from its sliding targets";
-  EXPECT_LT(moved, 0.2) << "the locked ankle moved " << moved << " cm through its stance";
+  const StanceFigures s = stanceFigures(worldPositions(result), sliding, mapping[CanonicalJoint::LeftAnkle]);
+  EXPECT_LT(s.worst, 4.5) << "the ankle held " << s.worst << " cm from its sliding targets";
+  EXPECT_LT(s.moved, 0.2) << "the locked ankle moved " << s.moved << " cm through its stance";
+}
+
+// A stance that holds a step (a contact the user extended over a walking foot, 45 cm in 15 frames): the
+// lock leaves the still part at most lock_shift_cm off its targets (half the step, 22 cm, at the
+// minimax point alone).
+TEST_F(CleanupHumanoid, AStepInsideAStanceMovesItsLockNoMoreThanTheBound) {
+  Eigen::MatrixXi contacts = no_contacts;
+  contacts.block(20, 0, 51, 2).setOnes();
+  const Eigen::MatrixXd stepping = footMovingLateInItsStance(targets, 3.0);
+  const Motion result = cleanupMotion(input(stepping, contacts, -50.0), {}, nullptr);
+  const StanceFigures s = stanceFigures(worldPositions(result), stepping, mapping[CanonicalJoint::LeftAnkle]);
+  EXPECT_LT(s.still_worst, CleanupOptions{}.lock_shift_cm + 0.3) << s.still_worst << " cm off through the still part";
+  EXPECT_GT(s.still_worst, 0.5 * CleanupOptions{}.lock_shift_cm);  // moved toward the step, by the bound
+  EXPECT_LT(s.moved, 0.2);
 }
 
 TEST_F(CleanupHumanoid, FeetStayAboveTheFloor) {

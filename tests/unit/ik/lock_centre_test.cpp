@@ -1,5 +1,6 @@
-// smallestFloorCircle: invalid input first, then the circle's properties (it holds every point, no
-// smaller circle does, heights along `up` do not matter, it turns with the points).
+// smallestFloorCircle and lockPoint: invalid input first, then the circle's properties (it holds every
+// point, no smaller circle does, heights along `up` do not matter, it turns with the points) and the
+// lock's bounded move from the median.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -92,6 +93,23 @@ TEST(SmallestFloorCircle, TurnsWithThePointsAndWorksForAZUpFloor) {
   const FloorCircle z_circle = smallestFloorCircle(z_up, Eigen::Vector3d::UnitZ());
   EXPECT_TRUE(z_circle.centre.isApprox(Eigen::Vector3d(circle.centre.x(), -circle.centre.z(), 0.0), 1e-9));
   EXPECT_NEAR(z_circle.radius, circle.radius, 1e-9);
+}
+
+TEST(LockPoint, RejectsAShiftBoundThatIsNegativeOrNotFinite) {
+  EXPECT_THROW(lockPoint({onFloor(0, 0)}, kUp, -1.0), std::invalid_argument);
+  EXPECT_THROW(lockPoint({onFloor(0, 0)}, kUp, std::numeric_limits<double>::infinity()), std::invalid_argument);
+  EXPECT_THROW(lockPoint({}, kUp, 1.0), std::invalid_argument);
+}
+
+// A foot still at the origin for seven frames, then slid 8 cm along x over three: the median is the
+// still point, the minimax point 4 cm along; the lock goes from one toward the other by at most the bound.
+TEST(LockPoint, MovesFromTheMedianTowardTheMinimaxPointByAtMostTheBound) {
+  std::vector<Eigen::Vector3d> stance(7, onFloor(0, 0, 3.0));
+  for (double x : {3.0, 6.0, 8.0}) stance.push_back(onFloor(x, 0, 3.0));
+  EXPECT_TRUE(lockPoint(stance, kUp, 0.0).isApprox(onFloor(0, 0), 1e-12));
+  EXPECT_TRUE(lockPoint(stance, kUp, 10.0).isApprox(onFloor(4, 0), 1e-9));
+  EXPECT_TRUE(lockPoint(stance, kUp, 2.5).isApprox(onFloor(2.5, 0), 1e-9));
+  EXPECT_NEAR(lockPoint(stance, kUp, 4.0).y(), 0.0, 1e-12);  // on the plane through the origin
 }
 
 }  // namespace
