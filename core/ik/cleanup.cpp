@@ -180,9 +180,9 @@ void makeFootLocksConsistent(std::vector<LockSegment>& segments, int heel, int t
 }
 
 // One lock point per contact segment: the targets' median moved toward their minimax point on the
-// floor plane by at most lock_shift_cm (lock_centre.h), at floor + lockHeight. Its weight is full inside the segment; on either side the
-// lock's share of the pull ramps down (CleanupOptions::contact_blend_seconds); where two ramps meet,
-// the nearer segment wins.
+// floor plane by at most lock_shift_cm (lock_centre.h), at floor + lockHeight. Its weight is full
+// inside the segment; on either side the lock's share of the pull ramps down
+// (CleanupOptions::contact_blend_seconds); where two ramps meet, the nearer segment wins.
 ContactLocks contactLocks(const CleanupInput& input, const CleanupOptions& options, const ContentFootHeights& feet,
                           const Eigen::MatrixXd& feet_world) {
   const int frames = static_cast<int>(input.targets.rows());
