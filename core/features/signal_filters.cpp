@@ -57,6 +57,11 @@ void removeFrameAlternation(Eigen::MatrixXd& features) {
   }
 }
 
+double smoothstep(double x) {
+  x = std::clamp(x, 0.0, 1.0);
+  return x * x * (3.0 - 2.0 * x);
+}
+
 double quantile(const Eigen::VectorXd& values, double q) {
   if (values.size() == 0) return 0.0;
   std::vector<double> sorted(values.data(), values.data() + values.size());

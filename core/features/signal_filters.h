@@ -16,6 +16,10 @@ Eigen::MatrixXd gaussianSmoothRows(const Eigen::MatrixXd& signal, double sigma_f
 // 0.93 at 5 Hz and 0.75 at 10 Hz at 60 fps. Fewer than 3 frames: unchanged (nothing alternates).
 void removeFrameAlternation(Eigen::MatrixXd& features);
 
+// 3x^2 - 2x^3 of x clamped to [0, 1]: 0 at and below 0, 1 at and above 1, with zero slope at both
+// ends (ramps that start and stop without a kink).
+double smoothstep(double x);
+
 // The q-quantile (0..1) of the values, by partial sort of a copy. Empty input: 0.
 double quantile(const Eigen::VectorXd& values, double q);
 

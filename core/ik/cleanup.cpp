@@ -103,11 +103,6 @@ LockHeight lockHeight(const ContentFootHeights& feet, const CleanupInput& input,
   return {*planted, false};
 }
 
-double smoothstep(double x) {
-  x = std::clamp(x, 0.0, 1.0);
-  return x * x * (3.0 - 2.0 * x);
-}
-
 struct ContactLocks {
   std::vector<std::array<Eigen::Vector3d, kContactCount>> positions;  // per frame, file units
   Eigen::MatrixXd weights;                                            // frames x 4

@@ -8,6 +8,7 @@
 
 #include "features/feature_layout.h"
 #include "features/proportions.h"
+#include "features/signal_filters.h"
 #include "nn/losses.h"
 #include "style/cancellation.h"
 #include "style/hidden_style_descent.h"
@@ -33,8 +34,8 @@ std::vector<float> transformationShare(const Eigen::MatrixXd& content, Eigen::In
   std::vector<float> share(static_cast<std::size_t>(columns));
   for (Eigen::Index k = 0; k < columns; ++k) {
     const double hips = 0.5 * (content(hips_height, std::min(2 * k, last)) + content(hips_height, std::min(2 * k + 1, last)));
-    const double x = std::clamp((hips / leg - kCrouchedHipRatio) / (kUprightHipRatio - kCrouchedHipRatio), 0.0, 1.0);
-    share[static_cast<std::size_t>(k)] = static_cast<float>(x * x * (3.0 - 2.0 * x));
+    share[static_cast<std::size_t>(k)] =
+        static_cast<float>(smoothstep((hips / leg - kCrouchedHipRatio) / (kUprightHipRatio - kCrouchedHipRatio)));
   }
   return share;
 }

@@ -118,5 +118,16 @@ TEST(Quantile, PicksTheRankedValue) {
   EXPECT_EQ(quantile(values, 7.0), 5.0);  // clamped to [0, 1]
 }
 
+TEST(Smoothstep, RisesFromZeroToOneWithFlatEnds) {
+  EXPECT_EQ(smoothstep(-3.0), 0.0);
+  EXPECT_EQ(smoothstep(0.0), 0.0);
+  EXPECT_EQ(smoothstep(1.0), 1.0);
+  EXPECT_EQ(smoothstep(2.0), 1.0);
+  EXPECT_DOUBLE_EQ(smoothstep(0.5), 0.5);
+  EXPECT_DOUBLE_EQ(smoothstep(0.25), 1.0 - smoothstep(0.75));  // symmetric about the middle
+  EXPECT_LT(smoothstep(1e-3), 1e-5);                             // flat at the ends
+  for (double x = 0.0; x < 1.0; x += 0.05) EXPECT_LT(smoothstep(x), smoothstep(x + 0.05)) << x;
+}
+
 }  // namespace
 }  // namespace motionstyle
