@@ -106,6 +106,10 @@ LockHeight lockHeight(const ContentFootHeights& feet, const CleanupInput& input,
 struct ContactLocks {
   std::vector<std::array<Eigen::Vector3d, kContactCount>> positions;  // per frame, file units
   Eigen::MatrixXd weights;                                            // frames x 4
+  // frames x 4: 1 where the frame lies before the first or after the last frame of its segment at
+  // which the targets hold the joint down (within kLoneLiftToleranceCm of the lock): the style has not
+  // landed yet, or has lifted off already (raiseLoneLocks).
+  Eigen::MatrixXi departing;
   int segments = 0;
 };
 
@@ -174,6 +178,36 @@ void makeFootLocksConsistent(std::vector<LockSegment>& segments, int heel, int t
   }
 }
 
+// Where the style lands a heel or toe later than the content's contact starts, or lifts it off
+// earlier than it ends, the lock holds it still over the floor but not under its targets: on the
+// frames before the first and after the last at which the targets hold the joint within
+// kLoneLiftToleranceCm of its lock (ContactLocks::departing, ramps included), and while the other
+// joint of that foot is not locked, the lock rises with the targets by
+//   lift = max(0, up . (target - lock) - tolerance) x (1 - a_other),
+// a_other the other joint's lock share (its ramp's, CleanupOptions::contact_blend_seconds), so that
+// the lift fades in and out with the other lock instead of jumping. Why: the toe of a quicker
+// toe-off was held on the floor while its targets rose 9.5 cm (CMU 131_01's kneel exit with elderly:
+// 11.7 cm from them, 6.9 with the lift); its horizontal place, which alone makes a skate, stays
+// locked. Not with both joints locked: the foot's length ties them, one rising moves the other
+// along the floor (3-9 cm/s of skate), nor in a stance's middle, where a lock rising with the
+// targets' bobs would float a planted foot (docs/decisions.md, "A toe the style lifts off").
+constexpr double kLoneLiftToleranceCm = 1.0;
+
+void raiseLoneLocks(ContactLocks& locks, const CleanupInput& input, const CleanupOptions& options) {
+  const double tolerance = kLoneLiftToleranceCm / input.cm_per_unit;
+  const double position_weight2 = options.position_weight * options.position_weight;
+  for (Eigen::Index f = 0; f < locks.weights.rows(); ++f)
+    for (int label = 0; label < kContactCount; ++label) {
+      if (locks.weights(f, label) <= 0.0 || locks.departing(f, label) == 0) continue;
+      const double other_weight = locks.weights(f, label ^ 1);  // ContactLabel order: heel, toe per foot
+      const double other_share = other_weight * other_weight / (other_weight * other_weight + position_weight2);
+      Eigen::Vector3d& lock = locks.positions[static_cast<size_t>(f)][static_cast<size_t>(label)];
+      const int column = 3 * index(kContactJoint[static_cast<size_t>(label)]);
+      const double above = input.up.dot(input.targets.block<1, 3>(f, column).transpose() - lock) - tolerance;
+      if (above > 0.0) lock += above * (1.0 - other_share) * input.up;
+    }
+}
+
 // One lock point per contact segment: the targets' median moved toward their minimax point on the
 // floor plane by at most lock_shift_cm (lock_centre.h), at floor + lockHeight. Its weight is full
 // inside the segment; on either side the lock's share of the pull ramps down
@@ -209,9 +243,18 @@ ContactLocks contactLocks(const CleanupInput& input, const CleanupOptions& optio
   locks.positions.assign(static_cast<size_t>(frames), {});
   locks.weights = Eigen::MatrixXd::Zero(frames, kContactCount);
   locks.segments = static_cast<int>(segments.size());
+  locks.departing = Eigen::MatrixXi::Zero(frames, kContactCount);
+  const double tolerance = kLoneLiftToleranceCm / input.cm_per_unit;
   const int blend = std::max(1, static_cast<int>(std::lround(options.contact_blend_seconds * input.content.fps())));
   for (const LockSegment& segment : segments) {
     const ContactSegment& range = segment.frames;
+    const int column = 3 * index(kContactJoint[static_cast<size_t>(segment.label)]);
+    int first_down = range.last + 1, last_down = range.first - 1;
+    for (int f = range.first; f <= range.last; ++f)
+      if (up.dot(input.targets.block<1, 3>(f, column).transpose() - segment.lock) <= tolerance) {
+        first_down = std::min(first_down, f);
+        last_down = f;
+      }
     for (int f = std::max(0, range.first - blend); f <= std::min(frames - 1, range.last + blend); ++f) {
       const int distance = f < range.first ? range.first - f : (f > range.last ? f - range.last : 0);
       const double share = smoothstep(1.0 - distance / static_cast<double>(blend + 1));
@@ -221,9 +264,12 @@ ContactLocks contactLocks(const CleanupInput& input, const CleanupOptions& optio
       if (weight > locks.weights(f, segment.label)) {
         locks.weights(f, segment.label) = weight;
         locks.positions[static_cast<size_t>(f)][static_cast<size_t>(segment.label)] = segment.lock;
+        // Never down (a lock the targets hold above it throughout): lockHeight placed it, no lift.
+        locks.departing(f, segment.label) = last_down >= first_down && (f < first_down || f > last_down);
       }
     }
   }
+  raiseLoneLocks(locks, input, options);
   return locks;
 }
 

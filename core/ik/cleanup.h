@@ -3,7 +3,10 @@
 // clip's file space by the caller) into a clean clip on the user's OWN skeleton:
 //   - bone lengths exact BY CONSTRUCTION (only rotations and the root position are solved; every other
 //     joint keeps the content's per-frame local translation),
-//   - heels and toes locked to one world position during each labelled contact (blended in and out),
+//   - heels and toes locked to one world position during each labelled contact (blended in and out);
+//     where the targets lift a heel or toe before its contact ends (or land it after it starts) while
+//     the other joint of that foot is free, the lock holds it still over the floor only and lets it
+//     rise with them (a quicker toe-off kept),
 //   - foot joints kept above the floor and, during contact, at the height the content's own foot has
 //     there (its median over the contact where the content has that foot planted, else the clip's
 //     rest height: captured floors are not flat; the rest height too where the targets hold the foot
