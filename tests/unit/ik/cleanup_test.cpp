@@ -210,13 +210,13 @@ TEST_F(CleanupHumanoid, AToeTheStyleLiftsOffEarlyRisesWithItsTargetsAndStaysStil
   toe_alone.block(20, 0, 11, 1).setOnes();  // left heel 20-30
   toe_alone.block(20, 1, 41, 1).setOnes();  // left toe 20-60
   const Eigen::MatrixXd alone = worldPositions(cleanupMotion(input(raised, toe_alone, 0.0), {}, nullptr));
-  const double floor_height = alone(45, 3 * toe + 1);
+  const double locked_height = alone(45, 3 * toe + 1);
   for (int f = 52; f <= 60; ++f) {
     EXPECT_NEAR(alone(f, 3 * toe + 1), raised(f, toe_column + 1), 1.3) << "frame " << f;
     EXPECT_LT(std::hypot(alone(f, 3 * toe) - alone(45, 3 * toe), alone(f, 3 * toe + 2) - alone(45, 3 * toe + 2)), 0.2)
         << "the toe slid at frame " << f;
   }
-  for (int f = 36; f <= 40; ++f) EXPECT_NEAR(alone(f, 3 * toe + 1), floor_height, 0.3) << "frame " << f;
+  for (int f = 36; f <= 40; ++f) EXPECT_NEAR(alone(f, 3 * toe + 1), locked_height, 0.3) << "frame " << f;
 
   Eigen::MatrixXi both = no_contacts;
   both.block(20, 0, 41, 2).setOnes();  // heel and toe 20-60
