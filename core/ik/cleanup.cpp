@@ -200,7 +200,8 @@ void raiseLoneLocks(ContactLocks& locks, const CleanupInput& input, const Cleanu
     for (int label = 0; label < kContactCount; ++label) {
       if (locks.weights(f, label) <= 0.0 || locks.departing(f, label) == 0) continue;
       const double other_weight = locks.weights(f, label ^ 1);  // ContactLabel order: heel, toe per foot
-      const double other_share = other_weight * other_weight / (other_weight * other_weight + position_weight2);
+      const double other_share =  // 0 where the other joint is free (also when position_weight is 0)
+          other_weight <= 0.0 ? 0.0 : other_weight * other_weight / (other_weight * other_weight + position_weight2);
       Eigen::Vector3d& lock = locks.positions[static_cast<size_t>(f)][static_cast<size_t>(label)];
       const int column = 3 * index(kContactJoint[static_cast<size_t>(label)]);
       const double above = input.up.dot(input.targets.block<1, 3>(f, column).transpose() - lock) - tolerance;

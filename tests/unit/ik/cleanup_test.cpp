@@ -201,7 +201,8 @@ Eigen::MatrixXd footRaisedFrom(const Eigen::MatrixXd& targets, int lift_from, do
 // 20-30, toe 20-60, the foot raised from frame 48): the toe rises with its targets (within the 1 cm
 // tolerance; held down it was 14 cm under them at frame 60) and stays still over the floor. With the
 // heel locked too, the foot's length ties the two: the toe stays down. A 3 cm wobble inside the stance
-// is not followed (the foot stays on the floor).
+// is not followed (the foot stays on the floor). With no pull toward the targets (position_weight 0)
+// the lone lock still holds the toe in place (its lift read 0 / 0 there).
 TEST_F(CleanupHumanoid, AToeTheStyleLiftsOffEarlyRisesWithItsTargetsAndStaysStill) {
   const Eigen::MatrixXd raised = footRaisedFrom(targets, 48, 3.0);
   const int toe = mapping[CanonicalJoint::LeftToe];
@@ -222,6 +223,14 @@ TEST_F(CleanupHumanoid, AToeTheStyleLiftsOffEarlyRisesWithItsTargetsAndStaysStil
   both.block(20, 0, 41, 2).setOnes();  // heel and toe 20-60
   const Eigen::MatrixXd tied = worldPositions(cleanupMotion(input(raised, both, 0.0), {}, nullptr));
   EXPECT_NEAR(tied(58, 3 * toe + 1), tied(45, 3 * toe + 1), 1.0);
+
+  // Without the pull toward the targets (a valid weight of 0) the lone toe is still held in place.
+  CleanupOptions locks_only;
+  locks_only.position_weight = 0.0;
+  const Eigen::MatrixXd held = worldPositions(cleanupMotion(input(raised, toe_alone, 0.0), locks_only, nullptr));
+  for (int f = 52; f <= 60; ++f)
+    EXPECT_LT(std::hypot(held(f, 3 * toe) - held(45, 3 * toe), held(f, 3 * toe + 2) - held(45, 3 * toe + 2)), 0.2)
+        << "frame " << f;
 }
 
 TEST_F(CleanupHumanoid, FeetStayAboveTheFloor) {
