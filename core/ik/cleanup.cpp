@@ -79,7 +79,9 @@ ContentFootHeights contentFootHeights(const CleanupInput& input, const Eigen::Ma
 //   - the targets hold it HIGHER: the style raised it (a run on the forefoot, the heel 8-14 cm up
 //     through the content's heel contact): the lock keeps it still where the targets hold it, the
 //     median of their heights (`raised`). Locked on the floor it was pulled 8-14 cm down, most of the
-//     other studios' runs' worst residual (docs/decisions.md, "A heel the style raises").
+//     other studios' runs' worst residual (docs/decisions.md, "A heel the style raises"). The same
+//     against the rest height where the content never plants the joint over the segment (a run's
+//     quick stance: Bandai's run 012 with masculine, 9.7 -> 4.6 cm).
 constexpr double kLockHeightToleranceCm = 5.0;
 
 struct LockHeight {
@@ -91,15 +93,14 @@ LockHeight lockHeight(const ContentFootHeights& feet, const CleanupInput& input,
                       int label, const ContactSegment& range) {
   const double rest = feet.rest[static_cast<size_t>(label)];
   const std::optional<double> planted = plantedHeight(feet.planted, input, feet_world, label, range.first, range.last);
-  if (!planted) return {rest, false};
   const int column = 3 * index(kContactJoint[static_cast<size_t>(label)]);
   std::vector<double> heights;
   for (int f = range.first; f <= range.last; ++f)
     heights.push_back(input.up.dot(input.targets.block<1, 3>(f, column).transpose()) - input.floor_height);
   const double target_height = median(std::move(heights));
-  const double above_content_cm = (target_height - *planted) * input.cm_per_unit;
+  const double above_content_cm = (target_height - planted.value_or(rest)) * input.cm_per_unit;
   if (above_content_cm > kLockHeightToleranceCm) return {target_height, true};
-  if (above_content_cm < -kLockHeightToleranceCm) return {rest, false};
+  if (!planted || above_content_cm < -kLockHeightToleranceCm) return {rest, false};
   return {*planted, false};
 }
 

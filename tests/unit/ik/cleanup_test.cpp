@@ -233,6 +233,27 @@ TEST_F(CleanupHumanoid, AToeTheStyleLiftsOffEarlyRisesWithItsTargetsAndStaysStil
         << "frame " << f;
 }
 
+// A foot the style holds up through a contact whose content foot is never planted (it moves there, as
+// a run's quick stance can: no height of its own to compare with): the targets hold the left heel and
+// toe still, 10 cm above where the foot rests, over a heel and toe contact. The locks take the
+// targets' height, as where the content plants the foot (lockHeight); at the clip's rest height they
+// pulled the foot 10 cm down (Bandai's run 012 with masculine: its heel 9.7 cm from the targets, and
+// the toe's lock, placed the foot's length from it, turned the foot up; docs/decisions.md).
+TEST_F(CleanupHumanoid, AFootTheStyleHoldsUpWhereTheContentNeverPlantsItStaysUp) {
+  Eigen::MatrixXd held = footRaisedFrom(targets, kFrames, 0.0);  // the foot held still, not lifted
+  const int heel_column = 3 * index(CanonicalJoint::LeftAnkle), toe_column = 3 * index(CanonicalJoint::LeftToe);
+  held.col(heel_column + 1).array() += 10.0;
+  held.col(toe_column + 1).array() += 10.0;
+  Eigen::MatrixXi contacts = no_contacts;
+  contacts.block(20, 0, 21, 2).setOnes();  // left heel and toe, frames 20-40
+  const Eigen::MatrixXd cleaned = worldPositions(cleanupMotion(input(held, contacts, 0.0), {}, nullptr));
+  const int heel = mapping[CanonicalJoint::LeftAnkle], toe = mapping[CanonicalJoint::LeftToe];
+  for (int f = 22; f <= 38; ++f) {
+    EXPECT_NEAR(cleaned(f, 3 * heel + 1), held(f, heel_column + 1), 2.0) << "frame " << f;
+    EXPECT_NEAR(cleaned(f, 3 * toe + 1), held(f, toe_column + 1), 2.0) << "frame " << f;
+  }
+}
+
 TEST_F(CleanupHumanoid, FeetStayAboveTheFloor) {
   Eigen::MatrixXd lowered = targets;
   for (int c = 0; c < kCanonicalJointCount; ++c) lowered.col(3 * c + 1).array() -= 12.0;  // toes ~10 cm under
