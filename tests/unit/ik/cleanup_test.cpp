@@ -200,9 +200,11 @@ Eigen::MatrixXd footRaisedFrom(const Eigen::MatrixXd& targets, int lift_from, do
 // A toe the style lifts off before the content's contact ends, its heel already free (heel contact
 // 20-30, toe 20-60, the foot raised from frame 48): the toe rises with its targets (within the 1 cm
 // tolerance; held down it was 14 cm under them at frame 60) and stays still over the floor. With the
-// heel locked too, the foot's length ties the two: the toe stays down. A 3 cm wobble inside the stance
-// is not followed (the foot stays on the floor). With no pull toward the targets (position_weight 0)
-// the lone lock still holds the toe in place (its lift read 0 / 0 there).
+// heel locked too, the two rise together by the smaller lift (the whole foot lifted off: the toe was
+// held 11 cm under it), but a toe rising while its heel stays down stays down: the foot's length ties
+// the two. A 3 cm wobble inside the stance is not followed (the foot stays on the floor). With no pull
+// toward the targets (position_weight 0) the lone lock still holds the toe in place (its lift read
+// 0 / 0 there).
 TEST_F(CleanupHumanoid, AToeTheStyleLiftsOffEarlyRisesWithItsTargetsAndStaysStill) {
   const Eigen::MatrixXd raised = footRaisedFrom(targets, 48, 3.0);
   const int toe = mapping[CanonicalJoint::LeftToe];
@@ -221,7 +223,17 @@ TEST_F(CleanupHumanoid, AToeTheStyleLiftsOffEarlyRisesWithItsTargetsAndStaysStil
 
   Eigen::MatrixXi both = no_contacts;
   both.block(20, 0, 41, 2).setOnes();  // heel and toe 20-60
-  const Eigen::MatrixXd tied = worldPositions(cleanupMotion(input(raised, both, 0.0), {}, nullptr));
+  const Eigen::MatrixXd together = worldPositions(cleanupMotion(input(raised, both, 0.0), {}, nullptr));
+  for (int f = 52; f <= 60; ++f) {
+    EXPECT_NEAR(together(f, 3 * toe + 1), raised(f, toe_column + 1), 1.3) << "frame " << f;
+    EXPECT_LT(std::hypot(together(f, 3 * toe) - together(45, 3 * toe), together(f, 3 * toe + 2) - together(45, 3 * toe + 2)),
+              0.2)
+        << "the foot slid at frame " << f;
+  }
+  Eigen::MatrixXd toe_only = raised;  // the heel's targets held down (with the wobble), the toe's rising
+  const int heel_height = 3 * index(CanonicalJoint::LeftAnkle) + 1;
+  toe_only.col(heel_height) = footRaisedFrom(targets, kFrames, 3.0).col(heel_height);
+  const Eigen::MatrixXd tied = worldPositions(cleanupMotion(input(toe_only, both, 0.0), {}, nullptr));
   EXPECT_NEAR(tied(58, 3 * toe + 1), tied(45, 3 * toe + 1), 1.0);
 
   // Without the pull toward the targets (a valid weight of 0) the lone toe is still held in place.

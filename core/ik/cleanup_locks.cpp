@@ -1,0 +1,260 @@
+// The clean-up's contact locks (cleanup_locks.h): lock heights, the foot's two locks kept a foot's
+// length apart, and locks that rise with a style's earlier lift-off.
+
+#include "ik/cleanup_locks.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <utility>
+
+#include "features/foot_contacts.h"
+#include "features/signal_filters.h"
+#include "ik/lock_centre.h"
+
+namespace motionstyle::ik_detail {
+namespace {
+
+// The content's contact joints (ContactLabel order) as the columns of feet_world (frames x 12).
+constexpr std::array<int, kContactCount> kFeetColumns = {0, 1, 2, 3};
+
+// The median height above the floor of contact joint `label` over frames first..last where the content
+// has it planted (at least 0), file units; nothing when it is planted on none of them.
+std::optional<double> plantedHeight(const ContactLabels& planted, const CleanupInput& input,
+                                    const Eigen::MatrixXd& feet_world, int label, int first, int last) {
+  std::vector<double> heights;
+  for (int f = first; f <= last && f < planted.rows(); ++f)
+    if (planted(f, label) != 0)
+      heights.push_back(input.up.dot(feet_world.block<1, 3>(f, 3 * label).transpose()) - input.floor_height);
+  if (heights.empty()) return std::nullopt;
+  return std::max(0.0, median(std::move(heights)));
+}
+
+// The height above the floor of one lock: the content's own height of that joint over the segment
+// where the content has it planted, else the clip's rest height. Why per segment: captured floors are
+// not flat (CMU 07_01's left ankle rests 6.0 cm up in one step and 8.9 in the next); one clip-wide
+// height lifted or sank every step by the difference. Where the targets hold the joint more than
+// kLockHeightToleranceCm from the content's height over the segment, the content's height is not the
+// target foot's:
+//   - the targets hold it LOWER: the content's foot was not standing on its sole there (a kneel: CMU
+//     131_01's ankle planted 15 cm up on its instep, while a style network stands the character up),
+//     so the content's height says nothing of the floor under the target's foot: the rest height;
+//   - the targets hold it HIGHER: the style raised it (a run on the forefoot, the heel 8-14 cm up
+//     through the content's heel contact): the lock keeps it still where the targets hold it, the
+//     median of their heights (`raised`). Locked on the floor it was pulled 8-14 cm down, most of the
+//     other studios' runs' worst residual (docs/decisions.md, "A heel the style raises"). The same
+//     against the rest height where the content never plants the joint over the segment (a run's
+//     quick stance: Bandai's run 012 with masculine, 9.7 -> 4.6 cm).
+constexpr double kLockHeightToleranceCm = 5.0;
+
+struct LockHeight {
+  double above_floor = 0.0;  // file units
+  bool raised = false;       // the targets' height, above the content's
+};
+
+LockHeight lockHeight(const ContentFootHeights& feet, const CleanupInput& input, const Eigen::MatrixXd& feet_world,
+                      int label, const ContactSegment& range) {
+  const double rest = feet.rest[static_cast<size_t>(label)];
+  const std::optional<double> planted = plantedHeight(feet.planted, input, feet_world, label, range.first, range.last);
+  const int column = 3 * index(kContactJoint[static_cast<size_t>(label)]);
+  std::vector<double> heights;
+  for (int f = range.first; f <= range.last; ++f)
+    heights.push_back(input.up.dot(input.targets.block<1, 3>(f, column).transpose()) - input.floor_height);
+  const double target_height = median(std::move(heights));
+  const double above_content_cm = (target_height - planted.value_or(rest)) * input.cm_per_unit;
+  if (above_content_cm > kLockHeightToleranceCm) return {target_height, true};
+  if (!planted || above_content_cm < -kLockHeightToleranceCm) return {rest, false};
+  return {*planted, false};
+}
+
+struct LockSegment {
+  int label = 0;
+  ContactSegment frames;
+  Eigen::Vector3d lock = Eigen::Vector3d::Zero();  // file units
+  bool raised = false;                               // LockHeight::raised
+};
+
+// Heel and toe locks of one foot that are active together must sit as far apart as the foot is long,
+// or the solver, unable to meet both, moves the toe when the heel lock lets go (a visible skate).
+// Segments are visited in start order, so that chains of overlaps stay consistent, and the later of
+// two overlapping segments is moved along the floor so that the two locks lie the foot's length apart
+// (their heights kept). But where one of the two is raised (lockHeight) and the other is not, the
+// raised one moves, up or down: the foot pivots on the joint that is down, so the raised lock keeps its
+// place over the floor and takes the height at which it lies the foot's length from the other. Moved
+// along the floor instead, a heel raised 15 cm toward a toe on the floor came 12 cm from its targets
+// (docs/decisions.md). An earlier raised lock already placed against its own partner is not moved again.
+void makeFootLocksConsistent(std::vector<LockSegment>& segments, int heel, int toe, double foot_length,
+                             const Eigen::Vector3d& up) {
+  std::vector<LockSegment*> foot;
+  for (LockSegment& segment : segments)
+    if (segment.label == heel || segment.label == toe) foot.push_back(&segment);
+  std::sort(foot.begin(), foot.end(), [](const LockSegment* a, const LockSegment* b) {
+    return a->frames.first < b->frames.first;
+  });
+  std::vector<bool> placed(foot.size(), false);  // moved to lie the foot's length from a partner
+  for (size_t i = 0; i < foot.size(); ++i) {
+    LockSegment& later = *foot[i];
+    size_t anchor = i;
+    int best_overlap = 0;
+    for (size_t j = 0; j < i; ++j) {
+      if (foot[j]->label == later.label) continue;
+      const int overlap = std::min(foot[j]->frames.last, later.frames.last) -
+                          std::max(foot[j]->frames.first, later.frames.first) + 1;
+      if (overlap > best_overlap) {
+        best_overlap = overlap;
+        anchor = j;
+      }
+    }
+    if (anchor == i) continue;
+    const bool raise_later = later.raised && !foot[anchor]->raised;
+    const bool raise_anchor = foot[anchor]->raised && !later.raised && !placed[anchor];
+    if (raise_later || raise_anchor) {
+      LockSegment& raised = raise_later ? later : *foot[anchor];
+      const LockSegment& down = raise_later ? *foot[anchor] : later;
+      Eigen::Vector3d across = raised.lock - down.lock;
+      across -= up.dot(across) * up;
+      const double horizontal = across.norm();
+      if (horizontal < foot_length)
+        raised.lock = down.lock + across + std::sqrt(foot_length * foot_length - horizontal * horizontal) * up;
+      else if (horizontal > 1e-9)  // further than the foot is long: brought in, level with the other
+        raised.lock = down.lock + across * (foot_length / horizontal);
+      placed[raise_later ? i : anchor] = true;
+      continue;
+    }
+    const LockSegment& fixed = *foot[anchor];
+    Eigen::Vector3d along = later.lock - fixed.lock;
+    const double height = up.dot(along);
+    along -= height * up;
+    if (along.norm() < 1e-9) continue;  // no direction to keep: leave it
+    const double horizontal_length = std::sqrt(std::max(0.0, foot_length * foot_length - height * height));
+    later.lock = fixed.lock + along.normalized() * horizontal_length + height * up;
+    placed[i] = true;
+  }
+}
+
+// Where the style lands a heel or toe later than the content's contact starts, or lifts it off
+// earlier than it ends, the lock holds it still over the floor but not under its targets. Its level
+// is the higher of the lock's height and the targets' lowest over the segment (the style's own stance
+// height; ContactLocks::down_level); on the frames before the first and after the last at which the
+// targets hold the joint within kLiftToleranceCm of that level (ContactLocks::departing, ramps
+// included) the joint may rise by
+//   lift = max(0, up . target - level - tolerance),
+// and its lock rises by (1 - a_other) x lift + a_other x min(lift, lift_other), a_other the foot's
+// other joint's lock share (its ramp's, CleanupOptions::contact_blend_seconds; 0 where it is free) and
+// lift_other that joint's own lift (0 unless it departs too). So a lone joint rises with its targets;
+// a heel and toe both locked rise together by the smaller lift, which keeps the foot's length between
+// them; one rising while the other stays down stays down too (the foot's length ties them: one rising
+// moves the other along the floor, 3-9 cm/s of skate); and in a stance's middle nothing rises, where a
+// lock following the targets' bobs would float a planted foot. Why: the toe of a quicker toe-off was
+// held on the floor while its targets rose 9.5 cm (CMU 131_01's kneel exit with elderly: 11.7 cm from
+// them, 6.9 with the lift), and a whole foot the style lifts off early 11-13 cm (131_01, exhausted:
+// 13.4 -> 6.2 cm); its horizontal place, which alone makes a skate, stays locked (docs/decisions.md,
+// "A toe the style lifts off", "A foot the style lifts off").
+constexpr double kLiftToleranceCm = 1.0;
+
+void raiseDepartingLocks(ContactLocks& locks, const CleanupInput& input, const CleanupOptions& options) {
+  const double tolerance = kLiftToleranceCm / input.cm_per_unit;
+  const double position_weight2 = options.position_weight * options.position_weight;
+  for (Eigen::Index f = 0; f < locks.weights.rows(); ++f) {
+    std::array<double, kContactCount> lift{};
+    for (int label = 0; label < kContactCount; ++label) {
+      if (locks.weights(f, label) <= 0.0 || locks.departing(f, label) == 0) continue;
+      const int column = 3 * index(kContactJoint[static_cast<size_t>(label)]);
+      const double height = input.up.dot(input.targets.block<1, 3>(f, column).transpose());
+      lift[static_cast<size_t>(label)] = std::max(0.0, height - locks.down_level(f, label) - tolerance);
+    }
+    for (int label = 0; label < kContactCount; ++label) {
+      const double own = lift[static_cast<size_t>(label)];
+      if (own <= 0.0) continue;
+      const double other_weight = locks.weights(f, label ^ 1);  // ContactLabel order: heel, toe per foot
+      const double other_share =  // 0 where the other joint is free (also when position_weight is 0)
+          other_weight <= 0.0 ? 0.0 : other_weight * other_weight / (other_weight * other_weight + position_weight2);
+      const double tied = std::min(own, lift[static_cast<size_t>(label ^ 1)]);
+      locks.positions[static_cast<size_t>(f)][static_cast<size_t>(label)] +=
+          ((1.0 - other_share) * own + other_share * tied) * input.up;
+    }
+  }
+}
+
+}  // namespace
+
+ContentFootHeights contentFootHeights(const CleanupInput& input, const Eigen::MatrixXd& feet_world) {
+  const double body_height = restPoseBodyHeight(input.content.skeleton, input.up);
+  ContentFootHeights feet;
+  feet.rest = estimateRestHeights(feet_world, kFeetColumns, input.up, input.floor_height, body_height);
+  feet.planted = detectContacts(feet_world, kFeetColumns, input.up, input.floor_height, input.content.fps(), body_height);
+  const int last = static_cast<int>(feet.planted.rows()) - 1;
+  for (int label = 0; label < kContactCount; ++label)
+    if (const std::optional<double> height = plantedHeight(feet.planted, input, feet_world, label, 0, last))
+      feet.rest[static_cast<size_t>(label)] = *height;
+  return feet;
+}
+
+ContactLocks contactLocks(const CleanupInput& input, const CleanupOptions& options, const ContentFootHeights& feet,
+                          const Eigen::MatrixXd& feet_world) {
+  const int frames = static_cast<int>(input.targets.rows());
+  const Eigen::Vector3d& up = input.up;
+  std::vector<LockSegment> segments;
+  for (int label = 0; label < kContactCount; ++label) {
+    const int column = 3 * index(kContactJoint[static_cast<size_t>(label)]);
+    for (const ContactSegment& range : contactSegments(input.contacts, label)) {
+      LockSegment segment{label, range, {}};
+      std::vector<Eigen::Vector3d> targets;
+      for (int f = range.first; f <= range.last; ++f) targets.push_back(input.targets.block<1, 3>(f, column).transpose());
+      const LockHeight height = lockHeight(feet, input, feet_world, label, range);
+      segment.lock = lockPoint(targets, up, options.lock_shift_cm / input.cm_per_unit) +
+                     (input.floor_height + height.above_floor) * up;
+      segment.raised = height.raised;
+      segments.push_back(segment);
+    }
+  }
+
+  // The foot's length on the content skeleton (ankle to toe), as it lies when both are planted.
+  for (const auto& [heel, toe] : {std::pair{0, 1}, std::pair{2, 3}}) {
+    std::vector<double> lengths;
+    for (Eigen::Index f = 0; f < feet_world.rows(); ++f)
+      lengths.push_back((feet_world.block<1, 3>(f, 3 * heel) - feet_world.block<1, 3>(f, 3 * toe)).norm());
+    makeFootLocksConsistent(segments, heel, toe, median(lengths), up);
+  }
+
+  ContactLocks locks;
+  locks.positions.assign(static_cast<size_t>(frames), {});
+  locks.weights = Eigen::MatrixXd::Zero(frames, kContactCount);
+  locks.segments = static_cast<int>(segments.size());
+  locks.departing = Eigen::MatrixXi::Zero(frames, kContactCount);
+  locks.down_level = Eigen::MatrixXd::Zero(frames, kContactCount);
+  const double tolerance = kLiftToleranceCm / input.cm_per_unit;
+  const int blend = std::max(1, static_cast<int>(std::lround(options.contact_blend_seconds * input.content.fps())));
+  for (const LockSegment& segment : segments) {
+    const ContactSegment& range = segment.frames;
+    const int column = 3 * index(kContactJoint[static_cast<size_t>(segment.label)]);
+    double lowest = up.dot(input.targets.block<1, 3>(range.first, column).transpose());
+    for (int f = range.first + 1; f <= range.last; ++f)
+      lowest = std::min(lowest, up.dot(input.targets.block<1, 3>(f, column).transpose()));
+    const double level = std::max(up.dot(segment.lock), lowest);  // raiseDepartingLocks
+    int first_down = range.last + 1, last_down = range.first - 1;
+    for (int f = range.first; f <= range.last; ++f)
+      if (up.dot(input.targets.block<1, 3>(f, column).transpose()) - level <= tolerance) {
+        first_down = std::min(first_down, f);
+        last_down = f;
+      }
+    for (int f = std::max(0, range.first - blend); f <= std::min(frames - 1, range.last + blend); ++f) {
+      const int distance = f < range.first ? range.first - f : (f > range.last ? f - range.last : 0);
+      const double share = smoothstep(1.0 - distance / static_cast<double>(blend + 1));
+      const double weight = share >= 1.0 ? options.contact_weight
+                                         : std::min(options.contact_weight,
+                                                    options.position_weight * std::sqrt(share / (1.0 - share)));
+      if (weight > locks.weights(f, segment.label)) {
+        locks.weights(f, segment.label) = weight;
+        locks.positions[static_cast<size_t>(f)][static_cast<size_t>(segment.label)] = segment.lock;
+        // Never down (a lock the targets hold above it throughout): lockHeight placed it, no lift.
+        locks.departing(f, segment.label) = last_down >= first_down && (f < first_down || f > last_down);
+        locks.down_level(f, segment.label) = level;
+      }
+    }
+  }
+  raiseDepartingLocks(locks, input, options);
+  return locks;
+}
+
+}  // namespace motionstyle::ik_detail
