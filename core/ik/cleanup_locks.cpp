@@ -231,7 +231,8 @@ ContactLocks contactLocks(const CleanupInput& input, const CleanupOptions& optio
     double lowest = up.dot(input.targets.block<1, 3>(range.first, column).transpose());
     for (int f = range.first + 1; f <= range.last; ++f)
       lowest = std::min(lowest, up.dot(input.targets.block<1, 3>(f, column).transpose()));
-    const double level = std::max(up.dot(segment.lock), lowest);  // raiseDepartingLocks
+    // raiseDepartingLocks' level; the lowest target lies within it, so every segment has a down frame.
+    const double level = std::max(up.dot(segment.lock), lowest);
     int first_down = range.last + 1, last_down = range.first - 1;
     for (int f = range.first; f <= range.last; ++f)
       if (up.dot(input.targets.block<1, 3>(f, column).transpose()) - level <= tolerance) {
@@ -247,8 +248,7 @@ ContactLocks contactLocks(const CleanupInput& input, const CleanupOptions& optio
       if (weight > locks.weights(f, segment.label)) {
         locks.weights(f, segment.label) = weight;
         locks.positions[static_cast<size_t>(f)][static_cast<size_t>(segment.label)] = segment.lock;
-        // Never down (a lock the targets hold above it throughout): lockHeight placed it, no lift.
-        locks.departing(f, segment.label) = last_down >= first_down && (f < first_down || f > last_down);
+        locks.departing(f, segment.label) = f < first_down || f > last_down;
         locks.down_level(f, segment.label) = level;
       }
     }
