@@ -212,12 +212,15 @@ TEST_F(CleanupHumanoid, AToeTheStyleLiftsOffEarlyRisesWithItsTargetsAndStaysStil
   Eigen::MatrixXi toe_alone = no_contacts;
   toe_alone.block(20, 0, 11, 1).setOnes();  // left heel 20-30
   toe_alone.block(20, 1, 41, 1).setOnes();  // left toe 20-60
+  // How far the cleaned toe has moved over the floor since frame 45, in the stance.
+  const auto slidSince45 = [&](const Eigen::MatrixXd& cleaned, int f) {
+    return std::hypot(cleaned(f, 3 * toe) - cleaned(45, 3 * toe), cleaned(f, 3 * toe + 2) - cleaned(45, 3 * toe + 2));
+  };
   const Eigen::MatrixXd alone = worldPositions(cleanupMotion(input(raised, toe_alone, 0.0), {}, nullptr));
   const double locked_height = alone(45, 3 * toe + 1);
   for (int f = 52; f <= 60; ++f) {
     EXPECT_NEAR(alone(f, 3 * toe + 1), raised(f, toe_column + 1), 1.3) << "frame " << f;
-    EXPECT_LT(std::hypot(alone(f, 3 * toe) - alone(45, 3 * toe), alone(f, 3 * toe + 2) - alone(45, 3 * toe + 2)), 0.2)
-        << "the toe slid at frame " << f;
+    EXPECT_LT(slidSince45(alone, f), 0.2) << "the toe slid at frame " << f;
   }
   for (int f = 36; f <= 40; ++f) EXPECT_NEAR(alone(f, 3 * toe + 1), locked_height, 0.3) << "frame " << f;
 
@@ -226,9 +229,7 @@ TEST_F(CleanupHumanoid, AToeTheStyleLiftsOffEarlyRisesWithItsTargetsAndStaysStil
   const Eigen::MatrixXd together = worldPositions(cleanupMotion(input(raised, both, 0.0), {}, nullptr));
   for (int f = 52; f <= 60; ++f) {
     EXPECT_NEAR(together(f, 3 * toe + 1), raised(f, toe_column + 1), 1.3) << "frame " << f;
-    EXPECT_LT(std::hypot(together(f, 3 * toe) - together(45, 3 * toe), together(f, 3 * toe + 2) - together(45, 3 * toe + 2)),
-              0.2)
-        << "the foot slid at frame " << f;
+    EXPECT_LT(slidSince45(together, f), 0.2) << "the foot slid at frame " << f;
   }
   Eigen::MatrixXd toe_only = raised;  // the heel's targets held down (with the wobble), the toe's rising
   const int heel_height = 3 * index(CanonicalJoint::LeftAnkle) + 1;
@@ -241,8 +242,7 @@ TEST_F(CleanupHumanoid, AToeTheStyleLiftsOffEarlyRisesWithItsTargetsAndStaysStil
   locks_only.position_weight = 0.0;
   const Eigen::MatrixXd held = worldPositions(cleanupMotion(input(raised, toe_alone, 0.0), locks_only, nullptr));
   for (int f = 52; f <= 60; ++f)
-    EXPECT_LT(std::hypot(held(f, 3 * toe) - held(45, 3 * toe), held(f, 3 * toe + 2) - held(45, 3 * toe + 2)), 0.2)
-        << "frame " << f;
+    EXPECT_LT(slidSince45(held, f), 0.2) << "frame " << f;
 }
 
 // A foot the style holds up through a contact whose content foot is never planted (it moves there, as
