@@ -48,8 +48,10 @@ std::optional<double> plantedHeight(const ContactLabels& planted, const CleanupI
 constexpr double kLockHeightToleranceCm = 5.0;
 
 struct LockHeight {
-  double above_floor = 0.0;  // file units
-  bool raised = false;       // the targets' height, above the content's
+  double above_floor = 0.0;          // the lock's, file units
+  bool raised = false;               // the targets' height, above the content's
+  double targets_above_floor = 0.0;  // the targets' median height over the segment, file units
+  double targets_over_content_cm = 0.0;  // that height less the content's planted (else rest) height, cm
 };
 
 LockHeight lockHeight(const ContentFootHeights& feet, const CleanupInput& input, const Eigen::MatrixXd& feet_world,
@@ -62,17 +64,40 @@ LockHeight lockHeight(const ContentFootHeights& feet, const CleanupInput& input,
     heights.push_back(input.up.dot(input.targets.block<1, 3>(f, column).transpose()) - input.floor_height);
   const double target_height = median(std::move(heights));
   const double above_content_cm = (target_height - planted.value_or(rest)) * input.cm_per_unit;
-  if (above_content_cm > kLockHeightToleranceCm) return {target_height, true};
-  if (!planted || above_content_cm < -kLockHeightToleranceCm) return {rest, false};
-  return {*planted, false};
+  if (above_content_cm > kLockHeightToleranceCm) return {target_height, true, target_height, above_content_cm};
+  if (!planted || above_content_cm < -kLockHeightToleranceCm) return {rest, false, target_height, above_content_cm};
+  return {*planted, false, target_height, above_content_cm};
 }
 
 struct LockSegment {
   int label = 0;
   ContactSegment frames;
   Eigen::Vector3d lock = Eigen::Vector3d::Zero();  // file units
-  bool raised = false;                               // LockHeight::raised
+  LockHeight height;
 };
+
+// A foot the style holds up whole: where a heel and a toe lock of one foot overlap and only one of them
+// is raised (lockHeight), the other is raised to its targets' median height too when the two joints'
+// targets stand on average more than kLockHeightToleranceCm over the content's,
+//   (over_heel + over_toe) / 2 > kLockHeightToleranceCm.
+// Why: the raised one then pivoted down to the other's lock on the content's height
+// (makeFootLocksConsistent) and came 7-10 cm under its targets (CMU 131_01's way into the kneel, the
+// style holding the foot 4.7 and 6.8 cm up: angry 10.8 -> 7.4 cm; docs/decisions.md, "A foot the style
+// holds up whole").
+void raiseWholeFeet(std::vector<LockSegment>& segments, int heel, int toe, const Eigen::Vector3d& up) {
+  for (LockSegment& a : segments) {
+    if (a.label != heel) continue;
+    for (LockSegment& b : segments) {
+      if (b.label != toe || a.height.raised == b.height.raised) continue;
+      if (std::min(a.frames.last, b.frames.last) < std::max(a.frames.first, b.frames.first)) continue;  // apart
+      if (0.5 * (a.height.targets_over_content_cm + b.height.targets_over_content_cm) <= kLockHeightToleranceCm) continue;
+      LockHeight& low = a.height.raised ? b.height : a.height;
+      (a.height.raised ? b.lock : a.lock) += (low.targets_above_floor - low.above_floor) * up;
+      low.above_floor = low.targets_above_floor;
+      low.raised = true;
+    }
+  }
+}
 
 // Heel and toe locks of one foot that are active together must sit as far apart as the foot is long,
 // or the solver, unable to meet both, moves the toe when the heel lock lets go (a visible skate).
@@ -106,8 +131,8 @@ void makeFootLocksConsistent(std::vector<LockSegment>& segments, int heel, int t
       }
     }
     if (anchor == i) continue;
-    const bool raise_later = later.raised && !foot[anchor]->raised;
-    const bool raise_anchor = foot[anchor]->raised && !later.raised && !placed[anchor];
+    const bool raise_later = later.height.raised && !foot[anchor]->height.raised;
+    const bool raise_anchor = foot[anchor]->height.raised && !later.height.raised && !placed[anchor];
     if (raise_later || raise_anchor) {
       LockSegment& raised = raise_later ? later : *foot[anchor];
       const LockSegment& down = raise_later ? *foot[anchor] : later;
@@ -198,13 +223,12 @@ ContactLocks contactLocks(const CleanupInput& input, const CleanupOptions& optio
   for (int label = 0; label < kContactCount; ++label) {
     const int column = 3 * index(kContactJoint[static_cast<size_t>(label)]);
     for (const ContactSegment& range : contactSegments(input.contacts, label)) {
-      LockSegment segment{label, range, {}};
+      LockSegment segment{label, range, {}, {}};
       std::vector<Eigen::Vector3d> targets;
       for (int f = range.first; f <= range.last; ++f) targets.push_back(input.targets.block<1, 3>(f, column).transpose());
-      const LockHeight height = lockHeight(feet, input, feet_world, label, range);
+      segment.height = lockHeight(feet, input, feet_world, label, range);
       segment.lock = lockPoint(targets, up, options.lock_shift_cm / input.cm_per_unit) +
-                     (input.floor_height + height.above_floor) * up;
-      segment.raised = height.raised;
+                     (input.floor_height + segment.height.above_floor) * up;
       segments.push_back(segment);
     }
   }
@@ -214,6 +238,7 @@ ContactLocks contactLocks(const CleanupInput& input, const CleanupOptions& optio
     std::vector<double> lengths;
     for (Eigen::Index f = 0; f < feet_world.rows(); ++f)
       lengths.push_back((feet_world.block<1, 3>(f, 3 * heel) - feet_world.block<1, 3>(f, 3 * toe)).norm());
+    raiseWholeFeet(segments, heel, toe, up);
     makeFootLocksConsistent(segments, heel, toe, median(lengths), up);
   }
 

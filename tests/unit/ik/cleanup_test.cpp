@@ -266,6 +266,23 @@ TEST_F(CleanupHumanoid, AFootTheStyleHoldsUpWhereTheContentNeverPlantsItStaysUp)
   }
 }
 
+// The style holds the whole foot up, the heel 7 cm and the toe 4 cm (only the heel over the 5 cm at
+// which a lock takes its targets' height): both locks rise, neither is pulled to the other's height.
+TEST_F(CleanupHumanoid, AFootTheStyleHoldsUpWholeIsHeldUpWhole) {
+  Eigen::MatrixXd held = footRaisedFrom(targets, kFrames, 0.0);
+  const int heel_column = 3 * index(CanonicalJoint::LeftAnkle), toe_column = 3 * index(CanonicalJoint::LeftToe);
+  held.col(heel_column + 1).array() += 7.0;
+  held.col(toe_column + 1).array() += 4.0;
+  Eigen::MatrixXi contacts = no_contacts;
+  contacts.block(20, 0, 21, 2).setOnes();  // left heel and toe, frames 20-40
+  const Eigen::MatrixXd cleaned = worldPositions(cleanupMotion(input(held, contacts, 0.0), {}, nullptr));
+  const int heel = mapping[CanonicalJoint::LeftAnkle], toe = mapping[CanonicalJoint::LeftToe];
+  for (int f = 22; f <= 38; ++f) {
+    EXPECT_NEAR(cleaned(f, 3 * heel + 1), held(f, heel_column + 1), 2.0) << "frame " << f;
+    EXPECT_NEAR(cleaned(f, 3 * toe + 1), held(f, toe_column + 1), 2.0) << "frame " << f;
+  }
+}
+
 TEST_F(CleanupHumanoid, FeetStayAboveTheFloor) {
   Eigen::MatrixXd lowered = targets;
   for (int c = 0; c < kCanonicalJointCount; ++c) lowered.col(3 * c + 1).array() -= 12.0;  // toes ~10 cm under
