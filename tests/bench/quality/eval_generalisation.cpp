@@ -4,7 +4,7 @@
 //
 //   eval_generalisation [--models DIR] [--loss-network FILE] [--styles elderly,sad,...] [--data BANDAI_ROOT]
 //                       [--fixtures SHARED_FIXTURES] [--samples DIR] [--no-cleanup] [--per-joint]
-//                       [--path content|style] [--probes] [--json FILE]
+//                       [--path content|style] [--probes] [--frontier] [--json FILE]
 //                       [--refine STEPS] [--refine-rate LR] [--refine-content C] [--refine-style S]
 //
 // Clip sets:
@@ -18,7 +18,9 @@
 // Per network and clip: style distance ratio and content distance (eval's definitions), familiarity
 // (style/familiarity.h), and unless --no-cleanup the IK clean-up's residual (its worst: where, in the
 // JSON), skate and "unreachable" warnings, and the cleaned output's root path against the content's
-// (features/root_path.h).
+// (features/root_path.h). --frontier adds, per network, the least content distance at which any method
+// could bring the Bandai clips to their measured mean style ratio and the other studios' clips to the
+// same ratio and to 1.25x it (style_content_frontier.h: issue 12's two goals against each other).
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -39,6 +41,7 @@
 #include "style/stylized_cleanup.h"
 #include "style/stylizer.h"
 #include "style/training.h"
+#include "style_content_frontier.h"
 
 namespace fs = std::filesystem;
 using namespace motionstyle;
@@ -204,7 +207,8 @@ struct NetworkFigures {
 
 nlohmann::json evaluateNetwork(const nn::StyleModel& model, const nn::LossNetworkModel& loss_network, const ClipSet& set,
                                const fs::path& data, bool cleanup, style::PathMode path, const CleanupOptions& cleanup_options,
-                               const style::StyleRefinement& refinement, NetworkFigures& figures) {
+                               const style::StyleRefinement& refinement, NetworkFigures& figures,
+                               std::vector<bench::FrontierClip>* frontier) {
   // Style clips by label from the network's own metadata ("style_for_walk" -> file name).
   std::map<std::string, std::string> style_for;
   for (const auto& [key, value] : model.metadata.properties)
@@ -250,6 +254,13 @@ nlohmann::json evaluateNetwork(const nn::StyleModel& model, const nn::LossNetwor
     figures.content_after += ev.content_distance_after;
     figures.familiarity += ev.reconstruction_joint_error_cm;
     ++figures.clips;
+    if (frontier != nullptr) {
+      const int frames = static_cast<int>(clips[i].features.values.cols());
+      const nn::Mat<float> normalised = model.normalisation.normalized(clips[i].features.values);
+      frontier->push_back({model.loss_network.encode(normalised, frames).cast<double>(),
+                           style_grams[static_cast<std::size_t>(pairing[i])].cast<double>(),
+                           normalised.cast<double>(), &model.loss_network});
+    }
     if (cleanup) {
       const EvalClip& e = *used[i];
       const style::StylizedClip stylized = stylizer.stylize(e.clip.features, 1.0, path);
@@ -310,6 +321,46 @@ void printFigures(const std::string& network, const std::string& set, const Netw
   std::printf("\n");
 }
 
+// Issue 12's style and content goals against the least content distance any method could reach
+// (style_content_frontier.h): the Bandai clips at their measured mean style ratio, the other studios'
+// at the same ratio and at kStyleRatioGoal times it, in the hidden units and in motions.
+constexpr double kStyleRatioGoal = 1.25, kContentDistanceGoal = 2.0;
+
+nlohmann::json printFrontier(const std::string& network, const std::map<std::string, NetworkFigures>& measured,
+                             const std::map<std::string, std::vector<bench::FrontierClip>>& clips) {
+  const auto bandai = measured.find("bandai-style-heldout"), other = measured.find("other-studios");
+  if (bandai == measured.end() || other == measured.end() || bandai->second.clips == 0 || other->second.clips == 0)
+    return nullptr;
+  const double bandai_ratio = bandai->second.style_ratio / bandai->second.clips;
+  const double bandai_content = bandai->second.content_after / bandai->second.clips;
+  nlohmann::json out = {{"bandai_style_ratio", bandai_ratio}, {"bandai_measured_content", bandai_content}};
+  for (const bench::FrontierSpace space : {bench::FrontierSpace::HiddenUnits, bench::FrontierSpace::Motions}) {
+    const char* name = space == bench::FrontierSpace::Motions ? "motions" : "hidden_units";
+    const bench::FrontierPoint least_bandai =
+        bench::leastContentAtStyleRatio(clips.at(bandai->first), bandai_ratio, space);
+    const bench::FrontierPoint other_same =
+        bench::leastContentAtStyleRatio(clips.at(other->first), bandai_ratio, space);
+    const bench::FrontierPoint other_goal =
+        bench::leastContentAtStyleRatio(clips.at(other->first), kStyleRatioGoal * bandai_ratio, space);
+    const double least = least_bandai.mean_content_distance;
+    std::printf("  %-10s least content in %-12s Bandai at %.3f: %.5f (measured %.5f = %.1fx); other studios at the "
+                "same ratio %.5f = %.2fx Bandai's least; at %.3f (%.2fx): %.5f = %.2fx Bandai's least, %.2fx its "
+                "measured (goal %.0fx)\n",
+                network.c_str(), name, least_bandai.mean_style_ratio, least, bandai_content, bandai_content / least,
+                other_same.mean_content_distance, other_same.mean_content_distance / least,
+                other_goal.mean_style_ratio, kStyleRatioGoal, other_goal.mean_content_distance,
+                other_goal.mean_content_distance / least, other_goal.mean_content_distance / bandai_content,
+                kContentDistanceGoal);
+    std::fflush(stdout);
+    out[name] = {{"bandai_style_ratio", least_bandai.mean_style_ratio},
+                 {"bandai_least_content", least},
+                 {"other_least_content_same_ratio", other_same.mean_content_distance},
+                 {"other_style_ratio_goal", other_goal.mean_style_ratio},
+                 {"other_least_content_goal_ratio", other_goal.mean_content_distance}};
+  }
+  return out;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -321,7 +372,7 @@ int main(int argc, char** argv) {
   fs::path samples = resources / "samples";
   std::vector<std::string> styles = {"elderly", "exhausted", "angry", "proud", "youthful",
                                      "feminine", "masculine", "sad", "happy"};
-  bool cleanup = true, per_joint = false, probes = false;
+  bool cleanup = true, per_joint = false, probes = false, frontier = false;
   style::PathMode path = style::PathMode::Content;
   CleanupOptions cleanup_options;
   style::StyleRefinement refinement;
@@ -340,6 +391,7 @@ int main(int argc, char** argv) {
     else if (a == "--no-cleanup") cleanup = false;
     else if (a == "--per-joint") per_joint = true;
     else if (a == "--probes") probes = true;
+    else if (a == "--frontier") frontier = true;
     else if (a == "--refine") refinement.iterations = std::stoi(next());
     else if (a == "--refine-rate") refinement.learning_rate = std::stod(next());
     else if (a == "--refine-style") refinement.style_weight = std::stod(next());
@@ -370,12 +422,16 @@ int main(int argc, char** argv) {
     for (const std::string& name : styles) {
       const fs::path file = fs::exists(name) ? fs::path(name) : models / (name + ".net");
       const nn::StyleModel model = style::loadCompatibleStyleModel(file);
+      std::map<std::string, NetworkFigures> measured;
+      std::map<std::string, std::vector<bench::FrontierClip>> frontier_clips;
       for (const ClipSet& set : sets) {
         if (set.name == "bandai-ae-heldout") continue;
-        NetworkFigures figures;
-        json["networks"][name][set.name] = evaluateNetwork(model, loss_network, set, data, cleanup, path, cleanup_options, refinement, figures);
+        NetworkFigures& figures = measured[set.name];
+        json["networks"][name][set.name] = evaluateNetwork(model, loss_network, set, data, cleanup, path, cleanup_options,
+                                                           refinement, figures, frontier ? &frontier_clips[set.name] : nullptr);
         printFigures(name, set.name, figures);
       }
+      if (frontier) json["networks"][name]["frontier"] = printFrontier(name, measured, frontier_clips);
     }
     if (!json_file.empty()) {
       std::ofstream(json_file) << json.dump(2) << "\n";
