@@ -81,9 +81,9 @@ struct LockSegment {
 // targets stand on average more than kLockHeightToleranceCm over the content's,
 //   (over_heel + over_toe) / 2 > kLockHeightToleranceCm.
 // Why: the raised one then pivoted down to the other's lock on the content's height
-// (makeFootLocksConsistent) and came 7-10 cm under its targets (CMU 131_01's way into the kneel, the
-// style holding the foot 4.7 and 6.8 cm up: angry 10.8 -> 7.4 cm; docs/decisions.md, "A foot the style
-// holds up whole").
+// (makeFootLocksConsistent), both joints several cm under their targets (CMU 131_01's way into the
+// kneel, the style holding the heel 6.2 and the toe 5.0 cm up: angry 10.8 -> 7.4 cm; docs/decisions.md,
+// "A foot the style holds up whole").
 void raiseWholeFeet(std::vector<LockSegment>& segments, int heel, int toe, const Eigen::Vector3d& up) {
   for (LockSegment& a : segments) {
     if (a.label != heel) continue;

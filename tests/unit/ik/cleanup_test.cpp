@@ -245,43 +245,37 @@ TEST_F(CleanupHumanoid, AToeTheStyleLiftsOffEarlyRisesWithItsTargetsAndStaysStil
     EXPECT_LT(slidSince45(held, f), 0.2) << "frame " << f;
 }
 
+// The left foot held still `heel_up` and `toe_up` cm above where it rests through a heel and toe
+// contact (frames 20-40): both joints stay within 2 cm of those heights.
+class CleanupFootHeldUp : public CleanupHumanoid {
+ protected:
+  void expectHeldUp(double heel_up, double toe_up) {
+    Eigen::MatrixXd held = footRaisedFrom(targets, kFrames, 0.0);  // the foot held still, not lifted
+    const int heel_column = 3 * index(CanonicalJoint::LeftAnkle), toe_column = 3 * index(CanonicalJoint::LeftToe);
+    held.col(heel_column + 1).array() += heel_up;
+    held.col(toe_column + 1).array() += toe_up;
+    Eigen::MatrixXi contacts = no_contacts;
+    contacts.block(20, 0, 21, 2).setOnes();
+    const Eigen::MatrixXd cleaned = worldPositions(cleanupMotion(input(held, contacts, 0.0), {}, nullptr));
+    const int heel = mapping[CanonicalJoint::LeftAnkle], toe = mapping[CanonicalJoint::LeftToe];
+    for (int f = 22; f <= 38; ++f) {
+      EXPECT_NEAR(cleaned(f, 3 * heel + 1), held(f, heel_column + 1), 2.0) << "frame " << f;
+      EXPECT_NEAR(cleaned(f, 3 * toe + 1), held(f, toe_column + 1), 2.0) << "frame " << f;
+    }
+  }
+};
+
 // A foot the style holds up through a contact whose content foot is never planted (it moves there, as
 // a run's quick stance can: no height of its own to compare with): the targets hold the left heel and
 // toe still, 10 cm above where the foot rests, over a heel and toe contact. The locks take the
 // targets' height, as where the content plants the foot (lockHeight); at the clip's rest height they
 // pulled the foot 10 cm down (Bandai's run 012 with masculine: its heel 9.7 cm from the targets, and
 // the toe's lock, placed the foot's length from it, turned the foot up; docs/decisions.md).
-TEST_F(CleanupHumanoid, AFootTheStyleHoldsUpWhereTheContentNeverPlantsItStaysUp) {
-  Eigen::MatrixXd held = footRaisedFrom(targets, kFrames, 0.0);  // the foot held still, not lifted
-  const int heel_column = 3 * index(CanonicalJoint::LeftAnkle), toe_column = 3 * index(CanonicalJoint::LeftToe);
-  held.col(heel_column + 1).array() += 10.0;
-  held.col(toe_column + 1).array() += 10.0;
-  Eigen::MatrixXi contacts = no_contacts;
-  contacts.block(20, 0, 21, 2).setOnes();  // left heel and toe, frames 20-40
-  const Eigen::MatrixXd cleaned = worldPositions(cleanupMotion(input(held, contacts, 0.0), {}, nullptr));
-  const int heel = mapping[CanonicalJoint::LeftAnkle], toe = mapping[CanonicalJoint::LeftToe];
-  for (int f = 22; f <= 38; ++f) {
-    EXPECT_NEAR(cleaned(f, 3 * heel + 1), held(f, heel_column + 1), 2.0) << "frame " << f;
-    EXPECT_NEAR(cleaned(f, 3 * toe + 1), held(f, toe_column + 1), 2.0) << "frame " << f;
-  }
-}
+TEST_F(CleanupFootHeldUp, AFootTheStyleHoldsUpWhereTheContentNeverPlantsItStaysUp) { expectHeldUp(10.0, 10.0); }
 
 // The style holds the whole foot up, the heel 7 cm and the toe 4 cm (only the heel over the 5 cm at
 // which a lock takes its targets' height): both locks rise, neither is pulled to the other's height.
-TEST_F(CleanupHumanoid, AFootTheStyleHoldsUpWholeIsHeldUpWhole) {
-  Eigen::MatrixXd held = footRaisedFrom(targets, kFrames, 0.0);
-  const int heel_column = 3 * index(CanonicalJoint::LeftAnkle), toe_column = 3 * index(CanonicalJoint::LeftToe);
-  held.col(heel_column + 1).array() += 7.0;
-  held.col(toe_column + 1).array() += 4.0;
-  Eigen::MatrixXi contacts = no_contacts;
-  contacts.block(20, 0, 21, 2).setOnes();  // left heel and toe, frames 20-40
-  const Eigen::MatrixXd cleaned = worldPositions(cleanupMotion(input(held, contacts, 0.0), {}, nullptr));
-  const int heel = mapping[CanonicalJoint::LeftAnkle], toe = mapping[CanonicalJoint::LeftToe];
-  for (int f = 22; f <= 38; ++f) {
-    EXPECT_NEAR(cleaned(f, 3 * heel + 1), held(f, heel_column + 1), 2.0) << "frame " << f;
-    EXPECT_NEAR(cleaned(f, 3 * toe + 1), held(f, toe_column + 1), 2.0) << "frame " << f;
-  }
-}
+TEST_F(CleanupFootHeldUp, AFootTheStyleHoldsUpWholeIsHeldUpWhole) { expectHeldUp(7.0, 4.0); }
 
 TEST_F(CleanupHumanoid, FeetStayAboveTheFloor) {
   Eigen::MatrixXd lowered = targets;
