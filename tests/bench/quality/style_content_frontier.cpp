@@ -11,24 +11,32 @@
 namespace motionstyle::bench {
 namespace {
 
-// mean((X - H)^2) + lambda * mean((X X^T / T - G_s)^2), X hidden x T, and its gradient
+// The Lagrangian at hidden units X (hidden x T), mean((X - H)^2) + lambda * mean((X X^T / T - G_s)^2), and
+// its gradient in X when `gradient` is not null:
 //   2 (X - H) / (C T) + 4 lambda (Gram(X) - G_s) X / (T C^2).
+double lagrangian(const FrontierClip& clip, double lambda, const Eigen::Ref<const Eigen::MatrixXd>& x,
+                  Eigen::MatrixXd* gradient) {
+  const Eigen::Index c = x.rows(), t = x.cols();
+  const Eigen::MatrixXd gram_error = x * x.transpose() / static_cast<double>(t) - clip.style_gram;
+  const Eigen::MatrixXd content_error = x - clip.hidden;
+  const double ct = static_cast<double>(c * t), cc = static_cast<double>(c * c);
+  if (gradient != nullptr) {
+    *gradient = (2.0 / ct) * content_error;
+    gradient->noalias() += (4.0 * lambda / (static_cast<double>(t) * cc)) * gram_error * x;
+  }
+  return content_error.squaredNorm() / ct + lambda * gram_error.squaredNorm() / cc;
+}
+
+// lagrangian() of the hidden units themselves (FrontierSpace::HiddenUnits).
 class ClipLagrangian final : public ceres::FirstOrderFunction {
  public:
   ClipLagrangian(const FrontierClip& clip, double lambda) : clip_(clip), lambda_(lambda) {}
   int NumParameters() const override { return static_cast<int>(clip_.hidden.size()); }
   bool Evaluate(const double* parameters, double* cost, double* gradient) const override {
-    const Eigen::Index c = clip_.hidden.rows(), t = clip_.hidden.cols();
-    const Eigen::Map<const Eigen::MatrixXd> x(parameters, c, t);
-    const Eigen::MatrixXd gram_error = x * x.transpose() / static_cast<double>(t) - clip_.style_gram;
-    const Eigen::MatrixXd content_error = x - clip_.hidden;
-    const double ct = static_cast<double>(c * t), cc = static_cast<double>(c * c);
-    *cost = content_error.squaredNorm() / ct + lambda_ * gram_error.squaredNorm() / cc;
-    if (gradient != nullptr) {
-      Eigen::Map<Eigen::MatrixXd> g(gradient, c, t);
-      g = (2.0 / ct) * content_error;
-      g.noalias() += (4.0 * lambda_ / (static_cast<double>(t) * cc)) * gram_error * x;
-    }
+    const Eigen::Map<const Eigen::MatrixXd> x(parameters, clip_.hidden.rows(), clip_.hidden.cols());
+    Eigen::MatrixXd grad;
+    *cost = lagrangian(clip_, lambda_, x, gradient != nullptr ? &grad : nullptr);
+    if (gradient != nullptr) Eigen::Map<Eigen::MatrixXd>(gradient, x.rows(), x.cols()) = grad;
     return true;
   }
 
@@ -37,8 +45,8 @@ class ClipLagrangian final : public ceres::FirstOrderFunction {
   double lambda_;
 };
 
-// The same Lagrangian of H' = enc(X) as a function of the normalised motion X (features x frames), its
-// gradient through the encoder (nn::LossNetwork::encodeBackward; float, as the networks run).
+// lagrangian() of H' = enc(X) as a function of the normalised motion X (features x frames), its gradient
+// through the encoder (nn::LossNetwork::encodeBackward; float, as the networks run).
 class MotionLagrangian final : public ceres::FirstOrderFunction {
  public:
   MotionLagrangian(const FrontierClip& clip, double lambda) : clip_(clip), lambda_(lambda), encoder_(*clip.encoder) {}
@@ -47,17 +55,11 @@ class MotionLagrangian final : public ceres::FirstOrderFunction {
     const Eigen::Map<const Eigen::MatrixXd> x(parameters, clip_.features.rows(), clip_.features.cols());
     const Eigen::MatrixXd h =
         encoder_.encodeForward(x.cast<float>(), static_cast<int>(clip_.features.cols())).cast<double>();
-    const Eigen::Index c = h.rows(), t = h.cols();
-    const Eigen::MatrixXd gram_error = h * h.transpose() / static_cast<double>(t) - clip_.style_gram;
-    const Eigen::MatrixXd content_error = h - clip_.hidden;
-    const double ct = static_cast<double>(c * t), cc = static_cast<double>(c * c);
-    *cost = content_error.squaredNorm() / ct + lambda_ * gram_error.squaredNorm() / cc;
-    if (gradient != nullptr) {
-      Eigen::MatrixXd grad_hidden = (2.0 / ct) * content_error;
-      grad_hidden.noalias() += (4.0 * lambda_ / (static_cast<double>(t) * cc)) * gram_error * h;
+    Eigen::MatrixXd grad_hidden;
+    *cost = lagrangian(clip_, lambda_, h, gradient != nullptr ? &grad_hidden : nullptr);
+    if (gradient != nullptr)
       Eigen::Map<Eigen::MatrixXd>(gradient, x.rows(), x.cols()) =
           encoder_.encodeBackward(grad_hidden.cast<float>()).cast<double>();
-    }
     return true;
   }
 
