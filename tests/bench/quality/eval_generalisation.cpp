@@ -15,7 +15,8 @@
 //                         features/rest_pose_frames.h)
 // The networks run as `stylize` runs them, with the style refinement's defaults (style_refinement.h)
 // unless the --refine* options change them (--refine 0: the network's output as it is).
-// Per network and clip: style distance ratio and content distance (eval's definitions), familiarity
+// Per network and clip: style distance ratio and content distance (eval's definitions), the gait
+// signature added (gait_signature.h: a style judge apart from the loss network), familiarity
 // (style/familiarity.h), and unless --no-cleanup the IK clean-up's residual (its worst: where, in the
 // JSON), skate and "unreachable" warnings, and the cleaned output's root path against the content's
 // (features/root_path.h). --frontier adds, per network, the least content distance at which any method
@@ -41,6 +42,7 @@
 #include "style/stylized_cleanup.h"
 #include "style/stylizer.h"
 #include "style/training.h"
+#include "gait_signature.h"
 #include "style_content_frontier.h"
 
 namespace fs = std::filesystem;
@@ -200,6 +202,7 @@ constexpr double kWorstResidualGoalCm = 8.0;
 struct NetworkFigures {
   double style_ratio = 0, projection_ratio = 0, content_after = 0, familiarity = 0, network_distance = 0;
   double residual_mean = 0, residual_max = 0, skate = 0, cleaned_style_ratio = 0;
+  double gait_share = 0, cleaned_gait_share = 0;  // gait_signature.h: of the output, of the cleaned clip
   int unreachable = 0, cleaned = 0, over_goal = 0;  // over_goal: clips whose worst residual is over kWorstResidualGoalCm
   double distance_ratio_min = 1e9, distance_ratio_max = 0, end_error_max = 0;
   int clips = 0;
@@ -236,8 +239,11 @@ nlohmann::json evaluateNetwork(const nn::StyleModel& model, const nn::LossNetwor
   const style::EvaluationReport report = style::evaluateStyleNetwork(loss_network, model, clips, styles, pairing, path, refinement);
   const style::Stylizer stylizer(model, "the style network", refinement);
   std::vector<nn::Mat<float>> style_grams;  // each style clip's, for the cleaned clips' style ratio
-  for (const style::MotionClip& style : styles)
+  std::vector<bench::GaitSignature> style_gaits;
+  for (const style::MotionClip& style : styles) {
     style_grams.push_back(style::styleGramOf(model.loss_network, model.normalisation, style.features.values));
+    style_gaits.push_back(bench::gaitSignature(style.features.values));
+  }
   nlohmann::json per_clip = nlohmann::json::array();
   for (std::size_t i = 0; i < clips.size(); ++i) {
     const style::ClipEvaluation& ev = report.clips[i];
@@ -261,9 +267,13 @@ nlohmann::json evaluateNetwork(const nn::StyleModel& model, const nn::LossNetwor
                            style_grams[static_cast<std::size_t>(pairing[i])].cast<double>(),
                            normalised.cast<double>(), &model.loss_network});
     }
+    const EvalClip& e = *used[i];
+    const style::StylizedClip stylized = stylizer.stylize(e.clip.features, 1.0, path);
+    const bench::GaitSignature content_gait = bench::gaitSignature(e.clip.features.values);
+    const bench::GaitSignature& style_gait = style_gaits[static_cast<std::size_t>(pairing[i])];
+    c["gait_share"] = bench::gaitSignatureShare(content_gait, style_gait, bench::gaitSignature(stylized.features));
+    figures.gait_share += c["gait_share"].get<double>();
     if (cleanup) {
-      const EvalClip& e = *used[i];
-      const style::StylizedClip stylized = stylizer.stylize(e.clip.features, 1.0, path);
       const style::StylizedCleanup cleaned = style::cleanUpStylizedClip(e.motion, e.mapping, stylized, cleanup_options);
       int unreachable = 0;
       for (const std::string& w : warningTexts(cleaned.report)) unreachable += w.find("unreachable") != std::string::npos;
@@ -279,6 +289,8 @@ nlohmann::json evaluateNetwork(const nn::StyleModel& model, const nn::LossNetwor
           model.loss_network, model.normalisation, e.clip.features.values, cleaned_features,
           style_grams[static_cast<std::size_t>(pairing[i])]);
       c["cleaned_style_ratio"] = cleaned_distances.styleRatio();
+      c["cleaned_gait_share"] = bench::gaitSignatureShare(content_gait, style_gait, bench::gaitSignature(cleaned_features));
+      figures.cleaned_gait_share += c["cleaned_gait_share"].get<double>();
       figures.cleaned_style_ratio += cleaned_distances.styleRatio();
       c["residual_mean_cm"] = cleaned.cleaned.residual_mean_cm;
       c["residual_max_cm"] = cleaned.cleaned.residual_max_cm;
@@ -310,12 +322,14 @@ nlohmann::json evaluateNetwork(const nn::StyleModel& model, const nn::LossNetwor
 
 void printFigures(const std::string& network, const std::string& set, const NetworkFigures& f) {
   const double n = std::max(1, f.clips);
-  std::printf("  %-10s %-22s style %.3f (proj %.3f) content %.3f fam %.2f net-path x%.2f", network.c_str(), set.c_str(),
-              f.style_ratio / n, f.projection_ratio / n, f.content_after / n, f.familiarity / n, f.network_distance / n);
+  std::printf("  %-10s %-22s style %.3f (proj %.3f) content %.3f gait %.2f fam %.2f net-path x%.2f", network.c_str(),
+              set.c_str(), f.style_ratio / n, f.projection_ratio / n, f.content_after / n, f.gait_share / n,
+              f.familiarity / n, f.network_distance / n);
   if (f.cleaned > 0)
-    std::printf(" | cleaned style %.3f residual %.2f max %.1f (%d of %d clips over %.0f) skate %.2f unreach %d | distance "
-                "x%.2f-%.2f end %.0f%%",
-                f.cleaned_style_ratio / f.cleaned, f.residual_mean / f.cleaned, f.residual_max, f.over_goal, f.cleaned,
+    std::printf(" | cleaned style %.3f gait %.2f residual %.2f max %.1f (%d of %d clips over %.0f) skate %.2f unreach %d"
+                " | distance x%.2f-%.2f end %.0f%%",
+                f.cleaned_style_ratio / f.cleaned, f.cleaned_gait_share / f.cleaned, f.residual_mean / f.cleaned,
+                f.residual_max, f.over_goal, f.cleaned,
                 kWorstResidualGoalCm, f.skate, f.unreachable, f.distance_ratio_min, f.distance_ratio_max,
                 100.0 * f.end_error_max);
   std::printf("\n");
