@@ -36,27 +36,27 @@ GaitSignature gaitSignature(const Eigen::MatrixXd& f) {
     throw std::invalid_argument("gaitSignature: expected 66 x frames features (frames >= 1)");
   using J = CanonicalJoint;
   const Eigen::Index frames = f.cols();
-  GaitSignature sum{};
+  GaitSignature mean{};  // each figure's sum over the frames, then its mean; the arm swing apart
   Eigen::VectorXd left_swing(frames), right_swing(frames);
   for (Eigen::Index t = 0; t < frames; ++t) {
     const Eigen::Vector3d hips = joint(f, J::Hips, t), trunk = joint(f, J::Neck, t) - hips;
     const Eigen::Vector3d left_hand = joint(f, J::LeftWrist, t) - hips, right_hand = joint(f, J::RightWrist, t) - hips;
-    sum[0] += joint(f, J::Head, t).y();
-    sum[1] += hips.y();
-    sum[2] += std::atan2(trunk.z(), trunk.y());
-    sum[3] += 0.5 * (angleAt(f, J::LeftHip, J::LeftKnee, J::LeftAnkle, t) + angleAt(f, J::RightHip, J::RightKnee, J::RightAnkle, t));
-    sum[4] += 0.5 * (angleAt(f, J::LeftUpperArm, J::LeftElbow, J::LeftWrist, t) +
-                     angleAt(f, J::RightUpperArm, J::RightElbow, J::RightWrist, t));
-    sum[5] += 0.5 * (left_hand.y() + right_hand.y());
-    sum[6] += std::abs(joint(f, J::LeftAnkle, t).x() - joint(f, J::RightAnkle, t).x());
-    sum[7] += 0.5 * (std::abs(left_hand.x()) + std::abs(right_hand.x()));
+    mean[kHeadHeight] += joint(f, J::Head, t).y();
+    mean[kHipsHeight] += hips.y();
+    mean[kTrunkLean] += std::atan2(trunk.z(), trunk.y());
+    mean[kKneeAngle] += 0.5 * (angleAt(f, J::LeftHip, J::LeftKnee, J::LeftAnkle, t) +
+                               angleAt(f, J::RightHip, J::RightKnee, J::RightAnkle, t));
+    mean[kElbowAngle] += 0.5 * (angleAt(f, J::LeftUpperArm, J::LeftElbow, J::LeftWrist, t) +
+                                angleAt(f, J::RightUpperArm, J::RightElbow, J::RightWrist, t));
+    mean[kHandHeight] += 0.5 * (left_hand.y() + right_hand.y());
+    mean[kStanceWidth] += std::abs(joint(f, J::LeftAnkle, t).x() - joint(f, J::RightAnkle, t).x());
+    mean[kHandSpread] += 0.5 * (std::abs(left_hand.x()) + std::abs(right_hand.x()));
     left_swing(t) = left_hand.z();
     right_swing(t) = right_hand.z();
   }
-  GaitSignature signature;
-  for (int k = 0; k < 8; ++k) signature[k] = sum[k] / static_cast<double>(frames);
-  signature[8] = 0.5 * (standardDeviation(left_swing) + standardDeviation(right_swing));
-  return signature;
+  for (double& figure : mean) figure /= static_cast<double>(frames);
+  mean[kArmSwing] = 0.5 * (standardDeviation(left_swing) + standardDeviation(right_swing));
+  return mean;
 }
 
 double gaitSignatureShare(const GaitSignature& content, const GaitSignature& style, const GaitSignature& output) {

@@ -21,7 +21,11 @@
 
 namespace motionstyle::bench {
 
-inline constexpr int kGaitFigureCount = 9;
+// The figures, in the signature's order (cm, or rad for the lean and the angles).
+enum GaitFigure : int {
+  kHeadHeight, kHipsHeight, kTrunkLean, kKneeAngle, kElbowAngle, kHandHeight, kStanceWidth, kHandSpread,
+  kArmSwing, kGaitFigureCount
+};
 using GaitSignature = std::array<double, kGaitFigureCount>;
 
 // Throws std::invalid_argument unless features is 66 x frames with frames >= 1.

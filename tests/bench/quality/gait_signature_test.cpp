@@ -52,15 +52,16 @@ TEST(GaitSignature, RejectsFeaturesOfAnotherShape) {
 
 TEST(GaitSignature, ReadsAStandingPoseAsBuilt) {
   const GaitSignature g = gaitSignature(standing(10, 6.0, 60.0));
-  EXPECT_DOUBLE_EQ(g[0], 165.0);                       // head height
-  EXPECT_DOUBLE_EQ(g[1], 90.0);                        // hips height
-  EXPECT_NEAR(g[2], std::atan2(60.0, 60.0), 1e-12);    // the neck 60 cm up and 60 cm forward of the hips
-  EXPECT_NEAR(g[3], std::numbers::pi, 1e-6);           // straight knees
-  EXPECT_NEAR(g[4], std::numbers::pi - std::atan2(6.0, 27.0), 1e-12);  // forearm 27 cm down, 6 cm forward or back
-  EXPECT_DOUBLE_EQ(g[5], -5.0);                        // wrists 5 cm under the hips
-  EXPECT_DOUBLE_EQ(g[6], 16.0);                        // ankles 16 cm apart
-  EXPECT_DOUBLE_EQ(g[7], 18.0);                        // wrists 18 cm out from the hips
-  EXPECT_DOUBLE_EQ(g[8], 6.0);                         // +-6 cm forward swing
+  EXPECT_DOUBLE_EQ(g[kHeadHeight], 165.0);
+  EXPECT_DOUBLE_EQ(g[kHipsHeight], 90.0);
+  EXPECT_NEAR(g[kTrunkLean], std::atan2(60.0, 60.0), 1e-12);  // the neck 60 cm up and 60 cm forward of the hips
+  EXPECT_NEAR(g[kKneeAngle], std::numbers::pi, 1e-6);  // straight knees
+  // The forearm 27 cm down and 6 cm forward or back.
+  EXPECT_NEAR(g[kElbowAngle], std::numbers::pi - std::atan2(6.0, 27.0), 1e-12);
+  EXPECT_DOUBLE_EQ(g[kHandHeight], -5.0);  // wrists 5 cm under the hips
+  EXPECT_DOUBLE_EQ(g[kStanceWidth], 16.0);  // ankles 16 cm apart
+  EXPECT_DOUBLE_EQ(g[kHandSpread], 18.0);  // wrists 18 cm out from the hips
+  EXPECT_DOUBLE_EQ(g[kArmSwing], 6.0);  // +-6 cm forward swing
 }
 
 TEST(GaitSignature, ShareIsNoneForTheContentAndWholeForTheStyle) {
