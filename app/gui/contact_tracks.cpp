@@ -8,6 +8,7 @@
 #include <exception>
 
 #include "common/errors.h"
+#include "features/proportions.h"
 #include "ik/contact_file.h"
 #include "motion/resample.h"
 #include "style/familiarity.h"
@@ -85,7 +86,7 @@ void ContactTrackController::setQualityTracks(const QualityTracks& tracks) {
     tracks_->setUnheldFrames(foot, unheldFootTrack(contacts, tracks.held_contacts, foot, tracks_->frameCount()),
                              tr("Not held by the clean-up: the style moved this step more than %1 cm, so the foot "
                                 "follows the network here.\nClick or drag over it to hold the foot planted.")
-                                 .arg(style::kLockableSpreadCm));
+                                 .arg(kLockableSpreadCm));
   }
   tracks_->setFloatValues(kRawBoneErrorTrack, tracks.raw_bone_error_cm, 0.0f, top(tracks.raw_bone_error_cm, 2.0f));
   // Full height at the "far" threshold, so the row reads against the reading's scale.

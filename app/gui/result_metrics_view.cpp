@@ -8,6 +8,7 @@
 
 #include <vector>
 
+#include "features/proportions.h"
 #include "ik/cleanup.h"
 #include "mapping/canonical_joints.h"
 #include "style/stylize_cleanup_job.h"
@@ -30,7 +31,7 @@ ResultMetricsView::ResultMetricsView(QWidget* parent) : QWidget(parent) {
       tr("Mean horizontal speed of a foot over the contacts on the timeline's foot tracks.\n"
          "The clean-up holds every such contact unless the style moved that step more than %1 cm;\n"
          "those count here (hatched on the foot tracks; the Skate row shows where).")
-          .arg(style::kLockableSpreadCm));
+          .arg(kLockableSpreadCm));
   table_->verticalHeaderItem(kPenetrationRow)->setToolTip(tr("Deepest foot below the floor"));
   table_->verticalHeaderItem(kBoneErrorRow)->setToolTip(tr("Mean difference from the skeleton's bone lengths"));
   table_->verticalHeaderItem(kResidualRow)->setToolTip(

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -148,6 +149,81 @@ bool kneeFor(const Eigen::Vector3d& h, const Eigen::Vector3d& a, const Eigen::Ve
   return true;
 }
 
+// The root's place on the floor and its heading per frame, integrated from the features' root
+// velocities (root_path.h's convention): a root-frame point p lies in the world at
+// place + R(heading) (p_x, p_z), R(h) (x, z) = (cos h x + sin h z, -sin h x + cos h z).
+struct RootFrames {
+  std::vector<Eigen::Vector2d> place;
+  std::vector<double> heading;
+
+  explicit RootFrames(const Eigen::MatrixXd& features) {
+    Eigen::Vector2d root = Eigen::Vector2d::Zero();
+    double turned = 0.0;
+    for (Eigen::Index f = 0; f < features.cols(); ++f) {
+      place.push_back(root);
+      heading.push_back(turned);
+      root += turn(turned, {features(kSidewaysVelocity, f), features(kForwardVelocity, f)});
+      turned += features(kTurningVelocity, f);
+    }
+  }
+  static Eigen::Vector2d turn(double h, const Eigen::Vector2d& v) {
+    return {std::cos(h) * v.x() + std::sin(h) * v.y(), -std::sin(h) * v.x() + std::cos(h) * v.y()};
+  }
+  Eigen::Vector2d toWorld(std::size_t f, const Eigen::Vector3d& p) const { return place[f] + turn(heading[f], {p.x(), p.z()}); }
+  Eigen::Vector2d toRoot(std::size_t f, const Eigen::Vector2d& q) const { return turn(-heading[f], q - place[f]); }
+};
+
+// Per frame, the floor place (x, z) of the stance of contact `label` the frame lies in or ramps to
+// (kKeptFootRampFrames, the nearer stance), or none: the median of the joint's world places over the
+// stance's contact frames, for a stance whose places all lie within kLockableSpreadCm of it (further,
+// the style moved the step: no stance to keep). world: the joint's place per frame.
+std::vector<std::optional<Eigen::Vector2d>> stancePlaces(const Eigen::MatrixXd& contacts, int label,
+                                                        const std::vector<Eigen::Vector2d>& world) {
+  const Eigen::Index frames = contacts.cols();
+  std::vector<std::optional<Eigen::Vector2d>> stance(static_cast<std::size_t>(frames));
+  std::vector<Eigen::Index> distance(stance.size(), frames + 1);
+  std::vector<double> along;
+  for (Eigen::Index first = 0; first < frames;) {
+    if (contacts(label, first) < 0.5) {
+      ++first;
+      continue;
+    }
+    Eigen::Index end = first;
+    while (end < frames && contacts(label, end) >= 0.5) ++end;
+    Eigen::Vector2d median;
+    for (int axis = 0; axis < 2; ++axis) {
+      along.clear();
+      for (Eigen::Index f = first; f < end; ++f) along.push_back(world[static_cast<std::size_t>(f)][axis]);
+      std::nth_element(along.begin(), along.begin() + static_cast<std::ptrdiff_t>(along.size() / 2), along.end());
+      median[axis] = along[along.size() / 2];
+    }
+    double spread = 0.0;
+    for (Eigen::Index f = first; f < end; ++f) spread = std::max(spread, (world[static_cast<std::size_t>(f)] - median).norm());
+    if (spread <= kLockableSpreadCm)
+      for (Eigen::Index f = std::max<Eigen::Index>(0, first - kKeptFootRampFrames);
+           f < std::min<Eigen::Index>(frames, end + kKeptFootRampFrames); ++f) {
+        const Eigen::Index away = f < first ? first - f : f >= end ? f - end + 1 : 0;
+        const auto i = static_cast<std::size_t>(f);
+        if (away < distance[i]) {
+          distance[i] = away;
+          stance[i] = median;
+        }
+      }
+    first = end;
+  }
+  return stance;
+}
+
+// A joint's place on the floor in frame f's root frame, pulled to within kKeptFootRadiusCm of its
+// stance's place: `world`, its place in the world (RootFrames), when it has a stance and strays further,
+// `joint` (frame f's root frame) unchanged, when it has no stance or lies within reach of it.
+Eigen::Vector2d keptPlace(const RootFrames& root, std::size_t f, const std::optional<Eigen::Vector2d>& stance,
+                          const Eigen::Vector2d& world, const Eigen::Vector3d& joint) {
+  if (!stance || (world - *stance).norm() <= kKeptFootRadiusCm) return {joint.x(), joint.z()};
+  const Eigen::Vector2d off = world - *stance;
+  return root.toRoot(f, *stance + off * (kKeptFootRadiusCm / off.norm()));
+}
+
 }  // namespace
 
 void enforceBoneLengths(Eigen::MatrixXd& features, const Proportions& proportions, const Eigen::MatrixXd& contacts) {
@@ -158,6 +234,7 @@ void enforceBoneLengths(Eigen::MatrixXd& features, const Proportions& proportion
   if (contacts.size() == 0) return;
   const Eigen::MatrixXd weight = contactWeights(contacts);
   const Eigen::Index frames = features.cols();
+  const RootFrames root(before);
   for (const bool left : {true, false}) {
     const int hip = index(left ? C::LeftHip : C::RightHip), knee = hip + 1, ankle = hip + 2, toe = hip + 3;
     const int heel_label = static_cast<int>(left ? ContactLabel::LeftHeel : ContactLabel::RightHeel);
@@ -165,6 +242,14 @@ void enforceBoneLengths(Eigen::MatrixXd& features, const Proportions& proportion
     const double thigh = proportions.bone_length[static_cast<std::size_t>(knee)];
     const double shin = proportions.bone_length[static_cast<std::size_t>(ankle)];
     const double foot = proportions.bone_length[static_cast<std::size_t>(toe)];
+    // The heel's and toe's stances, from their world places before.
+    std::vector<Eigen::Vector2d> heel_world(static_cast<std::size_t>(frames)), toe_world(heel_world.size());
+    for (Eigen::Index f = 0; f < frames; ++f) {
+      heel_world[static_cast<std::size_t>(f)] = root.toWorld(static_cast<std::size_t>(f), jointAt(before, f, ankle));
+      toe_world[static_cast<std::size_t>(f)] = root.toWorld(static_cast<std::size_t>(f), jointAt(before, f, toe));
+    }
+    const auto heel_stance = stancePlaces(contacts, heel_label, heel_world);
+    const auto toe_stance = stancePlaces(contacts, toe_label, toe_world);
     // Per frame: w, the foot's direction from before, and the ankle's place to keep.
     Eigen::VectorXd w(frames);
     std::vector<Eigen::Vector3d> direction(static_cast<std::size_t>(frames)), kept(static_cast<std::size_t>(frames));
@@ -176,9 +261,17 @@ void enforceBoneLengths(Eigen::MatrixXd& features, const Proportions& proportion
       direction[i] = foot_bone.norm() >= kMinimumBoneLengthCm       ? Eigen::Vector3d(foot_bone.normalized())
                      : enforced_foot.norm() >= kMinimumBoneLengthCm ? Eigen::Vector3d(enforced_foot.normalized())
                                                                     : Eigen::Vector3d::Zero();
-      // Between the ankle from before and the one that keeps the toe's place, by the toe's share.
+      // Between the ankle from before and the one that keeps the toe's place, by the toe's share; on
+      // the floor, each of the two places first pulled to its stance (keptPlace).
       const double toe_share = w(f) > 0.0 ? weight(toe_label, f) / (weight(heel_label, f) + weight(toe_label, f)) : 0.0;
       kept[i] = jointAt(before, f, ankle) + toe_share * (foot_bone.norm() - foot) * direction[i];
+      if (w(f) <= 0.0) continue;
+      const Eigen::Vector2d heel_place = keptPlace(root, i, heel_stance[i], heel_world[i], jointAt(before, f, ankle));
+      const Eigen::Vector2d toe_place = keptPlace(root, i, toe_stance[i], toe_world[i], jointAt(before, f, toe)) -
+                                        foot * Eigen::Vector2d(direction[i].x(), direction[i].z());
+      const Eigen::Vector2d place = (1.0 - toe_share) * heel_place + toe_share * toe_place;
+      kept[i].x() = place.x();
+      kept[i].z() = place.y();
     }
     // The height to add, w times: the kept height's difference to the enforced one, less its mean over
     // the span's contact frames (a span: consecutive frames with w > 0) where that mean is negative (the

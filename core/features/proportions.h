@@ -68,6 +68,15 @@ void retargetFeatures(Eigen::MatrixXd& features, const Proportions& from, const 
 // exact: a target 2 cm beyond reach is a 2 cm residual). Throws std::invalid_argument as retargetFeatures.
 void enforceBoneLengths(Eigen::MatrixXd& features, const Proportions& proportions);
 
+// A stance is one where the foot joint stays within this radius of its median place over the contact
+// (horizontally, the character's cm); further, the style moved the step: the stylizer does not hold
+// it (below) and the clean-up does not lock it (style/stylized_cleanup.cpp says why).
+inline constexpr double kLockableSpreadCm = 20.0;
+// How far a kept heel or toe may stray from its stance's place (below), cm. Why not 0: a stance held
+// still takes style with it (the network's foot wanders a little within a stance as part of it); at 3
+// cm the style ratios moved by at most 2.6 % (docs/decisions.md, "Stances held in the stylizer").
+inline constexpr double kKeptFootRadiusCm = 3.0;
+
 // The same, keeping planted feet in place: rebuilt from the hips outward, a leg carries the sum of its
 // bones' errors to the foot (the network's decoded thigh is 35-42 cm where the reference's is 38.9),
 // so a foot that stood still through a contact slides once the lengths are set. Here, after
@@ -75,7 +84,11 @@ void enforceBoneLengths(Eigen::MatrixXd& features, const Proportions& proportion
 // the bones' lengths exact) so that the ankle takes back its horizontal place from before, by weight
 // w = 1 on a contact frame of the ankle or toe, falling linearly to 0 over kKeptFootRampFrames either
 // side; that place lies between the ankle's from before and the one that keeps the toe's, by the toe's
-// share of the two weights (only the toe planted: the toe's place; both: halfway). Its height
+// share of the two weights (only the toe planted: the toe's place; both: halfway). Where the heel or
+// toe has a stance (kLockableSpreadCm) over the frame or the ramp next to it, its place from before is
+// first pulled, on the floor (the root path integrated from the features' root velocities), to within
+// kKeptFootRadiusCm of the stance's place, the median of its places over the stance's contact frames:
+// the manifold's contact projection (style/contact_projection.h) plants most of a slide, not all. Its height
 // takes back its changes from before, and its level only where the enforcement sank it: over each
 // span of frames with w > 0 the ankle rises by w (d - min(mean d, 0)), d the height from before less
 // the enforced one, the mean over the span's contact frames. A planted foot keeps a still height; where

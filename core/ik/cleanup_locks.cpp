@@ -45,7 +45,20 @@ std::optional<double> plantedHeight(const ContactLabels& planted, const CleanupI
 //     other studios' runs' worst residual (docs/decisions.md, "A heel the style raises"). The same
 //     against the rest height where the content never plants the joint over the segment (a run's
 //     quick stance: Bandai's run 012 with masculine, 9.7 -> 4.6 cm).
+// Between the two, where the targets hold the joint h = 0..kLockHeightToleranceCm over the content's
+// planted height, the lock rises with them continuously from kLiftDeadZoneCm up,
+//   lift(h) = T ((h - d) / (T - d))^2,  T = kLockHeightToleranceCm, d = kLiftDeadZoneCm,
+// so that it meets the raised lock at T: a style that held a foot 4.5 cm up was locked on the floor,
+// 4.5 cm under its targets, and at 5.5 cm up on them (CMU 131_01's way out of the kneel, happy's toe
+// 9.3 cm from its targets; docs/decisions.md, "Stances held in the stylizer"). Up to d, the network's
+// own wobble, the lock stays on the content's floor.
 constexpr double kLockHeightToleranceCm = 5.0;
+constexpr double kLiftDeadZoneCm = 1.0;
+
+double partialLiftCm(double over_content_cm) {
+  const double x = std::max(0.0, (over_content_cm - kLiftDeadZoneCm) / (kLockHeightToleranceCm - kLiftDeadZoneCm));
+  return kLockHeightToleranceCm * x * x;
+}
 
 struct LockHeight {
   double above_floor = 0.0;          // the lock's, file units
@@ -66,7 +79,7 @@ LockHeight lockHeight(const ContentFootHeights& feet, const CleanupInput& input,
   const double above_content_cm = (target_height - planted.value_or(rest)) * input.cm_per_unit;
   if (above_content_cm > kLockHeightToleranceCm) return {target_height, true, target_height, above_content_cm};
   if (!planted || above_content_cm < -kLockHeightToleranceCm) return {rest, false, target_height, above_content_cm};
-  return {*planted, false, target_height, above_content_cm};
+  return {*planted + partialLiftCm(above_content_cm) / input.cm_per_unit, false, target_height, above_content_cm};
 }
 
 struct LockSegment {

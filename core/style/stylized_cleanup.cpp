@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "features/foot_contacts.h"
+#include "features/proportions.h"
 #include "features/rest_pose_frames.h"
 #include "ik/contacts.h"
 #include "motion/kinematics.h"

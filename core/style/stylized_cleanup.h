@@ -19,10 +19,6 @@
 
 namespace motionstyle::style {
 
-// A content stance is locked when the stylized foot stays within this radius of its median position
-// over it (horizontally, the character's cm); further, the style moved the step (the .cpp says why).
-constexpr double kLockableSpreadCm = 20.0;
-
 struct StylizedCleanup {
   Motion motion;          // content's skeleton, hierarchy, names, offsets and channel layout; output rate
   CleanupReport report;

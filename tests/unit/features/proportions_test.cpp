@@ -9,6 +9,7 @@
 #include <cmath>
 #include <random>
 #include <stdexcept>
+#include <vector>
 
 #include "bvh/bvh_reader.h"
 #include "features/proportions.h"
@@ -114,10 +115,30 @@ TEST(Proportions, EnforcingBoneLengthsSetsEveryFrameAndKeepsDirections) {
   EXPECT_LT((twice - fixed).cwiseAbs().maxCoeff(), 1e-9);
 }
 
+// A joint's place on the floor from before, pulled to within kKeptFootRadiusCm of `stance`.
+Eigen::Vector2d pulledTo(const Eigen::Vector2d& stance, const Eigen::Vector2d& was) {
+  const Eigen::Vector2d off = was - stance;
+  return off.norm() <= kKeptFootRadiusCm ? was : Eigen::Vector2d(stance + off * (kKeptFootRadiusCm / off.norm()));
+}
+
+// The median place on the floor of joint j over frames [first, end) (a character that stays put: the
+// root frame is the world's).
+Eigen::Vector2d medianPlace(const Eigen::MatrixXd& features, int j, Eigen::Index first, Eigen::Index end) {
+  Eigen::Vector2d median;
+  for (const int axis : {0, 2}) {
+    std::vector<double> along;
+    for (Eigen::Index f = first; f < end; ++f) along.push_back(features(3 * j + axis, f));
+    std::nth_element(along.begin(), along.begin() + static_cast<std::ptrdiff_t>(along.size() / 2), along.end());
+    median[axis / 2] = along[along.size() / 2];
+  }
+  return median;
+}
+
 // With contacts, the bones are as exact, the legs' frames far from any contact are the plain
 // enforcement's, and on a contact frame the planted joint keeps its horizontal place from before (the
-// ankle where the heel is planted, the toe where only the toe is) and its height's changes, at the
-// plain enforcement's mean height where that is higher than before (else at its height from before:
+// ankle where the heel is planted, the toe where only the toe is), pulled to within kKeptFootRadiusCm
+// of its stance's median place, and its height's changes, at the plain enforcement's mean height where
+// that is higher than before (else at its height from before:
 // EnforcingBoneLengthsNeverSinksAPlantedFoot); in between, the place moves linearly with the weight.
 TEST(Proportions, EnforcingBoneLengthsKeepsPlantedFeetWhereTheyWere) {
   Eigen::MatrixXd noisy = ownFeatures("zombie.bvh");
@@ -127,6 +148,7 @@ TEST(Proportions, EnforcingBoneLengthsKeepsPlantedFeetWhereTheyWere) {
   std::normal_distribution<double> noise(0.0, 1.5);
   for (Eigen::Index f = 0; f < frames; ++f)
     for (int r = 3; r < 63; ++r) noisy(r, f) += noise(rng);
+  noisy.bottomRows<3>().setZero();  // in place: a joint's root-frame place is its place in the world
   Eigen::MatrixXd contacts = Eigen::MatrixXd::Zero(kContactCount, frames);
   const int left_heel = static_cast<int>(ContactLabel::LeftHeel), right_toe = static_cast<int>(ContactLabel::RightToe);
   contacts.block(left_heel, 20, 1, 10).setOnes();  // the left heel planted over frames 20-29
@@ -154,7 +176,9 @@ TEST(Proportions, EnforcingBoneLengthsKeepsPlantedFeetWhereTheyWere) {
   double rise = 0.0;  // the mean over the contact of the plain enforcement's height less the one before
   for (Eigen::Index f = 20; f < 30; ++f)
     rise += (joint(plain, f, CanonicalJoint::LeftAnkle).y() - joint(noisy, f, CanonicalJoint::LeftAnkle).y()) / 10.0;
-  int within = 0;
+  const Eigen::Vector2d heel_stance = medianPlace(noisy, index(CanonicalJoint::LeftAnkle), 20, 30);
+  const Eigen::Vector2d toe_stance = medianPlace(noisy, index(CanonicalJoint::RightToe), 40, 46);
+  int within = 0, pulled = 0;
   for (Eigen::Index f = 20; f < 30; ++f) {
     const Eigen::Vector3d ankle = joint(kept, f, CanonicalJoint::LeftAnkle), was = joint(noisy, f, CanonicalJoint::LeftAnkle);
     EXPECT_LT((joint(kept, f, CanonicalJoint::RightKnee) - joint(plain, f, CanonicalJoint::RightKnee)).norm(), 1e-9);
@@ -163,8 +187,9 @@ TEST(Proportions, EnforcingBoneLengthsKeepsPlantedFeetWhereTheyWere) {
       EXPECT_NEAR(leg, reach * (1.0 - 1e-6), 1e-9) << f;
       continue;
     }
-    EXPECT_NEAR(ankle.x(), was.x(), 1e-9) << f;
-    EXPECT_NEAR(ankle.z(), was.z(), 1e-9) << f;
+    const Eigen::Vector2d place = pulledTo(heel_stance, {was.x(), was.z()});
+    EXPECT_NEAR(ankle.x(), place.x(), 1e-9) << f;
+    EXPECT_NEAR(ankle.z(), place.y(), 1e-9) << f;
     EXPECT_NEAR(ankle.y() - was.y(), std::max(rise, 0.0), 1e-9) << f;
     ++within;
   }
@@ -175,10 +200,13 @@ TEST(Proportions, EnforcingBoneLengthsKeepsPlantedFeetWhereTheyWere) {
     if ((joint(kept, f, CanonicalJoint::RightAnkle) - joint(kept, f, CanonicalJoint::RightHip)).norm() > reach * (1.0 - 1e-5))
       continue;  // pulled in to the leg's reach
     ++toe_within;
-    EXPECT_NEAR(toe.x(), was.x(), 1e-9) << f;
-    EXPECT_NEAR(toe.z(), was.z(), 1e-9) << f;
+    const Eigen::Vector2d place = pulledTo(toe_stance, {was.x(), was.z()});
+    pulled += (place - Eigen::Vector2d(was.x(), was.z())).norm() > 1e-6;
+    EXPECT_NEAR(toe.x(), place.x(), 1e-9) << f;
+    EXPECT_NEAR(toe.z(), place.y(), 1e-9) << f;
   }
   EXPECT_GE(toe_within, 2);
+  EXPECT_GE(pulled, 1);  // the noise strays further than the radius somewhere
   // Proportions without toes (a rig that ends at the ankles): the toes collapse onto the ankles, nothing
   // goes NaN.
   Proportions toeless = reference;
@@ -191,11 +219,74 @@ TEST(Proportions, EnforcingBoneLengthsKeepsPlantedFeetWhereTheyWere) {
   EXPECT_TRUE(collapsed.allFinite());
   EXPECT_LT((collapsed.middleRows<3>(3 * index(CanonicalJoint::RightToe)) -
              collapsed.middleRows<3>(3 * index(CanonicalJoint::RightAnkle))).cwiseAbs().maxCoeff(), 1e-9);
-  // Two frames before the heel's contact the weight is 1 - 2 / 5: the ankle moved 3 / 5 of the way.
-  const Eigen::Vector3d from = joint(plain, 18, CanonicalJoint::LeftAnkle), to = joint(noisy, 18, CanonicalJoint::LeftAnkle);
+  // Two frames before the heel's contact the weight is 1 - 2 / 5: the ankle moved 3 / 5 of the way to
+  // its place, pulled toward the stance it ramps to.
+  const Eigen::Vector3d from = joint(plain, 18, CanonicalJoint::LeftAnkle), was = joint(noisy, 18, CanonicalJoint::LeftAnkle);
+  const Eigen::Vector2d to = pulledTo(heel_stance, {was.x(), was.z()});
   const Eigen::Vector3d at = joint(kept, 18, CanonicalJoint::LeftAnkle);
   EXPECT_NEAR(at.x(), from.x() + 0.6 * (to.x() - from.x()), 1e-9);
-  EXPECT_NEAR(at.z(), from.z() + 0.6 * (to.z() - from.z()), 1e-9);
+  EXPECT_NEAR(at.z(), from.z() + 0.6 * (to.y() - from.z()), 1e-9);
+}
+
+// The kept place is the world's: a walking character (the zombie's root velocities) whose left heel
+// slides 12 cm through a 20-frame contact has it held within kKeptFootRadiusCm of one place on the
+// floor; slid 50 cm (more than kLockableSpreadCm from its median), it is a step the style moved and
+// keeps its place from before.
+TEST(Proportions, EnforcingBoneLengthsHoldsAStanceInTheWorld) {
+  const Eigen::MatrixXd walk = ownFeatures("zombie.bvh");
+  ASSERT_GT(walk.cols(), 60);
+  // World places on the floor of root-frame point p per frame (root_path.h's convention).
+  std::vector<Eigen::Vector2d> place;
+  std::vector<double> heading;
+  Eigen::Vector2d root = Eigen::Vector2d::Zero();
+  double turned = 0.0;
+  const auto turn = [](double h, double x, double z) {
+    return Eigen::Vector2d(std::cos(h) * x + std::sin(h) * z, -std::sin(h) * x + std::cos(h) * z);
+  };
+  for (Eigen::Index f = 0; f < walk.cols(); ++f) {
+    place.push_back(root);
+    heading.push_back(turned);
+    root += turn(turned, walk(kSidewaysVelocity, f), walk(kForwardVelocity, f));
+    turned += walk(kTurningVelocity, f);
+  }
+  const int ankle = index(CanonicalJoint::LeftAnkle), toe = index(CanonicalJoint::LeftToe);
+  const auto world = [&](const Eigen::MatrixXd& m, Eigen::Index f) {
+    const auto i = static_cast<std::size_t>(f);
+    return Eigen::Vector2d(place[i] + turn(heading[i], m(3 * ankle, f), m(3 * ankle + 2, f)));
+  };
+  Eigen::MatrixXd contacts = Eigen::MatrixXd::Zero(kContactCount, walk.cols());
+  contacts.block(static_cast<int>(ContactLabel::LeftHeel), 20, 1, 20).setOnes();
+  for (const double slide : {12.0, 50.0}) {
+    // The foot still in the world at frame 20's place, then slid along the world's x.
+    Eigen::MatrixXd before = walk;
+    const Eigen::Vector2d planted = world(walk, 20);
+    for (Eigen::Index f = 20; f < 40; ++f) {
+      const auto i = static_cast<std::size_t>(f);
+      const Eigen::Vector2d at = planted + Eigen::Vector2d(slide * static_cast<double>(f - 20) / 19.0, 0.0);
+      const Eigen::Vector2d local = turn(-heading[i], at.x() - place[i].x(), at.y() - place[i].y());
+      const Eigen::Vector2d shift = local - Eigen::Vector2d(before(3 * ankle, f), before(3 * ankle + 2, f));
+      for (const int j : {ankle, toe}) {
+        before(3 * j, f) += shift.x();
+        before(3 * j + 2, f) += shift.y();
+      }
+    }
+    Eigen::MatrixXd kept = before;
+    enforceBoneLengths(kept, referenceProportions(), contacts);
+    const Eigen::Vector2d median = planted + Eigen::Vector2d(slide * 10.0 / 19.0, 0.0);
+    int held = 0;
+    for (Eigen::Index f = 20; f < 40; ++f) {
+      if ((kept.col(f).segment<3>(3 * ankle) - kept.col(f).segment<3>(3 * index(CanonicalJoint::LeftHip))).norm() >
+          (referenceProportions().legLength() * (1.0 - 1e-5)))
+        continue;  // pulled in to the leg's reach
+      ++held;
+      if (slide < kLockableSpreadCm) {
+        EXPECT_LE((world(kept, f) - median).norm(), kKeptFootRadiusCm + 1e-9) << f;
+      } else {
+        EXPECT_NEAR((world(kept, f) - world(before, f)).norm(), 0.0, 1e-9) << f;
+      }
+    }
+    EXPECT_GE(held, 10) << slide;
+  }
 }
 
 // A planted foot whose leg the output has short (the foot 3 cm up its shin) comes out of the plain

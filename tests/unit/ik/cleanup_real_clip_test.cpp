@@ -137,6 +137,34 @@ TEST_P(CleanupRealClip, OnASlopedFloorEachStepKeepsTheContentsHeight) {
   EXPECT_GE(segments, 2);
 }
 
+TEST_P(CleanupRealClip, AFootTheTargetsHoldALittleUpIsLockedPartlyUp) {
+  // The left foot's targets h cm over the clip's own through every frame: within the network's wobble
+  // (h = 0.5) each heel contact holds the ankle on the content's height; at h = 3 the lock rises by
+  // 5 ((3 - 1) / 4)^2 = 1.25 cm (cleanup_locks.cpp: a style's small lift followed continuously).
+  const std::array<int, kContactCount> feet = contactJoints(mapping);
+  const int heel = static_cast<int>(ContactLabel::LeftHeel);
+  const int ankle = feet[static_cast<size_t>(heel)];
+  for (const auto& [lift, locked_up] : {std::pair{0.5, 0.0}, std::pair{3.0, 1.25}}) {
+    Eigen::MatrixXd raised = clean_targets;
+    for (const int c : {index(CanonicalJoint::LeftAnkle), index(CanonicalJoint::LeftToe)})
+      for (int f = 0; f < raised.rows(); ++f) raised.block<1, 3>(f, 3 * c) += (lift / cm) * up.transpose();
+    CleanupReport report;
+    const Eigen::MatrixXd result_world = worldPositions(clean(raised, report));
+    int segments = 0;
+    for (const ContactSegment& segment : contactSegments(contacts, heel)) {
+      std::vector<double> heights;
+      for (int f = segment.first; f <= segment.last; ++f) heights.push_back(up.dot(world.block<1, 3>(f, 3 * ankle).transpose()));
+      std::sort(heights.begin(), heights.end());
+      const double content_height = heights[heights.size() / 2];
+      const int middle = (segment.first + segment.last) / 2;
+      EXPECT_NEAR((up.dot(result_world.block<1, 3>(middle, 3 * ankle).transpose()) - content_height) * cm, locked_up, 0.5)
+          << "lift " << lift << ", frame " << middle << " of the contact " << segment.first << "-" << segment.last;
+      ++segments;
+    }
+    EXPECT_GE(segments, 2);
+  }
+}
+
 TEST_P(CleanupRealClip, StretchedLegWarnsAndStaysBounded) {
   Eigen::MatrixXd stretched = clean_targets;
   const int ankle = index(CanonicalJoint::RightAnkle), toe = index(CanonicalJoint::RightToe);

@@ -190,7 +190,7 @@ TEST_F(CleanupStylized, AJitteringStanceIsLockedAndAMovedStepIsNotButItsSlidingC
     stylized.world_positions.block<1, 3>(f, column) += (f % 2 == 0 ? 1.5 : -1.5) * units_per_cm * side;
   for (int f = moved.first; f <= moved.last; ++f)
     stylized.world_positions.block<1, 3>(f, column) +=
-        3.0 * style::kLockableSpreadCm * (static_cast<double>(f - moved.first) / (moved.last - moved.first) - 0.5) *
+        3.0 * kLockableSpreadCm * (static_cast<double>(f - moved.first) / (moved.last - moved.first) - 0.5) *
         units_per_cm * side;  // 60 cm across the stance, +-30 about its middle
 
   const style::StylizedCleanup kept = style::cleanUpStylizedClip(content, mapping, plain);
