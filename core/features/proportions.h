@@ -69,8 +69,9 @@ void retargetFeatures(Eigen::MatrixXd& features, const Proportions& from, const 
 void enforceBoneLengths(Eigen::MatrixXd& features, const Proportions& proportions);
 
 // A stance is one where the foot joint stays within this radius of its median place over the contact
-// (horizontally, the character's cm); further, the style moved the step: the stylizer does not hold
-// it (below) and the clean-up does not lock it (style/stylized_cleanup.cpp says why).
+// (horizontally, cm: the reference character's in features, below; the clip's own in the clean-up);
+// further, the style moved the step: the stylizer does not hold it (below) and the clean-up does not
+// lock it (style/stylized_cleanup.cpp says why).
 inline constexpr double kLockableSpreadCm = 20.0;
 // How far a kept heel or toe may stray from its stance's place (below), cm. Why not 0: a stance held
 // still takes style with it (the network's foot wanders a little within a stance as part of it); at 3

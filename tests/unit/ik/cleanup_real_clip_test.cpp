@@ -30,6 +30,14 @@ struct Fixture {
 
 void PrintTo(const Fixture& fixture, std::ostream* out) { *out << fixture.file; }
 
+// The median height along `up` of joint j (world: frames x 3J) over a contact segment, file units.
+double medianHeight(const Eigen::MatrixXd& world, int j, const ContactSegment& segment, const Eigen::Vector3d& up) {
+  std::vector<double> heights;
+  for (int f = segment.first; f <= segment.last; ++f) heights.push_back(up.dot(world.block<1, 3>(f, 3 * j).transpose()));
+  std::sort(heights.begin(), heights.end());
+  return heights[heights.size() / 2];
+}
+
 class CleanupRealClip : public ::testing::TestWithParam<Fixture> {
  protected:
   void SetUp() override {
@@ -125,10 +133,7 @@ TEST_P(CleanupRealClip, OnASlopedFloorEachStepKeepsTheContentsHeight) {
   const int ankle = feet[static_cast<size_t>(heel)];
   int segments = 0;
   for (const ContactSegment& segment : contactSegments(sloped_contacts, heel)) {
-    std::vector<double> heights;
-    for (int f = segment.first; f <= segment.last; ++f) heights.push_back(up.dot(sloped_world.block<1, 3>(f, 3 * ankle).transpose()));
-    std::sort(heights.begin(), heights.end());
-    const double content_height = heights[heights.size() / 2];
+    const double content_height = medianHeight(sloped_world, ankle, segment, up);
     for (int f = segment.first; f <= segment.last; ++f)
       ASSERT_NEAR(up.dot(result_world.block<1, 3>(f, 3 * ankle).transpose()) * cm, content_height * cm, 0.5)
           << "frame " << f << " of the contact " << segment.first << "-" << segment.last;
@@ -152,10 +157,7 @@ TEST_P(CleanupRealClip, AFootTheTargetsHoldALittleUpIsLockedPartlyUp) {
     const Eigen::MatrixXd result_world = worldPositions(clean(raised, report));
     int segments = 0;
     for (const ContactSegment& segment : contactSegments(contacts, heel)) {
-      std::vector<double> heights;
-      for (int f = segment.first; f <= segment.last; ++f) heights.push_back(up.dot(world.block<1, 3>(f, 3 * ankle).transpose()));
-      std::sort(heights.begin(), heights.end());
-      const double content_height = heights[heights.size() / 2];
+      const double content_height = medianHeight(world, ankle, segment, up);
       const int middle = (segment.first + segment.last) / 2;
       EXPECT_NEAR((up.dot(result_world.block<1, 3>(middle, 3 * ankle).transpose()) - content_height) * cm, locked_up, 0.5)
           << "lift " << lift << ", frame " << middle << " of the contact " << segment.first << "-" << segment.last;
