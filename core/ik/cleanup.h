@@ -14,7 +14,7 @@
 //     more than 5 cm below the content's, as where the content kneels on its instep, and the targets'
 //     own height where they hold it more than 5 cm above the content's (or above the rest height
 //     where the content never plants it there), as a style that runs on the forefoot, and between 1
-//     and 5 cm above, a lock that rises with them continuously (cleanup_locks.cpp); both joints of
+//     and 5 cm above or below, a lock that moves their way continuously (cleanup_locks.cpp); both joints of
 //     a foot at their targets' height where the two stand more than 5 cm above on average, as a style
 //     that holds the whole foot up),
 //   - joints outside the 21 canonical ones (fingers, clavicles, extra spine, twist) following the

@@ -45,19 +45,21 @@ std::optional<double> plantedHeight(const ContactLabels& planted, const CleanupI
 //     other studios' runs' worst residual (docs/decisions.md, "A heel the style raises"). The same
 //     against the rest height where the content never plants the joint over the segment (a run's
 //     quick stance: Bandai's run 012 with masculine, 9.7 -> 4.6 cm).
-// Between the two, where the targets hold the joint h = 0..kLockHeightToleranceCm over the content's
-// planted height, the lock rises with them continuously from kLiftDeadZoneCm up,
-//   lift(h) = T ((h - d) / (T - d))^2,  T = kLockHeightToleranceCm, d = kLiftDeadZoneCm,
-// so that it meets the raised lock at T: a style that held a foot 4.5 cm up was locked on the floor,
-// 4.5 cm under its targets, and at 5.5 cm up on them (CMU 131_01's way out of the kneel, happy's toe
-// 9.3 cm from its targets; docs/decisions.md, "Stances held in the stylizer"). Up to d, the network's
-// own wobble, the lock stays on the content's floor.
+// Between the two, where the targets hold the joint |h| <= kLockHeightToleranceCm from the content's
+// planted height, the lock moves their way continuously from kLiftDeadZoneCm on, by the share
+//   s(|h|) = (max(0, |h| - d) / (T - d))^2,  T = kLockHeightToleranceCm, d = kLiftDeadZoneCm,
+// of the way to the rule it meets at T: up by s T (at T, the targets' height), down by s times the way
+// to the rest height where that is lower (at -T, the rest height). Why: at T a style that held a foot
+// 4.5 cm up was locked on the floor, 4.5 cm under its targets, and at 5.5 cm up on them (CMU 131_01's
+// way out of the kneel: happy's toe 9.3 cm from its targets; a heel the style holds 3-6 cm under a
+// content's that sinks through its last stance: elderly's knee 8.3 cm; docs/decisions.md, "Stances
+// held in the stylizer"). Within d, the network's own wobble, the lock stays at the content's height.
 constexpr double kLockHeightToleranceCm = 5.0;
 constexpr double kLiftDeadZoneCm = 1.0;
 
-double partialLiftCm(double over_content_cm) {
-  const double x = std::max(0.0, (over_content_cm - kLiftDeadZoneCm) / (kLockHeightToleranceCm - kLiftDeadZoneCm));
-  return kLockHeightToleranceCm * x * x;
+double partialShare(double away_cm) {
+  const double x = std::max(0.0, (away_cm - kLiftDeadZoneCm) / (kLockHeightToleranceCm - kLiftDeadZoneCm));
+  return x * x;
 }
 
 struct LockHeight {
@@ -79,7 +81,10 @@ LockHeight lockHeight(const ContentFootHeights& feet, const CleanupInput& input,
   const double above_content_cm = (target_height - planted.value_or(rest)) * input.cm_per_unit;
   if (above_content_cm > kLockHeightToleranceCm) return {target_height, true, target_height, above_content_cm};
   if (!planted || above_content_cm < -kLockHeightToleranceCm) return {rest, false, target_height, above_content_cm};
-  return {*planted + partialLiftCm(above_content_cm) / input.cm_per_unit, false, target_height, above_content_cm};
+  const double share = partialShare(std::abs(above_content_cm));
+  const double moved = above_content_cm >= 0.0 ? share * kLockHeightToleranceCm / input.cm_per_unit
+                                               : share * std::min(0.0, rest - *planted);
+  return {*planted + moved, false, target_height, above_content_cm};
 }
 
 struct LockSegment {
