@@ -182,13 +182,18 @@ void makeFootLocksConsistent(std::vector<LockSegment>& segments, int heel, int t
 // targets hold the joint within kLiftToleranceCm of that level (ContactLocks::departing, ramps
 // included) the joint may rise by
 //   lift = max(0, up . target - level - tolerance),
-// and its lock rises by (1 - a_other) x lift + a_other x min(lift, lift_other), a_other the foot's
-// other joint's lock share (its ramp's, CleanupOptions::contact_blend_seconds; 0 where it is free) and
-// lift_other that joint's own lift (0 unless it departs too). So a lone joint rises with its targets;
-// a heel and toe both locked rise together by the smaller lift, which keeps the foot's length between
-// them; one rising while the other stays down stays down too (the foot's length ties them: one rising
-// moves the other along the floor, 3-9 cm/s of skate); and in a stance's middle nothing rises, where a
-// lock following the targets' bobs would float a planted foot. Why: the toe of a quicker toe-off was
+// and, a lock raised to the style's height (ContactLocks::kRisingOrFalling), fall as well where the
+// targets are lower: lift = max(floor - level, up . target - level + tolerance) < 0;
+// its lock moves by (1 - a_other) x lift + a_other x tied, a_other the foot's other joint's lock share
+// (its ramp's, CleanupOptions::contact_blend_seconds; 0 where it is free) and tied the smaller of the
+// two lifts where both move the same way (lift_other, that joint's own, is 0 unless it departs too),
+// else 0. So a lone joint rises (falls) with its targets; a heel and toe both locked move together by
+// the smaller move, which keeps the foot's length between them; one moving while the other stays down
+// stays too (the foot's length ties them: one rising moves the other along the floor, 3-9 cm/s of
+// skate); and in a stance's middle nothing moves, where a lock following the targets' bobs would float
+// a planted foot. Why the fall: a style that holds the toe up through a stance (the zombie with
+// feminine, 7 cm over the content's) and puts it down to the floor as it leaves was held up there, 8.1
+// cm from its targets (7.7 with the fall; docs/decisions.md, "Stances held in the stylizer"). Why: the toe of a quicker toe-off was
 // held on the floor while its targets rose 9.5 cm (CMU 131_01's kneel exit with elderly: 11.7 cm from
 // them, 6.9 with the lift), and a whole foot the style lifts off early 11-13 cm (131_01, exhausted:
 // 13.4 -> 6.2 cm); its horizontal place, which alone makes a skate, stays locked (docs/decisions.md,
@@ -204,15 +209,21 @@ void raiseDepartingLocks(ContactLocks& locks, const CleanupInput& input, const C
       if (locks.weights(f, label) <= 0.0 || locks.departing(f, label) == 0) continue;
       const int column = 3 * index(kContactJoint[static_cast<size_t>(label)]);
       const double height = input.up.dot(input.targets.block<1, 3>(f, column).transpose());
-      lift[static_cast<size_t>(label)] = std::max(0.0, height - locks.down_level(f, label) - tolerance);
+      const double over = height - locks.down_level(f, label);
+      lift[static_cast<size_t>(label)] =
+          over > tolerance ? over - tolerance
+          : locks.departing(f, label) == ContactLocks::kRisingOrFalling && over < -tolerance
+              ? std::max(input.floor_height - locks.down_level(f, label), over + tolerance)
+              : 0.0;
     }
     for (int label = 0; label < kContactCount; ++label) {
       const double own = lift[static_cast<size_t>(label)];
-      if (own <= 0.0) continue;
+      if (own == 0.0) continue;
       const double other_weight = locks.weights(f, label ^ 1);  // ContactLabel order: heel, toe per foot
       const double other_share =  // 0 where the other joint is free (also when position_weight is 0)
           other_weight <= 0.0 ? 0.0 : other_weight * other_weight / (other_weight * other_weight + position_weight2);
-      const double tied = std::min(own, lift[static_cast<size_t>(label ^ 1)]);
+      const double other = lift[static_cast<size_t>(label ^ 1)];
+      const double tied = own > 0.0 ? std::max(0.0, std::min(own, other)) : std::min(0.0, std::max(own, other));
       locks.positions[static_cast<size_t>(f)][static_cast<size_t>(label)] +=
           ((1.0 - other_share) * own + other_share * tied) * input.up;
     }
@@ -276,9 +287,12 @@ ContactLocks contactLocks(const CleanupInput& input, const CleanupOptions& optio
       lowest = std::min(lowest, up.dot(input.targets.block<1, 3>(f, column).transpose()));
     // raiseDepartingLocks' level; the lowest target lies within it, so every segment has a down frame.
     const double level = std::max(up.dot(segment.lock), lowest);
+    // A raised lock is held down only where its targets are within the tolerance either way.
+    const bool raised = segment.height.raised;
     int first_down = range.last + 1, last_down = range.first - 1;
     for (int f = range.first; f <= range.last; ++f)
-      if (up.dot(input.targets.block<1, 3>(f, column).transpose()) - level <= tolerance) {
+      if (const double over = up.dot(input.targets.block<1, 3>(f, column).transpose()) - level;
+          over <= tolerance && (!raised || over >= -tolerance)) {
         first_down = std::min(first_down, f);
         last_down = f;
       }
@@ -291,7 +305,9 @@ ContactLocks contactLocks(const CleanupInput& input, const CleanupOptions& optio
       if (weight > locks.weights(f, segment.label)) {
         locks.weights(f, segment.label) = weight;
         locks.positions[static_cast<size_t>(f)][static_cast<size_t>(segment.label)] = segment.lock;
-        locks.departing(f, segment.label) = f < first_down || f > last_down;
+        locks.departing(f, segment.label) = f >= first_down && f <= last_down ? ContactLocks::kHeld
+                                            : raised                          ? ContactLocks::kRisingOrFalling
+                                                                              : ContactLocks::kRising;
         locks.down_level(f, segment.label) = level;
       }
     }

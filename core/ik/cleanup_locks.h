@@ -31,9 +31,12 @@ ContentFootHeights contentFootHeights(const CleanupInput& input, const Eigen::Ma
 struct ContactLocks {
   std::vector<std::array<Eigen::Vector3d, kContactCount>> positions;  // per frame, file units
   Eigen::MatrixXd weights;                                            // frames x 4
-  // frames x 4: 1 where the frame lies before the first or after the last frame of its segment at
+  // frames x 4: where the frame lies before the first or after the last frame of its segment at
   // which the targets hold the joint down (within kLiftToleranceCm of down_level): the style has not
-  // landed yet, or has lifted off already (raiseDepartingLocks).
+  // landed yet, or has lifted off already (raiseDepartingLocks). kRising there: the lock may rise with
+  // its targets; kRisingOrFalling, a lock raised to the style's height (lockHeight), whose targets
+  // hold it down only within kLiftToleranceCm either way: it may also fall with them, to the floor.
+  enum Departure : int { kHeld = 0, kRising = 1, kRisingOrFalling = 2 };
   Eigen::MatrixXi departing;
   // frames x 4, along up in file units: the segment's lock height or the targets' lowest over the
   // segment, whichever is higher (the style may hold a stance a little above the lock).

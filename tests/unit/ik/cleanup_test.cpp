@@ -277,6 +277,29 @@ TEST_F(CleanupFootHeldUp, AFootTheStyleHoldsUpWhereTheContentNeverPlantsItStaysU
 // which a lock takes its targets' height): both locks rise, neither is pulled to the other's height.
 TEST_F(CleanupFootHeldUp, AFootTheStyleHoldsUpWholeIsHeldUpWhole) { expectHeldUp(7.0, 4.0); }
 
+// A toe the style holds up through its stance (8 cm over where the foot rests, the lock at the
+// targets' height) and puts down to the floor over the stance's last four frames, its heel already
+// free: the lock falls with its targets (within the 1 cm tolerance; held up it was 8 cm over them) and
+// stays still over the floor (cleanup_locks.cpp, raiseDepartingLocks).
+TEST_F(CleanupHumanoid, AToeTheStyleHoldsUpAndPutsDownFallsWithItsTargets) {
+  Eigen::MatrixXd held = footRaisedFrom(targets, kFrames, 0.0);  // the foot held still
+  const int heel_column = 3 * index(CanonicalJoint::LeftAnkle), toe_column = 3 * index(CanonicalJoint::LeftToe);
+  held.col(heel_column + 1).array() += 8.0;
+  held.col(toe_column + 1).array() += 8.0;
+  for (int f = 37; f <= 40; ++f) held(f, toe_column + 1) -= 2.0 * (f - 36);  // down to where it rests
+  Eigen::MatrixXi contacts = no_contacts;
+  contacts.block(20, 0, 15, 1).setOnes();  // left heel 20-34
+  contacts.block(20, 1, 21, 1).setOnes();  // left toe 20-40
+  const Eigen::MatrixXd cleaned = worldPositions(cleanupMotion(input(held, contacts, 0.0), {}, nullptr));
+  const int toe = mapping[CanonicalJoint::LeftToe];
+  EXPECT_NEAR(cleaned(30, 3 * toe + 1), held(30, toe_column + 1), 1.0);  // held up through the stance
+  for (int f = 39; f <= 40; ++f) {
+    EXPECT_NEAR(cleaned(f, 3 * toe + 1), held(f, toe_column + 1), 1.3) << "frame " << f;
+    EXPECT_LT(std::hypot(cleaned(f, 3 * toe) - cleaned(30, 3 * toe), cleaned(f, 3 * toe + 2) - cleaned(30, 3 * toe + 2)), 0.3)
+        << "the toe slid at frame " << f;
+  }
+}
+
 TEST_F(CleanupHumanoid, FeetStayAboveTheFloor) {
   Eigen::MatrixXd lowered = targets;
   for (int c = 0; c < kCanonicalJointCount; ++c) lowered.col(3 * c + 1).array() -= 12.0;  // toes ~10 cm under
