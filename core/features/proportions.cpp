@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "features/root_path.h"
+
 namespace motionstyle {
 namespace {
 
@@ -149,30 +151,6 @@ bool kneeFor(const Eigen::Vector3d& h, const Eigen::Vector3d& a, const Eigen::Ve
   return true;
 }
 
-// The root's place on the floor and its heading per frame, integrated from the features' root
-// velocities (root_path.h's convention): a root-frame point p lies in the world at
-// place + R(heading) (p_x, p_z), R(h) (x, z) = (cos h x + sin h z, -sin h x + cos h z).
-struct RootFrames {
-  std::vector<Eigen::Vector2d> place;
-  std::vector<double> heading;
-
-  explicit RootFrames(const Eigen::MatrixXd& features) {
-    Eigen::Vector2d root = Eigen::Vector2d::Zero();
-    double turned = 0.0;
-    for (Eigen::Index f = 0; f < features.cols(); ++f) {
-      place.push_back(root);
-      heading.push_back(turned);
-      root += turn(turned, {features(kSidewaysVelocity, f), features(kForwardVelocity, f)});
-      turned += features(kTurningVelocity, f);
-    }
-  }
-  static Eigen::Vector2d turn(double h, const Eigen::Vector2d& v) {
-    return {std::cos(h) * v.x() + std::sin(h) * v.y(), -std::sin(h) * v.x() + std::cos(h) * v.y()};
-  }
-  Eigen::Vector2d toWorld(std::size_t f, const Eigen::Vector3d& p) const { return place[f] + turn(heading[f], {p.x(), p.z()}); }
-  Eigen::Vector2d toRoot(std::size_t f, const Eigen::Vector2d& q) const { return turn(-heading[f], q - place[f]); }
-};
-
 // Per frame, the floor place (x, z) of the stance of contact `label` the frame lies in or ramps to
 // (kKeptFootRampFrames, the nearer stance), or none: the median of the joint's world places over the
 // stance's contact frames, for a stance whose places all lie within kLockableSpreadCm of it (further,
@@ -214,14 +192,14 @@ std::vector<std::optional<Eigen::Vector2d>> stancePlaces(const Eigen::MatrixXd& 
   return stance;
 }
 
-// A joint's place on the floor in frame f's root frame, pulled to within kKeptFootRadiusCm of its
-// stance's place: `world`, its place in the world (RootFrames), when it has a stance and strays further,
-// `joint` (frame f's root frame) unchanged, when it has no stance or lies within reach of it.
-Eigen::Vector2d keptPlace(const RootFrames& root, std::size_t f, const std::optional<Eigen::Vector2d>& stance,
+// A joint's place on the floor in its frame's root frame (`root`), pulled to within kKeptFootRadiusCm of
+// its stance's place: `world`, its place on the floor, when it has a stance and strays further; `joint`
+// (root-frame features) unchanged, when it has no stance or lies within reach of it.
+Eigen::Vector2d keptPlace(const RootFrame& root, const std::optional<Eigen::Vector2d>& stance,
                           const Eigen::Vector2d& world, const Eigen::Vector3d& joint) {
   if (!stance || (world - *stance).norm() <= kKeptFootRadiusCm) return {joint.x(), joint.z()};
   const Eigen::Vector2d off = world - *stance;
-  return root.toRoot(f, *stance + off * (kKeptFootRadiusCm / off.norm()));
+  return root.toRootFrame(*stance + off * (kKeptFootRadiusCm / off.norm()));
 }
 
 }  // namespace
@@ -234,7 +212,7 @@ void enforceBoneLengths(Eigen::MatrixXd& features, const Proportions& proportion
   if (contacts.size() == 0) return;
   const Eigen::MatrixXd weight = contactWeights(contacts);
   const Eigen::Index frames = features.cols();
-  const RootFrames root(before);
+  const std::vector<RootFrame> roots = rootFrames(before);  // the root path, root_path.h
   for (const bool left : {true, false}) {
     const int hip = index(left ? C::LeftHip : C::RightHip), knee = hip + 1, ankle = hip + 2, toe = hip + 3;
     const int heel_label = static_cast<int>(left ? ContactLabel::LeftHeel : ContactLabel::RightHeel);
@@ -245,8 +223,9 @@ void enforceBoneLengths(Eigen::MatrixXd& features, const Proportions& proportion
     // The heel's and toe's stances, from their world places before.
     std::vector<Eigen::Vector2d> heel_world(static_cast<std::size_t>(frames)), toe_world(heel_world.size());
     for (Eigen::Index f = 0; f < frames; ++f) {
-      heel_world[static_cast<std::size_t>(f)] = root.toWorld(static_cast<std::size_t>(f), jointAt(before, f, ankle));
-      toe_world[static_cast<std::size_t>(f)] = root.toWorld(static_cast<std::size_t>(f), jointAt(before, f, toe));
+      const RootFrame& root = roots[static_cast<std::size_t>(f)];
+      heel_world[static_cast<std::size_t>(f)] = root.toWorld(before(3 * ankle, f), before(3 * ankle + 2, f));
+      toe_world[static_cast<std::size_t>(f)] = root.toWorld(before(3 * toe, f), before(3 * toe + 2, f));
     }
     const auto heel_stance = stancePlaces(contacts, heel_label, heel_world);
     const auto toe_stance = stancePlaces(contacts, toe_label, toe_world);
@@ -266,8 +245,8 @@ void enforceBoneLengths(Eigen::MatrixXd& features, const Proportions& proportion
       const double toe_share = w(f) > 0.0 ? weight(toe_label, f) / (weight(heel_label, f) + weight(toe_label, f)) : 0.0;
       kept[i] = jointAt(before, f, ankle) + toe_share * (foot_bone.norm() - foot) * direction[i];
       if (w(f) <= 0.0) continue;
-      const Eigen::Vector2d heel_place = keptPlace(root, i, heel_stance[i], heel_world[i], jointAt(before, f, ankle));
-      const Eigen::Vector2d toe_place = keptPlace(root, i, toe_stance[i], toe_world[i], jointAt(before, f, toe)) -
+      const Eigen::Vector2d heel_place = keptPlace(roots[i], heel_stance[i], heel_world[i], jointAt(before, f, ankle));
+      const Eigen::Vector2d toe_place = keptPlace(roots[i], toe_stance[i], toe_world[i], jointAt(before, f, toe)) -
                                         foot * Eigen::Vector2d(direction[i].x(), direction[i].z());
       const Eigen::Vector2d place = (1.0 - toe_share) * heel_place + toe_share * toe_place;
       kept[i].x() = place.x();

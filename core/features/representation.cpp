@@ -10,6 +10,7 @@
 #include "common/errors.h"
 #include "features/foot_contacts.h"
 #include "features/rest_pose_frames.h"
+#include "features/root_path.h"
 #include "features/signal_filters.h"
 #include "motion/kinematics.h"
 #include "motion/resample.h"
@@ -18,12 +19,6 @@ namespace motionstyle {
 namespace {
 
 constexpr int kJoints = kCanonicalJointCount;
-
-// Rotation about +Y by angle theta applied to (x, z): +Z turns toward +X for positive theta.
-Eigen::Vector2d rotateY(double theta, double x, double z) {
-  const double c = std::cos(theta), s = std::sin(theta);
-  return {c * x + s * z, -s * x + c * z};
-}
 
 double wrapAngle(double angle) {
   return std::remainder(angle, 2.0 * std::numbers::pi);
@@ -214,17 +209,13 @@ Eigen::MatrixXd referenceWorldPositions(const Eigen::MatrixXd& features, const F
   applyRigCorrection(own, anchor.rig, /*inverse=*/true);
   retargetFeatures(own, referenceProportions(), anchor.proportions);
   Eigen::MatrixXd world(frames, 3 * kJoints);
-  Eigen::Vector2d root = anchor.start_root;
-  double heading = anchor.start_heading;
-  for (Eigen::Index f = 0; f < frames; ++f) {
+  const std::vector<RootFrame> roots = rootFrames(own, anchor.start_root, anchor.start_heading);
+  for (Eigen::Index f = 0; f < frames; ++f)
     for (int c = 0; c < kJoints; ++c) {
       const Eigen::Vector3d p = own.col(f).segment<3>(3 * c);
-      const Eigen::Vector2d offset = rotateY(heading, p.x(), p.z());
-      world.row(f).segment<3>(3 * c) << root.x() + offset.x(), p.y(), root.y() + offset.y();
+      const Eigen::Vector2d floor = roots[static_cast<std::size_t>(f)].toWorld(p.x(), p.z());
+      world.row(f).segment<3>(3 * c) << floor.x(), p.y(), floor.y();
     }
-    root += rotateY(heading, own(kSidewaysVelocity, f), own(kForwardVelocity, f));
-    heading += own(kTurningVelocity, f);
-  }
   return world;
 }
 

@@ -9,18 +9,38 @@
 
 namespace motionstyle {
 
+Eigen::Vector2d RootFrame::toWorld(double x, double z) const {
+  const double c = std::cos(heading), s = std::sin(heading);
+  return {place.x() + (c * x + s * z), place.y() + (-s * x + c * z)};
+}
+
+Eigen::Vector2d RootFrame::toRootFrame(const Eigen::Vector2d& q) const {
+  const double c = std::cos(heading), s = std::sin(heading);
+  const Eigen::Vector2d d = q - place;
+  return {c * d.x() - s * d.y(), s * d.x() + c * d.y()};
+}
+
+std::vector<RootFrame> rootFrames(const Eigen::MatrixXd& features, const Eigen::Vector2d& start_place, double start_heading) {
+  if (features.rows() != kFeatureCount) throw std::invalid_argument("rootFrames: features must have 66 rows");
+  std::vector<RootFrame> frames(static_cast<std::size_t>(features.cols()) + 1);
+  frames[0] = {start_place, start_heading};
+  for (Eigen::Index f = 0; f < features.cols(); ++f) {
+    const RootFrame& now = frames[static_cast<std::size_t>(f)];
+    RootFrame& next = frames[static_cast<std::size_t>(f) + 1];
+    next.place = now.toWorld(features(kSidewaysVelocity, f), features(kForwardVelocity, f));
+    next.heading = now.heading + features(kTurningVelocity, f);
+  }
+  return frames;
+}
+
 RootPathSummary summariseRootPath(const Eigen::MatrixXd& features) {
   if (features.rows() != kFeatureCount) throw std::invalid_argument("summariseRootPath: features must have 66 rows");
   RootPathSummary path;
-  double heading = 0.0;
-  for (Eigen::Index f = 0; f < features.cols(); ++f) {
-    const double vx = features(kSidewaysVelocity, f), vz = features(kForwardVelocity, f);
-    const double c = std::cos(heading), s = std::sin(heading);
-    path.displacement += Eigen::Vector2d(c * vx + s * vz, -s * vx + c * vz);
-    path.distance_cm += std::hypot(vx, vz);
-    heading += features(kTurningVelocity, f);
-  }
-  path.heading_change = heading;
+  for (Eigen::Index f = 0; f < features.cols(); ++f)
+    path.distance_cm += std::hypot(features(kSidewaysVelocity, f), features(kForwardVelocity, f));
+  const RootFrame end = rootFrames(features).back();
+  path.displacement = end.place;
+  path.heading_change = end.heading;
   return path;
 }
 

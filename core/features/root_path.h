@@ -6,6 +6,7 @@
 // path with its content's ("keep the path") and to enforce it.
 
 #include <Eigen/Core>
+#include <vector>
 
 #include "features/space_convention.h"
 #include "mapping/joint_mapping.h"
@@ -18,6 +19,20 @@ struct RootPathSummary {
   Eigen::Vector2d displacement = Eigen::Vector2d::Zero();  // root(end) - root(0), start frame's axes
   double heading_change = 0.0;                             // heading(end) - heading(0), radians
 };
+
+// The root at the start of each frame t = 0..frames (the last: after the clip's last step), by the
+// formula above from root(0) = start_place, heading(0) = start_heading. Frame t's root-frame point p
+// lies on the floor at place + R(heading) (p_x, p_z), R(h) (x, z) = (cos h x + sin h z, -sin h x + cos h z).
+struct RootFrame {
+  Eigen::Vector2d place = Eigen::Vector2d::Zero();
+  double heading = 0.0;
+  Eigen::Vector2d toWorld(double x, double z) const;            // a root-frame point's place on the floor
+  Eigen::Vector2d toRootFrame(const Eigen::Vector2d& q) const;  // the inverse: (x, z) of a place q
+};
+
+// features: 66 x frames. Throws std::invalid_argument for another row count.
+std::vector<RootFrame> rootFrames(const Eigen::MatrixXd& features, const Eigen::Vector2d& start_place = Eigen::Vector2d::Zero(),
+                                  double start_heading = 0.0);
 
 // features: 66 x frames. Throws std::invalid_argument for another row count.
 RootPathSummary summariseRootPath(const Eigen::MatrixXd& features);
