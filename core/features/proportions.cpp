@@ -5,9 +5,11 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "features/root_path.h"
+#include "features/signal_filters.h"
 
 namespace motionstyle {
 namespace {
@@ -160,7 +162,6 @@ std::vector<std::optional<Eigen::Vector2d>> stancePlaces(const Eigen::MatrixXd& 
   const Eigen::Index frames = contacts.cols();
   std::vector<std::optional<Eigen::Vector2d>> stance(static_cast<std::size_t>(frames));
   std::vector<Eigen::Index> distance(stance.size(), frames + 1);
-  std::vector<double> along;
   for (Eigen::Index first = 0; first < frames;) {
     if (contacts(label, first) < 0.5) {
       ++first;
@@ -168,15 +169,14 @@ std::vector<std::optional<Eigen::Vector2d>> stancePlaces(const Eigen::MatrixXd& 
     }
     Eigen::Index end = first;
     while (end < frames && contacts(label, end) >= 0.5) ++end;
-    Eigen::Vector2d median;
+    Eigen::Vector2d place;  // the median of each axis
     for (int axis = 0; axis < 2; ++axis) {
-      along.clear();
+      std::vector<double> along;
       for (Eigen::Index f = first; f < end; ++f) along.push_back(world[static_cast<std::size_t>(f)][axis]);
-      std::nth_element(along.begin(), along.begin() + static_cast<std::ptrdiff_t>(along.size() / 2), along.end());
-      median[axis] = along[along.size() / 2];
+      place[axis] = median(std::move(along));
     }
     double spread = 0.0;
-    for (Eigen::Index f = first; f < end; ++f) spread = std::max(spread, (world[static_cast<std::size_t>(f)] - median).norm());
+    for (Eigen::Index f = first; f < end; ++f) spread = std::max(spread, (world[static_cast<std::size_t>(f)] - place).norm());
     if (spread <= kLockableSpreadCm)
       for (Eigen::Index f = std::max<Eigen::Index>(0, first - kKeptFootRampFrames);
            f < std::min<Eigen::Index>(frames, end + kKeptFootRampFrames); ++f) {
@@ -184,7 +184,7 @@ std::vector<std::optional<Eigen::Vector2d>> stancePlaces(const Eigen::MatrixXd& 
         const auto i = static_cast<std::size_t>(f);
         if (away < distance[i]) {
           distance[i] = away;
-          stance[i] = median;
+          stance[i] = place;
         }
       }
     first = end;

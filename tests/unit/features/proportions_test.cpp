@@ -9,11 +9,13 @@
 #include <cmath>
 #include <random>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "bvh/bvh_reader.h"
 #include "features/proportions.h"
 #include "features/representation.h"
+#include "features/signal_filters.h"
 #include "mapping/joint_mapping.h"
 #include "test_paths.h"
 
@@ -124,14 +126,13 @@ Eigen::Vector2d pulledTo(const Eigen::Vector2d& stance, const Eigen::Vector2d& w
 // The median place on the floor of joint j over frames [first, end) (a character that stays put: the
 // root frame is the world's).
 Eigen::Vector2d medianPlace(const Eigen::MatrixXd& features, int j, Eigen::Index first, Eigen::Index end) {
-  Eigen::Vector2d median;
+  Eigen::Vector2d place;
   for (const int axis : {0, 2}) {
     std::vector<double> along;
     for (Eigen::Index f = first; f < end; ++f) along.push_back(features(3 * j + axis, f));
-    std::nth_element(along.begin(), along.begin() + static_cast<std::ptrdiff_t>(along.size() / 2), along.end());
-    median[axis / 2] = along[along.size() / 2];
+    place[axis / 2] = median(std::move(along));
   }
-  return median;
+  return place;
 }
 
 // With contacts, the bones are as exact, the legs' frames far from any contact are the plain

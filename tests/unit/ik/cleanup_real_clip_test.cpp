@@ -8,10 +8,12 @@
 #include <cstdio>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bvh/bvh_reader.h"
 #include "features/foot_contacts.h"
+#include "features/signal_filters.h"
 #include "ik/cleanup.h"
 #include "ik/contacts.h"
 #include "ik/metrics.h"
@@ -34,8 +36,7 @@ void PrintTo(const Fixture& fixture, std::ostream* out) { *out << fixture.file; 
 double medianHeight(const Eigen::MatrixXd& world, int j, const ContactSegment& segment, const Eigen::Vector3d& up) {
   std::vector<double> heights;
   for (int f = segment.first; f <= segment.last; ++f) heights.push_back(up.dot(world.block<1, 3>(f, 3 * j).transpose()));
-  std::sort(heights.begin(), heights.end());
-  return heights[heights.size() / 2];
+  return median(std::move(heights));
 }
 
 class CleanupRealClip : public ::testing::TestWithParam<Fixture> {
@@ -132,8 +133,7 @@ TEST_P(CleanupRealClip, OnASlopedFloorEachStepKeepsTheContentsHeight) {
   std::vector<double> planted;
   for (int f = 0; f < sloped_contacts.rows(); ++f)
     if (sloped_contacts(f, heel) != 0) planted.push_back(up.dot(sloped_world.block<1, 3>(f, 3 * ankle).transpose()));
-  std::sort(planted.begin(), planted.end());
-  const double rest = planted[planted.size() / 2];
+  const double rest = median(std::move(planted));
   for (const double drop : {0.0, 3.0}) {
     Eigen::MatrixXd targets = test::canonicalPositions(sloped_world, mapping);
     for (const int c : {index(CanonicalJoint::LeftAnkle), index(CanonicalJoint::LeftToe)})
