@@ -202,9 +202,23 @@ Eigen::Vector2d keptPlace(const RootFrame& root, const std::optional<Eigen::Vect
   return root.toRootFrame(*stance + off * (kKeptFootRadiusCm / off.norm()));
 }
 
+// The foot's direction d (unit, or zero) from an ankle at height `ankle_y`, turned up about the ankle by
+// share w toward the direction of the same heading whose toe, `foot` cm along it, stands at `floor`;
+// d itself where its toe already stands there or higher, or it has no heading.
+Eigen::Vector3d footOverFloor(const Eigen::Vector3d& d, double ankle_y, double foot, double floor, double w) {
+  const Eigen::Vector2d heading(d.x(), d.z());
+  if (ankle_y + foot * d.y() >= floor || heading.norm() < 1e-6 || foot < kMinimumBoneLengthCm) return d;
+  const double up = std::clamp((floor - ankle_y) / foot, -1.0, 1.0);
+  const Eigen::Vector2d along = heading.normalized() * std::sqrt(1.0 - up * up);
+  const Eigen::Vector3d over(along.x(), up, along.y());
+  const Eigen::Vector3d turned = d + w * (over - d);
+  return turned.norm() >= 1e-9 ? Eigen::Vector3d(turned.normalized()) : d;
+}
+
 }  // namespace
 
-void enforceBoneLengths(Eigen::MatrixXd& features, const Proportions& proportions, const Eigen::MatrixXd& contacts) {
+void enforceBoneLengths(Eigen::MatrixXd& features, const Proportions& proportions, const Eigen::MatrixXd& contacts,
+                        double planted_toe_height) {
   if (contacts.size() > 0 && (contacts.rows() != kContactCount || contacts.cols() != features.cols()))
     throw std::invalid_argument("enforceBoneLengths: the contacts must be 4 x the features' frames");
   const Eigen::MatrixXd before = features;
@@ -240,6 +254,8 @@ void enforceBoneLengths(Eigen::MatrixXd& features, const Proportions& proportion
       direction[i] = foot_bone.norm() >= kMinimumBoneLengthCm       ? Eigen::Vector3d(foot_bone.normalized())
                      : enforced_foot.norm() >= kMinimumBoneLengthCm ? Eigen::Vector3d(enforced_foot.normalized())
                                                                     : Eigen::Vector3d::Zero();
+      if (std::isfinite(planted_toe_height) && weight(toe_label, f) > 0.0)
+        direction[i] = footOverFloor(direction[i], before(3 * ankle + 1, f), foot, planted_toe_height, weight(toe_label, f));
       // Between the ankle from before and the one that keeps the toe's place, by the toe's share; on
       // the floor, each of the two places first pulled to its stance (keptPlace).
       const double toe_share = w(f) > 0.0 ? weight(toe_label, f) / (weight(heel_label, f) + weight(toe_label, f)) : 0.0;

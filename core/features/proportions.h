@@ -28,6 +28,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <limits>
 
 #include "features/feature_layout.h"
 
@@ -99,7 +100,15 @@ inline constexpr double kKeptFootRadiusCm = 3.0;
 // foot the bones sank"). A place out of the leg's reach is pulled in to it. contacts: 4 x frames (0/1,
 // ContactLabel order), or empty for enforceBoneLengths alone. Throws std::invalid_argument as
 // enforceBoneLengths, and for contacts of another shape.
+//
+// planted_toe_height (NaN: none): the lowest a planted toe may stand. On a frame with the toe's weight
+// w > 0 whose toe, from the kept ankle's height along the foot's direction, would stand lower, the
+// foot is turned up about the ankle (its heading kept) by w toward the direction that puts the toe
+// there, and the ankle placed from the toe's place along it as above. Why: in a rig whose toe bone
+// points lower than the reference's, a foot the style tips onto its toe puts the toe through the floor
+// (the zombie with happy: 4-8 cm under its planted height), where the clean-up's lock cannot follow.
 inline constexpr int kKeptFootRampFrames = 4;
-void enforceBoneLengths(Eigen::MatrixXd& features, const Proportions& proportions, const Eigen::MatrixXd& contacts);
+void enforceBoneLengths(Eigen::MatrixXd& features, const Proportions& proportions, const Eigen::MatrixXd& contacts,
+                        double planted_toe_height = std::numeric_limits<double>::quiet_NaN());
 
 }  // namespace motionstyle

@@ -200,14 +200,38 @@ MotionFeatures extractFeatures(const Motion& clip, const JointMapping& mapping, 
   return result;
 }
 
+namespace {
+
+// Steps 9, 8 and 7 undone: root-frame features in the clip's own rig and proportions.
+Eigen::MatrixXd toOwnRig(const Eigen::MatrixXd& features, const FeatureAnchor& anchor) {
+  Eigen::MatrixXd own = features;
+  shiftHeights(own, -anchor.retarget_height_shift);
+  applyRigCorrection(own, anchor.rig, /*inverse=*/true);
+  retargetFeatures(own, referenceProportions(), anchor.proportions);
+  return own;
+}
+
+}  // namespace
+
+void holdStancesInOwnRig(Eigen::MatrixXd& features, const MotionFeatures& content) {
+  if (features.rows() != kFeatureCount || features.cols() != content.values.cols())
+    throw std::invalid_argument("holdStancesInOwnRig: features must be 66 x the content's frames");
+  const FeatureAnchor& anchor = content.anchor;
+  Eigen::MatrixXd own = toOwnRig(features, anchor);
+  enforceBoneLengths(own, anchor.proportions, content.contacts, stanceToeHeight(toOwnRig(content.values, anchor), content.contacts));
+  retargetFeatures(own, anchor.proportions, referenceProportions());
+  applyRigCorrection(own, anchor.rig);
+  shiftHeights(own, anchor.retarget_height_shift);
+  // The hold moves joints only: the root velocities stay bit for bit (the round trip would round them).
+  own.middleRows<3>(kSidewaysVelocity) = features.middleRows<3>(kSidewaysVelocity);
+  features = std::move(own);
+}
+
 Eigen::MatrixXd referenceWorldPositions(const Eigen::MatrixXd& features, const FeatureAnchor& anchor) {
   if (features.rows() != kFeatureCount)
     throw std::invalid_argument("referenceWorldPositions: features must have 66 rows, got " + std::to_string(features.rows()));
   const Eigen::Index frames = features.cols();
-  Eigen::MatrixXd own = features;  // back to the clip's own rig and proportions
-  shiftHeights(own, -anchor.retarget_height_shift);
-  applyRigCorrection(own, anchor.rig, /*inverse=*/true);
-  retargetFeatures(own, referenceProportions(), anchor.proportions);
+  const Eigen::MatrixXd own = toOwnRig(features, anchor);  // back to the clip's own rig and proportions
   Eigen::MatrixXd world(frames, 3 * kJoints);
   const std::vector<RootFrame> roots = rootFrames(own, anchor.start_root, anchor.start_heading);
   for (Eigen::Index f = 0; f < frames; ++f)

@@ -106,6 +106,15 @@ Eigen::MatrixXd canonicalWorldPositions(const Eigen::MatrixXd& features, const F
 // viewport. Columns as above.
 Eigen::MatrixXd referenceWorldPositions(const Eigen::MatrixXd& features, const FeatureAnchor& anchor);
 
+// The stylizer's stance hold (enforceBoneLengths with contacts, proportions.h) done again where the
+// output lands: in the clip's own rig and proportions (steps 9-7 undone, then redone). Why: retargeting
+// a bent leg scales its thigh and shin apart, so a stance held in the reference proportions slides
+// again in the clip's own (CMU 131_01's kneel: 3.8 cm held, 9.6 cm after). The content's planted toes'
+// height there (the median over its toe contacts) is the lowest a planted toe may stand. features: 66 x
+// the content's frames, of the content (its anchor and contacts). Throws std::invalid_argument for
+// features of another shape.
+void holdStancesInOwnRig(Eigen::MatrixXd& features, const MotionFeatures& content);
+
 // World positions (file space, frames x 63) of the canonical joints of a clip at its own rate,
 // straight from forward kinematics: the ground truth that the inverse must reproduce.
 Eigen::MatrixXd canonicalJointPositions(const Motion& motion, const JointMapping& mapping);

@@ -149,9 +149,11 @@ Eigen::MatrixXd Stylizer::stylizeFeatures(const Eigen::MatrixXd& features, const
 
 namespace {
 
-StylizedClip clipOf(const MotionFeatures& content, Eigen::MatrixXd features, PathMode path) {
+// strength 0 is exactly the content; any other output has its stances held where it lands.
+StylizedClip clipOf(const MotionFeatures& content, Eigen::MatrixXd features, double strength, PathMode path) {
   StylizedClip clip;
   clip.features = std::move(features);
+  if (strength > 0.0) holdStancesInOwnRig(clip.features, content);
   clip.path = path;
   clip.contacts = content.contacts;
   clip.anchor = content.anchor;
@@ -163,12 +165,13 @@ StylizedClip clipOf(const MotionFeatures& content, Eigen::MatrixXd features, Pat
 }  // namespace
 
 StylizedClip Stylizer::stylize(const MotionFeatures& content, double strength, PathMode path) const {
-  return clipOf(content, stylizeFeatures(content.values, content.contacts, strength, path), path);
+  return clipOf(content, stylizeFeatures(content.values, content.contacts, strength, path), strength, path);
 }
 
 StylizedClip Stylizer::stylize(const MotionFeatures& content, const Eigen::MatrixXd& network_output, double strength,
                                PathMode path) const {
-  return clipOf(content, finishFeatures(content.values, content.contacts, network_output, strength, path), path);
+  return clipOf(content, finishFeatures(content.values, content.contacts, network_output, strength, path), strength,
+                path);
 }
 
 Eigen::MatrixXd Stylizer::projectFeatures(const Eigen::MatrixXd& features) const {

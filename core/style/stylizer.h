@@ -81,7 +81,9 @@ class Stylizer {
   Eigen::MatrixXd stylizeFeatures(const Eigen::MatrixXd& features, const Eigen::MatrixXd& contacts, double strength,
                                   PathMode path = PathMode::Content) const;
 
-  // The whole clip: features, contacts and world positions in the clip's file space.
+  // The whole clip: features, contacts and world positions in the clip's file space. With strength > 0
+  // its stances are held once more in the clip's own rig (holdStancesInOwnRig, representation.h), so
+  // its features are stylizeFeatures' but for the planted feet; strength 0 is the content exactly.
   StylizedClip stylize(const MotionFeatures& content, double strength, PathMode path = PathMode::Content) const;
 
   // stylizeFeatures in its two halves, for callers that change only the strength (live edits):
