@@ -216,6 +216,9 @@ Eigen::MatrixXd toOwnRig(const Eigen::MatrixXd& features, const FeatureAnchor& a
 void holdStancesInOwnRig(Eigen::MatrixXd& features, const MotionFeatures& content) {
   if (features.rows() != kFeatureCount || features.cols() != content.values.cols())
     throw std::invalid_argument("holdStancesInOwnRig: features must be 66 x the content's frames");
+  if (content.contacts.size() == 0) return;  // no stances to hold
+  if (content.contacts.rows() != kContactCount || content.contacts.cols() != content.values.cols())
+    throw std::invalid_argument("holdStancesInOwnRig: the content's contacts must be 4 x its frames");
   const FeatureAnchor& anchor = content.anchor;
   Eigen::MatrixXd own = toOwnRig(features, anchor);
   enforceBoneLengths(own, anchor.proportions, content.contacts, stanceToeHeight(toOwnRig(content.values, anchor), content.contacts));

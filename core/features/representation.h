@@ -111,8 +111,8 @@ Eigen::MatrixXd referenceWorldPositions(const Eigen::MatrixXd& features, const F
 // a bent leg scales its thigh and shin apart, so a stance held in the reference proportions slides
 // again in the clip's own (CMU 131_01's kneel: 3.8 cm held, 9.6 cm after). The content's planted toes'
 // height there (the median over its toe contacts) is the lowest a planted toe may stand. features: 66 x
-// the content's frames, of the content (its anchor and contacts). Throws std::invalid_argument for
-// features of another shape.
+// the content's frames, of the content (its anchor and contacts; none: nothing to hold). Throws
+// std::invalid_argument for features or contacts of another shape.
 void holdStancesInOwnRig(Eigen::MatrixXd& features, const MotionFeatures& content);
 
 // World positions (file space, frames x 63) of the canonical joints of a clip at its own rate,

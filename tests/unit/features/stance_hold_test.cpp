@@ -73,12 +73,20 @@ double toeSpread(const Eigen::MatrixXd& toe, Eigen::Index first, Eigen::Index en
   return spread;
 }
 
-TEST(StanceHoldInvalid, RejectsFeaturesThatAreNotTheContents) {
+TEST(StanceHoldInvalid, RejectsFeaturesOrContactsThatAreNotTheContentsAndHoldsNothingWithoutContacts) {
   const ToeStance s = zombieToeStance();
   Eigen::MatrixXd short_clip = s.content.values.leftCols(10);
   EXPECT_THROW(holdStancesInOwnRig(short_clip, s.content), std::invalid_argument);
   Eigen::MatrixXd rows(65, s.content.values.cols());
   EXPECT_THROW(holdStancesInOwnRig(rows, s.content), std::invalid_argument);
+  MotionFeatures short_contacts = s.content;
+  short_contacts.contacts = s.content.contacts.leftCols(10);
+  Eigen::MatrixXd held = s.content.values;
+  EXPECT_THROW(holdStancesInOwnRig(held, short_contacts), std::invalid_argument);
+  MotionFeatures no_contacts = s.content;
+  no_contacts.contacts.resize(0, 0);
+  holdStancesInOwnRig(held, no_contacts);
+  EXPECT_EQ(held, s.content.values);
 }
 
 TEST(StanceHold, TheContentItselfIsKept) {
