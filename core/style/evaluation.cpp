@@ -135,11 +135,10 @@ EvaluationReport evaluateStyleNetwork(const nn::LossNetworkModel& loss_network, 
     e.reconstruction_joint_error_cm = familiarityFromReconstruction(content, reconstructed).mean_cm;
 
     const auto t0 = Clock::now();
-    const Eigen::MatrixXd& contacts = clip.features.contacts;
-    const Eigen::MatrixXd output = stylizer.stylizeFeatures(content, contacts, 1.0, path);
+    // What the user gets (Stylizer::stylize: its stances held in the clip's own rig too).
+    const Eigen::MatrixXd output = stylizer.stylize(clip.features, 1.0, path).features;
     e.stylize_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-    const Eigen::MatrixXd own =
-        path == PathMode::Style ? output : stylizer.stylizeFeatures(content, contacts, 1.0, PathMode::Style);
+    const Eigen::MatrixXd own = path == PathMode::Style ? output : stylizer.stylize(clip.features, 1.0, PathMode::Style).features;
     const RootPathComparison network_path = compareRootPaths(summariseRootPath(content), summariseRootPath(own));
     e.network_path_distance_ratio = network_path.distance_ratio;
     e.network_path_end_error_fraction = network_path.end_error_fraction;

@@ -1,8 +1,9 @@
 #pragma once
 // Evaluation of a style network on clips it never trained on (motionstyle-cli eval), as a JSON report.
 //
-// Per clip, with C the content's features, Y = stylize(C) (T then the manifold projection, strength 1)
-// and S the style clip paired with C (style_pairing.h):
+// Per clip, with C the content's features, Y = Stylizer::stylize(C).features (T then the manifold
+// projection, strength 1: the output the user gets, its stances held in the clip's own rig) and S the
+// style clip paired with C (style_pairing.h):
 //   reconstruction_mse        mean over values of (L(C) - C)^2 in NORMALISED units, L = decode(encode(.))
 //   reconstruction_joint_error_cm   mean distance between the joints of L(C) and C in the root frame
 //                             (the 63 position values), reference cm

@@ -69,6 +69,8 @@ class Stylizer {
   // stored style targets.
   int refinementSteps() const { return model_.style_targets.empty() ? 0 : refinement_.iterations; }
 
+  // The clip in the reference rig and proportions: its stances held there only (stylize also holds
+  // them in the clip's own rig, where the user sees them; it is what eval measures).
   // features: 66 x frames (frames >= 1) in representation units. Returns the same shape and units.
   // contacts: the content's foot contacts (4 x frames, 0/1), planted under `path`'s root path by the
   // contact projection, or empty (0 x 0) for none.

@@ -76,7 +76,7 @@ double meanStyleRatio(const nn::StyleModel& model, const std::vector<style::Moti
   for (const style::MotionClip& clip : clips) {
     const nn::StyleTarget& target = model.style_targets.back();  // the default (the walk)
     sum += style::measureStyleDistances(model.loss_network, model.normalisation, clip.features.values,
-                                        stylizer.stylizeFeatures(clip.features.values, clip.features.contacts, 1.0), target.gram)
+                                        stylizer.stylize(clip.features, 1.0).features, target.gram)
                .styleRatio();
   }
   return sum / static_cast<double>(clips.size());

@@ -89,7 +89,8 @@ TEST(StanceHoldInvalid, RejectsFeaturesOrContactsThatAreNotTheContentsAndHoldsNo
   EXPECT_EQ(held, s.content.values);
 }
 
-TEST(StanceHold, TheContentItselfIsKept) {
+// Held on the content itself, its toe stance spreads no further than the kept radius or its own spread.
+TEST(StanceHold, TheContentsOwnStanceSpreadsNoFurther) {
   const ToeStance s = zombieToeStance();
   Eigen::MatrixXd held = s.content.values;
   holdStancesInOwnRig(held, s.content);
