@@ -310,6 +310,25 @@ TEST(Evaluation, ReportHasEveryFigure) {
   for (const char* key : {"before", "after", "ratio"}) EXPECT_TRUE(json["summary"]["style_distance"].contains(key)) << key;
 }
 
+// The distances are read from what the user gets: Stylizer::stylize, whose stances are held in the
+// clip's own rig too, not the reference rig's stylizeFeatures (the two differ on this clip).
+TEST(Evaluation, MeasuresTheClipTheUserGets) {
+  const nn::StyleModel network = test::tinyStyleModel();
+  const nn::LossNetworkModel loss_network{network.loss_network, network.normalisation, network.metadata};
+  const auto& clips = test::fixtureClips();
+  const MotionFeatures& content = clips[0].features;
+  const style::Stylizer stylizer(network);
+  const Eigen::MatrixXd user = stylizer.stylize(content, 1.0).features;
+  const Eigen::MatrixXd reference_rig = stylizer.stylizeFeatures(content.values, content.contacts, 1.0);
+  ASSERT_GT((user - reference_rig).cwiseAbs().maxCoeff(), 1e-3) << "the clip must tell the two apart";
+  const nn::Mat<float> gram = style::styleGramOf(network.loss_network, network.normalisation, clips[1].features.values);
+  const style::StyleDistances expected =
+      style::measureStyleDistances(network.loss_network, network.normalisation, content.values, user, gram);
+  const style::ClipEvaluation e = style::evaluateStyleNetwork(loss_network, network, {clips[0]}, {clips[1]}, {0}).clips.at(0);
+  EXPECT_DOUBLE_EQ(e.content_distance_after, expected.content_after);
+  EXPECT_DOUBLE_EQ(e.style_distance_after, expected.style_after);
+}
+
 // Stylizers of networks trained against one loss network share its prepared projection while any
 // of them holds it; another loss network gets its own, and once every holder is gone it is released.
 // A Stylizer that dropped its idle copies gives the same output.
