@@ -10,6 +10,9 @@
 // Clip sets:
 //   bandai-ae-heldout     every 10th file of dataset-1 then dataset-2 (train_models.sh's train-loss-network split)
 //   bandai-style-heldout  every 5th dataset-2 normal-style walk, run or turn (train_models.sh's train-style split)
+//   bandai-styled-heldout the walks, runs and turns of bandai-ae-heldout in a style other than normal: clips
+//                         with a style of their own, as CMU 131_01 and the zombie have (never T's content, nor
+//                         the loss network's); a network skips the clips of its own style
 //   other-studios         the two samples (CMU 131_01 trimmed, the zombie) and ../shared/fixtures/
 //                         cmu_walks/*.bvh as published (frame 0 a rest pose, which the features replace:
 //                         features/rest_pose_frames.h)
@@ -79,25 +82,38 @@ std::string otherStudioLabel(const std::string& stem) {
   return it == labels.end() ? "walk" : it->second;
 }
 
+// The other studios' plain walks and runs; the rest (CMU 131_01 "Michael Jackson styled", the zombie,
+// the obstacle-course run 127_07) carry a style or a character of their own.
+bool isPlainOtherStudioClip(const std::string& file) {
+  for (const char* plain : {"07_01.bvh", "08_10.bvh", "09_01.bvh", "35_23.bvh"})
+    if (file == plain) return true;
+  return false;
+}
+
 std::vector<ClipSet> loadClipSets(const fs::path& data, const fs::path& fixtures, const fs::path& samples) {
   std::vector<ClipSet> sets;
   const fs::path d1 = data / "dataset-1" / "data", d2 = data / "dataset-2" / "data";
   if (fs::is_directory(d1) && fs::is_directory(d2)) {
-    ClipSet loss_network{"bandai-ae-heldout", {}};
-    for (const fs::path& f : style::splitHoldout(style::findBvhFiles({d1, d2}), 10).held_out)
+    const auto locomotion = [](const style::ClipLabels& labels) {
+      return labels.content == "walk" || labels.content == "run" || labels.content.rfind("walk-turn", 0) == 0;
+    };
+    ClipSet loss_network{"bandai-ae-heldout", {}}, styled{"bandai-styled-heldout", {}};
+    for (const fs::path& f : style::splitHoldout(style::findBvhFiles({d1, d2}), 10).held_out) {
       loss_network.clips.push_back(loadClip(f, ""));
+      const style::ClipLabels labels = style::parseClipLabels(f);
+      if (locomotion(labels) && labels.style != "normal") styled.clips.push_back(loss_network.clips.back());
+    }
     sets.push_back(std::move(loss_network));
     // train_models.sh's style content: the dataset-2 normal-style locomotion clips, every 5th held out.
     std::vector<fs::path> normal;
     for (const fs::path& f : style::findBvhFiles({d2})) {
       const style::ClipLabels labels = style::parseClipLabels(f);
-      if (labels.style == "normal" && (labels.content == "walk" || labels.content == "run" ||
-                                       labels.content.rfind("walk-turn", 0) == 0))
-        normal.push_back(f);
+      if (labels.style == "normal" && locomotion(labels)) normal.push_back(f);
     }
     ClipSet st{"bandai-style-heldout", {}};
     for (const fs::path& f : style::splitHoldout(normal, 5).held_out) st.clips.push_back(loadClip(f, ""));
     sets.push_back(std::move(st));
+    sets.push_back(std::move(styled));
   } else {
     std::printf("note: no Bandai data at %s: Bandai sets skipped\n", data.string().c_str());
   }
@@ -208,7 +224,8 @@ struct NetworkFigures {
   int clips = 0;
 };
 
-nlohmann::json evaluateNetwork(const nn::StyleModel& model, const nn::LossNetworkModel& loss_network, const ClipSet& set,
+nlohmann::json evaluateNetwork(const std::string& network, const nn::StyleModel& model,
+                               const nn::LossNetworkModel& loss_network, const ClipSet& set,
                                const fs::path& data, bool cleanup, style::PathMode path, const CleanupOptions& cleanup_options,
                                const style::StyleRefinement& refinement, NetworkFigures& figures,
                                std::vector<bench::FrontierClip>* frontier) {
@@ -222,6 +239,7 @@ nlohmann::json evaluateNetwork(const nn::StyleModel& model, const nn::LossNetwor
   std::vector<int> pairing;
   std::vector<const EvalClip*> used;
   for (const EvalClip& e : set.clips) {
+    if (e.clip.labels.style == network) continue;  // a clip already in the network's style
     std::string label = style_for.count(e.label) ? e.label : (style_for.count("walk") ? "walk" : "");
     if (label.empty() && !style_for.empty()) label = style_for.begin()->first;
     if (!style_index.count(label)) {
@@ -335,6 +353,28 @@ void printFigures(const std::string& network, const std::string& set, const Netw
   std::printf("\n");
 }
 
+// The content distance matched by kind of clip: the other studios' plain clips against Bandai's
+// normal-style ones, their clips with a style of their own against Bandai's clips in another style.
+nlohmann::json printMatchedContent(const std::string& network, const nlohmann::json& sets) {
+  const auto mean = [&](const char* set, int kind) {  // kind: 0 every clip, 1 plain, 2 the rest
+    double sum = 0;
+    int n = 0;
+    if (!sets.contains(set) || !sets[set].contains("clips")) return 0.0;
+    for (const nlohmann::json& c : sets[set]["clips"]) {
+      const bool plain = isPlainOtherStudioClip(c["file"].get<std::string>());
+      if (kind == 0 || (kind == 1) == plain) { sum += c["content_distance"].get<double>(); ++n; }
+    }
+    return n > 0 ? sum / n : 0.0;
+  };
+  const double normal = mean("bandai-style-heldout", 0), styled = mean("bandai-styled-heldout", 0);
+  const double plain = mean("other-studios", 1), own = mean("other-studios", 2);
+  if (normal <= 0 || styled <= 0 || plain <= 0 || own <= 0) return nullptr;
+  std::printf("  %-10s content matched by kind: other studios' plain clips %.3f = %.2fx Bandai's normal %.3f; "
+              "their styled clips %.3f = %.2fx Bandai's styled %.3f\n",
+              network.c_str(), plain, plain / normal, normal, own, own / styled, styled);
+  return {{"plain_over_bandai_normal", plain / normal}, {"styled_over_bandai_styled", own / styled}};
+}
+
 // Issue 12's style and content goals against the least content distance any method could reach
 // (style_content_frontier.h): the Bandai clips at their measured mean style ratio, the other studios'
 // at the same ratio and at kStyleRatioGoal times it, in the hidden units and in motions.
@@ -441,10 +481,11 @@ int main(int argc, char** argv) {
       for (const ClipSet& set : sets) {
         if (set.name == "bandai-ae-heldout") continue;
         NetworkFigures& figures = measured[set.name];
-        json["networks"][name][set.name] = evaluateNetwork(model, loss_network, set, data, cleanup, path, cleanup_options,
+        json["networks"][name][set.name] = evaluateNetwork(name, model, loss_network, set, data, cleanup, path, cleanup_options,
                                                            refinement, figures, frontier ? &frontier_clips[set.name] : nullptr);
         printFigures(name, set.name, figures);
       }
+      json["networks"][name]["matched_content"] = printMatchedContent(name, json["networks"][name]);
       if (frontier) json["networks"][name]["frontier"] = printFrontier(name, measured, frontier_clips);
     }
     if (!json_file.empty()) {
