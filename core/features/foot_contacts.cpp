@@ -140,12 +140,24 @@ std::array<int, kContactCount> canonicalContactJoints() {
 }
 
 double restPoseBodyHeight(const Skeleton& skeleton, const Eigen::Vector3d& up) {
+  // The body is the subtree of the first joint that branches (the hips): the joints above it only
+  // place the body, and their offsets hold where a clip starts (Bandai's Hips under its static root:
+  // 0 to 450 cm ahead), not how tall the character is.
+  if (skeleton.joints.empty()) return 0.0;
+  int body = 0;
+  for (std::vector<int> below = skeleton.children(body);
+       below.size() == 1 && !skeleton.joints[static_cast<size_t>(below[0])].end_site; below = skeleton.children(body))
+    body = below[0];
   std::vector<Eigen::Vector3d> position(skeleton.joints.size(), Eigen::Vector3d::Zero());
-  Eigen::Vector3d low = Eigen::Vector3d::Constant(0.0), high = Eigen::Vector3d::Constant(0.0);
+  std::vector<bool> in_body(skeleton.joints.size(), false);
+  in_body[static_cast<size_t>(body)] = true;
+  Eigen::Vector3d low = Eigen::Vector3d::Zero(), high = Eigen::Vector3d::Zero();
   double up_low = 0.0, up_high = 0.0;
-  for (size_t j = 0; j < skeleton.joints.size(); ++j) {
+  for (size_t j = static_cast<size_t>(body) + 1; j < skeleton.joints.size(); ++j) {  // parents come first
     const Joint& joint = skeleton.joints[j];
-    if (joint.parent >= 0) position[j] = position[static_cast<size_t>(joint.parent)] + joint.offset;
+    if (joint.parent < 0 || !in_body[static_cast<size_t>(joint.parent)]) continue;
+    in_body[j] = true;
+    position[j] = position[static_cast<size_t>(joint.parent)] + joint.offset;
     low = low.cwiseMin(position[j]);
     high = high.cwiseMax(position[j]);
     up_low = std::min(up_low, up.dot(position[j]));

@@ -77,9 +77,11 @@ std::array<int, kContactCount> contactJoints(const JointMapping& mapping);
 // The same for positions that hold just the 21 canonical joints (frames x 63): their canonical indices.
 std::array<int, kContactCount> canonicalContactJoints();
 
-// Body height of a skeleton in its rest pose (all rotations zero): the extent of its joints and End
-// Sites along `up`, file units. Falls back to the largest extent along any axis when the rest pose
-// lies down (extent along up < 1/4 of that), as a few rigs are built.
+// Body height of a skeleton in its rest pose (all rotations zero): the extent along `up`, file units,
+// of the body's joints and End Sites, the body being the first joint that branches (the hips) and
+// all below it; joints above it (a static root, a reference node) only place it, and their offsets
+// hold where the clip starts, not the body. Falls back to the largest extent along any axis when the
+// rest pose lies down (extent along up < 1/4 of that), as a few rigs are built (Bandai's).
 double restPoseBodyHeight(const Skeleton& skeleton, const Eigen::Vector3d& up);
 
 // The floor of a clip: a soft minimum (the 2nd percentile over frames) of the lowest contact joint's

@@ -130,5 +130,38 @@ TEST(FootContacts, FileSpaceGroundIsTheSameOnEveryJointAndInAnyUnit) {
   EXPECT_NE(in_metres.convention.cm_per_unit, ground.convention.cm_per_unit);
 }
 
+// The same clip under a static root (as Bandai's joint_Root, or a reference node) whose child's rest
+// offset holds where it starts (its position channels replace the offset in the motion: kinematics.h):
+// the same body height, floor and contacts wherever it starts. Before the
+// body height measured the body alone, the root's offset counted as body (Bandai: 100 cm for a clip
+// starting at the origin, 458 for one starting 450 cm ahead), and the thresholds moved with it.
+TEST(FootContacts, AClipsContactsDoNotDependOnWhereAStaticRootStartsIt) {
+  const Motion motion = readBvh(test::fixture("cmu_131_01.bvh"));
+  const JointMapping mapping = mapJoints(motion.skeleton);
+  const FileSpaceGround ground = detectFileSpaceGround(motion, mapping, canonicalJointPositions(motion, mapping));
+  ASSERT_GT(ground.contacts.sum(), 0);
+  // File units (this rig's body is about 26 tall): a start 4.5 m ahead, and one raised and to the side.
+  for (const Eigen::Vector3d& start : {Eigen::Vector3d(0, 0, 70), Eigen::Vector3d(-3, 40, 70), Eigen::Vector3d(60, 12, -5)}) {
+    Motion placed = motion;
+    Joint root;
+    root.name = "Reference";
+    root.channels = motion.skeleton.joints[0].channels;
+    placed.skeleton.joints.insert(placed.skeleton.joints.begin(), root);
+    for (size_t j = 1; j < placed.skeleton.joints.size(); ++j) placed.skeleton.joints[j].parent += 1;
+    placed.skeleton.joints[1].offset += start;
+    placed.values.resize(motion.frameCount(), motion.values.cols() + static_cast<Eigen::Index>(root.channels.size()));
+    placed.values.leftCols(static_cast<Eigen::Index>(root.channels.size())).setZero();
+    placed.values.rightCols(motion.values.cols()) = motion.values;
+    placed.validate();
+    const JointMapping placed_mapping = mapJoints(placed.skeleton);
+    const FileSpaceGround placed_ground =
+        detectFileSpaceGround(placed, placed_mapping, canonicalJointPositions(placed, placed_mapping));
+    EXPECT_NEAR(restPoseBodyHeight(placed.skeleton, ground.up), restPoseBodyHeight(motion.skeleton, ground.up), 1e-9)
+        << start.transpose();
+    EXPECT_NEAR(placed_ground.floor_height, ground.floor_height, 1e-9) << start.transpose();
+    EXPECT_EQ(placed_ground.contacts, ground.contacts) << start.transpose();
+  }
+}
+
 }  // namespace
 }  // namespace motionstyle

@@ -164,5 +164,25 @@ TEST(Contacts, BodyHeightAndFloorOfAHandBuiltRig) {
   EXPECT_NEAR(estimateFloorHeight(gait.positions, kFeet, Eigen::Vector3d::UnitY()), 2.0, 1e-9);
 }
 
+// A static root above the hips (Bandai's joint_Root, a reference node) whose child's offset holds
+// where the clip starts: the body height is the body's, wherever the clip starts. Before, it spanned
+// the root too (Bandai: 100 cm for a clip starting at the origin, 458 for one starting 450 cm ahead).
+TEST(Contacts, BodyHeightIsTheBodysWhereverAStaticRootPlacesIt) {
+  const Skeleton body = test::makeHumanoid(true);
+  for (const Eigen::Vector3d& start : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(-17, 93, 453), Eigen::Vector3d(1, 94, -452)}) {
+    Skeleton placed;
+    Joint root;
+    root.name = "Reference";
+    root.channels = body.joints[0].channels;
+    placed.joints.push_back(root);
+    for (Joint joint : body.joints) {
+      joint.parent += 1;
+      if (joint.parent == 0) joint.offset = start;
+      placed.joints.push_back(joint);
+    }
+    EXPECT_NEAR(restPoseBodyHeight(placed, Eigen::Vector3d::UnitY()), 162.0, 1e-9) << start.transpose();
+  }
+}
+
 }  // namespace
 }  // namespace motionstyle
