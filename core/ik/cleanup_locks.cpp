@@ -123,7 +123,8 @@ void raiseWholeFeet(std::vector<LockSegment>& segments, int heel, int toe, const
 // two overlapping segments is moved along the floor so that the two locks lie the foot's length apart
 // (their heights kept). But where one of the two is raised (lockHeight) and the other is not, the
 // raised one moves, up or down: the foot pivots on the joint that is down, so the raised lock keeps its
-// place over the floor and takes the height at which it lies the foot's length from the other. Moved
+// place over the floor and takes the height at which it lies the foot's length from the other, on the
+// side of it (above or below) where it was: a toe raised a few cm is still under its heel. Moved
 // along the floor instead, a heel raised 15 cm toward a toe on the floor came 12 cm from its targets
 // (docs/decisions.md). An earlier raised lock already placed against its own partner is not moved again.
 void makeFootLocksConsistent(std::vector<LockSegment>& segments, int heel, int toe, double foot_length,
@@ -155,10 +156,11 @@ void makeFootLocksConsistent(std::vector<LockSegment>& segments, int heel, int t
       LockSegment& raised = raise_later ? later : *foot[anchor];
       const LockSegment& down = raise_later ? *foot[anchor] : later;
       Eigen::Vector3d across = raised.lock - down.lock;
+      const double side = up.dot(across) < 0.0 ? -1.0 : 1.0;  // a raised toe can still be under its heel
       across -= up.dot(across) * up;
       const double horizontal = across.norm();
       if (horizontal < foot_length)
-        raised.lock = down.lock + across + std::sqrt(foot_length * foot_length - horizontal * horizontal) * up;
+        raised.lock = down.lock + across + side * std::sqrt(foot_length * foot_length - horizontal * horizontal) * up;
       else if (horizontal > 1e-9)  // further than the foot is long: brought in, level with the other
         raised.lock = down.lock + across * (foot_length / horizontal);
       placed[raise_later ? i : anchor] = true;

@@ -254,6 +254,11 @@ class CleanupFootHeldUp : public CleanupHumanoid {
     const int heel_column = 3 * index(CanonicalJoint::LeftAnkle), toe_column = 3 * index(CanonicalJoint::LeftToe);
     held.col(heel_column + 1).array() += heel_up;
     held.col(toe_column + 1).array() += toe_up;
+    expectLockedOnTargets(held);
+  }
+  // A heel and toe contact over frames 20-40: the cleaned heel and toe stay with `held` through it.
+  void expectLockedOnTargets(const Eigen::MatrixXd& held) {
+    const int heel_column = 3 * index(CanonicalJoint::LeftAnkle), toe_column = 3 * index(CanonicalJoint::LeftToe);
     Eigen::MatrixXi contacts = no_contacts;
     contacts.block(20, 0, 21, 2).setOnes();
     const Eigen::MatrixXd cleaned = worldPositions(cleanupMotion(input(held, contacts, 0.0), {}, nullptr));
@@ -276,6 +281,25 @@ TEST_F(CleanupFootHeldUp, AFootTheStyleHoldsUpWhereTheContentNeverPlantsItStaysU
 // The style holds the whole foot up, the heel 7 cm and the toe 4 cm (only the heel over the 5 cm at
 // which a lock takes its targets' height): both locks rise, neither is pulled to the other's height.
 TEST_F(CleanupFootHeldUp, AFootTheStyleHoldsUpWholeIsHeldUpWhole) { expectHeldUp(7.0, 4.0); }
+
+// The style holds the toe 6 cm up (its lock at the targets' height) and the heel where the content
+// plants it, still above the toe: the toe's lock, placed the foot's length from the heel's, stays
+// below the heel as its targets are. It was put above it, the foot turned up (Bandai's
+// walk_active_001 with youthful: the toe 14 cm over its targets; docs/decisions.md).
+TEST_F(CleanupFootHeldUp, AToeTheStyleRaisesBelowItsHeelStaysBelowIt) {
+  Eigen::MatrixXd held = footRaisedFrom(targets, kFrames, 0.0);  // the foot held still
+  const int heel_column = 3 * index(CanonicalJoint::LeftAnkle), toe_column = 3 * index(CanonicalJoint::LeftToe);
+  const Eigen::Vector3d up = Eigen::Vector3d::UnitY();
+  for (Eigen::Index f = 0; f < held.rows(); ++f) {  // the toe turned 6 cm up about the heel, the foot's length kept
+    const Eigen::Vector3d heel_at = held.block<1, 3>(f, heel_column).transpose();
+    const Eigen::Vector3d foot = held.block<1, 3>(f, toe_column).transpose() - heel_at;
+    const Eigen::Vector3d ahead = (foot - up.dot(foot) * up).normalized();
+    const double height = up.dot(foot) + 6.0;
+    held.block<1, 3>(f, toe_column) = (heel_at + ahead * std::sqrt(foot.squaredNorm() - height * height) + up * height).transpose();
+  }
+  ASSERT_LT(held(30, toe_column + 1), held(30, heel_column + 1) - 2.0) << "the raised toe is still under its heel";
+  expectLockedOnTargets(held);
+}
 
 // A toe the style holds up through its stance (8 cm over where the foot rests, the lock at the
 // targets' height) and puts down to the floor over the stance's last four frames, its heel already
