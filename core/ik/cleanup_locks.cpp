@@ -121,7 +121,8 @@ void raiseWholeFeet(std::vector<LockSegment>& segments, int heel, int toe, const
 // or the solver, unable to meet both, moves the toe when the heel lock lets go (a visible skate).
 // Segments are visited in start order, so that chains of overlaps stay consistent, and the later of
 // two overlapping segments is moved along the floor so that the two locks lie the foot's length apart
-// (their heights kept). But where one of the two is raised (lockHeight) and the other is not, the
+// (their heights kept), or, where its height is lockHeight's blend and that moves it less than half as
+// far, pivoted about the other as below. But where one of the two is raised (lockHeight) and the other is not, the
 // raised one moves, up or down: the foot pivots on the joint that is down, so the raised lock keeps its
 // place over the floor and takes the height at which it lies the foot's length from the other, on the
 // side of it (above or below) where it was: a toe raised a few cm is still under its heel. Moved
@@ -172,7 +173,19 @@ void makeFootLocksConsistent(std::vector<LockSegment>& segments, int heel, int t
     along -= height * up;
     if (along.norm() < 1e-9) continue;  // no direction to keep: leave it
     const double horizontal_length = std::sqrt(std::max(0.0, foot_length * foot_length - height * height));
-    later.lock = fixed.lock + along.normalized() * horizontal_length + height * up;
+    const Eigen::Vector3d slid = fixed.lock + along.normalized() * horizontal_length + height * up;
+    // Or, a lock whose height is a blend (lockHeight's partial share, not its targets' own height),
+    // pivoted about the other, its place over the floor kept, where that moves it less than half as
+    // far (a planted foot's height shows more than its place), never under the lower of the two locks:
+    // where the blended heights leave the foot steeper than the targets' (a heel mostly raised toward a
+    // forefoot stance, its toe little), the slide put it far from its targets.
+    const double side = height < 0.0 ? -1.0 : 1.0;
+    const Eigen::Vector3d pivoted =
+        fixed.lock + along + side * std::sqrt(std::max(0.0, foot_length * foot_length - along.squaredNorm())) * up;
+    const bool pivot = !later.height.raised && along.norm() < foot_length &&
+                       up.dot(pivoted) >= std::min(up.dot(later.lock), up.dot(fixed.lock)) &&
+                       (pivoted - later.lock).norm() < 0.5 * (slid - later.lock).norm();
+    later.lock = pivot ? pivoted : slid;
     placed[i] = true;
   }
 }

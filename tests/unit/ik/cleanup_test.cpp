@@ -256,17 +256,20 @@ class CleanupFootHeldUp : public CleanupHumanoid {
     held.col(toe_column + 1).array() += toe_up;
     expectLockedOnTargets(held);
   }
-  // A heel and toe contact over frames 20-40: the cleaned heel and toe stay with `held` through it.
-  void expectLockedOnTargets(const Eigen::MatrixXd& held) {
+  // A heel contact over frames heel_from-40 and a toe contact over 20-40: the cleaned heel and toe
+  // stay at `held`'s heights through them. Returns the cleaned clip's world positions.
+  Eigen::MatrixXd expectLockedOnTargets(const Eigen::MatrixXd& held, int heel_from = 20) {
     const int heel_column = 3 * index(CanonicalJoint::LeftAnkle), toe_column = 3 * index(CanonicalJoint::LeftToe);
     Eigen::MatrixXi contacts = no_contacts;
-    contacts.block(20, 0, 21, 2).setOnes();
+    contacts.block(heel_from, 0, 41 - heel_from, 1).setOnes();
+    contacts.block(20, 1, 21, 1).setOnes();
     const Eigen::MatrixXd cleaned = worldPositions(cleanupMotion(input(held, contacts, 0.0), {}, nullptr));
     const int heel = mapping[CanonicalJoint::LeftAnkle], toe = mapping[CanonicalJoint::LeftToe];
     for (int f = 22; f <= 38; ++f) {
       EXPECT_NEAR(cleaned(f, 3 * heel + 1), held(f, heel_column + 1), 2.0) << "frame " << f;
       EXPECT_NEAR(cleaned(f, 3 * toe + 1), held(f, toe_column + 1), 2.0) << "frame " << f;
     }
+    return cleaned;
   }
 };
 
@@ -299,6 +302,32 @@ TEST_F(CleanupFootHeldUp, AToeTheStyleRaisesBelowItsHeelStaysBelowIt) {
   }
   ASSERT_LT(held(30, toe_column + 1), held(30, heel_column + 1) - 2.0) << "the raised toe is still under its heel";
   expectLockedOnTargets(held);
+}
+
+// A forefoot stance the style partly raises: the toe 1 cm over where the foot rests (the lock stays at
+// the content's height) and the heel, turned up about it (the foot's length kept), 2.4 cm over (its
+// lock rises 0.6 cm, lockHeight's blend). The locks' heights then leave the foot steeper than the
+// targets': slid along the floor to the foot's length from the toe, the heel went toward it,
+// over it where the heights differ by the foot's length (Bandai's run_exhausted_031 with masculine:
+// 9.0 cm from its targets; its toe landed a frame before the heel, as here). Pivoted about the toe,
+// its place over the floor kept, it stays with them.
+TEST_F(CleanupFootHeldUp, AHeelTheStylePartlyRaisesPivotsOnItsToe) {
+  Eigen::MatrixXd held = footRaisedFrom(targets, kFrames, 0.0);  // the foot held still
+  const int heel_column = 3 * index(CanonicalJoint::LeftAnkle), toe_column = 3 * index(CanonicalJoint::LeftToe);
+  const Eigen::Vector3d up = Eigen::Vector3d::UnitY();
+  for (Eigen::Index f = 0; f < held.rows(); ++f) {
+    const Eigen::Vector3d toe_at = held.block<1, 3>(f, toe_column).transpose() + 1.0 * up;
+    const Eigen::Vector3d foot = held.block<1, 3>(f, heel_column).transpose() - held.block<1, 3>(f, toe_column).transpose();
+    const Eigen::Vector3d back = (foot - up.dot(foot) * up).normalized();
+    const double height = up.dot(foot) + 1.4;
+    ASSERT_LT(height, 0.99 * foot.norm()) << "the humanoid's foot is too steep to turn up 1.4 cm more";
+    held.block<1, 3>(f, toe_column) = toe_at.transpose();
+    held.block<1, 3>(f, heel_column) = (toe_at + back * std::sqrt(foot.squaredNorm() - height * height) + up * height).transpose();
+  }
+  const Eigen::MatrixXd cleaned = expectLockedOnTargets(held, 21);  // the toe lands first
+  const int heel = mapping[CanonicalJoint::LeftAnkle];
+  for (int f = 23; f <= 38; ++f)
+    EXPECT_LT((cleaned.block<1, 3>(f, 3 * heel) - held.block<1, 3>(f, heel_column)).norm(), 1.5) << "frame " << f;
 }
 
 // A toe the style holds up through its stance (8 cm over where the foot rests, the lock at the
