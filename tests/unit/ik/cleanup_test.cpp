@@ -197,6 +197,21 @@ Eigen::MatrixXd footRaisedFrom(const Eigen::MatrixXd& targets, int lift_from, do
   return raised;
 }
 
+// `positions` with the joint at column `moving` turned `rise` cm up about the joint at column `pivot`
+// on every frame, the distance between them kept (a foot tipped onto its toe, or its toe lifted). NaN
+// where the two already stand less than `rise` from vertical.
+Eigen::MatrixXd turnedUp(Eigen::MatrixXd positions, int pivot, int moving, double rise) {
+  const Eigen::Vector3d up = Eigen::Vector3d::UnitY();
+  for (Eigen::Index f = 0; f < positions.rows(); ++f) {
+    const Eigen::Vector3d at = positions.block<1, 3>(f, pivot).transpose();
+    const Eigen::Vector3d bone = positions.block<1, 3>(f, moving).transpose() - at;
+    const Eigen::Vector3d across = (bone - up.dot(bone) * up).normalized();
+    const double height = up.dot(bone) + rise;
+    positions.block<1, 3>(f, moving) = (at + across * std::sqrt(bone.squaredNorm() - height * height) + up * height).transpose();
+  }
+  return positions;
+}
+
 // A toe the style lifts off before the content's contact ends, its heel already free (heel contact
 // 20-30, toe 20-60, the foot raised from frame 48): the toe rises with its targets (within the 1 cm
 // tolerance; held down it was 14 cm under them at frame 60) and stays still over the floor. With the
@@ -290,16 +305,9 @@ TEST_F(CleanupFootHeldUp, AFootTheStyleHoldsUpWholeIsHeldUpWhole) { expectHeldUp
 // below the heel as its targets are. It was put above it, the foot turned up (Bandai's
 // walk_active_001 with youthful: the toe 14 cm over its targets; docs/decisions.md).
 TEST_F(CleanupFootHeldUp, AToeTheStyleRaisesBelowItsHeelStaysBelowIt) {
-  Eigen::MatrixXd held = footRaisedFrom(targets, kFrames, 0.0);  // the foot held still
   const int heel_column = 3 * index(CanonicalJoint::LeftAnkle), toe_column = 3 * index(CanonicalJoint::LeftToe);
-  const Eigen::Vector3d up = Eigen::Vector3d::UnitY();
-  for (Eigen::Index f = 0; f < held.rows(); ++f) {  // the toe turned 6 cm up about the heel, the foot's length kept
-    const Eigen::Vector3d heel_at = held.block<1, 3>(f, heel_column).transpose();
-    const Eigen::Vector3d foot = held.block<1, 3>(f, toe_column).transpose() - heel_at;
-    const Eigen::Vector3d ahead = (foot - up.dot(foot) * up).normalized();
-    const double height = up.dot(foot) + 6.0;
-    held.block<1, 3>(f, toe_column) = (heel_at + ahead * std::sqrt(foot.squaredNorm() - height * height) + up * height).transpose();
-  }
+  const Eigen::MatrixXd held = turnedUp(footRaisedFrom(targets, kFrames, 0.0), heel_column, toe_column, 6.0);
+  ASSERT_TRUE(held.allFinite());
   ASSERT_LT(held(30, toe_column + 1), held(30, heel_column + 1) - 2.0) << "the raised toe is still under its heel";
   expectLockedOnTargets(held);
 }
@@ -312,18 +320,12 @@ TEST_F(CleanupFootHeldUp, AToeTheStyleRaisesBelowItsHeelStaysBelowIt) {
 // 9.0 cm from its targets; its toe landed a frame before the heel, as here). Pivoted about the toe,
 // its place over the floor kept, it stays with them.
 TEST_F(CleanupFootHeldUp, AHeelTheStylePartlyRaisesPivotsOnItsToe) {
-  Eigen::MatrixXd held = footRaisedFrom(targets, kFrames, 0.0);  // the foot held still
   const int heel_column = 3 * index(CanonicalJoint::LeftAnkle), toe_column = 3 * index(CanonicalJoint::LeftToe);
-  const Eigen::Vector3d up = Eigen::Vector3d::UnitY();
-  for (Eigen::Index f = 0; f < held.rows(); ++f) {
-    const Eigen::Vector3d toe_at = held.block<1, 3>(f, toe_column).transpose() + 1.0 * up;
-    const Eigen::Vector3d foot = held.block<1, 3>(f, heel_column).transpose() - held.block<1, 3>(f, toe_column).transpose();
-    const Eigen::Vector3d back = (foot - up.dot(foot) * up).normalized();
-    const double height = up.dot(foot) + 1.4;
-    ASSERT_LT(height, 0.99 * foot.norm()) << "the humanoid's foot is too steep to turn up 1.4 cm more";
-    held.block<1, 3>(f, toe_column) = toe_at.transpose();
-    held.block<1, 3>(f, heel_column) = (toe_at + back * std::sqrt(foot.squaredNorm() - height * height) + up * height).transpose();
-  }
+  Eigen::MatrixXd held = footRaisedFrom(targets, kFrames, 0.0);  // the foot held still, 1 cm up
+  held.col(heel_column + 1).array() += 1.0;
+  held.col(toe_column + 1).array() += 1.0;
+  held = turnedUp(held, toe_column, heel_column, 1.4);
+  ASSERT_TRUE(held.allFinite()) << "the humanoid's foot is too steep to turn up 1.4 cm more";
   const Eigen::MatrixXd cleaned = expectLockedOnTargets(held, 21);  // the toe lands first
   const int heel = mapping[CanonicalJoint::LeftAnkle];
   for (int f = 23; f <= 38; ++f)
