@@ -148,15 +148,13 @@ double restPoseBodyHeight(const Skeleton& skeleton, const Eigen::Vector3d& up) {
   for (std::vector<int> below = skeleton.children(body);
        below.size() == 1 && !skeleton.joints[static_cast<size_t>(below[0])].end_site; below = skeleton.children(body))
     body = below[0];
+  // Every joint after `body` lies below it: parents precede their children, and each joint above it
+  // has it (or the next joint toward it) as its only child.
   std::vector<Eigen::Vector3d> position(skeleton.joints.size(), Eigen::Vector3d::Zero());
-  std::vector<bool> in_body(skeleton.joints.size(), false);
-  in_body[static_cast<size_t>(body)] = true;
   Eigen::Vector3d low = Eigen::Vector3d::Zero(), high = Eigen::Vector3d::Zero();
   double up_low = 0.0, up_high = 0.0;
-  for (size_t j = static_cast<size_t>(body) + 1; j < skeleton.joints.size(); ++j) {  // parents come first
+  for (size_t j = static_cast<size_t>(body) + 1; j < skeleton.joints.size(); ++j) {
     const Joint& joint = skeleton.joints[j];
-    if (joint.parent < 0 || !in_body[static_cast<size_t>(joint.parent)]) continue;
-    in_body[j] = true;
     position[j] = position[static_cast<size_t>(joint.parent)] + joint.offset;
     low = low.cwiseMin(position[j]);
     high = high.cwiseMax(position[j]);
