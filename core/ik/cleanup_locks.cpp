@@ -55,10 +55,13 @@ std::optional<double> plantedHeight(const ContactLabels& planted, const CleanupI
 // content's that sinks through its last stance: elderly's knee 8.3 cm; docs/decisions.md, "Stances
 // held in the stylizer"). Within d, the network's own wobble, the lock stays at the content's height.
 // Where the content does not plant the joint over the segment (a contact found on the output alone, or
-// forced on), the same share moves the lock up from the rest height, with h the targets' LOWEST over
-// the segment above it: a heel the style holds still 4 cm up (Bandai's walk-turn-left_active_037 with
-// sad, at its first frames) was locked at the rest height, the knee 9.8 cm from its target; the lowest
-// rather than the median so that a foot the targets keep swinging through a forced contact stays down.
+// forced on), the lock stands at the rest height, or lower where the content's own joint goes lower over
+// the segment (an uneven floor: CMU 07_01's toe 3.6 cm under its rest height at its first step, where
+// youthful's toe was locked 7.1 cm over its targets), and the same share moves it up from there, with h
+// the targets' LOWEST over the segment above it: a heel the style holds still 4 cm up (Bandai's
+// walk-turn-left_active_037 with sad, at its first frames) was locked at the rest height, the knee
+// 9.8 cm from its target; the lowest rather than the median so that a foot the targets keep swinging
+// through a forced contact stays down.
 constexpr double kLockHeightToleranceCm = 5.0;
 constexpr double kLiftDeadZoneCm = 1.0;
 
@@ -84,13 +87,19 @@ LockHeight lockHeight(const ContentFootHeights& feet, const CleanupInput& input,
     heights.push_back(input.up.dot(input.targets.block<1, 3>(f, column).transpose()) - input.floor_height);
   const double lowest = *std::min_element(heights.begin(), heights.end());
   const double target_height = median(std::move(heights));
-  const double above_content_cm = (target_height - planted.value_or(rest)) * input.cm_per_unit;
-  if (above_content_cm > kLockHeightToleranceCm) return {target_height, true, target_height, above_content_cm};
-  if (above_content_cm < -kLockHeightToleranceCm) return {rest, false, target_height, above_content_cm};
-  if (!planted) {
-    const double share = partialShare((lowest - rest) * input.cm_per_unit);
-    return {rest + share * kLockHeightToleranceCm / input.cm_per_unit, false, target_height, above_content_cm};
+  double content_lowest = rest;
+  for (int f = range.first; f <= range.last; ++f) {
+    const double content = input.up.dot(feet_world.block<1, 3>(f, 3 * label).transpose()) - input.floor_height;
+    content_lowest = std::min(content_lowest, content);
   }
+  const double content_height = planted ? *planted : std::max(0.0, content_lowest);
+  const double above_content_cm = (target_height - content_height) * input.cm_per_unit;
+  if (above_content_cm > kLockHeightToleranceCm) return {target_height, true, target_height, above_content_cm};
+  if (!planted) {
+    const double share = partialShare((lowest - content_height) * input.cm_per_unit);
+    return {content_height + share * kLockHeightToleranceCm / input.cm_per_unit, false, target_height, above_content_cm};
+  }
+  if (above_content_cm < -kLockHeightToleranceCm) return {rest, false, target_height, above_content_cm};
   const double share = partialShare(std::abs(above_content_cm));
   const double moved = above_content_cm >= 0.0 ? share * kLockHeightToleranceCm / input.cm_per_unit
                                                : share * std::min(0.0, rest - *planted);

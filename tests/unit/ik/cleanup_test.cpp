@@ -312,6 +312,35 @@ TEST_F(CleanupFootHeldUp, AFootTheStyleHoldsALittleUpWhereTheContentNeverPlantsI
   expectHeldUp(4.5, 4.5);
 }
 
+// An uneven floor: the content's body dips 5 cm over four frames where its left heel moves lowest
+// (never planted: the foot keeps moving) and the targets hold the left foot 3 cm under the content's
+// there, through the floor it stood on. A contact over the dip is locked where the content's own foot
+// goes lowest, not at the clip's rest height above it (CMU 07_01 with youthful: a toe found planted on
+// the output at the first step, the content's 3.6 cm under its rest height, was locked 7.1 cm over its
+// targets; docs/decisions.md).
+TEST_F(CleanupHumanoid, AContactWhereTheContentsFootGoesUnderItsRestHeightIsLockedThere) {
+  const int heel = mapping[CanonicalJoint::LeftAnkle];
+  Eigen::Index low = 0;
+  world.col(3 * heel + 1).segment(10, kFrames - 20).minCoeff(&low);
+  const int first = static_cast<int>(low) + 10 - 1;
+  Motion dipped = clip;
+  for (int f = first; f < first + 4; ++f) dipped.values(f, 1) -= 5.0;  // the root's Y position channel
+  const Eigen::MatrixXd content = worldPositions(dipped);
+  Eigen::MatrixXd pushed = test::canonicalPositions(content, mapping);
+  const int heel_column = 3 * index(CanonicalJoint::LeftAnkle), toe_column = 3 * index(CanonicalJoint::LeftToe);
+  for (int f = first; f < first + 4; ++f)
+    for (int column : {heel_column, toe_column}) pushed(f, column + 1) -= 3.0;
+  Eigen::MatrixXi contacts = no_contacts;
+  contacts.block(first, 0, 4, 2).setOnes();
+  CleanupReport report;
+  const Eigen::MatrixXd cleaned =
+      worldPositions(cleanupMotion(CleanupInput{dipped, mapping, pushed, contacts, Eigen::Vector3d::UnitY(), 0.0, 1.0},
+                                   {}, &report));
+  const double lowest = content.col(3 * heel + 1).segment(first, 4).minCoeff();
+  ASSERT_LT(lowest, report.contact_rest_heights[0] - 2.0) << "the dip does not take the heel under its rest height";
+  for (int f = first + 1; f <= first + 2; ++f) EXPECT_NEAR(cleaned(f, 3 * heel + 1), lowest, 1.0) << "frame " << f;
+}
+
 // The style holds the whole foot up, the heel 7 cm and the toe 4 cm (only the heel over the 5 cm at
 // which a lock takes its targets' height): both locks rise, neither is pulled to the other's height.
 TEST_F(CleanupFootHeldUp, AFootTheStyleHoldsUpWholeIsHeldUpWhole) { expectHeldUp(7.0, 4.0); }
