@@ -74,7 +74,7 @@ struct LockHeight {
   double above_floor = 0.0;          // the lock's, file units
   bool raised = false;               // the targets' height, above the content's
   double targets_above_floor = 0.0;  // the targets' median height over the segment, file units
-  double targets_over_content_cm = 0.0;  // that height less the content's planted (else rest) height, cm
+  double targets_over_content_cm = 0.0;  // that height less the content's planted (else rest or lowest), cm
 };
 
 LockHeight lockHeight(const ContentFootHeights& feet, const CleanupInput& input, const Eigen::MatrixXd& feet_world,
@@ -151,8 +151,8 @@ constexpr int kAnchorLengthRatio = 3;
 // along the floor instead, a heel raised 15 cm toward a toe on the floor came 12 cm from its targets
 // (docs/decisions.md). An earlier raised lock already placed against its own partner is not moved again.
 // A lock more than kAnchorLengthRatio times shorter than the later one it overlaps most (a landing's
-// first frames, found on the output only) is the one moved, where it was not placed already: it
-// anchored a whole stance's lock before.
+// first frames, found on the output only) is the one moved, where no lock was placed against it or it
+// against one already (the chain kept): it anchored a whole stance's lock before.
 void makeFootLocksConsistent(std::vector<LockSegment>& segments, int heel, int toe, double foot_length,
                              const Eigen::Vector3d& up) {
   std::vector<LockSegment*> foot;
@@ -161,7 +161,8 @@ void makeFootLocksConsistent(std::vector<LockSegment>& segments, int heel, int t
   std::sort(foot.begin(), foot.end(), [](const LockSegment* a, const LockSegment* b) {
     return a->frames.first < b->frames.first;
   });
-  std::vector<bool> placed(foot.size(), false);  // moved to lie the foot's length from a partner
+  std::vector<bool> placed(foot.size(), false);    // moved to lie the foot's length from a partner
+  std::vector<bool> anchoring(foot.size(), false);  // a partner was moved to lie the foot's length from it
   for (size_t i = 0; i < foot.size(); ++i) {
     LockSegment& later = *foot[i];
     size_t anchor = i;
@@ -179,7 +180,7 @@ void makeFootLocksConsistent(std::vector<LockSegment>& segments, int heel, int t
     // A brief anchor moves instead (a 3-frame heel lock of a landing found on the output set the toe's
     // 33-frame lock 5 cm behind its targets: feminine on Bandai's walk_proud_002, 8.3 -> 6.7 cm).
     size_t moved = i, fixed_at = anchor;
-    if (!placed[anchor] && kAnchorLengthRatio * frameCount(*foot[anchor]) < frameCount(later))
+    if (!placed[anchor] && !anchoring[anchor] && kAnchorLengthRatio * frameCount(*foot[anchor]) < frameCount(later))
       std::swap(moved, fixed_at);
     LockSegment& moving = *foot[moved];
     const LockSegment& fixed = *foot[fixed_at];
@@ -197,6 +198,7 @@ void makeFootLocksConsistent(std::vector<LockSegment>& segments, int heel, int t
       else if (horizontal > 1e-9)  // further than the foot is long: brought in, level with the other
         raised.lock = down.lock + across * (foot_length / horizontal);
       placed[raise_moving ? moved : fixed_at] = true;
+      anchoring[raise_moving ? fixed_at : moved] = true;
       continue;
     }
     Eigen::Vector3d along = moving.lock - fixed.lock;
@@ -218,6 +220,7 @@ void makeFootLocksConsistent(std::vector<LockSegment>& segments, int heel, int t
                        (pivoted - moving.lock).norm() < 0.5 * (slid - moving.lock).norm();
     moving.lock = pivot ? pivoted : slid;
     placed[moved] = true;
+    anchoring[fixed_at] = true;
   }
 }
 
