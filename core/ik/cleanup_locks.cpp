@@ -18,6 +18,11 @@ namespace {
 // The content's contact joints (ContactLabel order) as the columns of feet_world (frames x 12).
 constexpr std::array<int, kContactCount> kFeetColumns = {0, 1, 2, 3};
 
+// Height above the floor of the point in columns column..column+2 of `positions` at frame f, file units.
+double heightAboveFloor(const CleanupInput& input, const Eigen::MatrixXd& positions, int f, int column) {
+  return input.up.dot(positions.block<1, 3>(f, column).transpose()) - input.floor_height;
+}
+
 // The median height above the floor of contact joint `label` over frames first..last where the content
 // has it planted (at least 0), file units; nothing when it is planted on none of them.
 std::optional<double> plantedHeight(const ContactLabels& planted, const CleanupInput& input,
@@ -25,7 +30,7 @@ std::optional<double> plantedHeight(const ContactLabels& planted, const CleanupI
   std::vector<double> heights;
   for (int f = first; f <= last && f < planted.rows(); ++f)
     if (planted(f, label) != 0)
-      heights.push_back(input.up.dot(feet_world.block<1, 3>(f, 3 * label).transpose()) - input.floor_height);
+      heights.push_back(heightAboveFloor(input, feet_world, f, 3 * label));
   if (heights.empty()) return std::nullopt;
   return std::max(0.0, median(std::move(heights)));
 }
@@ -84,14 +89,12 @@ LockHeight lockHeight(const ContentFootHeights& feet, const CleanupInput& input,
   const int column = 3 * index(kContactJoint[static_cast<size_t>(label)]);
   std::vector<double> heights;
   for (int f = range.first; f <= range.last; ++f)
-    heights.push_back(input.up.dot(input.targets.block<1, 3>(f, column).transpose()) - input.floor_height);
+    heights.push_back(heightAboveFloor(input, input.targets, f, column));
   const double lowest = *std::min_element(heights.begin(), heights.end());
   const double target_height = median(std::move(heights));
   double content_lowest = rest;
-  for (int f = range.first; f <= range.last; ++f) {
-    const double content = input.up.dot(feet_world.block<1, 3>(f, 3 * label).transpose()) - input.floor_height;
-    content_lowest = std::min(content_lowest, content);
-  }
+  for (int f = range.first; f <= range.last; ++f)
+    content_lowest = std::min(content_lowest, heightAboveFloor(input, feet_world, f, 3 * label));
   const double content_height = planted ? *planted : std::max(0.0, content_lowest);
   const double above_content_cm = (target_height - content_height) * input.cm_per_unit;
   if (above_content_cm > kLockHeightToleranceCm) return {target_height, true, target_height, above_content_cm};
