@@ -44,6 +44,7 @@ void CleanupOptions::validate() const {
   requireWeight(prior_weight_unmapped, "prior_weight_unmapped");
   requireWeight(unreachable_warning_cm, "unreachable_warning_cm");
   requireWeight(residual_warning_cm, "residual_warning_cm");
+  requireWeight(held_down_warning_cm, "held_down_warning_cm");
   if (!std::isfinite(contact_blend_seconds) || contact_blend_seconds < 0.0)
     throw std::invalid_argument("cleanup options: contact_blend_seconds must be finite and >= 0");
   if (!std::isfinite(lock_shift_cm) || lock_shift_cm < 0.0)

@@ -115,6 +115,12 @@ struct CleanupOptions {
   // --- Warnings.
   double unreachable_warning_cm = 1.0;  // a limb whose targets are further apart than it can reach
   double residual_warning_cm = 10.0;    // a mapped joint left further than this from its target
+  // A heel or toe its contact holds further than this under its target (the style lifts the foot while
+  // the contact track holds it down): the warning names the frames, where the user may end the contact
+  // to follow the style. Why: this is where most of a clean clip's worst residual comes from, the knee
+  // and hip following a foot held 5-15 cm under the style's heel-off (docs/decisions.md, "A heel the
+  // contact holds down").
+  double held_down_warning_cm = 5.0;
   // The frame rate whose frame numbers the warnings name: the clip the user sees or exports, when the
   // solve runs at another rate (style/stylized_cleanup.h solves 120 fps content at 60 fps). A run of
   // solve frames a..b is named by the frames of this rate it overlaps in time:
@@ -122,7 +128,7 @@ struct CleanupOptions {
   // 0 (the default): the solve's own frames.
   double warning_fps = 0.0;
 
-  // Throws std::invalid_argument for a negative or non-finite weight, an empty window, an overlap not
+  // Throws std::invalid_argument for a negative or non-finite weight (a warning threshold too), an empty window, an overlap not
   // smaller than the window, a window over 1 frame for the tree solver, max_iterations < 1, a
   // non-positive budget, chunk_frames < 1, chunk_lead_in < 0, threads < 0, block_frames < 1 or a
   // negative or non-finite warning_fps or lock_shift_cm.

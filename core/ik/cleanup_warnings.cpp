@@ -68,7 +68,7 @@ void RunReporter::closeRun() {
     const int last = std::max(first, static_cast<int>(std::ceil((run_last_ + 1) * frame_scale_ - 1e-9)) - 1);
     const std::string span = last > first ? "frames " + std::to_string(first) + "-" + std::to_string(last)
                                           : "frame " + std::to_string(first);
-    messages_.push_back({prefix_ + " " + verb_ + " " + formatFixed(run_peak_, 1) + " cm at " + span, first, last});
+    messages_.push_back({prefix_ + " " + verb_ + " " + formatFixed(run_peak_, 1) + " cm at " + span + suffix_, first, last});
   }
   ++runs_;
   run_first_ = run_last_ = -1;
@@ -91,6 +91,10 @@ CleanupWarnings::CleanupWarnings(const CleanupInput& input, const CleanupOptions
     joint_residual_.emplace_back(options.residual_warning_cm,
                                  "large residual: " + std::string(canonicalJointName(static_cast<CanonicalJoint>(c))),
                                  "off target by", frame_scale);
+  if (options.lock_contacts)
+    for (const char* joint : {"left heel", "left toe", "right heel", "right toe"})  // ContactLabel order
+      held_down_.emplace_back(options.held_down_warning_cm, std::string("held down by its contact: ") + joint,
+                              "under the style's lift by", frame_scale, " (end the contact there to follow the style)");
 }
 
 void CleanupWarnings::add(int first, const LocalPoses& content_block, const Eigen::MatrixXd& result_world) {
@@ -106,6 +110,14 @@ void CleanupWarnings::add(int first, const LocalPoses& content_block, const Eige
       joint_residual_[static_cast<size_t>(c)].add(frame, error);
     }
     ++residual_samples_;
+    // A locked heel or toe held under its target (the style lifts it; its contact holds it down).
+    for (size_t label = 0; label < held_down_.size(); ++label) {
+      const int c = index(kContactJoint[label]);
+      const bool locked = input_.contacts(frame, static_cast<Eigen::Index>(label)) != 0;
+      const Eigen::Vector3d target = input_.targets.block<1, 3>(frame, 3 * c).transpose();
+      const double held = input_.up.dot(target - at(result_world, row, input_.mapping.joints[static_cast<size_t>(c)])) * cm;
+      held_down_[label].add(frame, locked ? held : 0.0);
+    }
     // Limbs whose targets lie further apart than the limb can reach.
     for (size_t l = 0; l < kLimbs.size(); ++l) {
       const Limb& limb = kLimbs[l];
@@ -122,9 +134,10 @@ void CleanupWarnings::finish(CleanupReport& report) {
   report.mean_position_residual_cm =
       residual_samples_ > 0 ? residual_sum_ / (static_cast<double>(residual_samples_) * kCanonicalJointCount) : 0.0;
   report.max_position_residual_cm = residual_peak_;
-  // Limbs first, then joints: the order of the report's warnings.
+  // Limbs, then joints, then held contacts: the order of the report's warnings.
   for (RunReporter& limb : limb_stretch_) limb.finish(report.warnings);
   for (RunReporter& joint : joint_residual_) joint.finish(report.warnings);
+  for (RunReporter& held : held_down_) held.finish(report.warnings);
 }
 
 }  // namespace motionstyle::ik_detail

@@ -16,21 +16,22 @@
 namespace motionstyle::ik_detail {
 
 // Runs of consecutive frames where a value exceeds a threshold, reported as
-// "<prefix> <verb> X cm at frames a-b" with each run's largest value; after kMaxRunsPerWarning runs the
+// "<prefix> <verb> X cm at frames a-b<suffix>" with each run's largest value; after kMaxRunsPerWarning runs the
 // rest are counted ("<prefix>: N more such frame ranges"). Fed one frame at a time, in order.
 // frame_scale r names a run of frames a..b by floor(a r) .. ceil((b + 1) r) - 1 (CleanupOptions::
 // warning_fps: r = the named rate / the fed frames' rate; 1 names the fed frames).
 class RunReporter {
  public:
-  RunReporter(double threshold, std::string prefix, std::string verb, double frame_scale = 1.0)
-      : threshold_(threshold), prefix_(std::move(prefix)), verb_(std::move(verb)), frame_scale_(frame_scale) {}
+  RunReporter(double threshold, std::string prefix, std::string verb, double frame_scale = 1.0, std::string suffix = {})
+      : threshold_(threshold), prefix_(std::move(prefix)), verb_(std::move(verb)), suffix_(std::move(suffix)),
+        frame_scale_(frame_scale) {}
   void add(int frame, double value);
   void finish(std::vector<CleanupWarning>& warnings);  // closes an open run, appends the messages
 
  private:
   void closeRun();
   double threshold_;
-  std::string prefix_, verb_;
+  std::string prefix_, verb_, suffix_;
   double frame_scale_;
   int run_first_ = -1, run_last_ = -1;
   double run_peak_ = 0.0;
@@ -38,7 +39,11 @@ class RunReporter {
   std::vector<CleanupWarning> messages_;
 };
 
-// The report's residual figures and warnings, fed the cleaned clip block by block in frame order.
+// The report's residual figures and warnings, fed the cleaned clip block by block in frame order:
+// limbs whose targets lie beyond reach, joints far from their targets, and heels and toes that their
+// locked contact holds more than CleanupOptions::held_down_warning_cm under their targets,
+//   held(f) = up . (target(f) - cleaned(f)) in cm, on the frames whose contact is locked (full weight),
+// where the style lifts a foot the contact track holds down (ending the contact there follows the style).
 class CleanupWarnings {
  public:
   CleanupWarnings(const CleanupInput& input, const CleanupOptions& options);
@@ -53,6 +58,7 @@ class CleanupWarnings {
   const CleanupInput& input_;
   std::vector<RunReporter> limb_stretch_;                  // one per limb
   std::vector<RunReporter> joint_residual_;                // one per canonical joint
+  std::vector<RunReporter> held_down_;                     // one per contact label; empty: nothing locked
   double residual_sum_ = 0.0, residual_peak_ = 0.0;
   long long residual_samples_ = 0;
 };

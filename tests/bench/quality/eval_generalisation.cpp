@@ -21,7 +21,8 @@
 // Per network and clip: style distance ratio and content distance (eval's definitions), the gait
 // signature added (gait_signature.h: a style judge apart from the loss network), familiarity
 // (style/familiarity.h), and unless --no-cleanup the IK clean-up's residual (its worst: where, in the
-// JSON), skate and "unreachable" warnings, and the cleaned output's root path against the content's
+// JSON), skate, "unreachable" warnings and the clips warned of a contact held under the style's lift
+// ("held"), and the cleaned output's root path against the content's
 // (features/root_path.h). --frontier adds, per network, the least content distance at which any method
 // could bring the Bandai clips to their measured mean style ratio and the other studios' clips to the
 // same ratio and to 1.25x it (style_content_frontier.h: issue 12's two goals against each other).
@@ -219,7 +220,9 @@ struct NetworkFigures {
   double style_ratio = 0, projection_ratio = 0, content_after = 0, familiarity = 0, network_distance = 0;
   double residual_mean = 0, residual_max = 0, skate = 0, cleaned_style_ratio = 0;
   double gait_share = 0, cleaned_gait_share = 0;  // gait_signature.h: of the output, of the cleaned clip
-  int unreachable = 0, cleaned = 0, over_goal = 0;  // over_goal: clips whose worst residual is over kWorstResidualGoalCm
+  // held_down: clips warned of a contact that holds a foot under the style's lift (ik/cleanup.h);
+  // over_goal: clips whose worst residual is over kWorstResidualGoalCm
+  int unreachable = 0, held_down = 0, cleaned = 0, over_goal = 0;
   double distance_ratio_min = 1e9, distance_ratio_max = 0, end_error_max = 0;
   int clips = 0;
 };
@@ -294,7 +297,11 @@ nlohmann::json evaluateNetwork(const std::string& network, const nn::StyleModel&
     if (cleanup) {
       const style::StylizedCleanup cleaned = style::cleanUpStylizedClip(e.motion, e.mapping, stylized, cleanup_options);
       int unreachable = 0;
-      for (const std::string& w : warningTexts(cleaned.report)) unreachable += w.find("unreachable") != std::string::npos;
+      int held_down = 0;
+      for (const std::string& w : warningTexts(cleaned.report)) {
+        unreachable += w.find("unreachable") != std::string::npos;
+        held_down += w.find("held down by its contact") != std::string::npos;
+      }
       const RootPathComparison travelled =
           compareClipPaths(e.motion, cleaned.motion, e.mapping, e.clip.features.anchor.convention);
       // The style the user gets: the cleaned clip's features against the same style clip, measured in
@@ -319,6 +326,7 @@ nlohmann::json evaluateNetwork(const std::string& network, const nn::StyleModel&
           std::string(canonicalJointName(static_cast<CanonicalJoint>(std::max(0, cleaned.cleaned.residual_max_joint))));
       c["skate_cm_s"] = cleaned.cleaned.foot_skate_cm_s;
       c["unreachable_warnings"] = unreachable;
+      c["held_down_warnings"] = held_down;
       c["distance_ratio"] = travelled.distance_ratio;
       c["end_error_fraction"] = travelled.end_error_fraction;
       c["heading_error_deg"] = travelled.heading_error * 180.0 / 3.14159265358979;
@@ -327,6 +335,7 @@ nlohmann::json evaluateNetwork(const std::string& network, const nn::StyleModel&
       figures.over_goal += cleaned.cleaned.residual_max_cm > kWorstResidualGoalCm;
       figures.skate = std::max(figures.skate, cleaned.cleaned.foot_skate_cm_s);
       figures.unreachable += unreachable;
+      figures.held_down += held_down > 0;
       figures.distance_ratio_min = std::min(figures.distance_ratio_min, travelled.distance_ratio);
       figures.distance_ratio_max = std::max(figures.distance_ratio_max, travelled.distance_ratio);
       figures.end_error_max = std::max(figures.end_error_max, travelled.end_error_fraction);
@@ -344,11 +353,11 @@ void printFigures(const std::string& network, const std::string& set, const Netw
               set.c_str(), f.style_ratio / n, f.projection_ratio / n, f.content_after / n, f.gait_share / n,
               f.familiarity / n, f.network_distance / n);
   if (f.cleaned > 0)
-    std::printf(" | cleaned style %.3f gait %.2f residual %.2f max %.1f (%d of %d clips over %.0f) skate %.2f unreach %d"
+    std::printf(" | cleaned style %.3f gait %.2f residual %.2f max %.1f (%d of %d clips over %.0f) skate %.2f unreach %d held %d"
                 " | distance x%.2f-%.2f end %.0f%%",
                 f.cleaned_style_ratio / f.cleaned, f.cleaned_gait_share / f.cleaned, f.residual_mean / f.cleaned,
                 f.residual_max, f.over_goal, f.cleaned,
-                kWorstResidualGoalCm, f.skate, f.unreachable, f.distance_ratio_min, f.distance_ratio_max,
+                kWorstResidualGoalCm, f.skate, f.unreachable, f.held_down, f.distance_ratio_min, f.distance_ratio_max,
                 100.0 * f.end_error_max);
   std::printf("\n");
 }

@@ -110,6 +110,12 @@ TEST_F(CleanupInvalidInput, RejectsBadOptions) {
     EXPECT_NE(failure(mapping, targets, contacts, Eigen::Vector3d::UnitY(), 1.0, options).find("warning_fps"),
               std::string::npos);
   }
+  for (const double held : {-1.0, std::numeric_limits<double>::quiet_NaN()}) {
+    options = {};
+    options.held_down_warning_cm = held;
+    EXPECT_NE(failure(mapping, targets, contacts, Eigen::Vector3d::UnitY(), 1.0, options).find("held_down_warning_cm"),
+              std::string::npos);
+  }
   for (const double shift : {-1.0, std::numeric_limits<double>::quiet_NaN()}) {
     options = {};
     options.lock_shift_cm = shift;
