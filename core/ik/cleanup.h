@@ -117,9 +117,9 @@ struct CleanupOptions {
   double residual_warning_cm = 10.0;    // a mapped joint left further than this from its target
   // A heel or toe its contact holds further than this under its target (the style lifts the foot while
   // the contact track holds it down): the warning names the frames, where the user may end the contact
-  // to follow the style. Why: this is where most of a clean clip's worst residual comes from, the knee
-  // and hip following a foot held 5-15 cm under the style's heel-off (docs/decisions.md, "A heel the
-  // contact holds down").
+  // to follow the style. Why: much of a clean clip's worst residual comes from here, the knee and hip
+  // following a foot held 5-15 cm under the style's heel-off (docs/decisions.md, "A heel the contact
+  // holds down").
   double held_down_warning_cm = 5.0;
   // The frame rate whose frame numbers the warnings name: the clip the user sees or exports, when the
   // solve runs at another rate (style/stylized_cleanup.h solves 120 fps content at 60 fps). A run of

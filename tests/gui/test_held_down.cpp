@@ -6,7 +6,9 @@
 #include <QLabel>
 #include <QSignalSpy>
 
+#include <filesystem>
 #include <string>
+#include <vector>
 
 #include "common/resource_paths.h"
 #include "contact_tracks.h"

@@ -3,6 +3,7 @@
 // nowhere else (ik/cleanup.h, CleanupOptions::held_down_warning_cm).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
