@@ -43,8 +43,6 @@ ContactSummary summarize(const Eigen::RowVectorXd& labels) {
   return summary;
 }
 
-constexpr const char* kContactNames[kContactCount] = {"left heel", "left toe", "right heel", "right toe"};
-
 // The loss network that judges familiarity: --loss-network, else the shipped one when it is installed, else none.
 struct LossNetwork {
   std::optional<nn::LossNetworkModel> model;
@@ -113,7 +111,7 @@ nlohmann::ordered_json describeClip(const std::string& path, const std::optional
   nlohmann::ordered_json contacts = nlohmann::ordered_json::object();
   for (int label = 0; label < kContactCount; ++label) {
     const ContactSummary summary = summarize(features.contacts.row(label));
-    contacts[kContactNames[label]] = {{"fraction", summary.fraction}, {"segments", summary.segments}};
+    contacts[std::string(contactLabelName(label))] = {{"fraction", summary.fraction}, {"segments", summary.segments}};
   }
   info["contacts"] = {{"fps", features.anchor.fps}, {"labels", contacts}};
   if (!loss_network.problem.empty()) info["familiarity"] = {{"error", loss_network.problem}};

@@ -92,8 +92,9 @@ CleanupWarnings::CleanupWarnings(const CleanupInput& input, const CleanupOptions
                                  "large residual: " + std::string(canonicalJointName(static_cast<CanonicalJoint>(c))),
                                  "off target by", frame_scale);
   if (options.lock_contacts)
-    for (const char* joint : {"left heel", "left toe", "right heel", "right toe"})  // ContactLabel order
-      held_down_.emplace_back(options.held_down_warning_cm, std::string("held down by its contact: ") + joint,
+    for (int label = 0; label < kContactCount; ++label)
+      held_down_.emplace_back(options.held_down_warning_cm,
+                              "held down by its contact: " + std::string(contactLabelName(label)),
                               "under the style's lift by", frame_scale, " (end the contact there to follow the style)");
 }
 

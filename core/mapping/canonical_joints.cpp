@@ -31,6 +31,13 @@ std::string_view canonicalJointName(CanonicalJoint joint) {
   return kNames[static_cast<size_t>(i)];
 }
 
+std::string_view contactLabelName(int label) {
+  static constexpr std::array<std::string_view, kContactCount> kLabelNames = {"left heel", "left toe", "right heel",
+                                                                            "right toe"};
+  if (label < 0 || label >= kContactCount) return "?";
+  return kLabelNames[static_cast<size_t>(label)];
+}
+
 std::optional<CanonicalJoint> canonicalJointFromName(std::string_view name) {
   for (CanonicalJoint joint : kAllCanonicalJoints)
     if (equalsIgnoringCase(name, canonicalJointName(joint))) return joint;

@@ -66,6 +66,10 @@ constexpr std::array<std::pair<CanonicalJoint, CanonicalJoint>, 8> kMirrorPairs 
 // "Hips", "LeftHip", ..., "RightHandEnd": the enumerator's name, used in mapping files and messages.
 std::string_view canonicalJointName(CanonicalJoint joint);
 
+// "left heel", "left toe", "right heel", "right toe": a contact label (ContactLabel order) as messages
+// name it; "?" outside 0..kContactCount - 1.
+std::string_view contactLabelName(int label);
+
 // The canonical joint with this name, compared ASCII case-insensitively; nullopt for anything else.
 std::optional<CanonicalJoint> canonicalJointFromName(std::string_view name);
 
