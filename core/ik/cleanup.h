@@ -6,8 +6,8 @@
 //   - heels and toes locked to one world position during each labelled contact (blended in and out);
 //     where the targets lift a heel or toe before its contact ends (or land it after it starts), the
 //     lock holds it still over the floor only and lets it rise with them: alone while the other joint
-//     of that foot is free, with it by the smaller lift while both are locked (a quicker toe-off kept;
-//     cleanup_locks.h),
+//     of that foot is free, with it by the smaller lift while both are locked (a quicker toe-off kept),
+//     and a heel lifted past that rolling up on its toe (cleanup_locks.h),
 //   - foot joints kept above the floor and, during contact, at the height the content's own foot has
 //     there (its median over the contact where the content has that foot planted, else the clip's
 //     rest height: captured floors are not flat; the rest height too where the targets hold the foot

@@ -49,7 +49,8 @@ struct ContactLocks {
 // planted height, the rest height, or the style's). Its weight is full inside the segment; on either
 // side the lock's share of the pull ramps down (CleanupOptions::contact_blend_seconds); where two ramps
 // meet, the nearer segment wins. Heel and toe locks of a foot are set the foot's length apart, and a
-// joint the style lifts off early or lands late rises with its targets (cleanup_locks.cpp).
+// joint the style lifts off early or lands late rises with its targets, a heel whose toe stays down
+// rolling on it (cleanup_locks.cpp).
 ContactLocks contactLocks(const CleanupInput& input, const CleanupOptions& options, const ContentFootHeights& feet,
                           const Eigen::MatrixXd& feet_world);
 

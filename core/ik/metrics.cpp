@@ -138,13 +138,21 @@ void MetricsAccumulator::add(const MetricsInput& block) {
     for (Eigen::Index t = std::max<Eigen::Index>(kept - 1, 0); t + 1 < kept + added; ++t) {
       double frame_sum = 0.0;
       int frame_count = 0;
+      // Per foot, the slower of its joints in contact at t and t + 1 (metrics.h).
+      std::array<double, kContactCount / 2> foot_speed{-1.0, -1.0};
       for (Eigen::Index label = 0; label < kContactCount; ++label) {
         if (!inContact(t, label) || !inContact(t + 1, label)) continue;
         Eigen::Vector3d step = at(p, t + 1, feet[static_cast<size_t>(label)]) - at(p, t, feet[static_cast<size_t>(label)]);
         step -= up_.dot(step) * up_;
-        frame_sum += step.norm() * cm * fps_;
-        ++frame_count;
+        const double speed = step.norm() * cm * fps_;
+        double& foot = foot_speed[static_cast<size_t>(label / 2)];  // ContactLabel order: heel, toe per foot
+        foot = foot < 0.0 ? speed : std::min(foot, speed);
       }
+      for (double speed : foot_speed)
+        if (speed >= 0.0) {
+          frame_sum += speed;
+          ++frame_count;
+        }
       skate_sum_ += frame_sum;
       m.contact_steps += frame_count;
       if (keep_tracks_ && frame_count > 0) m.skate_track_cm_s[static_cast<size_t>(base + t)] = frame_sum / frame_count;

@@ -9,8 +9,11 @@
 //     with `canonical_joints` = identityCanonicalJoints().
 //
 // Definitions:
-//   foot skate        mean horizontal speed (cm/s) of each contact joint over the steps t -> t+1 where it
-//                     is labelled in contact at both t and t+1 (0 when there is no such step);
+//   foot skate        mean horizontal speed (cm/s) of each foot over the steps t -> t+1 where one of its
+//                     contact joints (heel, toe) is labelled in contact at both t and t+1, the foot's
+//                     speed there being the slower of those joints' (0 when there is no such step).
+//                     Why per foot: a foot turning about a joint that holds still (a heel rolling up on
+//                     its planted toe) does not slide; a foot whose every contact moves does;
 //   floor penetration depth below the floor (cm) of the four contact joints, max over all frames and
 //                     mean over the samples that are below it;
 //   bone error        | |p_joint - p_parent| - reference length | (cm), mean and max over bones and frames;
@@ -72,7 +75,7 @@ struct MetricsInput {
 struct ClipMetrics {
   int frames = 0;
   double foot_skate_cm_s = 0.0;
-  int contact_steps = 0;                 // (joint, t -> t+1) pairs the skate figure averages
+  int contact_steps = 0;                 // (foot, t -> t+1) pairs the skate figure averages
   double penetration_max_cm = 0.0;
   double penetration_mean_cm = 0.0;      // over penetrating samples; 0 when none
   int penetrating_samples = 0;
@@ -85,7 +88,7 @@ struct ClipMetrics {
   int residual_max_frame = -1;
   int residual_max_joint = -1;  // canonical joint index (CanonicalJoint order)
   double jerk_mean_cm_s3 = 0.0;
-  // Per-frame tracks for the GUI (length `frames`): the mean skate of the joints in contact over the
+  // Per-frame tracks for the GUI (length `frames`): the mean skate of the feet in contact over the
   // step from this frame to the next (cm/s, 0 when none), and the largest bone error (cm).
   std::vector<double> skate_track_cm_s;
   std::vector<double> bone_error_track_cm;

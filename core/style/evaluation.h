@@ -17,9 +17,10 @@
 //                             projection makes without the style network (ratio vs projection_ratio)
 //   bone_error_cm             mean over frames and the 20 bones of | |p_child - p_parent| - l_b |, l_b the
 //                             content's mean bone length; for C and for Y (the raw output, no IK)
-//   foot_skate_cm_s           mean horizontal speed of a foot joint over the frame pairs (t, t+1) that
-//                             the CONTENT labels in contact at both frames, world positions at the
-//                             reference scale, cm per second; for C and for Y
+//   foot_skate_cm_s           mean horizontal speed of a foot over the frame pairs (t, t+1) at which the
+//                             CONTENT labels a joint of it in contact at both frames, at the slower of
+//                             those joints (ik/metrics.h), world positions at the reference scale, cm
+//                             per second; for C and for Y
 //   familiarity               the reading of reconstruction_joint_error_cm (familiarity.h)
 //   network_path              how far the NETWORK's own root motion strays from C's (root_path.h):
 //                             distance_ratio, end_error_fraction; the output judged above follows

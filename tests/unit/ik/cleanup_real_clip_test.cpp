@@ -145,9 +145,17 @@ TEST_P(CleanupRealClip, OnASlopedFloorEachStepKeepsTheContentsHeight) {
       const double content_height = medianHeight(sloped_world, ankle, segment, up);
       const double locked = content_height + (drop > 0.0 ? 0.25 * std::min(0.0, rest - content_height) : 0.0);
       lowered += locked < content_height - 0.5 / cm;
+      // A heel its own targets lift more than 2 cm as the step ends rolls up on its toe (cleanup_test.cpp,
+      // AHeelTheStyleLiftsOffEarlyRollsUpOnItsToe): the lock's height is checked on the other frames.
+      const int target_column = 3 * index(CanonicalJoint::LeftAnkle);
+      double lowest = up.dot(targets.block<1, 3>(segment.first, target_column).transpose());
       for (int f = segment.first; f <= segment.last; ++f)
+        lowest = std::min(lowest, up.dot(targets.block<1, 3>(f, target_column).transpose()));
+      for (int f = segment.first; f <= segment.last; ++f) {
+        if (up.dot(targets.block<1, 3>(f, target_column).transpose()) > lowest + 2.0 / cm) continue;
         ASSERT_NEAR(up.dot(result_world.block<1, 3>(f, 3 * ankle).transpose()) * cm, locked * cm, 0.5)
             << "drop " << drop << ", frame " << f << " of the contact " << segment.first << "-" << segment.last;
+      }
       ++segments;
     }
     EXPECT_GE(segments, 2);

@@ -65,6 +65,34 @@ TEST(Metrics, FootSkateIsTheHorizontalSpeedDuringContact) {
   EXPECT_EQ(m.skate_track_cm_s[9], 0.0);
 }
 
+// A foot with heel and toe in contact skates at the slower of the two: a heel turning up about its
+// still toe (a foot rolling off) is no slide, a whole foot sliding is, once per foot.
+TEST(Metrics, AFootSkatesAtItsStillestJointInContact) {
+  Eigen::MatrixXd positions = standingCanonical();
+  const int heel = index(CanonicalJoint::LeftAnkle), toe = index(CanonicalJoint::LeftToe);
+  for (int f = 0; f < 10; ++f) {
+    positions(f, 3 * heel) += 0.5 * f;  // the heel moves along the floor plane's x ...
+    positions(f, 3 * heel + 1) += 1.0 * f;  // ... as it rises: a roll about the toe
+  }
+  MetricsInput input{positions, identityCanonicalJoints()};
+  input.cm_per_unit = 2.0;
+  input.fps = 30.0;
+  input.contacts = Eigen::MatrixXi::Zero(10, 4);
+  input.contacts.leftCols(2).setOnes();  // left heel and toe
+  const ClipMetrics rolling = computeMetrics(input);
+  EXPECT_EQ(rolling.contact_steps, 9);  // one per foot and step
+  EXPECT_NEAR(rolling.foot_skate_cm_s, 0.0, 1e-9);
+
+  for (int f = 0; f < 10; ++f) positions(f, 3 * toe) += 0.25 * f;  // the toe slides too, at 15 cm/s
+  const ClipMetrics sliding = computeMetrics(input);
+  EXPECT_NEAR(sliding.foot_skate_cm_s, 15.0, 1e-9);
+  input.contacts.col(0).setZero();  // the toe alone in contact: its own speed
+  EXPECT_NEAR(computeMetrics(input).foot_skate_cm_s, 15.0, 1e-9);
+  input.contacts.col(0).setOnes();
+  input.contacts.col(1).setZero();  // the heel alone: its own, 30 cm/s
+  EXPECT_NEAR(computeMetrics(input).foot_skate_cm_s, 30.0, 1e-9);
+}
+
 TEST(Metrics, FloorPenetrationCountsOnlyFeetBelowTheFloor) {
   Eigen::MatrixXd positions = standingCanonical();
   positions(3, 3 * index(CanonicalJoint::RightAnkle) + 1) = 1.0;   // 1 unit below a floor at 2
