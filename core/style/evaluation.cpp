@@ -1,11 +1,11 @@
 #include "style/evaluation.h"
 
-#include <algorithm>
 #include <array>
 #include <chrono>
 #include <nlohmann/json.hpp>
 
 #include "features/root_path.h"
+#include "ik/metrics.h"
 #include "nn/losses.h"
 #include "style/familiarity.h"
 #include "nn/transformation_objective.h"
@@ -90,25 +90,12 @@ double boneLengthError(const Eigen::MatrixXd& features, const Eigen::VectorXd& b
 }
 
 double footSkate(const Eigen::MatrixXd& features, const Eigen::MatrixXd& contacts, const FeatureAnchor& anchor) {
+  // The reference rig's 21 joints, Y-up, in cm: ik/metrics.h's skate (per foot, at its stiller joint).
   const Eigen::MatrixXd world = referenceWorldPositions(features, anchor);
-  double sum = 0.0;
-  long count = 0;
-  for (Eigen::Index t = 0; t + 1 < world.rows(); ++t)
-    for (int heel = 0; heel < kContactCount; heel += 2) {  // ContactLabel order: heel, toe per foot
-      double foot = -1.0;  // the slower of the foot's joints in contact at t and t + 1 (ik/metrics.h)
-      for (int label = heel; label <= heel + 1; ++label) {
-        if (contacts(label, t) < 0.5 || contacts(label, t + 1) < 0.5) continue;
-        const int joint = index(kContactJoint[static_cast<std::size_t>(label)]);
-        const double dx = world(t + 1, 3 * joint) - world(t, 3 * joint);
-        const double dz = world(t + 1, 3 * joint + 2) - world(t, 3 * joint + 2);
-        const double speed = std::sqrt(dx * dx + dz * dz) * anchor.fps;
-        foot = foot < 0.0 ? speed : std::min(foot, speed);
-      }
-      if (foot < 0.0) continue;
-      sum += foot;
-      ++count;
-    }
-  return count > 0 ? sum / static_cast<double>(count) : 0.0;
+  MetricsInput input(world, identityCanonicalJoints());
+  input.contacts = (contacts.transpose().array() >= 0.5).cast<int>().matrix();
+  input.fps = anchor.fps;
+  return computeMetrics(input).foot_skate_cm_s;
 }
 
 EvaluationReport evaluateStyleNetwork(const nn::LossNetworkModel& loss_network, const nn::StyleModel& network,

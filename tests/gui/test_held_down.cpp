@@ -1,7 +1,7 @@
 // An animator's path through a clean-up warning: the style lifts a toe while the content's contact
 // holds it down; the Result panel says so and links the frames; the animator goes there and ends the
-// foot's contact on its track (what a drag over it does); the clip is cleaned again and the warning is
-// gone. The shipped youthful network on the CMU sample (ik/cleanup.h,
+// foot's contact on its track (what a drag over it does); the clip is cleaned again, the warning is
+// gone and the worst residual is lower (5.93 -> 5.79 cm). The shipped youthful network on the CMU sample (ik/cleanup.h,
 // CleanupOptions::held_down_warning_cm). A heel the style lifts while its toe stays down rolls up on
 // the toe instead (cleanup_locks.cpp): the proud network on the same clip, whose left heel was named
 // here until the thirty-seventh session, is no longer warned of.
@@ -71,6 +71,7 @@ class HeldDownTest : public QObject {
     const int first = held->first_frame, last = held->last_frame;
     QVERIFY(first >= 0 && last >= first && last < window.clip(0).frameCount());
     const std::string named = held->text;
+    const double worst_before = panel->result()->cleaned_metrics.residual_max_cm;
     auto* label = panel->findChild<QLabel*>(QStringLiteral("CleanupWarnings"));
     QVERIFY(label != nullptr);
     QVERIFY2(label->text().contains(QString::fromUtf8(kHeldLeftToe)), qPrintable(label->text()));
@@ -95,6 +96,11 @@ class HeldDownTest : public QObject {
                                           warning.last_frame >= first),
                warning.text.c_str());
     QVERIFY2(!label->text().contains(frames), qPrintable(label->text()));
+    const double worst_after = panel->result()->cleaned_metrics.residual_max_cm;
+    qInfo("worst residual %.2f -> %.2f cm (left toe's contact ended over frames %d-%d)", worst_before, worst_after,
+          first, last);
+    QVERIFY2(worst_after < worst_before,
+             qPrintable(QStringLiteral("worst residual %1 -> %2 cm").arg(worst_before).arg(worst_after)));
   }
 
   // The proud network lifts the sample's left heel while its toe stays down: the heel rolls up on the
