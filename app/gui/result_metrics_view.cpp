@@ -29,7 +29,8 @@ ResultMetricsView::ResultMetricsView(QWidget* parent) : QWidget(parent) {
       {tr("Foot skate (cm/s)"), tr("Floor penetration (cm)"), tr("Bone error (cm)"), tr("Residual (cm)")});
   table_->verticalHeaderItem(kSkateRow)->setToolTip(
       tr("Mean horizontal speed of a foot over the contacts on the timeline's foot tracks; where heel\n"
-         "and toe are both down, of the stiller one (a heel rolling up on its planted toe does not slide).\n"
+         "and toe are both down, of the stiller one (a heel rolling up on its planted toe does not slide);\n"
+         "not where the clean-up lifts a heel or toe off the floor with the style (a foot skates on it).\n"
          "The clean-up holds every such contact unless the style moved that step more than %1 cm;\n"
          "those count here (hatched on the foot tracks; the Skate row shows where).")
           .arg(kLockableSpreadCm));

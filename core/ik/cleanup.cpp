@@ -178,6 +178,7 @@ void cleanupMotionInBlocks(const CleanupInput& input, const CleanupOptions& opti
   summary.unknown_rotations = unknowns;
   summary.contact_segments = locks.segments;
   summary.contact_rest_heights = rest;
+  summary.lifted_contacts = std::move(locks.lifted);
   warnings.finish(summary);
   if (solved.frames_unsolved > 0)
     summary.warnings.push_back({"time budget of " + ik_detail::formatFixed(options.max_total_seconds, 2) +

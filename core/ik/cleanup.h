@@ -7,7 +7,8 @@
 //     where the targets lift a heel or toe before its contact ends (or land it after it starts), the
 //     lock holds it still over the floor only and lets it rise with them: alone while the other joint
 //     of that foot is free, with it by the smaller lift while both are locked (a quicker toe-off kept),
-//     and a heel lifted past that rolling up on its toe (cleanup_locks.h),
+//     and one lifted past that rolling up on the other joint where that stays down (a toe only on a
+//     heel held fully; cleanup_locks.h), those frames marked lifted (CleanupReport::lifted_contacts),
 //   - foot joints kept above the floor and, during contact, at the height the content's own foot has
 //     there (its median over the contact where the content has that foot planted, else the clip's
 //     rest height: captured floors are not flat; the rest height too where the targets hold the foot
@@ -197,6 +198,11 @@ struct CleanupReport {
   // clip (ContactLabel order), file units: the lock height of a contact where the content's foot is
   // not down (elsewhere, the content's own height over that contact).
   std::array<double, kContactCount> contact_rest_heights{};
+  // frames x 4 (ContactLabel order), 0/1: where the clean-up lets a contact joint follow the style off
+  // the floor though its contact holds (a heel or toe the style lands later or lifts off earlier than
+  // the content by more than 1 cm, its lock raised over its stance's level: cleanup_locks.cpp). A foot
+  // skates only on the floor, so the skate figure of a stylized clip leaves these frames out.
+  Eigen::MatrixXi lifted_contacts;
   // Residual of the result on the mapped joints vs the targets, cm.
   double mean_position_residual_cm = 0.0;
   double max_position_residual_cm = 0.0;

@@ -236,32 +236,31 @@ void makeFootLocksConsistent(std::vector<LockSegment>& segments, int heel, int t
 //   lift = max(0, up . target - level - tolerance),
 // and, a lock raised to the style's height (ContactLocks::kRisingOrFalling), fall as well where the
 // targets are lower: lift = max(floor - level, up . target - level + tolerance) < 0;
-// its lock moves by (1 - a_other) x lift + a_other x tied along up, a_other the foot's other joint's
-// lock share (its ramp's, CleanupOptions::contact_blend_seconds; 0 where it is free) and tied the
-// smaller of the two lifts where both move the same way (lift_other, that joint's own, is 0 unless it
-// departs too), else 0; and a heel lifted past that while its toe stays down (lift - tied > tolerance)
-// rolls up on it, by a_other x roll: its lock turns about the toe's, their distance kept, by
-// lift - tied - tolerance or as far as the foot's length lets it (rollAbout), moving along the floor
-// toward it. So a lone joint rises (falls) with its targets; a heel and toe both locked move together
-// by the smaller move, which keeps the foot's length between them, and a heel lifted further rolls on
-// its toe; a toe rising while its heel stays down stays down (it would turn about the ankle, 7-11 cm
-// above it, moving along the floor about as far as it rises: 0.6 cm/s of skate on CMU 127_07 for no
-// lower residual); and in a stance's middle nothing moves, where a lock following the targets' bobs
-// would float a planted foot. Why the fall: a style that holds the toe up through a stance (the zombie
-// with feminine, 7 cm over the content's) and puts it down to the floor as it leaves was held up
-// there, 8.1 cm from its targets (7.7 with the fall; docs/decisions.md, "Stances held in the
-// stylizer"). Why the lift: the toe of a quicker toe-off was held on the floor while its targets rose
-// 9.5 cm (CMU 131_01's kneel exit with elderly: 11.7 cm from them, 6.9 with the lift), and a whole
-// foot the style lifts off early 11-13 cm (131_01, exhausted: 13.4 -> 6.2 cm; docs/decisions.md, "A
-// toe the style lifts off", "A foot the style lifts off"). Why the roll: the knee and hip followed a
-// heel held 5-15 cm under the style's heel-off (64 of 847 pairs' worst residual lower by over 0.3 cm,
-// none higher, no skate added; docs/decisions.md, "A heel that rolls on its toe").
+// its lock moves by (1 - a_other) x lift + a_other x (tied + roll) along up (plus a_other x the roll's
+// move along the floor), a_other the foot's other joint's lock share (its ramp's,
+// CleanupOptions::contact_blend_seconds; 0 where it is free), tied the smaller of the two lifts where
+// both move the same way (lift_other is 0 unless that joint departs too), else 0, and roll, where
+// lift - tied > tolerance, the turn of this lock about the other's, their distance kept, by
+// lift - tied - tolerance or as far as the foot's length lets it (rollAbout). A toe rolls on its heel
+// only where the heel's lock holds fully (inside its contact, not in its ramp).
+// So a lone joint rises (falls) with its targets; a heel and toe both locked move together by the
+// smaller move, which keeps the foot's length between them; a joint lifted further rolls on the other,
+// which holds still; and in a stance's middle nothing moves, where a lock following the targets' bobs
+// would float a planted foot. Each raised lock is marked lifted (ContactLocks::lifted).
+// Why: held on the floor, a heel or toe the style lifts (a quicker heel- or toe-off, a toe that lands
+// after its heel) pulled the knee and hip 5-15 cm off their targets; a toe turning about a heel still
+// in its ramp moved along the floor. Figures: docs/decisions.md, "A toe the style lifts off" onward to
+// "A toe that rolls on its heel".
 constexpr double kLiftToleranceCm = 1.0;
+// A lock raised by more than this is marked lifted: a millimetre, under what the eye sees, over the
+// hundredths a lock tied to its held partner moves (a_other is under 1).
+constexpr double kLiftedCm = 0.1;
 
-// The turn of a heel's `lock` about its toe's `pivot` in their vertical plane, their distance kept,
-// that raises it by `rise` relative to the pivot, or as far as the foot's length lets it (to stand
-// over the pivot): the rise it reaches and its move along the floor, toward the pivot. None where the
-// lock does not stand above the pivot and beside it.
+// The turn of one joint's `lock` about its foot's other joint's `pivot` in their vertical plane, their
+// distance kept, that raises it by `rise` relative to the pivot, or as far as the foot's length lets it
+// (to stand over the pivot): the rise it reaches and its move along the floor (toward the pivot for a
+// heel above its toe; away from it at first for a toe below its ankle). None where the lock stands
+// straight above or below the pivot.
 struct Roll {
   double rise = 0.0;
   Eigen::Vector3d shift = Eigen::Vector3d::Zero();
@@ -271,7 +270,7 @@ Roll rollAbout(const Eigen::Vector3d& lock, const Eigen::Vector3d& pivot, double
   const double vertical = up.dot(between);
   const Eigen::Vector3d along = between - vertical * up;
   const double across = along.norm(), length = between.norm();
-  if (!(vertical > 0.0) || !(across > 1e-9 * length)) return {};
+  if (!(across > 1e-9 * length)) return {};
   const double raised = std::min(vertical + rise, length);
   const double reached_across = std::sqrt(std::max(0.0, length * length - raised * raised));
   return {raised - vertical, (reached_across - across) / across * along};
@@ -306,11 +305,13 @@ void raiseDepartingLocks(ContactLocks& locks, const CleanupInput& input, const C
       const double other = lift[static_cast<size_t>(label ^ 1)];
       const double tied = own > 0.0 ? std::max(0.0, std::min(own, other)) : std::min(0.0, std::max(own, other));
       Roll roll;
-      if (isHeel(label) && own - tied > tolerance && other_share > 0.0)
+      const bool may_roll = isHeel(label) || other_weight >= options.contact_weight;  // a toe: on a held heel
+      if (may_roll && own - tied > tolerance && other_share > 0.0)
         roll = rollAbout(before[static_cast<size_t>(label)], before[static_cast<size_t>(label ^ 1)], own - tied - tolerance,
                          input.up);
-      placed[static_cast<size_t>(label)] +=
-          ((1.0 - other_share) * own + other_share * (tied + roll.rise)) * input.up + other_share * roll.shift;
+      const double rise = (1.0 - other_share) * own + other_share * (tied + roll.rise);
+      placed[static_cast<size_t>(label)] += rise * input.up + other_share * roll.shift;
+      if (rise > kLiftedCm / input.cm_per_unit) locks.lifted(f, label) = 1;
     }
   }
 }
@@ -362,6 +363,7 @@ ContactLocks contactLocks(const CleanupInput& input, const CleanupOptions& optio
   locks.segments = static_cast<int>(segments.size());
   locks.departing = Eigen::MatrixXi::Zero(frames, kContactCount);
   locks.down_level = Eigen::MatrixXd::Zero(frames, kContactCount);
+  locks.lifted = Eigen::MatrixXi::Zero(frames, kContactCount);
   const double tolerance = kLiftToleranceCm / input.cm_per_unit;
   const int blend = std::max(1, static_cast<int>(std::lround(options.contact_blend_seconds * input.content.fps())));
   for (const LockSegment& segment : segments) {

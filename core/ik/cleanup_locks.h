@@ -41,6 +41,10 @@ struct ContactLocks {
   // frames x 4, along up in file units: the segment's lock height or the targets' lowest over the
   // segment, whichever is higher (the style may hold a stance a little above the lock).
   Eigen::MatrixXd down_level;
+  // frames x 4: 1 where raiseDepartingLocks raised the lock more than 1 mm over where the stance holds
+  // it (its targets more than kLiftToleranceCm over the stance's level): the joint follows the style
+  // off the floor though its contact holds.
+  Eigen::MatrixXi lifted;
   int segments = 0;
 };
 
@@ -49,8 +53,8 @@ struct ContactLocks {
 // planted height, the rest height, or the style's). Its weight is full inside the segment; on either
 // side the lock's share of the pull ramps down (CleanupOptions::contact_blend_seconds); where two ramps
 // meet, the nearer segment wins. Heel and toe locks of a foot are set the foot's length apart, and a
-// joint the style lifts off early or lands late rises with its targets, a heel whose toe stays down
-// rolling on it (cleanup_locks.cpp).
+// joint the style lifts off early or lands late rises with its targets, rolling on the foot's other
+// joint where that stays down (cleanup_locks.cpp).
 ContactLocks contactLocks(const CleanupInput& input, const CleanupOptions& options, const ContentFootHeights& feet,
                           const Eigen::MatrixXd& feet_world);
 

@@ -177,8 +177,10 @@ StylizedCleanup cleanUpStylizedClip(const Motion& clip, const JointMapping& mapp
   result.raw = computeMetrics(raw);
 
   MetricsInput after(cleaned_world, mapping.joints, skeletonBones(cleaned.skeleton));
-  // Skate over the tracks the user sees: over the locks it is 0 by construction and says nothing.
+  // Skate over the tracks the user sees: over the locks it is 0 by construction and says nothing. A
+  // foot skates on the floor: the frames where the clean-up lifts a joint with the style are left out.
   after.contacts = fitRows(resampleRowsNearest(tracks, 1.0 / stylized.fps, solve_fps), at_rate.frameCount());
+  after.contacts.array() *= 1 - result.report.lifted_contacts.array();
   after.targets = targets;
   after.up = up;
   after.floor_height = floor;

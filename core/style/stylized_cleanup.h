@@ -25,7 +25,8 @@ struct StylizedCleanup {
   ClipMetrics raw;        // the network's output (21 canonical joints) judged by the CONTENT's contacts
   // The cleaned clip's canonical joints, bones of the whole skeleton; its skate over the contact tracks
   // the user sees (the content's, under the overrides), not over the locks: a stance left unlocked (the
-  // style moved the step) and sliding counts.
+  // style moved the step) and sliding counts; a joint the clean-up lifts off the floor with the style
+  // (CleanupReport::lifted_contacts) does not, there.
   ClipMetrics cleaned;
   Eigen::MatrixXi contacts;  // frames x 4 at `fps`: the labels the clean-up locked (see the .cpp)
   double fps = 0.0;          // the solve's rate: of `contacts` and of the `cleaned` metrics' tracks

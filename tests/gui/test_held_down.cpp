@@ -1,13 +1,17 @@
-// An animator's path through a clean-up warning: the style lifts a toe while the content's contact
-// holds it down; the Result panel says so and links the frames; the animator goes there and ends the
-// foot's contact on its track (what a drag over it does); the clip is cleaned again, the warning is
-// gone and the worst residual is lower (5.93 -> 5.79 cm). The shipped youthful network on the CMU sample (ik/cleanup.h,
-// CleanupOptions::held_down_warning_cm). A heel the style lifts while its toe stays down rolls up on
-// the toe instead (cleanup_locks.cpp): the proud network on the same clip, whose left heel was named
-// here until the thirty-seventh session, is no longer warned of.
+// An animator's path through a clean-up warning: a contact holds a toe down where the style lifts it;
+// the Result panel says so and links the frame; the animator goes there and ends the foot's contact on
+// its track (what a drag over it does); the clip is cleaned again, the warning is gone and the toe
+// follows the style there (ik/cleanup.h, CleanupOptions::held_down_warning_cm). The shipped masculine
+// network on the zombie sample, the right toe 5.3 cm under the style's at frame 682: one of the few
+// such warnings left (3 of 847 eval pairs), just over the 5 cm threshold; a change that ends it needs
+// another case here. Where the style lifts one joint of a foot while the other stays down, the
+// clean-up rolls it up on the other instead (cleanup_locks.cpp), with no warning: youthful's left toe
+// and proud's left heel on the CMU sample, both named here before.
 #include <QLabel>
 #include <QSignalSpy>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -27,6 +31,7 @@ using namespace motionstyle;
 
 namespace {
 
+constexpr const char* kHeldRightToe = "held down by its contact: right toe";
 constexpr const char* kHeldLeftToe = "held down by its contact: left toe";
 constexpr const char* kHeldHeel = "heel under the style's lift";
 
@@ -37,18 +42,34 @@ const CleanupWarning* warningStarting(const std::vector<CleanupWarning>& warning
   return nullptr;
 }
 
-// Opens the CMU sample in `window`, loads the shipped network `name` and stylizes; the panel's result.
-const style::StylizeCleanupResult* stylizeSample(MainWindow& window, const char* name, QSignalSpy& ended) {
+// Opens the sample `sample` (resources/samples) in `window`, loads the shipped network `name` and
+// stylizes; the panel's result.
+const style::StylizeCleanupResult* stylizeSample(MainWindow& window, const char* name, QSignalSpy& ended,
+                                                 const char* sample = "cmu_131_01_walk.bvh") {
   const auto resources = resourceDirectory();
   if (!resources) return nullptr;
   const auto network = shippedNetworkFile(*resources, name);
-  const std::filesystem::path sample = *resources / "samples" / "cmu_131_01_walk.bvh";
-  if (!network || window.openFiles({QString::fromStdString(sample.string())}) != 1) return nullptr;
+  const std::filesystem::path clip = *resources / "samples" / sample;
+  if (!network || window.openFiles({QString::fromStdString(clip.string())}) != 1) return nullptr;
   ResultPanel* panel = window.resultPanel();
   if (!panel->loadNetworkFile(QString::fromStdString(network->string()))) return nullptr;
   panel->stylize();
   if (!test::waitForJobs(ended)) return nullptr;
   return panel->result();
+}
+
+// How far the cleaned right toe stands under the style's (the network's output) at the clip's `frame`,
+// cm along the file's up axis.
+double toeUnderTheStyle(const MainWindow& window, const style::StylizeCleanupResult& result, int frame) {
+  const LoadedClip& clip = window.clip(0);
+  const style::StylizedClip& style = result.stylized;
+  const int at = std::min(static_cast<int>(std::lround(frame * style.fps / clip.fps())), style.frameCount() - 1);
+  const Eigen::Vector3d up = style.anchor.convention.fileUp();
+  const int toe = index(CanonicalJoint::RightToe);
+  const Eigen::Vector3d target = style.world_positions.block<1, 3>(at, 3 * toe).transpose();
+  const Eigen::MatrixXd cleaned = worldPositions(result.cleaned);
+  const Eigen::Vector3d placed = cleaned.block<1, 3>(frame, 3 * (*clip.mapping)[CanonicalJoint::RightToe]).transpose();
+  return up.dot(target - placed) * style.anchor.convention.cm_per_unit;
 }
 
 }  // namespace
@@ -57,50 +78,69 @@ class HeldDownTest : public QObject {
   Q_OBJECT
 
  private slots:
-  void aWarnedToeFollowsTheStyleOnceItsContactIsEnded() {
+  void aWarnedContactFollowsTheStyleOnceItIsEnded() {
     MainWindow window(false);
     window.setErrorReporter([](const QString& title, const QString& message) { QFAIL(qPrintable(title + message)); });
     ResultPanel* panel = window.resultPanel();
     QSignalSpy ended(panel, &ResultPanel::jobEnded);
-    QVERIFY2(stylizeSample(window, "youthful", ended) != nullptr,
-             "the repository's resources/ (youthful, the CMU sample) did not load and stylize");
+    QVERIFY2(stylizeSample(window, "masculine", ended, "zombie_walk.bvh") != nullptr,
+             "the repository's resources/ (masculine, the zombie sample) did not load and stylize");
 
-    // The panel names the held toe and links its first frame (the clip's own 120 fps).
-    const CleanupWarning* held = warningStarting(panel->result()->report.warnings, kHeldLeftToe);
-    QVERIFY2(held != nullptr, "no warning of a left toe held under the style's lift");
+    // The panel names the held toe and links its first frame.
+    const CleanupWarning* held = warningStarting(panel->result()->report.warnings, kHeldRightToe);
+    QVERIFY2(held != nullptr, "no warning of a right toe held under the style's lift");
     const int first = held->first_frame, last = held->last_frame;
     QVERIFY(first >= 0 && last >= first && last < window.clip(0).frameCount());
     const std::string named = held->text;
-    const double worst_before = panel->result()->cleaned_metrics.residual_max_cm;
+    const double held_before = toeUnderTheStyle(window, *panel->result(), first);
     auto* label = panel->findChild<QLabel*>(QStringLiteral("CleanupWarnings"));
     QVERIFY(label != nullptr);
-    QVERIFY2(label->text().contains(QString::fromUtf8(kHeldLeftToe)), qPrintable(label->text()));
+    QVERIFY2(label->text().contains(QString::fromUtf8(kHeldRightToe)), qPrintable(label->text()));
     const size_t at = named.find(" at frame"), until = named.find(" (end");
     QVERIFY(at != std::string::npos && until != std::string::npos && until > at);
-    const QString frames = QString::fromStdString(named.substr(at, until - at));  // " at frames a-b"
+    const QString frames = QString::fromStdString(named.substr(at, until - at));  // " at frame a" or " at frames a-b"
     QVERIFY2(label->text().contains(frames), qPrintable(label->text()));
     QVERIFY2(label->text().contains(QStringLiteral("<a href=\"%1\"").arg(first)), qPrintable(label->text()));
     emit label->linkActivated(QString::number(first));
     QCOMPARE(window.timeline()->frame(), first);
 
-    // The animator ends the left foot's contact over those frames, as a drag over its track does;
+    // The animator ends the right foot's contact over those frames, as a drag over its track does;
     // the clip is cleaned again with it, and those frames are no longer named.
-    QVERIFY(window.clip(0).effectiveContacts().col(1).segment(first, last - first + 1).sum() > 0);
-    emit window.timeline()->trackView()->trackEdited(ContactTrackController::kLeftFootTrack, first, last, false);
-    QVERIFY((window.clip(0).effectiveContacts().col(1).segment(first, last - first + 1).array() == 0).all());
+    QVERIFY(window.clip(0).effectiveContacts().col(3).segment(first, last - first + 1).sum() > 0);
+    emit window.timeline()->trackView()->trackEdited(ContactTrackController::kRightFootTrack, first, last, false);
+    QVERIFY((window.clip(0).effectiveContacts().col(3).segment(first, last - first + 1).array() == 0).all());
     panel->stylize();
     QVERIFY(test::waitForJobs(ended, 2));
     QVERIFY(panel->result() != nullptr);
     for (const CleanupWarning& warning : panel->result()->report.warnings)
-      QVERIFY2(warning.text != named && !(warning.text.rfind(kHeldLeftToe, 0) == 0 && warning.first_frame <= last &&
+      QVERIFY2(warning.text != named && !(warning.text.rfind(kHeldRightToe, 0) == 0 && warning.first_frame <= last &&
                                           warning.last_frame >= first),
                warning.text.c_str());
     QVERIFY2(!label->text().contains(frames), qPrintable(label->text()));
-    const double worst_after = panel->result()->cleaned_metrics.residual_max_cm;
-    qInfo("worst residual %.2f -> %.2f cm (left toe's contact ended over frames %d-%d)", worst_before, worst_after,
-          first, last);
-    QVERIFY2(worst_after < worst_before,
-             qPrintable(QStringLiteral("worst residual %1 -> %2 cm").arg(worst_before).arg(worst_after)));
+    const double held_after = toeUnderTheStyle(window, *panel->result(), first);
+    qInfo("right toe under the style's at frame %d: %.2f -> %.2f cm (its contact ended over frames %d-%d)", first,
+          held_before, held_after, first, last);
+    QVERIFY2(held_before > 5.0 && held_after < held_before - 2.0,
+             qPrintable(QStringLiteral("right toe under the style's by %1 -> %2 cm").arg(held_before).arg(held_after)));
+  }
+
+  // The youthful network lands the sample's left toe after its heel (and lifts it first) while the
+  // heel stays down: the toe rolls up on the heel, no toe is named as held down (it was, 5.0-5.2 cm
+  // under the style's lift, until the thirty-eighth session), and the feet do not slide for it.
+  void aToeTheStyleLiftsRollsUpOnItsHeel() {
+    MainWindow window(false);
+    window.setErrorReporter([](const QString& title, const QString& message) { QFAIL(qPrintable(title + message)); });
+    QSignalSpy ended(window.resultPanel(), &ResultPanel::jobEnded);
+    const style::StylizeCleanupResult* result = stylizeSample(window, "youthful", ended);
+    QVERIFY2(result != nullptr, "the repository's resources/ (youthful, the CMU sample) did not load and stylize");
+    QVERIFY2(warningStarting(result->report.warnings, kHeldLeftToe) == nullptr, "a left toe is still held down");
+    QVERIFY2(result->report.lifted_contacts.col(1).sum() > 0, "the left toe is never lifted with the style");
+    const ClipMetrics& cleaned = result->cleaned_metrics;
+    qInfo("youthful on the CMU sample: worst residual %.2f cm, skate %.3f cm/s", cleaned.residual_max_cm,
+          cleaned.foot_skate_cm_s);
+    QVERIFY2(cleaned.foot_skate_cm_s <= 0.5, qPrintable(QString::number(cleaned.foot_skate_cm_s)));
+    // Held down, the worst residual was 5.93 cm (the thirty-seventh session's test).
+    QVERIFY2(cleaned.residual_max_cm < 5.93, qPrintable(QString::number(cleaned.residual_max_cm)));
   }
 
   // The proud network lifts the sample's left heel while its toe stays down: the heel rolls up on the

@@ -204,6 +204,39 @@ TEST_F(CleanupStylized, AJitteringStanceIsLockedAndAMovedStepIsNotButItsSlidingC
   EXPECT_EQ(run.cleaned.contact_steps, kept.cleaned.contact_steps) << "the same tracks are judged";
 }
 
+// A foot the style lifts off before the content's stance ends (the left foot's targets raised 2 cm a
+// frame over the stance's last five frames) is lifted with its targets, and those frames are marked
+// lifted (CleanupReport::lifted_contacts): the foot skates only on the floor, so the skate figure
+// leaves them out (fewer steps judged), where it counted the foot's move through the air before.
+TEST_F(CleanupStylized, AFootTheStyleLiftsOffEarlyIsLeftOutOfTheSkateWhileLifted) {
+  const style::Stylizer stylizer(networkLikeModel(features, 11, 0.0f));
+  const style::StylizedClip plain = stylizer.stylize(features, 1.0);
+  const Eigen::MatrixXi content_contacts = (plain.contacts.transpose().array() > 0.5).cast<int>();
+  std::vector<ContactSegment> stances;
+  for (const ContactSegment& segment : contactSegments(content_contacts, 1))
+    if (segment.last - segment.first >= 12) stances.push_back(segment);
+  ASSERT_FALSE(stances.empty()) << "the fixture walks: its left toe has stances of 0.2 s and more";
+  const ContactSegment stance = stances.front();
+  const double units_per_cm = 1.0 / plain.anchor.convention.cm_per_unit;
+  const Eigen::RowVector3d up = plain.anchor.convention.fileUp().transpose();
+  style::StylizedClip stylized = plain;
+  for (int f = stance.last - 4; f <= stance.last; ++f)
+    for (CanonicalJoint joint : {CanonicalJoint::LeftAnkle, CanonicalJoint::LeftToe})
+      stylized.world_positions.block<1, 3>(f, 3 * index(joint)) += 2.0 * (f - stance.last + 5) * units_per_cm * up;
+
+  const style::StylizedCleanup kept = style::cleanUpStylizedClip(content, mapping, plain);
+  const style::StylizedCleanup run = style::cleanUpStylizedClip(content, mapping, stylized);
+  ASSERT_EQ(run.report.lifted_contacts.rows(), plain.frameCount()) << "solved at the network's 60 fps";
+  EXPECT_EQ(kept.report.lifted_contacts.col(1).segment(stance.first, stance.last - stance.first + 1).sum(), 0);
+  int lifted = 0;
+  for (int f = stance.last - 4; f <= stance.last; ++f) lifted += run.report.lifted_contacts(f, 1);
+  EXPECT_GE(lifted, 3) << "the toe follows the style up over the stance's last frames";
+  EXPECT_EQ(run.report.lifted_contacts.col(1).segment(stance.first, stance.last - stance.first - 4).sum(), 0)
+      << "not before the lift";
+  EXPECT_LT(run.cleaned.contact_steps, kept.cleaned.contact_steps) << "the lifted steps are left out";
+  EXPECT_LE(run.cleaned.foot_skate_cm_s, 0.5);
+}
+
 // A 120 fps clip is solved at 60 fps: the clean-up's warnings still name the clip's own frames, the
 // ones on the timeline and in the exported file. A contact forced on the left foot for half a second
 // where the content's left ankle travels furthest holds it far from its targets there.
