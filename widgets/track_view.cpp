@@ -31,6 +31,7 @@ void TrackView::setFrameCount(int frames) {
   for (BoolTrack& track : bool_tracks_) {
     track.values.resize(static_cast<size_t>(frames_), false);
     if (!track.unheld.empty()) track.unheld.resize(static_cast<size_t>(frames_), false);
+    if (!track.lifted.empty()) track.lifted.resize(static_cast<size_t>(frames_), false);
   }
   for (FloatTrack& track : float_tracks_) track.values.resize(static_cast<size_t>(frames_), track.minimum);
   playhead_ = std::clamp(playhead_, 0, std::max(0, frames_ - 1));
@@ -39,7 +40,7 @@ void TrackView::setFrameCount(int frames) {
 
 int TrackView::addBoolTrack(const QString& name, const QColor& color, std::vector<bool> values) {
   values.resize(static_cast<size_t>(frames_), false);
-  bool_tracks_.push_back({name, color, std::move(values), {}, {}});
+  bool_tracks_.push_back({name, color, std::move(values), {}, {}, {}, {}});
   updateGeometry();
   update();
   return static_cast<int>(bool_tracks_.size()) - 1;
@@ -67,6 +68,24 @@ const std::vector<bool>& TrackView::unheldFrames(int track) const {
   return bool_tracks_.at(static_cast<size_t>(track)).unheld;
 }
 
+void TrackView::setLiftedFrames(int track, std::vector<bool> lifted, const QString& tool_tip) {
+  BoolTrack& target = bool_tracks_.at(static_cast<size_t>(track));
+  if (!lifted.empty()) lifted.resize(static_cast<size_t>(frames_), false);
+  target.lifted = std::move(lifted);
+  target.lifted_tool_tip = tool_tip;
+  update();
+}
+
+const std::vector<bool>& TrackView::liftedFrames(int track) const {
+  return bool_tracks_.at(static_cast<size_t>(track)).lifted;
+}
+
+bool TrackView::isLifted(int track, int frame) const {
+  const BoolTrack& t = bool_tracks_[static_cast<size_t>(track)];
+  const auto f = static_cast<size_t>(frame);
+  return frame >= 0 && f < t.lifted.size() && t.lifted[f] && t.values[f] && !isUnheld(track, frame);
+}
+
 bool TrackView::isUnheld(int track, int frame) const {
   const BoolTrack& t = bool_tracks_[static_cast<size_t>(track)];
   const auto f = static_cast<size_t>(frame);
@@ -77,11 +96,14 @@ bool TrackView::event(QEvent* event) {
   if (event->type() == QEvent::ToolTip) {
     const auto* help = static_cast<QHelpEvent*>(event);
     const int frame = frameAt(help->pos().x());
-    for (int t = 0; t < boolTrackCount(); ++t)
-      if (boolTrackRect(t).contains(help->pos()) && isUnheld(t, frame)) {
-        QToolTip::showText(help->globalPos(), bool_tracks_[static_cast<size_t>(t)].unheld_tool_tip, this);
+    for (int t = 0; t < boolTrackCount(); ++t) {
+      if (!boolTrackRect(t).contains(help->pos())) continue;
+      const BoolTrack& track = bool_tracks_[static_cast<size_t>(t)];
+      if (isUnheld(t, frame) || isLifted(t, frame)) {
+        QToolTip::showText(help->globalPos(), isUnheld(t, frame) ? track.unheld_tool_tip : track.lifted_tool_tip, this);
         return true;
       }
+    }
     QToolTip::hideText();
     event->ignore();
     return true;
@@ -221,6 +243,16 @@ void TrackView::paintEvent(QPaintEvent*) {
       painter.fillRect(run, QBrush(track.color, Qt::BDiagPattern));
       painter.setPen(QPen(track.color, 1));
       painter.drawRect(run.adjusted(0, 0, -1, -1));
+      f = end;
+    }
+    // Lifted runs: the bar raised off the row's floor (its lower half cleared), a foot in the air.
+    for (int f = 0; f < frames_ && !track.lifted.empty();) {
+      if (!isLifted(t, f)) { ++f; continue; }
+      int end = f;
+      while (end < frames_ && isLifted(t, end)) ++end;
+      const double middle = row.top() + 0.5 * row.height();
+      painter.fillRect(QRectF(row.left() + f * cell, middle, std::max(1.0, (end - f) * cell), row.bottom() - 2 - middle),
+                       kRowBackground);
       f = end;
     }
   }

@@ -4,7 +4,9 @@
 //   - boolean tracks (e.g. left / right foot contact), editable by click-drag painting: the press
 //     toggles the frame under the cursor and the drag paints that value over every frame it crosses;
 //     frames marked "unheld" (on, but not acted on: a contact the clean-up does not hold) are drawn
-//     hatched, and a press on one paints "on" (asks for it to be held) instead of toggling it off,
+//     hatched, and a press on one paints "on" (asks for it to be held) instead of toggling it off;
+//     frames marked "lifted" (on, but the clean-up lifts the foot off the floor with the style there)
+//     are drawn raised, their bar clear of the row's lower half, and toggle as any other,
 //   - float tracks (quality figures per frame, e.g. foot skate) drawn as filled curves,
 //   - a playhead across all of them.
 // Frames are cells: frame f covers [f, f+1) of the track area's width; the playhead sits on the centre.
@@ -40,6 +42,10 @@ class TrackView : public QWidget {
   // hovering one shows `tool_tip`). Empty: none. Resized to frameCount(); kept until set again.
   void setUnheldFrames(int track, std::vector<bool> unheld, const QString& tool_tip = {});
   const std::vector<bool>& unheldFrames(int track) const;
+  // Frames of a boolean track that are on but lifted off the floor (drawn raised; hovering one shows
+  // `tool_tip`; an unheld frame is drawn and explained as unheld). Empty: none. As setUnheldFrames.
+  void setLiftedFrames(int track, std::vector<bool> lifted, const QString& tool_tip = {});
+  const std::vector<bool>& liftedFrames(int track) const;
   int boolTrackCount() const { return static_cast<int>(bool_tracks_.size()); }
 
   // Adds a float track (drawn below the boolean ones) and returns its index; then its values, drawn
@@ -82,7 +88,7 @@ class TrackView : public QWidget {
   void mousePressEvent(QMouseEvent* event) override;
   void mouseMoveEvent(QMouseEvent* event) override;
   void mouseReleaseEvent(QMouseEvent* event) override;
-  bool event(QEvent* event) override;  // the unheld frames' tool tip
+  bool event(QEvent* event) override;  // the unheld and lifted frames' tool tips
 
  private:
   struct BoolTrack {
@@ -91,8 +97,11 @@ class TrackView : public QWidget {
     std::vector<bool> values;
     std::vector<bool> unheld;  // empty, or one per frame
     QString unheld_tool_tip;
+    std::vector<bool> lifted;  // empty, or one per frame
+    QString lifted_tool_tip;
   };
   bool isUnheld(int track, int frame) const;
+  bool isLifted(int track, int frame) const;  // lifted, on and not unheld
   struct Stroke {
     int track = -1;
     bool value = false;

@@ -51,6 +51,22 @@ std::vector<bool> unheldFootTrack(const ContactLabels& contacts, const ContactLa
   return unheld;
 }
 
+std::vector<bool> liftedFootTrack(const ContactLabels& contacts, const ContactLabels& held, const ContactLabels& lifted,
+                                  int foot, int frames) {
+  if (lifted.rows() == 0) return {};
+  std::vector<bool> raised(static_cast<size_t>(std::max(frames, 0)), false);
+  for (Eigen::Index f = 0; f < frames && f < contacts.rows() && f < held.rows() && f < lifted.rows(); ++f) {
+    bool on = false, up = false, down = false;
+    for (int label : footLabels(foot)) {
+      on = on || contacts(f, label) != 0;
+      up = up || lifted(f, label) != 0;
+      down = down || (held(f, label) != 0 && lifted(f, label) == 0);
+    }
+    raised[static_cast<size_t>(f)] = on && up && !down;
+  }
+  return raised;
+}
+
 ContactTrackController::ContactTrackController(TrackView* tracks, ContentProvider content, ErrorReporter reporter,
                                                QObject* parent)
     : QObject(parent), tracks_(tracks), content_(std::move(content)), reporter_(std::move(reporter)) {
@@ -79,7 +95,8 @@ void ContactTrackController::setQualityTracks(const QualityTracks& tracks) {
     return values.empty() ? floor : std::max(floor, *std::max_element(values.begin(), values.end()));
   };
   tracks_->setFloatValues(kSkateTrack, tracks.skate_cm_s, 0.0f, top(tracks.skate_cm_s, 5.0f));
-  // A contact the clean-up did not hold is hatched on its foot's track; a click there holds it.
+  // A contact the clean-up did not hold is hatched on its foot's track, a click there holds it; a foot
+  // it lifts with the style is drawn raised.
   const LoadedClip* clip = content_();
   const ContactLabels contacts = clip != nullptr ? clip->effectiveContacts() : ContactLabels();
   for (int foot : {kLeftFootTrack, kRightFootTrack}) {
@@ -87,6 +104,12 @@ void ContactTrackController::setQualityTracks(const QualityTracks& tracks) {
                              tr("Not held by the clean-up: the style moved this step more than %1 cm, so the foot "
                                 "follows the network here.\nClick or drag over it to hold the foot planted.")
                                  .arg(kLockableSpreadCm));
+    tracks_->setLiftedFrames(foot,
+                             liftedFootTrack(contacts, tracks.held_contacts, tracks.lifted_contacts, foot,
+                                             tracks_->frameCount()),
+                             tr("Lifted with the style: the style raises this foot before its contact ends (or "
+                                "lands it after it starts), and the clean-up lets it rise, still over its place.\n"
+                                "Click or drag over it to end the contact and let the foot move freely."));
   }
   tracks_->setFloatValues(kRawBoneErrorTrack, tracks.raw_bone_error_cm, 0.0f, top(tracks.raw_bone_error_cm, 2.0f));
   // Full height at the "far" threshold, so the row reads against the reading's scale.

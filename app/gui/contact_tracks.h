@@ -34,6 +34,10 @@ struct QualityTracks {
   // The clean-up's locks per content frame (frames x 4, ContactLabel order); empty without a result.
   // A contact of the content's that is not held (the style moved that step) is hatched on its track.
   ContactLabels held_contacts;
+  // Where the clean-up lifts a heel or toe off the floor with the style though its contact holds
+  // (frames x 4; CleanupReport::lifted_contacts): a foot lifted with none of its joints held down is
+  // drawn raised on its track (liftedFootTrack).
+  ContactLabels lifted_contacts;
   std::vector<float> raw_bone_error_cm;  // the raw network output: its largest bone-length error (the
                                          // cleaned clip's is zero by construction)
   std::vector<float> familiarity_cm;     // the content: the style network's loss network's
@@ -83,12 +87,20 @@ class ContactTrackController : public QObject {
 // Foot `foot` (0 left, 1 right) of contact labels (frames x 4) as a track of `frames` values.
 std::vector<bool> footTrack(const ContactLabels& labels, int foot, int frames);
 
-// QualityTracks::held_contacts from a result's locks (frames x 4 at `locks_fps`), at `fps` over
-// `frames` frames (each frame takes the lock row nearest in time).
+// A result's labels per solved frame (its locks, or its lifted joints: frames x 4 at `locks_fps`) at
+// `fps` over `frames` frames (each frame takes the row nearest in time): QualityTracks' held_contacts
+// and lifted_contacts.
 ContactLabels locksAtRate(const Eigen::MatrixXi& locks, double locks_fps, double fps, int frames);
 
 // Per frame of a foot's track: a contact of that foot (heel or toe, in `contacts`) that `held` does
 // not lock. Empty when `held` is.
 std::vector<bool> unheldFootTrack(const ContactLabels& contacts, const ContactLabels& held, int foot, int frames);
+
+// Per frame of a foot's track: the foot is in contact in `contacts`, a joint of it is lifted in
+// `lifted`, and none is held down (`held` and not lifted): the whole foot off the floor. A heel
+// rolling on its held toe is not, nor a toe rolling on a held heel whose own contact has ended.
+// Empty when `lifted` is.
+std::vector<bool> liftedFootTrack(const ContactLabels& contacts, const ContactLabels& held, const ContactLabels& lifted,
+                                  int foot, int frames);
 
 }  // namespace motionstyle

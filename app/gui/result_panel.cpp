@@ -482,6 +482,8 @@ QualityTracks ResultPanel::qualityTracks() const {
   if (!result_) return tracks;
   tracks.skate_cm_s = trackAtRate(result_->cleaned_metrics.skate_track_cm_s, result_->cleanup_fps, content_->fps());
   tracks.held_contacts = locksAtRate(result_->contacts, result_->cleanup_fps, content_->fps(), content_->frameCount());
+  tracks.lifted_contacts =
+      locksAtRate(result_->report.lifted_contacts, result_->cleanup_fps, content_->fps(), content_->frameCount());
   tracks.raw_bone_error_cm =
       trackAtRate(result_->raw_metrics.bone_error_track_cm, result_->stylized.fps, content_->fps());
   return tracks;

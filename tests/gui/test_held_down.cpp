@@ -135,6 +135,24 @@ class HeldDownTest : public QObject {
     QVERIFY2(result != nullptr, "the repository's resources/ (youthful, the CMU sample) did not load and stylize");
     QVERIFY2(warningStarting(result->report.warnings, kHeldLeftToe) == nullptr, "a left toe is still held down");
     QVERIFY2(result->report.lifted_contacts.col(1).sum() > 0, "the left toe is never lifted with the style");
+    // Where the clean-up lifts a whole foot with the style (its quicker toe-offs), its track is drawn
+    // raised, only over the foot's contacts.
+    TrackView* tracks = window.timeline()->trackView();
+    int raised = 0;
+    for (int foot : {ContactTrackController::kLeftFootTrack, ContactTrackController::kRightFootTrack}) {
+      const std::vector<bool>& lifted = tracks->liftedFrames(foot);
+      QCOMPARE(static_cast<int>(lifted.size()), window.clip(0).frameCount());
+      for (size_t f = 0; f < lifted.size(); ++f) {
+        raised += lifted[f];
+        QVERIFY2(!lifted[f] || tracks->boolValues(foot)[f], qPrintable(QString::number(f)));
+      }
+    }
+    qInfo("youthful on the CMU sample: %d foot-track frames drawn lifted", raised);
+    QVERIFY(raised > 0);
+    window.resize(1400, 900);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    QVERIFY(window.saveScreenshot(test::screenshotPath(QStringLiteral("held_down_lifted"))));
     const ClipMetrics& cleaned = result->cleaned_metrics;
     qInfo("youthful on the CMU sample: worst residual %.2f cm, skate %.3f cm/s", cleaned.residual_max_cm,
           cleaned.foot_skate_cm_s);

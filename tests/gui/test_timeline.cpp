@@ -259,6 +259,44 @@ class TimelineTest : public QObject {
     QVERIFY(tracks.unheldFrames(0).empty());
   }
 
+  // A contact the clean-up lifts with the style is drawn raised (the bar's lower half cleared; the top
+  // as before), explained by its own tool tip, and a press on it toggles it off as on any contact; an
+  // unheld frame stays drawn as unheld.
+  void aLiftedContactIsDrawnRaised() {
+    TrackView tracks;
+    tracks.setFrameCount(100);
+    tracks.addBoolTrack(QStringLiteral("Left foot"), Qt::yellow, std::vector<bool>(100, true));
+    tracks.resize(84 + 6 + 500, tracks.sizeHint().height());  // 5 px per frame
+    tracks.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&tracks));
+    std::vector<bool> lifted(100, false);
+    for (int f = 40; f < 60; ++f) lifted[static_cast<size_t>(f)] = true;
+    QVERIFY_THROWS_EXCEPTION(std::out_of_range, tracks.setLiftedFrames(1, lifted));
+    const auto x = [&](int frame) { return static_cast<int>(tracks.xForFrame(frame)); };
+    const QRect row = tracks.boolTrackRect(0);
+    const int upper = row.top() + row.height() / 4 + 1, lower = row.top() + 3 * row.height() / 4;
+    const QImage on_look = tracks.grab().toImage();
+    tracks.setLiftedFrames(0, lifted, QStringLiteral("lifted"));
+    QCOMPARE(tracks.liftedFrames(0).size(), size_t{100});
+    const QImage lifted_look = tracks.grab().toImage();
+    QCOMPARE(lifted_look.pixel(x(20), lower), on_look.pixel(x(20), lower));  // not lifted: as before
+    QCOMPARE(lifted_look.pixel(x(50), upper), on_look.pixel(x(50), upper));  // the raised bar's top
+    QVERIFY(lifted_look.pixel(x(50), lower) != on_look.pixel(x(50), lower));  // cleared under it
+    std::vector<bool> unheld(100, false);
+    unheld[50] = true;
+    tracks.setUnheldFrames(0, unheld);
+    const QImage unheld_look = tracks.grab().toImage();
+    bool hatched = false;  // hatched instead: the bar's top no longer the track's colour throughout
+    for (int dx = -2; dx <= 2; ++dx) hatched = hatched || unheld_look.pixel(x(50) + dx, upper) != lifted_look.pixel(x(50) + dx, upper);
+    QVERIFY(hatched);
+    QSignalSpy edited(&tracks, &TrackView::trackEdited);
+    QTest::mouseClick(&tracks, Qt::LeftButton, Qt::NoModifier, QPoint(x(45), row.center().y()));
+    QCOMPARE(edited.count(), 1);
+    QCOMPARE(edited.at(0).at(3).toBool(), false);  // a lifted contact clears as any other
+    tracks.setLiftedFrames(0, {});
+    QVERIFY(tracks.liftedFrames(0).empty());
+  }
+
   void floatTracksStackBelowTheBooleanOnes() {
     TrackView tracks;
     tracks.setFrameCount(50);
