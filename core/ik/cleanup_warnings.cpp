@@ -135,10 +135,12 @@ void CleanupWarnings::finish(CleanupReport& report) {
   report.mean_position_residual_cm =
       residual_samples_ > 0 ? residual_sum_ / (static_cast<double>(residual_samples_) * kCanonicalJointCount) : 0.0;
   report.max_position_residual_cm = residual_peak_;
-  // Limbs, then joints, then held contacts: the order of the report's warnings.
+  // The order of the report's warnings: what the user can act on first (a front end shows the first
+  // few): limbs beyond reach, contacts holding a foot under the style's lift (end them there), then
+  // the joints off target, which a held foot pulls off too.
   for (RunReporter& limb : limb_stretch_) limb.finish(report.warnings);
-  for (RunReporter& joint : joint_residual_) joint.finish(report.warnings);
   for (RunReporter& held : held_down_) held.finish(report.warnings);
+  for (RunReporter& joint : joint_residual_) joint.finish(report.warnings);
 }
 
 }  // namespace motionstyle::ik_detail

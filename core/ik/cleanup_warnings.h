@@ -39,11 +39,13 @@ class RunReporter {
   std::vector<CleanupWarning> messages_;
 };
 
-// The report's residual figures and warnings, fed the cleaned clip block by block in frame order:
-// limbs whose targets lie beyond reach, joints far from their targets, and heels and toes that their
-// locked contact holds more than CleanupOptions::held_down_warning_cm under their targets,
+// The report's residual figures and warnings, fed the cleaned clip block by block in frame order. The
+// warnings, in this order (what the user can act on first; a panel shows the first few): limbs whose
+// targets lie beyond reach; heels and toes that their locked contact holds more than
+// CleanupOptions::held_down_warning_cm under their targets,
 //   held(f) = up . (target(f) - cleaned(f)) in cm, on the frames whose contact is locked (full weight),
-// where the style lifts a foot the contact track holds down (ending the contact there follows the style).
+// where the style lifts a foot the contact track holds down (ending the contact there follows the
+// style); then joints far from their targets.
 class CleanupWarnings {
  public:
   CleanupWarnings(const CleanupInput& input, const CleanupOptions& options);

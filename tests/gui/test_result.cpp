@@ -401,6 +401,12 @@ class ResultTest : public QObject {
     QVERIFY2(linked >= 0, "no residual warning at the held foot's frames (at the clip's 120 fps)");
     auto* label = panel->findChild<QLabel*>(QStringLiteral("CleanupWarnings"));
     QVERIFY(label != nullptr);
+    // What to do about it comes first: the forced contact holds the swinging foot under the style's
+    // lift, and the panel's first line says so with its fix (its residuals follow).
+    const QString first_line = label->text().section(QStringLiteral("<br>"), 0, 0);
+    QVERIFY2(first_line.contains(QStringLiteral("held down by its contact: left")) &&
+                 first_line.contains(QStringLiteral("end the contact there")),
+             qPrintable(label->text()));
     QVERIFY2(label->text().contains(QStringLiteral("<a href=\"%1\"").arg(linked)), qPrintable(label->text()));
     window.timeline()->setFrame(0);
     emit label->linkActivated(QString::number(linked));

@@ -69,6 +69,20 @@ TEST_F(CleanupHeldDown, AHeelTheStyleLiftsWhileItsContactHoldsItIsNamedWithItsFr
   EXPECT_LE(cm, 12.0 + 1e-9);
 }
 
+// The warning says what to do (end the contact), the residuals it causes only where: it comes before
+// them, so that the few warnings a panel shows include it.
+TEST_F(CleanupHeldDown, ComesBeforeTheLargeResidualsTheHeldFootCauses) {
+  const std::vector<CleanupWarning> all = warnings(heelLifted(12.0), leftFootPlanted());
+  const auto held = std::find_if(all.begin(), all.end(),
+                                 [](const CleanupWarning& w) { return w.text.rfind(kLeftHeelHeld, 0) == 0; });
+  const auto residual = std::find_if(all.begin(), all.end(), [](const CleanupWarning& w) {
+    return w.text.rfind("large residual: LeftAnkle", 0) == 0;
+  });
+  ASSERT_NE(held, all.end());
+  ASSERT_NE(residual, all.end()) << "the held heel is 12 cm off its target: a large residual too";
+  EXPECT_LT(held - all.begin(), residual - all.begin());
+}
+
 TEST_F(CleanupHeldDown, NoWarningWhereTheContactIsEndedOrNothingIsLocked) {
   Eigen::MatrixXi ended = leftFootPlanted();
   ended.block(38, 0, 15, 1).setZero();  // the heel's contact ended over the lift (frames 38-52)
