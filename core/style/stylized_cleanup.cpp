@@ -137,11 +137,18 @@ StylizedCleanup cleanUpStylizedClip(const Motion& clip, const JointMapping& mapp
   // at 60-90 cm/s there. Contacts found on the output as well keep any stance a style lengthens. A
   // content contact on which the output's foot does not rest (restingContacts: the style moved the
   // step) is not locked. The user's overrides (edited tracks) come last and win.
+  // The output's own stances are read without the detector's hysteresis: it keeps a rolling foot in
+  // the content's contact, but on the output it held a stance while the style lifted the foot up to
+  // 1.5x the height threshold, and the clean-up locked the rising foot down (elderly at free pace on a
+  // feminine run: the heel 9 cm under its targets, the toe pushed 3.4 cm through the floor;
+  // docs/decisions.md, "The output's own stances without hysteresis").
+  ContactDetectionOptions output_stances;
+  output_stances.release_factor = 1.0;
   const Eigen::MatrixXi content_contacts = contactsPerFrame(stylized.contacts);
   Eigen::MatrixXi contacts =
       restingContacts(content_contacts, stylized)
           .cwiseMax(detectContacts(stylized.world_positions, canonicalContactJoints(), up, floor, stylized.fps,
-                                   restPoseBodyHeight(content.skeleton, up)));
+                                   restPoseBodyHeight(content.skeleton, up), output_stances));
   // The tracks the user sees and edits: the content's contacts under the user's overrides.
   Eigen::MatrixXi tracks = content_contacts;
   if (contact_overrides.size() > 0) {

@@ -15,6 +15,7 @@
 //     sets the bone lengths), feet slide during contact, the root drifts.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <tuple>
 #include <utility>
@@ -23,8 +24,10 @@
 #include "bvh/bvh_reader.h"
 #include "ik/contacts.h"
 #include "features/feature_statistics.h"
+#include "features/foot_contacts.h"
 #include "features/representation.h"
 #include "mapping/joint_mapping.h"
+#include "motion/kinematics.h"
 #include "motion/resample.h"
 #include "nn/network_file.h"
 #include "style/stylized_cleanup.h"
@@ -235,6 +238,52 @@ TEST_F(CleanupStylized, AFootTheStyleLiftsOffEarlyIsLeftOutOfTheSkateWhileLifted
       << "not before the lift";
   EXPECT_LT(run.cleaned.contact_steps, kept.cleaned.contact_steps) << "the lifted steps are left out";
   EXPECT_LE(run.cleaned.foot_skate_cm_s, 0.5);
+}
+
+// A stance only the output has (the content's contact ends before the output's foot leaves the floor)
+// is locked while the output's foot is down and ends where it rises past the detector's height
+// (foot_contacts.h): with the detector's hysteresis (release at 1.5x its thresholds) such a stance held
+// on while the style lifted the foot, and the clean-up held the rising foot down. Here the content's
+// left foot contact is cut at the middle of a long stance, and from there the output's foot (still,
+// mid-stance) rises 1.5 cm a frame (60 fps) from the 4th frame on.
+TEST_F(CleanupStylized, AStanceOnlyTheOutputHasEndsWhereItsFootRisesPastTheDetectorsHeight) {
+  const style::Stylizer stylizer(networkLikeModel(features, 11, 0.0f));
+  const style::StylizedClip plain = stylizer.stylize(features, 1.0);
+  const Eigen::MatrixXi content_contacts = (plain.contacts.transpose().array() > 0.5).cast<int>();
+  std::vector<ContactSegment> stances;
+  for (const ContactSegment& segment : contactSegments(content_contacts, 0))
+    if (segment.last - segment.first >= 30) stances.push_back(segment);
+  ASSERT_FALSE(stances.empty()) << "the fixture walks: its left heel has stances of 0.5 s and more";
+  const ContactSegment stance = stances.front();
+  const double units_per_cm = 1.0 / plain.anchor.convention.cm_per_unit;
+  const Eigen::Vector3d up = plain.anchor.convention.fileUp();
+  constexpr int kRising = 14, kStill = 3;
+  constexpr double kRiseCm = 1.5;
+  const int cut = (stance.first + stance.last) / 2;  // the content's contact ends before this frame
+  const int last = std::min(stance.last, cut + kRising - 1);
+  const auto rise_cm = [&](int f) { return std::max(0, std::min(f, last) - cut + 1 - kStill) * kRiseCm; };
+  style::StylizedClip stylized = plain;
+  for (CanonicalJoint joint : {CanonicalJoint::LeftAnkle, CanonicalJoint::LeftToe})
+    for (int f = cut; f <= stance.last; ++f) {
+      stylized.contacts(joint == CanonicalJoint::LeftAnkle ? 0 : 1, f) = 0.0;
+      stylized.world_positions.block<1, 3>(f, 3 * index(joint)) += rise_cm(f) * units_per_cm * up.transpose();
+    }
+  const style::StylizedCleanup run = style::cleanUpStylizedClip(content, mapping, stylized);
+  ASSERT_EQ(run.contacts.rows(), plain.frameCount()) << "solved at the network's 60 fps";
+  const double threshold_cm =
+      ContactDetectionOptions{}.height_threshold * restPoseBodyHeight(content.skeleton, up) / units_per_cm;
+  int locked_up = 0, risen = 0;
+  for (int f = cut; f <= last; ++f) {
+    if (rise_cm(f) < threshold_cm - 1.0) {
+      EXPECT_EQ(run.contacts(f, 0), 1) << "the output's heel still down, frame " << f;
+    }
+    if (rise_cm(f) > threshold_cm + 1.0) {
+      ++risen;
+      locked_up += run.contacts(f, 0);
+    }
+  }
+  ASSERT_GE(risen, 5);
+  EXPECT_EQ(locked_up, 0) << "frames locked with the heel risen past the detector's height (" << threshold_cm << " cm)";
 }
 
 // A 120 fps clip is solved at 60 fps: the clean-up's warnings still name the clip's own frames, the
