@@ -140,7 +140,7 @@ StylizedCleanup cleanUpStylizedClip(const Motion& clip, const JointMapping& mapp
   // The output's own stances are read without the detector's hysteresis: it keeps a rolling foot in
   // the content's contact, but on the output it held a stance while the style lifted the foot up to
   // 1.5x the height threshold, and the clean-up locked the rising foot down (elderly at free pace on a
-  // feminine run: the heel 9 cm under its targets, the toe pushed 3.4 cm through the floor;
+  // feminine run: the heel 8-9 cm under its targets, the toe pushed 3.4 cm through the floor;
   // docs/decisions.md, "The output's own stances without hysteresis").
   ContactDetectionOptions output_stances;
   output_stances.release_factor = 1.0;
