@@ -84,6 +84,15 @@ class CleanupStylized : public ::testing::Test {
   style::StylizedCleanup stylizeAndClean(const nn::StyleModel& model) const {
     return style::cleanUpStylizedClip(content, mapping, style::Stylizer(model).stylize(features, 1.0));
   }
+  // The stylized clip's content contacts of `label` (ContactLabel order) whose last frame is at least
+  // `min_span` frames after their first, in order.
+  static std::vector<ContactSegment> stancesOf(const style::StylizedClip& clip, int label, int min_span) {
+    const Eigen::MatrixXi contacts = (clip.contacts.transpose().array() > 0.5).cast<int>();
+    std::vector<ContactSegment> stances;
+    for (const ContactSegment& segment : contactSegments(contacts, label))
+      if (segment.last - segment.first >= min_span) stances.push_back(segment);
+    return stances;
+  }
 
   Motion content;
   JointMapping mapping;
@@ -179,10 +188,7 @@ TEST_F(CleanupStylized, RawOutputMeetsTheCleanUpGoals) {
 TEST_F(CleanupStylized, AJitteringStanceIsLockedAndAMovedStepIsNotButItsSlidingCounts) {
   const style::Stylizer stylizer(networkLikeModel(features, 11, 0.0f));  // the projection alone: feet nearly still
   const style::StylizedClip plain = stylizer.stylize(features, 1.0);
-  const Eigen::MatrixXi content_contacts = (plain.contacts.transpose().array() > 0.5).cast<int>();
-  std::vector<ContactSegment> stances;
-  for (const ContactSegment& segment : contactSegments(content_contacts, 0))
-    if (segment.last - segment.first >= 12) stances.push_back(segment);
+  const std::vector<ContactSegment> stances = stancesOf(plain, 0, 12);
   ASSERT_GE(stances.size(), 2u) << "the fixture walks: its left heel has stances of 0.2 s and more";
   const ContactSegment jittered = stances[0], moved = stances[1];
   const double units_per_cm = 1.0 / plain.anchor.convention.cm_per_unit;
@@ -214,10 +220,7 @@ TEST_F(CleanupStylized, AJitteringStanceIsLockedAndAMovedStepIsNotButItsSlidingC
 TEST_F(CleanupStylized, AFootTheStyleLiftsOffEarlyIsLeftOutOfTheSkateWhileLifted) {
   const style::Stylizer stylizer(networkLikeModel(features, 11, 0.0f));
   const style::StylizedClip plain = stylizer.stylize(features, 1.0);
-  const Eigen::MatrixXi content_contacts = (plain.contacts.transpose().array() > 0.5).cast<int>();
-  std::vector<ContactSegment> stances;
-  for (const ContactSegment& segment : contactSegments(content_contacts, 1))
-    if (segment.last - segment.first >= 12) stances.push_back(segment);
+  const std::vector<ContactSegment> stances = stancesOf(plain, 1, 12);
   ASSERT_FALSE(stances.empty()) << "the fixture walks: its left toe has stances of 0.2 s and more";
   const ContactSegment stance = stances.front();
   const double units_per_cm = 1.0 / plain.anchor.convention.cm_per_unit;
@@ -249,10 +252,7 @@ TEST_F(CleanupStylized, AFootTheStyleLiftsOffEarlyIsLeftOutOfTheSkateWhileLifted
 TEST_F(CleanupStylized, AStanceOnlyTheOutputHasEndsWhereItsFootRisesPastTheDetectorsHeight) {
   const style::Stylizer stylizer(networkLikeModel(features, 11, 0.0f));
   const style::StylizedClip plain = stylizer.stylize(features, 1.0);
-  const Eigen::MatrixXi content_contacts = (plain.contacts.transpose().array() > 0.5).cast<int>();
-  std::vector<ContactSegment> stances;
-  for (const ContactSegment& segment : contactSegments(content_contacts, 0))
-    if (segment.last - segment.first >= 30) stances.push_back(segment);
+  const std::vector<ContactSegment> stances = stancesOf(plain, 0, 30);
   ASSERT_FALSE(stances.empty()) << "the fixture walks: its left heel has stances of 0.5 s and more";
   const ContactSegment stance = stances.front();
   const double units_per_cm = 1.0 / plain.anchor.convention.cm_per_unit;
