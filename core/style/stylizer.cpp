@@ -8,6 +8,7 @@
 #include "common/errors.h"
 #include "features/signal_filters.h"
 #include "style/cancellation.h"
+#include "style/locomotion_kind.h"
 #include "style/training_windows.h"
 
 namespace motionstyle::style {
@@ -103,7 +104,8 @@ Eigen::MatrixXd Stylizer::networkOutput(const Eigen::MatrixXd& features, const E
         for (Eigen::Index k = 0; k < count; ++k)
           if (share[static_cast<std::size_t>(k)] < 1.0f)
             clip.col(k) = content_hidden.col(k) + share[static_cast<std::size_t>(k)] * (clip.col(k) - content_hidden.col(k));
-        const int target = nearestStyleTarget(model_.style_targets, clip);
+        int target = styleTargetFor(model_.style_targets, locomotionKind(features, contacts));
+        if (target < 0) target = nearestStyleTarget(model_.style_targets, clip);
         refineHiddenUnits(clip, content_hidden, model_.style_targets[static_cast<std::size_t>(target)].gram,
                           refinement_, cancel);
         hidden.middleCols(first, count) = clip;

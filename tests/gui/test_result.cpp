@@ -375,10 +375,13 @@ class ResultTest : public QObject {
   // The clean-up's warnings name the clip's own frames (120 fps here, solved at 60) and each links
   // there: a click puts the timeline on its first frame. So does a click on the cleaned residual, to
   // its worst frame, which its tooltip names with the joint.
+  // The youthful network: it lifts the swinging foot well over the 5 cm a held-down warning needs
+  // (9.3 cm at frames 640-662); the demo's elderly shuffles it lower since its refinement aims at the
+  // style's walk (locomotion_kind.h), not its run.
   void cleanUpWarningsAndTheWorstResidualLinkToTheirFrames() {
     const auto resources = resourceDirectory();
     QVERIFY2(resources.has_value(), "the repository's resources/ (shipped networks) were not found");
-    const auto trained = shippedNetworkFile(*resources, kDemoNetwork);
+    const auto trained = shippedNetworkFile(*resources, "youthful");
     QVERIFY(trained.has_value());
     MainWindow window(false);
     QCOMPARE(window.openFiles({test::fixture(QStringLiteral("cmu_131_01.bvh"))}), 1);
