@@ -22,6 +22,7 @@
 #include "style/motion_dataset.h"
 #include "style/position_clip.h"
 #include "style/familiarity.h"
+#include "style/locomotion_kind.h"
 #include "style/stylizer.h"
 #include "style/training.h"
 #include "stylized_output.h"
@@ -33,7 +34,7 @@ struct StylizeRequest {
   std::filesystem::path network;
   std::optional<std::filesystem::path> loss_network;  // checked against the network's own loss network
   double strength = 1.0;
-  style::StyleRefinement refinement;  // --refine-steps
+  style::StyleRefinement refinement;  // --refine-steps, --kind
   style::DatasetOptions dataset;
   OutputOptions output;  // --path, --no-cleanup, --fps, --time-limit; --metrics per clip
 };
@@ -66,6 +67,12 @@ std::string stylizeFile(const style::Stylizer& stylizer, const StylizeRequest& r
       << ", refinement steps: " << stylizer.refinementSteps() << ")\n";
   OutputOptions options = request.output;
   options.metrics = metrics;
+  if (!stylized.kind.empty()) {
+    const bool given = !request.refinement.kind.empty();
+    log << "aimed at the style's " << style::locomotionKindText(stylized.kind)
+        << (given ? " (--kind)" : " (read from the clip; --kind sets it)") << "\n";
+    options.extra_metrics["style_target"] = {{"kind", stylized.kind}, {"from", given ? "--kind" : "clip"}};
+  }
   writeStylizedOutput(input, stylized, options, output, log, &familiarity);
   std::string text = log.str();
   while (!text.empty() && text.back() == '\n') text.pop_back();
@@ -75,7 +82,7 @@ std::string stylizeFile(const style::Stylizer& stylizer, const StylizeRequest& r
 }  // namespace
 
 int runStylize(const Args& args) {
-  std::vector<OptionSpec> specs = {{"loss-network"}, {"net"}, {"out"}, {"strength"}, {"refine-steps"}, {"unit"}, {"jobs"}};
+  std::vector<OptionSpec> specs = {{"loss-network"}, {"net"}, {"out"}, {"strength"}, {"refine-steps"}, {"kind"}, {"unit"}, {"jobs"}};
   for (const OptionSpec& spec : outputOptionSpecs()) specs.push_back(spec);
   const ParsedArgs parsed = parseArgs(args, specs);
   if (parsed.positional.empty()) throw UsageError("stylize needs an input clip IN.bvh (or several, or folders)");
@@ -86,6 +93,11 @@ int runStylize(const Args& args) {
   request.strength = parsed.number("strength", 1.0, {0.0, 1.0});
   request.refinement.iterations =
       parsed.integer("refine-steps", request.refinement.iterations, 0, style::StyleRefinement::kMaxIterations);
+  if (auto kind = parsed.value("kind"); kind && *kind != "auto") {
+    if (!style::isLocomotionKind(*kind))
+      throw UsageError("--kind must be auto, walk, run, walk-turn-left or walk-turn-right, not '" + *kind + "'");
+    request.refinement.kind = *kind;
+  }
   request.dataset.features.unit = lengthUnit(parsed);
   const std::filesystem::path out = parsed.required("out");
   std::vector<NamedPath> networks = {{request.network, "--net"}};

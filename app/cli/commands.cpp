@@ -146,7 +146,7 @@ const std::vector<Command>& commands() {
        runRemember},
       {"stylize", "apply a trained style network to a clip",
        "usage: motionstyle-cli stylize --net NET [--loss-network LOSS] IN.bvh --out OUT.bvh [--strength S]\n"
-       "                              [--no-cleanup] [--metrics FILE.json] [--fps N]\n"
+       "                              [--refine-steps N] [--kind KIND] [--no-cleanup] [--metrics FILE.json] [--fps N]\n"
        "       motionstyle-cli stylize --net NET CLIPS... --out FOLDER [--metrics FOLDER] [--jobs N] [...]\n\n"
        "Runs the style network on the whole clip (any length, no seams), projects the result onto the\n"
        "loss network's motion manifold (decode(encode(.))) with IN's detected foot contacts planted there\n"
@@ -172,6 +172,10 @@ const std::vector<Command>& commands() {
        "                  steps of the network's own objective (eq. 10's content and style terms) on this\n"
        "                  clip after the network (default 30, 0 = the network's output as it is): clips\n"
        "                  unlike the network's training data get the style it gives its own\n"
+       "  --kind KIND     the style clip the refinement aims at, by the locomotion it shows: auto (default:\n"
+       "                  read from each clip: run where a fifth of its frames have no foot down, a walk\n"
+       "                  turning left or right past 8 deg/s, else walk), walk, run, walk-turn-left or\n"
+       "                  walk-turn-right; the log and --metrics (style_target) say which was used\n"
        "  --unit UNIT     IN's length unit (default: guessed)\n" MOTIONSTYLE_OUTPUT_OPTIONS_HELP MOTIONSTYLE_BATCH_HELP,
        runStylize},
       {"transfer", "style transfer by optimisation (Holden et al. 2016), no style network needed",

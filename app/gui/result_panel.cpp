@@ -25,6 +25,7 @@
 #include "result_figures.h"
 #include "result_metrics_view.h"
 #include "shipped_networks.h"
+#include "style/locomotion_kind.h"
 #include "style/training.h"
 
 namespace motionstyle {
@@ -367,9 +368,15 @@ void ResultPanel::onFinished(std::shared_ptr<const style::StylizeCleanupResult> 
     if (!given_stylized_) recent_.remember({currentInputs(), result_, result_network_name_, memory_});
   }
   const qint64 figures_start = clock_.elapsed();
-  const qint64 on_screen = showResult(tr("Stylized and cleaned up %1 frames in %2 s.")
+  // The style clip the refinement aimed at, by the locomotion read from the content (locomotion_kind.h).
+  const std::string& kind = result_->stylized.kind;
+  const QString aimed = kind.empty() ? QString()
+                                     : tr(", toward the style's %1 (read from the clip)")
+                                           .arg(QString::fromStdString(style::locomotionKindText(kind)));
+  const qint64 on_screen = showResult(tr("Stylized and cleaned up %1 frames in %2 s%3.")
                                           .arg(result_->cleaned.frameCount())
-                                          .arg(result_->seconds, 0, 'f', 2),
+                                          .arg(result_->seconds, 0, 'f', 2)
+                                          .arg(aimed),
                                       inputs_moved_on);
   const CleanupReport& report = result_->report;
   logResultOnScreen(change, on_screen - change_ms, std::lround(result_->seconds * 1000.0), on_screen - figures_start,

@@ -29,6 +29,18 @@ std::string locomotionKind(const Eigen::MatrixXd& features, const Eigen::MatrixX
   return "walk";
 }
 
+bool isLocomotionKind(std::string_view kind) {
+  for (std::string_view known : kLocomotionKinds)
+    if (kind == known) return true;
+  return false;
+}
+
+std::string locomotionKindText(std::string_view kind) {
+  if (kind == "walk-turn-left") return "walk turning left";
+  if (kind == "walk-turn-right") return "walk turning right";
+  return std::string(kind);
+}
+
 int styleTargetFor(const std::vector<nn::StyleTarget>& targets, const std::string& kind) {
   const auto labelled = [&](const std::string& label) {
     for (std::size_t i = 0; i < targets.size(); ++i)

@@ -18,7 +18,9 @@
 // Rates in the representation's units (reference cm, kDefaultFeatureFps).
 
 #include <Eigen/Core>
+#include <array>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "nn/network_file.h"
@@ -28,6 +30,13 @@ namespace motionstyle::style {
 constexpr double kRunFlightShare = 0.2;
 constexpr double kRunSpeedCmPerSecond = 200.0;
 constexpr double kTurnDegreesPerSecond = 8.0;
+
+// Every kind, as the style targets label them.
+constexpr std::array<std::string_view, 4> kLocomotionKinds = {"walk", "run", "walk-turn-left", "walk-turn-right"};
+bool isLocomotionKind(std::string_view kind);
+// In words for the user: "walk", "run", "walk turning left", "walk turning right" (the kind itself
+// for any other string).
+std::string locomotionKindText(std::string_view kind);
 
 // features: 66 x frames (frames >= 1), representation units; contacts: 4 x frames, 0/1, or 0 x 0.
 // Returns "run", "walk-turn-left", "walk-turn-right" or "walk". Throws std::invalid_argument for other

@@ -12,6 +12,7 @@
 #include "nn/losses.h"
 #include "style/cancellation.h"
 #include "style/hidden_style_descent.h"
+#include "style/locomotion_kind.h"
 
 namespace motionstyle::style {
 
@@ -23,6 +24,8 @@ void StyleRefinement::validate() const {
   if (!std::isfinite(content_weight) || !std::isfinite(style_weight) || content_weight < 0 || style_weight < 0 ||
       content_weight + style_weight <= 0)
     throw std::invalid_argument("refinement weights must be finite, >= 0 and not both 0");
+  if (!kind.empty() && !isLocomotionKind(kind))
+    throw std::invalid_argument("refinement kind '" + kind + "' is none of walk, run, walk-turn-left, walk-turn-right");
 }
 
 std::vector<float> transformationShare(const Eigen::MatrixXd& content, Eigen::Index columns) {

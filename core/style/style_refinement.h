@@ -13,6 +13,7 @@
 
 #include <Eigen/Core>
 #include <atomic>
+#include <string>
 #include <vector>
 
 #include "nn/network_file.h"
@@ -26,8 +27,13 @@ struct StyleRefinement {
   double learning_rate = 0.03;   // in normalised hidden units per step
   double content_weight = 1.0;   // eq. 10's c (nn::LossWeights)
   double style_weight = 100.0;   // eq. 10's s
+  // The kind of locomotion whose style target the refinement aims at (locomotion_kind.h): "" reads it
+  // from each clip (locomotionKind), one of kLocomotionKinds sets it for every clip (a clip the reading
+  // gets wrong: a shuffling run read as a walk).
+  std::string kind;
 
-  // Throws std::invalid_argument naming the field (iterations in [0, kMaxIterations]).
+  // Throws std::invalid_argument naming the field (iterations in [0, kMaxIterations], kind "" or one of
+  // kLocomotionKinds).
   void validate() const;
 };
 

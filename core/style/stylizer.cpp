@@ -104,7 +104,7 @@ Eigen::MatrixXd Stylizer::networkOutput(const Eigen::MatrixXd& features, const E
         for (Eigen::Index k = 0; k < count; ++k)
           if (share[static_cast<std::size_t>(k)] < 1.0f)
             clip.col(k) = content_hidden.col(k) + share[static_cast<std::size_t>(k)] * (clip.col(k) - content_hidden.col(k));
-        int target = styleTargetFor(model_.style_targets, locomotionKind(features, contacts));
+        int target = styleTargetFor(model_.style_targets, aimedKind(features, contacts));
         if (target < 0) target = nearestStyleTarget(model_.style_targets, clip);
         refineHiddenUnits(clip, content_hidden, model_.style_targets[static_cast<std::size_t>(target)].gram,
                           refinement_, cancel);
@@ -166,14 +166,22 @@ StylizedClip clipOf(const MotionFeatures& content, Eigen::MatrixXd features, dou
 
 }  // namespace
 
+std::string Stylizer::aimedKind(const Eigen::MatrixXd& features, const Eigen::MatrixXd& contacts) const {
+  return refinement_.kind.empty() ? locomotionKind(features, contacts) : refinement_.kind;
+}
+
 StylizedClip Stylizer::stylize(const MotionFeatures& content, double strength, PathMode path) const {
-  return clipOf(content, stylizeFeatures(content.values, content.contacts, strength, path), strength, path);
+  StylizedClip clip = clipOf(content, stylizeFeatures(content.values, content.contacts, strength, path), strength, path);
+  if (strength > 0.0 && refinementSteps() > 0) clip.kind = aimedKind(content.values, content.contacts);
+  return clip;
 }
 
 StylizedClip Stylizer::stylize(const MotionFeatures& content, const Eigen::MatrixXd& network_output, double strength,
                                PathMode path) const {
-  return clipOf(content, finishFeatures(content.values, content.contacts, network_output, strength, path), strength,
-                path);
+  StylizedClip clip = clipOf(content, finishFeatures(content.values, content.contacts, network_output, strength, path),
+                             strength, path);
+  if (strength > 0.0 && refinementSteps() > 0) clip.kind = aimedKind(content.values, content.contacts);
+  return clip;
 }
 
 Eigen::MatrixXd Stylizer::projectFeatures(const Eigen::MatrixXd& features) const {

@@ -46,6 +46,8 @@ struct StylizedClip {
   FeatureAnchor anchor;             // the content's: maps features back to file space
   double fps = kDefaultFeatureFps;  // frames per second of all of the above
   PathMode path = PathMode::Content;  // whose root path the features follow
+  std::string kind;  // the locomotion kind whose style target the refinement aimed at (locomotion_kind.h);
+                     // "" where none ran (no refinement steps, or no stored targets)
 
   int frameCount() const { return static_cast<int>(features.cols()); }
 };
@@ -68,6 +70,10 @@ class Stylizer {
   // The refinement steps networkOutput runs: refinement().iterations, or 0 for a network without
   // stored style targets.
   int refinementSteps() const { return model_.style_targets.empty() ? 0 : refinement_.iterations; }
+  // The locomotion kind whose style target the refinement aims at on this clip: refinement().kind, or
+  // read from the clip (locomotionKind; contacts 4 x frames or 0 x 0). The target is the one labelled
+  // with it (styleTargetFor), else the nearest to T's output. Throws as locomotionKind.
+  std::string aimedKind(const Eigen::MatrixXd& features, const Eigen::MatrixXd& contacts) const;
 
   // The clip in the reference rig and proportions: its stances held there only (stylize also holds
   // them in the clip's own rig, where the user sees them; it is what eval measures).

@@ -45,6 +45,23 @@ for bad in -1 2.5 100000 x; do
   expect 2 "--refine-steps" "$cli" stylize --net "$work/style.net" "$content" --out "$work/refused.bvh" --refine-steps "$bad"
 done
 [ -e "$work/refused.bvh" ] && fail "a refused --refine-steps still wrote a clip"
+# The style target the refinement aims at: read from the clip (the zombie walks), or --kind; both in the
+# log and --metrics; anything else refused before anything is written.
+expect 0 "aimed at the style's walk (read from the clip" "$cli" stylize --net "$work/style.net" "$content" \
+  --out "$work/read.bvh" --no-cleanup --metrics "$work/read.json"
+expect 0 "aimed at the style's walk turning left (--kind)" "$cli" stylize --net "$work/style.net" "$content" \
+  --out "$work/told.bvh" --no-cleanup --kind walk-turn-left --metrics "$work/told.json"
+python3 - "$work/read.json" "$work/told.json" <<'PY' || fail "stylize --metrics' style_target"
+import json, sys
+read, told = (json.load(open(f))["style_target"] for f in sys.argv[1:])
+assert read == {"kind": "walk", "from": "clip"}, read
+assert told == {"kind": "walk-turn-left", "from": "--kind"}, told
+PY
+for bad in jog Walk ""; do
+  expect 2 "--kind must be auto, walk, run" "$cli" stylize --net "$work/style.net" "$content" --out "$work/refused.bvh" \
+    --kind "$bad"
+done
+[ -e "$work/refused.bvh" ] && fail "a refused --kind still wrote a clip"
 expect 0 "frames       300 at 30 fps" "$cli" info "$work/out.bvh"
 
 # eval: one entry per clip in the JSON.

@@ -86,6 +86,10 @@ class HeldDownTest : public QObject {
     QVERIFY2(stylizeSample(window, "proud", ended) != nullptr,
              "the repository's resources/ (proud, the CMU sample) did not load and stylize");
 
+    // The status says which of the style's clips the refinement aimed at: the sample walks.
+    QVERIFY2(test::statusLine(window).contains(QStringLiteral("toward the style's walk (read from the clip)")),
+             qPrintable(test::statusLine(window)));
+
     // The panel names the held toe and links its first frame.
     const CleanupWarning* held = warningStarting(panel->result()->report.warnings, kHeldLeftToe);
     QVERIFY2(held != nullptr, "no warning of a left toe held under the style's lift");

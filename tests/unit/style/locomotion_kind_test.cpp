@@ -123,5 +123,30 @@ TEST(LocomotionKind, TheRefinementAimsAtTheClipsKindNotTheTargetNearestTheNetwor
   EXPECT_EQ(refined(both, straight), refined(walk_only, straight));
 }
 
+TEST(LocomotionKind, AKindGivenInTheRefinementIsAimedAtForEveryClipAndTheClipSaysWhich) {
+  Eigen::MatrixXd turning = test::fixtureClips()[0].features.values;
+  turning.row(kTurningVelocity).setConstant(20.0 * std::numbers::pi / 180.0 / kDefaultFeatureFps);
+  const nn::StyleModel both = tinyModelWithWalkAndTurn(turning);
+  nn::StyleModel walk_only = both;
+  walk_only.style_targets.pop_back();
+  style::StyleRefinement read, walk;
+  walk.kind = "walk";
+  const style::Stylizer reading(both, "tiny", read), walking(both, "tiny", walk);
+  EXPECT_EQ(reading.aimedKind(turning, {}), "walk-turn-left");
+  EXPECT_EQ(walking.aimedKind(turning, {}), "walk");
+  // Told "walk", the turning clip is refined as the walk-only network refines it.
+  EXPECT_EQ(walking.networkOutput(turning, {}, style::PathMode::Content),
+            style::Stylizer(walk_only, "tiny", read).networkOutput(turning, {}, style::PathMode::Content));
+  // The stylized clip names the kind aimed at; none without a refinement or at strength 0.
+  MotionFeatures content = test::fixtureClips()[0].features;
+  content.values = turning;
+  EXPECT_EQ(reading.stylize(content, 1.0).kind, "walk-turn-left");
+  EXPECT_EQ(walking.stylize(content, 0.5).kind, "walk");
+  EXPECT_EQ(reading.stylize(content, 0.0).kind, "");
+  style::StyleRefinement off;
+  off.iterations = 0;
+  EXPECT_EQ(style::Stylizer(both, "tiny", off).stylize(content, 1.0).kind, "");
+}
+
 }  // namespace
 }  // namespace motionstyle

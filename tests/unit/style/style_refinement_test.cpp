@@ -58,6 +58,7 @@ TEST(StyleRefinementInvalid, RefusesBadSettingsAndShapes) {
   EXPECT_THROW(refused([](auto& r) { r.learning_rate = std::numeric_limits<double>::quiet_NaN(); })(), std::invalid_argument);
   EXPECT_THROW(refused([](auto& r) { r.style_weight = -1; })(), std::invalid_argument);
   EXPECT_THROW(refused([](auto& r) { r.content_weight = 0, r.style_weight = 0; })(), std::invalid_argument);
+  EXPECT_THROW(refused([](auto& r) { r.kind = "jog"; })(), std::invalid_argument);
   EXPECT_NO_THROW(style::StyleRefinement{}.validate());
 
   const nn::Mat<float> hidden = randomHidden(8, 20, 1);
@@ -67,7 +68,9 @@ TEST(StyleRefinementInvalid, RefusesBadSettingsAndShapes) {
   EXPECT_THROW(style::HiddenStyleDescent(hidden, hidden, nn::gramMatrix(hidden), 0, 0, 0.01), std::invalid_argument);
   EXPECT_THROW(style::nearestStyleTarget({{"walk", randomHidden(7, 7, 4)}}, hidden), std::invalid_argument);
   EXPECT_EQ(style::nearestStyleTarget({}, hidden), -1);
-  EXPECT_THROW(style::Stylizer(test::tinyStyleModel(), "tiny", style::StyleRefinement{-1}), std::invalid_argument);
+  style::StyleRefinement negative;
+  negative.iterations = -1;
+  EXPECT_THROW(style::Stylizer(test::tinyStyleModel(), "tiny", negative), std::invalid_argument);
   EXPECT_THROW(style::transformationShare(Eigen::MatrixXd::Zero(65, 10), 5), std::invalid_argument);
   EXPECT_THROW(style::transformationShare(Eigen::MatrixXd::Zero(kFeatureCount, 0), 5), std::invalid_argument);
   EXPECT_THROW(style::transformationShare(Eigen::MatrixXd::Zero(kFeatureCount, 10), -1), std::invalid_argument);
