@@ -64,7 +64,8 @@ std::string stylizeFile(const style::Stylizer& stylizer, const StylizeRequest& r
   std::ostringstream log;
   log << "stylized " << stylized.frameCount() << " frames (60 fps) at strength " << request.strength << " in "
       << seconds * 1000.0 << " ms (path: " << style::pathModeName(request.output.path)
-      << ", refinement steps: " << stylizer.refinementSteps() << ")\n";
+      << ", refinement steps: " << (stylizer.refinementSteps() > 0 ? "up to " : "") << stylizer.refinementSteps()
+      << ")\n";
   OutputOptions options = request.output;
   options.metrics = metrics;
   if (!stylized.kind.empty()) {

@@ -169,9 +169,10 @@ const std::vector<Command>& commands() {
        "                  optional: checked to be the loss network NET was trained against\n"
        "  --strength S    0 = the content unchanged, 1 = fully styled (default 1), blended in feature space\n"
        "  --refine-steps N\n"
-       "                  steps of the network's own objective (eq. 10's content and style terms) on this\n"
-       "                  clip after the network (default 30, 0 = the network's output as it is): clips\n"
-       "                  unlike the network's training data get the style it gives its own\n"
+       "                  the most steps of the network's own objective (eq. 10's content and style terms)\n"
+       "                  on this clip after the network, fewer once 10 steps lower it by under 1 % (default\n"
+       "                  120, 0 = the network's output as it is): clips unlike the network's training data\n"
+       "                  get the style it gives its own\n"
        "  --kind KIND     the style clip the refinement aims at, by the locomotion it shows: auto (default:\n"
        "                  read from each clip: run where a fifth of its frames have no foot down, a walk\n"
        "                  turning left or right past 8 deg/s, else walk), walk, run, walk-turn-left or\n"
@@ -226,7 +227,7 @@ const std::vector<Command>& commands() {
        "  --json FILE   write the report to FILE (atomically) and print a summary; default: JSON on stdout\n"
        "  --path P      the output judged keeps the content's path (content, default) or the network's (style)\n"
        "  --refine-steps N\n"
-       "                the style refinement's steps, as for stylize (default 30, 0 = the network's output)\n"
+       "                the style refinement's most steps, as for stylize (default 120, 0 = the network's output)\n"
        "  --unit UNIT   length unit of the clips (default: guessed)\n",
        runEval},
       {"pack", "rewrite a network file with f16 (half the size) or f32 weights",

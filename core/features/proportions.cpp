@@ -310,6 +310,17 @@ void enforceBoneLengths(Eigen::MatrixXd& features, const Proportions& proportion
       features.col(f).segment<3>(3 * ankle) = a;
       features.col(f).segment<3>(3 * toe) = a + foot * direction[i];
     }
+    // A toe the style swings under its planted height where it is not planted (the zombie with angry:
+    // 8 cm under the floor as it drags): the foot turned up about its ankle until the toe stands there.
+    if (!std::isfinite(planted_toe_height)) continue;
+    for (Eigen::Index f = 0; f < frames; ++f) {
+      if (weight(toe_label, f) > 0.0) continue;
+      const Eigen::Vector3d a = jointAt(features, f, ankle);
+      const Eigen::Vector3d bone = jointAt(features, f, toe) - a;
+      if (bone.norm() < kMinimumBoneLengthCm) continue;
+      features.col(f).segment<3>(3 * toe) =
+          a + bone.norm() * footOverFloor(bone.normalized(), a.y(), bone.norm(), planted_toe_height, 1.0);
+    }
   }
 }
 

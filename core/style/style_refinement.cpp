@@ -5,6 +5,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "features/feature_layout.h"
 #include "features/proportions.h"
@@ -24,6 +25,8 @@ void StyleRefinement::validate() const {
   if (!std::isfinite(content_weight) || !std::isfinite(style_weight) || content_weight < 0 || style_weight < 0 ||
       content_weight + style_weight <= 0)
     throw std::invalid_argument("refinement weights must be finite, >= 0 and not both 0");
+  if (!(converged_fraction >= 0.0 && converged_fraction < 1.0))
+    throw std::invalid_argument("refinement converged fraction must be in [0, 1)");
   if (!kind.empty() && !isLocomotionKind(kind))
     throw std::invalid_argument("refinement kind '" + kind + "' is none of walk, run, walk-turn-left, walk-turn-right");
 }
@@ -60,20 +63,29 @@ int nearestStyleTarget(const std::vector<nn::StyleTarget>& targets, const nn::Ma
   return nearest;
 }
 
-void refineHiddenUnits(nn::Mat<float>& hidden, const nn::Mat<float>& content_hidden, const nn::Mat<float>& target,
-                       const StyleRefinement& refinement, const std::atomic<bool>* cancel) {
+int refineHiddenUnits(nn::Mat<float>& hidden, const nn::Mat<float>& content_hidden, const nn::Mat<float>& target,
+                      const StyleRefinement& refinement, const std::atomic<bool>* cancel) {
   refinement.validate();
   if (content_hidden.rows() != hidden.rows() || content_hidden.cols() != hidden.cols() ||
       target.rows() != hidden.rows() || target.cols() != hidden.rows())
     throw std::invalid_argument("refineHiddenUnits: content hidden x frames as the hidden units, the target hidden x hidden");
-  if (refinement.iterations == 0) return;
+  if (refinement.iterations == 0) return 0;
   HiddenStyleDescent descent(hidden, content_hidden, target, refinement.content_weight, refinement.style_weight,
                              refinement.learning_rate);
-  for (int i = 0; i < refinement.iterations; ++i) {
+  constexpr int span = StyleRefinement::kConvergenceSteps;
+  std::vector<double> objective;  // before each step
+  objective.reserve(static_cast<std::size_t>(refinement.iterations));
+  int steps = 0;
+  while (steps < refinement.iterations) {
     throwIfCancelled(cancel);
-    descent.step();
+    objective.push_back(descent.step());
+    ++steps;
+    const std::size_t now = objective.size() - 1;
+    if (now >= span && objective[now - span] - objective[now] < refinement.converged_fraction * objective[now - span])
+      break;
   }
   hidden = descent.value();
+  return steps;
 }
 
 }  // namespace motionstyle::style

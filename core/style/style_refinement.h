@@ -4,7 +4,7 @@
 // objective's content and style terms on this clip's own hidden units (HiddenStyleDescent), from
 // where T left them, finish the job:
 //   H0 = encode(T(x)) (where the content crouches, its own encode(x): transformationShare below),
-//   H = H0 - Adam steps on  c * mean((H - encode(x))^2) + s * mean((Gram(H) - G)^2),
+//   H = H0 - Adam steps on  c * mean((H - encode(x))^2) + s * mean((Gram(H) - G)^2), until converged,
 //   output = decode(H)
 // with c, s eq. 10's content and style weights (what T was trained on) and G the network's stored
 // style target nearest to Gram(H0). Zero iterations give decode(encode(T(x))), the network's output as
@@ -23,7 +23,13 @@ namespace motionstyle::style {
 
 struct StyleRefinement {
   static constexpr int kMaxIterations = 10000;
-  int iterations = 30;           // Adam steps; 0 = T's output as it is
+  static constexpr int kConvergenceSteps = 10;  // the span converged_fraction is judged over
+  // The most Adam steps; 0 = T's output as it is. The steps stop before that once kConvergenceSteps
+  // steps lowered the objective by less than converged_fraction of it: a clip like T's training data
+  // converges in 40-60 steps, one of another studio may still fall by 1-6 % per 10 steps at 120 (T
+  // stops further short of the style there: docs/decisions.md, "The refinement run to convergence").
+  int iterations = 120;
+  double converged_fraction = 0.01;  // in [0, 1); 0 runs every step
   double learning_rate = 0.03;   // in normalised hidden units per step
   double content_weight = 1.0;   // eq. 10's c (nn::LossWeights)
   double style_weight = 100.0;   // eq. 10's s
@@ -32,8 +38,8 @@ struct StyleRefinement {
   // gets wrong: a shuffling run read as a walk).
   std::string kind;
 
-  // Throws std::invalid_argument naming the field (iterations in [0, kMaxIterations], kind "" or one of
-  // kLocomotionKinds).
+  // Throws std::invalid_argument naming the field (iterations in [0, kMaxIterations], converged_fraction
+  // in [0, 1), kind "" or one of kLocomotionKinds).
   void validate() const;
 };
 
@@ -58,9 +64,10 @@ constexpr double kCrouchedHipRatio = 0.65;  // at and below: the content's (u = 
 std::vector<float> transformationShare(const Eigen::MatrixXd& content, Eigen::Index columns);
 
 // Refines `hidden` (hidden x frames, T's output encoded) in place toward `target` with content
-// `content_hidden` (the same shape). Throws std::invalid_argument for mismatched shapes and
-// OperationCancelled when `cancel` is set before a step (a step is about 1 ms on 500 frames).
-void refineHiddenUnits(nn::Mat<float>& hidden, const nn::Mat<float>& content_hidden, const nn::Mat<float>& target,
+// `content_hidden` (the same shape), until converged or refinement.iterations steps; returns the steps
+// run. Throws std::invalid_argument for mismatched shapes and OperationCancelled when `cancel` is set
+// before a step (a step is about 0.5 ms on 600 frames).
+int refineHiddenUnits(nn::Mat<float>& hidden, const nn::Mat<float>& content_hidden, const nn::Mat<float>& target,
                        const StyleRefinement& refinement, const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace motionstyle::style

@@ -67,8 +67,8 @@ class Stylizer {
   const nn::StyleModel& model() const { return model_; }
   const StyleRefinement& refinement() const { return refinement_; }
   const ContactProjection& contactProjection() const { return contact_projection_; }
-  // The refinement steps networkOutput runs: refinement().iterations, or 0 for a network without
-  // stored style targets.
+  // The most refinement steps networkOutput runs (fewer once converged): refinement().iterations, or 0
+  // for a network without stored style targets.
   int refinementSteps() const { return model_.style_targets.empty() ? 0 : refinement_.iterations; }
   // The locomotion kind whose style target the refinement aims at on this clip: refinement().kind, or
   // read from the clip (locomotionKind; contacts 4 x frames or 0 x 0). The target is the one labelled

@@ -1,8 +1,9 @@
 // The stance hold in the clip's own rig (representation.h holdStancesInOwnRig, proportions.h
 // enforceBoneLengths with a planted toe height): invalid input first, then the properties a clean-up
 // relies on, measured where the output lands (the clip's own rig and proportions): a planted toe the
-// style slid stays within kKeptFootRadiusCm of its stance's place, and a planted toe the style tipped
-// into the floor stands no lower than the content's planted toes. Each fails without the hold.
+// style slid stays within kKeptFootRadiusCm of its stance's place, and a toe the style tipped into the
+// floor, planted or swinging, stands no lower than the content's planted toes. Each fails without the
+// hold.
 
 #include <gtest/gtest.h>
 
@@ -141,6 +142,42 @@ TEST(StanceHold, APlantedToeTheStyleTippedIntoTheFloorStandsOnIt) {
   holdStancesInOwnRig(held, s.content);
   const Eigen::MatrixXd toe = ownToe(held, s.content.anchor);
   for (Eigen::Index f = s.first; f < s.end; ++f) EXPECT_GE(toe(f, 2), floor - 0.05) << f;
+}
+
+// The same tip where the toe swings, away from any of its stances and their ramps: the foot turns up
+// about its ankle until the toe stands no lower than the planted ones (the zombie with angry swung its
+// toe 8 cm under the floor there). The ankle stays where it was.
+TEST(StanceHold, AToeTheStyleSwingsUnderTheFloorIsTurnedUpOverIt) {
+  const ToeStance s = zombieToeStance();
+  std::vector<double> planted;
+  const Eigen::MatrixXd content_toe = ownToe(s.content.values, s.content.anchor);
+  for (Eigen::Index f = 0; f < content_toe.rows(); ++f)
+    if (s.content.contacts(kToeLabel, f) > 0.5) planted.push_back(content_toe(f, 2));
+  const double floor = median(planted);
+  const Eigen::MatrixXd& c = s.content.contacts;
+  std::vector<Eigen::Index> swing;  // frames with no toe contact within the ramp and one frame more
+  const Eigen::Index reach = kKeptFootRampFrames + 1;
+  for (Eigen::Index f = reach; f + reach < c.cols(); ++f)
+    if (c.row(kToeLabel).segment(f - reach, 2 * reach + 1).sum() == 0) swing.push_back(f);
+  ASSERT_GE(swing.size(), 10u);
+  Eigen::MatrixXd tipped = s.content.values;
+  for (Eigen::Index f : swing) {
+    const Eigen::Vector3d ankle = tipped.col(f).segment<3>(3 * kAnkle), foot = tipped.col(f).segment<3>(3 * kToe) - ankle;
+    const Eigen::Vector3d across = foot.cross(Eigen::Vector3d::UnitY()).normalized();
+    tipped.col(f).segment<3>(3 * kToe) = ankle + Eigen::AngleAxisd(-80.0 * M_PI / 180.0, across) * foot;
+  }
+  const Eigen::MatrixXd sunk = ownToe(tipped, s.content.anchor);
+  double lowest = 1e9;
+  for (Eigen::Index f : swing) lowest = std::min(lowest, sunk(f, 2));
+  ASSERT_LT(lowest, floor - 3.0);
+  Eigen::MatrixXd held = tipped;
+  holdStancesInOwnRig(held, s.content);
+  const Eigen::MatrixXd toe = ownToe(held, s.content.anchor);
+  for (Eigen::Index f : swing) {
+    EXPECT_GE(toe(f, 2), floor - 0.05) << f;
+    EXPECT_NEAR((held.col(f).segment<3>(3 * kToe) - held.col(f).segment<3>(3 * kAnkle)).norm(),
+                (tipped.col(f).segment<3>(3 * kToe) - tipped.col(f).segment<3>(3 * kAnkle)).norm(), 1.0) << f;
+  }
 }
 
 }  // namespace

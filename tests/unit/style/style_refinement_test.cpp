@@ -59,6 +59,10 @@ TEST(StyleRefinementInvalid, RefusesBadSettingsAndShapes) {
   EXPECT_THROW(refused([](auto& r) { r.style_weight = -1; })(), std::invalid_argument);
   EXPECT_THROW(refused([](auto& r) { r.content_weight = 0, r.style_weight = 0; })(), std::invalid_argument);
   EXPECT_THROW(refused([](auto& r) { r.kind = "jog"; })(), std::invalid_argument);
+  EXPECT_THROW(refused([](auto& r) { r.converged_fraction = 1.0; })(), std::invalid_argument);
+  EXPECT_THROW(refused([](auto& r) { r.converged_fraction = -0.01; })(), std::invalid_argument);
+  EXPECT_THROW(refused([](auto& r) { r.converged_fraction = std::numeric_limits<double>::quiet_NaN(); })(),
+               std::invalid_argument);
   EXPECT_NO_THROW(style::StyleRefinement{}.validate());
 
   const nn::Mat<float> hidden = randomHidden(8, 20, 1);
@@ -162,8 +166,9 @@ TEST(StyleRefinement, StepsLowerTheObjectiveAndZeroStepsChangeNothing) {
   const nn::Mat<float> target = nn::gramMatrix(randomHidden(8, 60, 10)) * 2.0f;
   style::StyleRefinement refinement;
   refinement.iterations = 0;
+  refinement.converged_fraction = 0.0;  // every step
   nn::Mat<float> unchanged = start;
-  style::refineHiddenUnits(unchanged, content, target, refinement);
+  EXPECT_EQ(style::refineHiddenUnits(unchanged, content, target, refinement), 0);
   EXPECT_EQ(unchanged, start);
 
   double previous = objective(start, content, target, refinement);
@@ -175,6 +180,34 @@ TEST(StyleRefinement, StepsLowerTheObjectiveAndZeroStepsChangeNothing) {
     EXPECT_LT(now, previous) << steps << " steps";
     previous = now;
   }
+}
+
+// It stops once 10 steps lowered the objective by less than the converged fraction: the last 10
+// steps it ran did, the 10 before them did not; with the fraction 0 it runs every step it may.
+TEST(StyleRefinement, StopsOnceTenStepsLowerTheObjectiveByLessThanTheConvergedFraction) {
+  const nn::Mat<float> content = randomHidden(8, 40, 8);
+  const nn::Mat<float> start = content + 0.1f * randomHidden(8, 40, 9);
+  const nn::Mat<float> target = nn::gramMatrix(randomHidden(8, 60, 10)) * 2.0f;
+  style::StyleRefinement converging;
+  converging.iterations = 5000;
+  nn::Mat<float> converged = start;
+  const int steps = style::refineHiddenUnits(converged, content, target, converging);
+  EXPECT_GT(steps, style::StyleRefinement::kConvergenceSteps);
+  EXPECT_LT(steps, converging.iterations);
+  // The same run with the fraction 0, cut after n steps: the same states (deterministic).
+  const auto after = [&](int n) {
+    style::StyleRefinement all = converging;
+    all.converged_fraction = 0.0;
+    all.iterations = n;
+    nn::Mat<float> h = start;
+    EXPECT_EQ(style::refineHiddenUnits(h, content, target, all), n);
+    return h;
+  };
+  EXPECT_EQ(after(steps), converged);
+  const auto e = [&](int n) { return objective(after(n), content, target, converging); };
+  const int span = style::StyleRefinement::kConvergenceSteps;
+  EXPECT_LT(e(steps - 1 - span) - e(steps - 1), converging.converged_fraction * e(steps - 1 - span));
+  EXPECT_GE(e(steps - 2 - span) - e(steps - 2), converging.converged_fraction * e(steps - 2 - span));
 }
 
 // A set cancel flag stops the refinement before its next step (a dropped job stops within a step),
