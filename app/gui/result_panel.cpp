@@ -368,15 +368,9 @@ void ResultPanel::onFinished(std::shared_ptr<const style::StylizeCleanupResult> 
     if (!given_stylized_) recent_.remember({currentInputs(), result_, result_network_name_, memory_});
   }
   const qint64 figures_start = clock_.elapsed();
-  // The style clip the refinement aimed at, by the locomotion read from the content (locomotion_kind.h).
-  const std::string& kind = result_->stylized.kind;
-  const QString aimed = kind.empty() ? QString()
-                                     : tr(", toward the style's %1 (read from the clip)")
-                                           .arg(QString::fromStdString(style::locomotionKindText(kind)));
-  const qint64 on_screen = showResult(tr("Stylized and cleaned up %1 frames in %2 s%3.")
+  const qint64 on_screen = showResult(tr("Stylized and cleaned up %1 frames in %2 s.")
                                           .arg(result_->cleaned.frameCount())
-                                          .arg(result_->seconds, 0, 'f', 2)
-                                          .arg(aimed),
+                                          .arg(result_->seconds, 0, 'f', 2),
                                       inputs_moved_on);
   const CleanupReport& report = result_->report;
   logResultOnScreen(change, on_screen - change_ms, std::lround(result_->seconds * 1000.0), on_screen - figures_start,
@@ -395,8 +389,13 @@ qint64 ResultPanel::showResult(const QString& status, bool next_job_running) {
   emit resultChanged();
   const qint64 on_screen = clock_.elapsed();
   if (!next_job_running) {  // else that job's "Updating" stays up
-    setBusy(false, status);
-    emit statusMessage(status);
+    // The style clip the refinement aimed at, by the locomotion read from the content (locomotion_kind.h).
+    const std::string& kind = result_->stylized.kind;
+    const QString shown = kind.empty() ? status
+                                       : status + tr(" Aimed at the style's %1 (read from the clip).")
+                                                      .arg(QString::fromStdString(style::locomotionKindText(kind)));
+    setBusy(false, shown);
+    emit statusMessage(shown);
   }
   refreshMetrics();
   refreshControls();

@@ -87,7 +87,7 @@ class HeldDownTest : public QObject {
              "the repository's resources/ (elderly, the CMU sample) did not load and stylize");
 
     // The status says which of the style's clips the refinement aimed at: the sample walks.
-    QVERIFY2(test::statusLine(window).contains(QStringLiteral("toward the style's walk (read from the clip)")),
+    QVERIFY2(test::statusLine(window).contains(QStringLiteral("Aimed at the style's walk (read from the clip).")),
              qPrintable(test::statusLine(window)));
 
     // The panel names the held toe and links its first frame.
