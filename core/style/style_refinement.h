@@ -7,9 +7,11 @@
 //   H = H0 - Adam steps on  c * mean((H - encode(x))^2) + s * mean((Gram(H) - G)^2), until converged,
 //   output = decode(H)
 // with c, s eq. 10's content and style weights (what T was trained on) and G the network's stored
-// style target nearest to Gram(H0). Zero iterations give decode(encode(T(x))), the network's output as
-// it was, crouch or not. Why here and not in the training: augmenting one actor's content did not close
-// the gap to other studios (docs/decisions.md).
+// style target of the clip's kind of locomotion (locomotion_kind.h: the one training paired such clips
+// with), or the one nearest Gram(H0) for a network whose targets carry none of the kinds' labels.
+// Zero iterations give decode(encode(T(x))), the network's output as it was, crouch or not. Why here
+// and not in the training: augmenting one actor's content did not close the gap to other studios
+// (docs/decisions.md).
 
 #include <Eigen/Core>
 #include <atomic>

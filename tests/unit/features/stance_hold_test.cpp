@@ -74,6 +74,25 @@ double toeSpread(const Eigen::MatrixXd& toe, Eigen::Index first, Eigen::Index en
   return spread;
 }
 
+// The content's planted left toes' median height in its own rig: the floor a held toe stands on.
+double plantedToeHeight(const ToeStance& s) {
+  std::vector<double> planted;
+  const Eigen::MatrixXd content_toe = ownToe(s.content.values, s.content.anchor);
+  for (Eigen::Index f = 0; f < content_toe.rows(); ++f)
+    if (s.content.contacts(kToeLabel, f) > 0.5) planted.push_back(content_toe(f, 2));
+  return median(planted);
+}
+
+// The left foot turned `degrees` further down about its ankle on `frames` (reference rig).
+void tipLeftFoot(Eigen::MatrixXd& features, const std::vector<Eigen::Index>& frames, double degrees) {
+  for (Eigen::Index f : frames) {
+    const Eigen::Vector3d ankle = features.col(f).segment<3>(3 * kAnkle);
+    const Eigen::Vector3d foot = features.col(f).segment<3>(3 * kToe) - ankle;
+    const Eigen::Vector3d across = foot.cross(Eigen::Vector3d::UnitY()).normalized();
+    features.col(f).segment<3>(3 * kToe) = ankle + Eigen::AngleAxisd(-degrees * M_PI / 180.0, across) * foot;
+  }
+}
+
 TEST(StanceHoldInvalid, RejectsFeaturesOrContactsThatAreNotTheContentsAndHoldsNothingWithoutContacts) {
   const ToeStance s = zombieToeStance();
   Eigen::MatrixXd short_clip = s.content.values.leftCols(10);
@@ -125,17 +144,11 @@ TEST(StanceHold, APlantedToeTheStyleSlidIsHeldInTheClipsOwnRig) {
 // its toe goes through the floor; held, it stands no lower than the content's planted toes.
 TEST(StanceHold, APlantedToeTheStyleTippedIntoTheFloorStandsOnIt) {
   const ToeStance s = zombieToeStance();
-  std::vector<double> planted;
-  const Eigen::MatrixXd content_toe = ownToe(s.content.values, s.content.anchor);
-  for (Eigen::Index f = 0; f < content_toe.rows(); ++f)
-    if (s.content.contacts(kToeLabel, f) > 0.5) planted.push_back(content_toe(f, 2));
-  const double floor = median(planted);
+  const double floor = plantedToeHeight(s);
+  std::vector<Eigen::Index> stance;
+  for (Eigen::Index f = s.first; f < s.end; ++f) stance.push_back(f);
   Eigen::MatrixXd tipped = s.content.values;
-  for (Eigen::Index f = s.first; f < s.end; ++f) {
-    const Eigen::Vector3d ankle = tipped.col(f).segment<3>(3 * kAnkle), foot = tipped.col(f).segment<3>(3 * kToe) - ankle;
-    const Eigen::Vector3d across = foot.cross(Eigen::Vector3d::UnitY()).normalized();
-    tipped.col(f).segment<3>(3 * kToe) = ankle + Eigen::AngleAxisd(-40.0 * M_PI / 180.0, across) * foot;
-  }
+  tipLeftFoot(tipped, stance, 40.0);
   const Eigen::MatrixXd sunk = ownToe(tipped, s.content.anchor);
   ASSERT_LT(sunk.col(2).segment(s.first, s.end - s.first).minCoeff(), floor - 3.0);
   Eigen::MatrixXd held = tipped;
@@ -149,11 +162,7 @@ TEST(StanceHold, APlantedToeTheStyleTippedIntoTheFloorStandsOnIt) {
 // toe 8 cm under the floor there). The ankle stays where it was.
 TEST(StanceHold, AToeTheStyleSwingsUnderTheFloorIsTurnedUpOverIt) {
   const ToeStance s = zombieToeStance();
-  std::vector<double> planted;
-  const Eigen::MatrixXd content_toe = ownToe(s.content.values, s.content.anchor);
-  for (Eigen::Index f = 0; f < content_toe.rows(); ++f)
-    if (s.content.contacts(kToeLabel, f) > 0.5) planted.push_back(content_toe(f, 2));
-  const double floor = median(planted);
+  const double floor = plantedToeHeight(s);
   const Eigen::MatrixXd& c = s.content.contacts;
   std::vector<Eigen::Index> swing;  // frames with no toe contact within the ramp and one frame more
   const Eigen::Index reach = kKeptFootRampFrames + 1;
@@ -161,11 +170,7 @@ TEST(StanceHold, AToeTheStyleSwingsUnderTheFloorIsTurnedUpOverIt) {
     if (c.row(kToeLabel).segment(f - reach, 2 * reach + 1).sum() == 0) swing.push_back(f);
   ASSERT_GE(swing.size(), 10u);
   Eigen::MatrixXd tipped = s.content.values;
-  for (Eigen::Index f : swing) {
-    const Eigen::Vector3d ankle = tipped.col(f).segment<3>(3 * kAnkle), foot = tipped.col(f).segment<3>(3 * kToe) - ankle;
-    const Eigen::Vector3d across = foot.cross(Eigen::Vector3d::UnitY()).normalized();
-    tipped.col(f).segment<3>(3 * kToe) = ankle + Eigen::AngleAxisd(-80.0 * M_PI / 180.0, across) * foot;
-  }
+  tipLeftFoot(tipped, swing, 80.0);
   const Eigen::MatrixXd sunk = ownToe(tipped, s.content.anchor);
   double lowest = 1e9;
   for (Eigen::Index f : swing) lowest = std::min(lowest, sunk(f, 2));

@@ -160,10 +160,15 @@ TEST(StyleRefinement, PicksTheNearestTarget) {
   EXPECT_EQ(style::nearestStyleTarget(targets, hidden), 1);
 }
 
+// Hidden units to refine: the content's, a start near them and a style target away from both.
+struct DescentProblem {
+  nn::Mat<float> content = randomHidden(8, 40, 8);
+  nn::Mat<float> start = content + 0.1f * randomHidden(8, 40, 9);
+  nn::Mat<float> target = nn::gramMatrix(randomHidden(8, 60, 10)) * 2.0f;
+};
+
 TEST(StyleRefinement, StepsLowerTheObjectiveAndZeroStepsChangeNothing) {
-  const nn::Mat<float> content = randomHidden(8, 40, 8);
-  const nn::Mat<float> start = content + 0.1f * randomHidden(8, 40, 9);
-  const nn::Mat<float> target = nn::gramMatrix(randomHidden(8, 60, 10)) * 2.0f;
+  const auto [content, start, target] = DescentProblem{};
   style::StyleRefinement refinement;
   refinement.iterations = 0;
   refinement.converged_fraction = 0.0;  // every step
@@ -185,9 +190,7 @@ TEST(StyleRefinement, StepsLowerTheObjectiveAndZeroStepsChangeNothing) {
 // It stops once 10 steps lowered the objective by less than the converged fraction: the last 10
 // steps it ran did, the 10 before them did not; with the fraction 0 it runs every step it may.
 TEST(StyleRefinement, StopsOnceTenStepsLowerTheObjectiveByLessThanTheConvergedFraction) {
-  const nn::Mat<float> content = randomHidden(8, 40, 8);
-  const nn::Mat<float> start = content + 0.1f * randomHidden(8, 40, 9);
-  const nn::Mat<float> target = nn::gramMatrix(randomHidden(8, 60, 10)) * 2.0f;
+  const auto [content, start, target] = DescentProblem{};
   style::StyleRefinement converging;
   converging.iterations = 5000;
   nn::Mat<float> converged = start;
