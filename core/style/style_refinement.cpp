@@ -73,19 +73,17 @@ int refineHiddenUnits(nn::Mat<float>& hidden, const nn::Mat<float>& content_hidd
   HiddenStyleDescent descent(hidden, content_hidden, target, refinement.content_weight, refinement.style_weight,
                              refinement.learning_rate);
   constexpr int span = StyleRefinement::kConvergenceSteps;
-  std::vector<double> objective;  // before each step
+  std::vector<double> objective;  // before each step: its size is the steps run
   objective.reserve(static_cast<std::size_t>(refinement.iterations));
-  int steps = 0;
-  while (steps < refinement.iterations) {
+  while (objective.size() < static_cast<std::size_t>(refinement.iterations)) {
     throwIfCancelled(cancel);
     objective.push_back(descent.step());
-    ++steps;
     const std::size_t now = objective.size() - 1;
     if (now >= span && objective[now - span] - objective[now] < refinement.converged_fraction * objective[now - span])
       break;
   }
   hidden = descent.value();
-  return steps;
+  return static_cast<int>(objective.size());
 }
 
 }  // namespace motionstyle::style

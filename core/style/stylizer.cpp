@@ -149,10 +149,12 @@ Eigen::MatrixXd Stylizer::stylizeFeatures(const Eigen::MatrixXd& features, const
   return finishFeatures(features, contacts, networkOutput(features, contacts, path), strength, path);
 }
 
-namespace {
+std::string Stylizer::aimedKind(const Eigen::MatrixXd& features, const Eigen::MatrixXd& contacts) const {
+  return refinement_.kind.empty() ? locomotionKind(features, contacts) : refinement_.kind;
+}
 
-// strength 0 is exactly the content; any other output has its stances held where it lands.
-StylizedClip clipOf(const MotionFeatures& content, Eigen::MatrixXd features, double strength, PathMode path) {
+StylizedClip Stylizer::clipOf(const MotionFeatures& content, Eigen::MatrixXd features, double strength,
+                              PathMode path) const {
   StylizedClip clip;
   clip.features = std::move(features);
   if (strength > 0.0) holdStancesInOwnRig(clip.features, content);
@@ -161,27 +163,18 @@ StylizedClip clipOf(const MotionFeatures& content, Eigen::MatrixXd features, dou
   clip.anchor = content.anchor;
   clip.fps = content.anchor.fps;
   clip.world_positions = canonicalWorldPositions(clip.features, clip.anchor);
+  if (strength > 0.0 && refinementSteps() > 0) clip.kind = aimedKind(content.values, content.contacts);
   return clip;
-}
-
-}  // namespace
-
-std::string Stylizer::aimedKind(const Eigen::MatrixXd& features, const Eigen::MatrixXd& contacts) const {
-  return refinement_.kind.empty() ? locomotionKind(features, contacts) : refinement_.kind;
 }
 
 StylizedClip Stylizer::stylize(const MotionFeatures& content, double strength, PathMode path) const {
-  StylizedClip clip = clipOf(content, stylizeFeatures(content.values, content.contacts, strength, path), strength, path);
-  if (strength > 0.0 && refinementSteps() > 0) clip.kind = aimedKind(content.values, content.contacts);
-  return clip;
+  return clipOf(content, stylizeFeatures(content.values, content.contacts, strength, path), strength, path);
 }
 
 StylizedClip Stylizer::stylize(const MotionFeatures& content, const Eigen::MatrixXd& network_output, double strength,
                                PathMode path) const {
-  StylizedClip clip = clipOf(content, finishFeatures(content.values, content.contacts, network_output, strength, path),
-                             strength, path);
-  if (strength > 0.0 && refinementSteps() > 0) clip.kind = aimedKind(content.values, content.contacts);
-  return clip;
+  return clipOf(content, finishFeatures(content.values, content.contacts, network_output, strength, path), strength,
+                path);
 }
 
 Eigen::MatrixXd Stylizer::projectFeatures(const Eigen::MatrixXd& features) const {

@@ -126,6 +126,10 @@ class Stylizer {
   const std::shared_ptr<const nn::FastStylizer>& sharedLossProjection() const { return projection_; }
 
  private:
+  // The clip of `features` (finished for `content` at `strength`): strength 0 is exactly the content;
+  // any other output has its stances held where it lands (holdStancesInOwnRig) and names its kind.
+  StylizedClip clipOf(const MotionFeatures& content, Eigen::MatrixXd features, double strength, PathMode path) const;
+
   nn::StyleModel model_;
   std::string source_name_;
   StyleRefinement refinement_;
