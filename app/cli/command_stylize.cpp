@@ -96,7 +96,7 @@ int runStylize(const Args& args) {
       parsed.integer("refine-steps", request.refinement.iterations, 0, style::StyleRefinement::kMaxIterations);
   if (auto kind = parsed.value("kind"); kind && *kind != "auto") {
     if (!style::isLocomotionKind(*kind))
-      throw UsageError("--kind must be auto, walk, run, walk-turn-left or walk-turn-right, not '" + *kind + "'");
+      throw UsageError("--kind must be auto, " + style::locomotionKindList() + ", not '" + *kind + "'");
     request.refinement.kind = *kind;
   }
   request.dataset.features.unit = lengthUnit(parsed);

@@ -176,7 +176,8 @@ const std::vector<Command>& commands() {
        "  --kind KIND     the style clip the refinement aims at, by the locomotion it shows: auto (default:\n"
        "                  read from each clip: run where a fifth of its frames have no foot down, a walk\n"
        "                  turning left or right past 8 deg/s, else walk), walk, run, walk-turn-left or\n"
-       "                  walk-turn-right; the log and --metrics (style_target) say which was used\n"
+       "                  walk-turn-right (the app's Aim at); the log and --metrics (style_target) say\n"
+       "                  which was used\n"
        "  --unit UNIT     IN's length unit (default: guessed)\n" MOTIONSTYLE_OUTPUT_OPTIONS_HELP MOTIONSTYLE_BATCH_HELP,
        runStylize},
       {"transfer", "style transfer by optimisation (Holden et al. 2016), no style network needed",

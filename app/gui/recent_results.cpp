@@ -6,7 +6,7 @@ namespace motionstyle {
 
 bool ResultInputs::operator==(const ResultInputs& other) const {
   return content_id == other.content_id && stylizer == other.stylizer && strength == other.strength &&
-         path == other.path && contact_overrides.rows() == other.contact_overrides.rows() &&
+         path == other.path && kind == other.kind && contact_overrides.rows() == other.contact_overrides.rows() &&
          contact_overrides.cols() == other.contact_overrides.cols() && contact_overrides == other.contact_overrides;
 }
 

@@ -1,6 +1,6 @@
 #pragma once
 // The Result panel's last results, one per style network, each with the inputs it was made from:
-// going back to a style already shown for the same clip, strength, path and contacts shows its result
+// going back to a style already shown for the same clip, strength, path, aim and contacts shows its result
 // at once instead of computing it again. An artist compares styles by switching back and forth; a
 // switch to a style not yet computed costs a job (75-116 ms for 500 frames, the network included; 45-50 ms
 // when it was computed on the clip before: only the clean-up), one back costs a paint.
@@ -13,6 +13,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "style/path_mode.h"
@@ -27,6 +28,7 @@ struct ResultInputs {
   std::shared_ptr<const style::Stylizer> stylizer;
   double strength = 1.0;
   style::PathMode path = style::PathMode::Content;
+  std::string kind;  // the style clip aimed at: "" read from the clip (StylizeCleanupJob::kind)
   Eigen::MatrixXi contact_overrides;  // at the content's rate, as the job takes them
 
   bool operator==(const ResultInputs& other) const;
@@ -53,8 +55,8 @@ class RecentResults {
   Entry* find(const ResultInputs& inputs);
   // Whether there is one, without making it the most recently used (a look, not a use).
   bool contains(const ResultInputs& inputs) const;
-  // The job memory of `stylizer`'s result on clip `content_id`, whatever its strength, path and
-  // contacts (its network output serves them all), else null. A look, not a use.
+  // The job memory of `stylizer`'s result on clip `content_id`, whatever its strength, path, kind and
+  // contacts (its network output serves them all, or the job computes it again), else null. A look, not a use.
   std::shared_ptr<style::StylizeCleanupMemory> memoryFor(std::uint64_t content_id,
                                                          const std::shared_ptr<const style::Stylizer>& stylizer) const;
   // Whether an entry holds `memory` (a job on another network would overwrite its network output).

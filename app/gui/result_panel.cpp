@@ -18,6 +18,7 @@
 
 #include "common/errors.h"
 #include "common/resource_paths.h"
+#include "aim_choice.h"
 #include "app_log.h"
 #include "busy_indicator.h"
 #include "display_space.h"
@@ -25,7 +26,6 @@
 #include "result_figures.h"
 #include "result_metrics_view.h"
 #include "shipped_networks.h"
-#include "style/locomotion_kind.h"
 #include "style/training.h"
 
 namespace motionstyle {
@@ -70,6 +70,8 @@ ResultPanel::ResultPanel(QWidget* parent) : QWidget(parent), memory_(std::make_s
   keep_path_->setToolTip(tr("On: the output covers the same ground and turns the same way as the content, in the "
                             "same time.\nOff: the style may change the pace (an elderly walk covers less ground)."));
   connect(keep_path_, &QCheckBox::toggled, this, [this] { inputsChanged(tr("the path choice changed")); });
+  aim_choice_ = new AimChoice(this);
+  connect(aim_choice_, &AimChoice::kindChanged, this, [this] { inputsChanged(tr("the style clip aimed at changed")); });
   familiarity_label_ = new FamiliarityLabel(this);
   connect(familiarity_label_, &FamiliarityLabel::adaptRequested, this, &ResultPanel::adaptRequested);
   strength_label_->setText(QStringLiteral("1.00"));
@@ -103,7 +105,12 @@ ResultPanel::ResultPanel(QWidget* parent) : QWidget(parent), memory_(std::make_s
   form->addRow(tr("Content:"), content_label_);
   form->addRow(tr("Familiarity:"), familiarity_label_);
   form->addRow(tr("Strength:"), strength_row);
-  form->addRow(QString(), keep_path_);
+  auto* path_row = new QHBoxLayout;  // one row for both: the panel fits a 700-pixel-high screen
+  path_row->addWidget(keep_path_);
+  path_row->addStretch(1);
+  path_row->addWidget(new QLabel(tr("Aim at:"), this));
+  path_row->addWidget(aim_choice_);
+  form->addRow(QString(), path_row);
   auto* layout = new QVBoxLayout(this);
   layout->addLayout(form);
   layout->addLayout(buttons);
@@ -200,6 +207,10 @@ style::PathMode ResultPanel::pathMode() const {
 }
 
 void ResultPanel::setPathMode(style::PathMode mode) { keep_path_->setChecked(mode == style::PathMode::Content); }
+
+std::string ResultPanel::aimKind() const { return aim_choice_->kind(); }
+
+void ResultPanel::setAimKind(const std::string& kind) { aim_choice_->setKind(kind); }
 
 const std::optional<style::Familiarity>& ResultPanel::familiarity() const { return familiarity_label_->familiarity(); }
 
@@ -306,6 +317,7 @@ void ResultPanel::runStylize() {
   job.stylizer = stylizer_;
   job.strength = strength();
   job.path = pathMode();
+  job.kind = aimKind();
   job.stylized = given_stylized_;
   job.contact_overrides = overrides_;
   job.memory = memory_;
@@ -389,11 +401,7 @@ qint64 ResultPanel::showResult(const QString& status, bool next_job_running) {
   emit resultChanged();
   const qint64 on_screen = clock_.elapsed();
   if (!next_job_running) {  // else that job's "Updating" stays up
-    // The style clip the refinement aimed at, by the locomotion read from the content (locomotion_kind.h).
-    const std::string& kind = result_->stylized.kind;
-    const QString shown = kind.empty() ? status
-                                       : status + tr(" Aimed at the style's %1 (read from the clip).")
-                                                      .arg(QString::fromStdString(style::locomotionKindText(kind)));
+    const QString shown = status + aim_choice_->statusSentence(result_->stylized.kind);
     setBusy(false, shown);
     emit statusMessage(shown);
   }
@@ -457,42 +465,12 @@ void ResultPanel::refreshControls() {
   stylize_button_->setToolTip(missing.isEmpty() ? tr("Stylize the content and clean up the result") : missing);
   strength_slider_->setEnabled(!given_stylized_);
   keep_path_->setEnabled(!given_stylized_);
+  aim_choice_->setEnabled(!given_stylized_);
   cancel_button_->setEnabled(busy_);
   export_button_->setEnabled(result_ != nullptr && !busy_);
   metrics_->setEnabled(!resultIsStale());  // greyed: the figures of an out-of-date result
 }
 
 void ResultPanel::refreshMetrics() { metrics_->showResult(result_.get()); }
-
-QStringList ResultPanel::resultFigureNames(bool include_raw) const {
-  if (!result_ || !content_) return {};
-  const QString name = resultIsStale() ? tr("%1 (%2, out of date)").arg(content_->name, result_network_name_)
-                                       : tr("%1 (%2)").arg(content_->name, result_network_name_);
-  return include_raw ? QStringList{name, tr("%1 raw").arg(name)} : QStringList{name};
-}
-
-std::vector<FigureData> ResultPanel::resultFigures(bool include_raw) const {
-  std::vector<FigureData> figures;
-  const QStringList names = resultFigureNames(include_raw);
-  if (names.isEmpty()) return figures;
-  figures.push_back(cleanedOutputFigure(*result_, *content_, names.front(), content_->fps()));
-  if (include_raw) figures.push_back(rawOutputFigure(*result_, *content_, names.back(), content_->fps()));
-  return figures;
-}
-
-QualityTracks ResultPanel::qualityTracks() const {
-  QualityTracks tracks;
-  if (!content_) return tracks;
-  if (const auto& familiarity = familiarity_label_->familiarity())
-    tracks.familiarity_cm = trackAtRate(familiarity->per_frame_cm, kDefaultFeatureFps, content_->fps());
-  if (!result_) return tracks;
-  tracks.skate_cm_s = trackAtRate(result_->cleaned_metrics.skate_track_cm_s, result_->cleanup_fps, content_->fps());
-  tracks.held_contacts = locksAtRate(result_->contacts, result_->cleanup_fps, content_->fps(), content_->frameCount());
-  tracks.lifted_contacts =
-      locksAtRate(result_->report.lifted_contacts, result_->cleanup_fps, content_->fps(), content_->frameCount());
-  tracks.raw_bone_error_cm =
-      trackAtRate(result_->raw_metrics.bone_error_track_cm, result_->stylized.fps, content_->fps());
-  return tracks;
-}
 
 }  // namespace motionstyle

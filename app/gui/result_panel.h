@@ -8,6 +8,8 @@
 //     network output (before) and of the cleaned clip (after), in cm and cm/s.
 //   - Keep the content's path (on by default): the output covers the same ground and turns in the same
 //     time as the content (style/path_mode.h); off lets the style change the pace.
+//   - Aim at: the style's clip of the content's kind of locomotion (walk, run, turning walk), read from
+//     the clip unless the user picks one (AimChoice); the status names the one aimed at.
 //   - Familiarity: how close the content is to what the networks know (style/familiarity.h), with the
 //     next step when it is not (adapt the networks: the Style networks panel's Adapt tab).
 //   - Export writes the cleaned clip as BVH on the content's skeleton, atomically (bvh_writer.h), and
@@ -26,6 +28,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "clip_loader.h"
@@ -49,6 +52,7 @@ class QTimer;
 
 namespace motionstyle {
 
+class AimChoice;
 class BusyIndicator;
 class FamiliarityLabel;
 
@@ -131,6 +135,10 @@ class ResultPanel : public QWidget {
   // Whose root path and timing the output follows (style/path_mode.h): the content's by default.
   style::PathMode pathMode() const;
   void setPathMode(style::PathMode mode);
+  // Which of the style's clips the refinement aims at (AimChoice, style/locomotion_kind.h): "" read
+  // from the content clip (the default), else one of style::kLocomotionKinds.
+  std::string aimKind() const;
+  void setAimKind(const std::string& kind);
   // How familiar the content is to the chosen network (style/familiarity.h); nullopt without a mapped
   // content clip and a network.
   const std::optional<style::Familiarity>& familiarity() const;
@@ -192,7 +200,7 @@ class ResultPanel : public QWidget {
   // The inputs a network's result depends on, as they are now (recent_results.h).
   ResultInputs currentInputs() const;
   // Shows the result remembered for the current inputs, if any (a style shown before with the same
-  // clip, strength, path and contacts, or computed ahead): no job. Returns whether it did.
+  // clip, strength, path, aim and contacts, or computed ahead): no job. Returns whether it did.
   // stylize_pressed: it answers Stylize (the status says the clip was stylized), not a change.
   // waited_ms: how long the panel waited for the look-ahead's job of it (adoptLookAhead), for the log.
   bool showRememberedResult(bool stylize_pressed = false, qint64 waited_ms = -1);
@@ -304,6 +312,7 @@ class ResultPanel : public QWidget {
   QSlider* strength_slider_ = nullptr;
   QLabel* strength_label_ = nullptr;
   QCheckBox* keep_path_ = nullptr;
+  AimChoice* aim_choice_ = nullptr;
   FamiliarityLabel* familiarity_label_ = nullptr;
   QPushButton* stylize_button_ = nullptr;
   QPushButton* cancel_button_ = nullptr;

@@ -128,10 +128,11 @@ void ResultPanel::startLookAhead(ResultInputs inputs, const QString& file, const
   job.mapping = *content_->mapping;
   job.strength = inputs.strength;
   job.path = inputs.path;
+  job.kind = inputs.kind;
   job.contact_overrides = inputs.contact_overrides;
   job.memory = std::make_shared<style::StylizeCleanupMemory>();  // the shown style's is in use: its own
   // This style's network output on the clip, when a result of it is remembered (the strength or
-  // contacts changed since; for another path the job runs the network again): copied here, on the GUI
+  // contacts changed since; for another path or aim the job runs the network again): copied here, on the GUI
   // thread, while no job writes it (lookAhead runs only while the panel is idle), so that only the
   // clean-up runs (20-30 ms for 500 frames, not 80).
   if (inputs.stylizer)

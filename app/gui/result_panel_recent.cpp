@@ -8,7 +8,7 @@
 namespace motionstyle {
 
 ResultInputs ResultPanel::currentInputs() const {
-  return {content_ ? content_->id : 0, stylizer_, strength(), pathMode(), overrides_};
+  return {content_ ? content_->id : 0, stylizer_, strength(), pathMode(), aimKind(), overrides_};
 }
 
 bool ResultPanel::showRememberedResult(bool stylize_pressed, qint64 waited_ms) {
@@ -22,11 +22,11 @@ bool ResultPanel::showRememberedResult(bool stylize_pressed, qint64 waited_ms) {
   result_network_name_ = remembered->network_name;
   stale_reason_.clear();
   const qint64 figures_start = clock_.elapsed();
-  QString status = tr("Shown again: made earlier for the same clip, style, strength, path and contacts.");
+  QString status = tr("Shown again: made earlier for the same clip, style, strength, path, aim and contacts.");
   if (computed_ahead)
     status = stylize_pressed ? tr("Stylized and cleaned up %1 frames (computed ahead while the clip was open).")
                                    .arg(result_->cleaned.frameCount())
-                             : tr("Computed ahead while you looked, for the same clip, strength, path and contacts.");
+                             : tr("Computed ahead while you looked, for the same clip, strength, path, aim and contacts.");
   const qint64 on_screen = showResult(status);
   const QString how = !computed_ahead ? QStringLiteral("remembered: made earlier for these inputs")
                       : waited_ms < 0 ? QStringLiteral("remembered: computed ahead for these inputs")

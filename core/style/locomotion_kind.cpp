@@ -35,6 +35,20 @@ bool isLocomotionKind(std::string_view kind) {
   return false;
 }
 
+std::string locomotionKindList() {
+  std::string list;
+  for (std::size_t i = 0; i < kLocomotionKinds.size(); ++i) {
+    if (i > 0) list += i + 1 == kLocomotionKinds.size() ? " or " : ", ";
+    list += kLocomotionKinds[i];
+  }
+  return list;
+}
+
+void requireKindOrNone(const std::string& kind, std::string_view what) {
+  if (!kind.empty() && !isLocomotionKind(kind))
+    throw std::invalid_argument(std::string(what) + " '" + kind + "' is none of " + locomotionKindList());
+}
+
 std::string locomotionKindText(std::string_view kind) {
   if (kind == "walk-turn-left") return "walk turning left";
   if (kind == "walk-turn-right") return "walk turning right";

@@ -34,6 +34,11 @@ constexpr double kTurnDegreesPerSecond = 8.0;
 // Every kind, as the style targets label them.
 constexpr std::array<std::string_view, 4> kLocomotionKinds = {"walk", "run", "walk-turn-left", "walk-turn-right"};
 bool isLocomotionKind(std::string_view kind);
+// The kinds for a message: "walk, run, walk-turn-left or walk-turn-right".
+std::string locomotionKindList();
+// A kind to aim at given by a caller: "" (none given) or one of kLocomotionKinds. Throws
+// std::invalid_argument "<what> '<kind>' is none of walk, run, ..." for any other.
+void requireKindOrNone(const std::string& kind, std::string_view what);
 // In words for the user: "walk", "run", "walk turning left", "walk turning right" (the kind itself
 // for any other string).
 std::string locomotionKindText(std::string_view kind);

@@ -8,6 +8,7 @@
 #include "features/feature_layout.h"
 #include "motion/kinematics.h"
 #include "style/cancellation.h"
+#include "style/locomotion_kind.h"
 #include "style/stylized_cleanup.h"
 
 namespace motionstyle::style {
@@ -52,6 +53,7 @@ void StylizeCleanupJob::validate() const {
   if (contact_overrides.size() > 0 &&
       (contact_overrides.rows() != content.frameCount() || contact_overrides.cols() != kContactCount))
     throw std::invalid_argument("the contact overrides must be content frames x 4");
+  requireKindOrNone(kind, "the kind to aim at");
 }
 
 void StylizeCleanupMemory::seedFrom(const StylizeCleanupMemory& other) {
@@ -71,6 +73,7 @@ void StylizeCleanupMemory::copyFrom(const StylizeCleanupMemory& other) {
   stylizer = other.stylizer;
   features = other.features;
   path = other.path;
+  kind = other.kind;
   network_output = other.network_output;
 }
 
@@ -86,20 +89,21 @@ StylizeCleanupResult StylizeCleanupJob::run(const std::atomic<bool>* cancel) con
     const MotionFeatures& features = contentFeatures(content, mapping, memory.get(), own_features);
     throwIfCancelled(cancel);
     if (!memory) {
-      result.stylized = stylizer->stylize(features, strength, path);
+      result.stylized = stylizer->stylize(features, strength, path, kind);
     } else {
-      result.network_output_kept = memory->stylizer == stylizer && memory->path == path &&
+      result.network_output_kept = memory->stylizer == stylizer && memory->path == path && memory->kind == kind &&
                                    memory->features.rows() == features.values.rows() &&
                                    memory->features.cols() == features.values.cols() &&
                                    memory->features == features.values;
       if (!result.network_output_kept) {
         memory->stylizer = nullptr;  // an exception below leaves no stale pairing
-        memory->network_output = stylizer->networkOutput(features.values, features.contacts, path, cancel);
+        memory->network_output = stylizer->networkOutput(features.values, features.contacts, path, kind, cancel);
         memory->features = features.values;
         memory->path = path;
+        memory->kind = kind;
         memory->stylizer = stylizer;
       }
-      result.stylized = stylizer->stylize(features, memory->network_output, strength, path);
+      result.stylized = stylizer->stylize(features, memory->network_output, strength, path, kind);
     }
   }
   throwIfCancelled(cancel);

@@ -12,6 +12,7 @@
 #include <atomic>
 #include <memory>
 #include <optional>
+#include <string>
 
 #include "ik/cleanup.h"
 #include "features/representation.h"
@@ -45,8 +46,8 @@ struct StylizeCleanupResult {
 // changed: the content's features (for a content and mapping equal bit for bit to the last job's), the
 // network's output for them (the strength does not change it: stylizer.h, networkOutput) and the
 // clean-up's memory (ik/cleanup.h). A job reuses the network output only for the same network, path
-// mode (the contacts are planted under its root path) and features equal bit for bit; anything else is
-// computed and kept instead. Results never depend on it. One job at a time per memory.
+// mode (the contacts are planted under its root path), kind aimed at and features equal bit for bit;
+// anything else is computed and kept instead. Results never depend on it. One job at a time per memory.
 struct StylizeCleanupMemory {
   CleanupMemory cleanup;
   Motion content;  // the clip and mapping content_features were extracted from
@@ -55,6 +56,7 @@ struct StylizeCleanupMemory {
   std::shared_ptr<const Stylizer> stylizer;  // whose output network_output is
   Eigen::MatrixXd features;                  // the content's features it was computed from
   PathMode path = PathMode::Content;         // and the path its contacts were planted under
+  std::string kind;                          // and the job's kind to aim at
   Eigen::MatrixXd network_output;
 
   // Starts from `other`'s clip, features and clean-up solutions (another network's memory on the same
@@ -74,6 +76,10 @@ struct StylizeCleanupJob {
   std::shared_ptr<const Stylizer> stylizer;
   double strength = 1.0;
   PathMode path = PathMode::Content;  // whose root path the output follows
+  // The locomotion kind whose style clip the refinement aims at (locomotion_kind.h): "" the network's
+  // own setting (read from the clip, unless the Stylizer was made with one), else one of
+  // kLocomotionKinds: the user's choice for a clip the reading gets wrong (a shuffling run read as a walk).
+  std::string kind;
   std::optional<StylizedClip> stylized;
   // User contact overrides at the CONTENT's rate (frames x 4, -1 auto / 0 off / 1 on); empty: none.
   Eigen::MatrixXi contact_overrides;
@@ -90,7 +96,7 @@ struct StylizeCleanupJob {
   std::shared_ptr<const StylizeCleanupMemory> seed;
 
   // std::invalid_argument: neither a network nor a stylized clip, a strength outside [0, 1], overrides
-  // whose shape is not content frames x 4.
+  // whose shape is not content frames x 4, a kind neither "" nor one of kLocomotionKinds.
   void validate() const;
 
   // Validates, stylizes (unless `stylized` is given) and cleans up. Throws InputError (an unmappable or

@@ -84,12 +84,14 @@ void Stylizer::releaseIdleNetworks() const {
 }
 
 Eigen::MatrixXd Stylizer::networkOutput(const Eigen::MatrixXd& features, const Eigen::MatrixXd& contacts, PathMode path,
-                                        const std::atomic<bool>* cancel) const {
+                                        const std::string& kind, const std::atomic<bool>* cancel) const {
   requireFeatures(features, "Stylizer::networkOutput");
   requireContacts(contacts, features, "Stylizer::networkOutput");
   const bool plant = contacts.size() > 0 && contact_projection_.iterations > 0;
-  const nn::Mat<float> input = model_.normalisation.normalized(padEdges(features));
   const bool refine = refinementSteps() > 0;
+  requireKindOrNone(kind, "the kind to aim at");
+  const std::string aimed = refine ? aimedKind(features, contacts, kind) : std::string();
+  const nn::Mat<float> input = model_.normalisation.normalized(padEdges(features));
   const nn::Mat<float> styled = withNetwork([&](nn::FastStylizer& network) {
     if (!refine && !plant) return network.stylize(input);
     // The clip's own pooled columns, between the edges' padding.
@@ -104,7 +106,7 @@ Eigen::MatrixXd Stylizer::networkOutput(const Eigen::MatrixXd& features, const E
         for (Eigen::Index k = 0; k < count; ++k)
           if (share[static_cast<std::size_t>(k)] < 1.0f)
             clip.col(k) = content_hidden.col(k) + share[static_cast<std::size_t>(k)] * (clip.col(k) - content_hidden.col(k));
-        int target = styleTargetFor(model_.style_targets, aimedKind(features, contacts));
+        int target = styleTargetFor(model_.style_targets, aimed);
         if (target < 0) target = nearestStyleTarget(model_.style_targets, clip);
         refineHiddenUnits(clip, content_hidden, model_.style_targets[static_cast<std::size_t>(target)].gram,
                           refinement_, cancel);
@@ -142,19 +144,22 @@ Eigen::MatrixXd Stylizer::finishFeatures(const Eigen::MatrixXd& features, const 
 }
 
 Eigen::MatrixXd Stylizer::stylizeFeatures(const Eigen::MatrixXd& features, const Eigen::MatrixXd& contacts,
-                                          double strength, PathMode path) const {
+                                          double strength, PathMode path, const std::string& kind) const {
   requireFeatures(features, "Stylizer::stylizeFeatures");
   if (!(strength >= 0.0 && strength <= 1.0)) throw std::invalid_argument("stylize strength must be in [0, 1]");
   if (strength == 0.0) return features;  // exactly the content, no network run
-  return finishFeatures(features, contacts, networkOutput(features, contacts, path), strength, path);
+  return finishFeatures(features, contacts, networkOutput(features, contacts, path, kind), strength, path);
 }
 
-std::string Stylizer::aimedKind(const Eigen::MatrixXd& features, const Eigen::MatrixXd& contacts) const {
+std::string Stylizer::aimedKind(const Eigen::MatrixXd& features, const Eigen::MatrixXd& contacts,
+                                const std::string& kind) const {
+  requireKindOrNone(kind, "the kind to aim at");
+  if (!kind.empty()) return kind;
   return refinement_.kind.empty() ? locomotionKind(features, contacts) : refinement_.kind;
 }
 
 StylizedClip Stylizer::clipOf(const MotionFeatures& content, Eigen::MatrixXd features, double strength,
-                              PathMode path) const {
+                              PathMode path, const std::string& kind) const {
   StylizedClip clip;
   clip.features = std::move(features);
   if (strength > 0.0) holdStancesInOwnRig(clip.features, content);
@@ -163,18 +168,20 @@ StylizedClip Stylizer::clipOf(const MotionFeatures& content, Eigen::MatrixXd fea
   clip.anchor = content.anchor;
   clip.fps = content.anchor.fps;
   clip.world_positions = canonicalWorldPositions(clip.features, clip.anchor);
-  if (strength > 0.0 && refinementSteps() > 0) clip.kind = aimedKind(content.values, content.contacts);
+  if (strength > 0.0 && refinementSteps() > 0) clip.kind = aimedKind(content.values, content.contacts, kind);
   return clip;
 }
 
-StylizedClip Stylizer::stylize(const MotionFeatures& content, double strength, PathMode path) const {
-  return clipOf(content, stylizeFeatures(content.values, content.contacts, strength, path), strength, path);
+StylizedClip Stylizer::stylize(const MotionFeatures& content, double strength, PathMode path,
+                               const std::string& kind) const {
+  return clipOf(content, stylizeFeatures(content.values, content.contacts, strength, path, kind), strength, path,
+                kind);
 }
 
 StylizedClip Stylizer::stylize(const MotionFeatures& content, const Eigen::MatrixXd& network_output, double strength,
-                               PathMode path) const {
+                               PathMode path, const std::string& kind) const {
   return clipOf(content, finishFeatures(content.values, content.contacts, network_output, strength, path), strength,
-                path);
+                path, kind);
 }
 
 Eigen::MatrixXd Stylizer::projectFeatures(const Eigen::MatrixXd& features) const {

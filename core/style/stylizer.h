@@ -70,10 +70,14 @@ class Stylizer {
   // The most refinement steps networkOutput runs (fewer once converged): refinement().iterations, or 0
   // for a network without stored style targets.
   int refinementSteps() const { return model_.style_targets.empty() ? 0 : refinement_.iterations; }
-  // The locomotion kind whose style target the refinement aims at on this clip: refinement().kind, or
-  // read from the clip (locomotionKind; contacts 4 x frames or 0 x 0). The target is the one labelled
-  // with it (styleTargetFor), else the nearest to T's output. Throws as locomotionKind.
-  std::string aimedKind(const Eigen::MatrixXd& features, const Eigen::MatrixXd& contacts) const;
+  // The locomotion kind whose style target the refinement aims at on this clip: `kind` (the caller's
+  // choice for this clip: the app's "Aim at"), else refinement().kind, else read from the clip
+  // (locomotionKind; contacts 4 x frames or 0 x 0). The target is the one labelled with it
+  // (styleTargetFor), else the nearest to T's output. Every call below that takes a `kind` aims at
+  // aimedKind(features, contacts, kind). Throws std::invalid_argument for a kind that is neither ""
+  // nor one of kLocomotionKinds, else as locomotionKind.
+  std::string aimedKind(const Eigen::MatrixXd& features, const Eigen::MatrixXd& contacts,
+                        const std::string& kind = {}) const;
 
   // The clip in the reference rig and proportions: its stances held there only (stylize also holds
   // them in the clip's own rig, where the user sees them; it is what eval measures).
@@ -87,12 +91,13 @@ class Stylizer {
   // Thread-safe: concurrent calls run on copies of the prepared networks (which share their kernel
   // spectra), made the first time a call finds every copy busy, and kept for later calls.
   Eigen::MatrixXd stylizeFeatures(const Eigen::MatrixXd& features, const Eigen::MatrixXd& contacts, double strength,
-                                  PathMode path = PathMode::Content) const;
+                                  PathMode path = PathMode::Content, const std::string& kind = {}) const;
 
   // The whole clip: features, contacts and world positions in the clip's file space. With strength > 0
   // its stances are held once more in the clip's own rig (holdStancesInOwnRig, representation.h), so
   // its features are stylizeFeatures' but for the planted feet; strength 0 is the content exactly.
-  StylizedClip stylize(const MotionFeatures& content, double strength, PathMode path = PathMode::Content) const;
+  StylizedClip stylize(const MotionFeatures& content, double strength, PathMode path = PathMode::Content,
+                       const std::string& kind = {}) const;
 
   // stylizeFeatures in its two halves, for callers that change only the strength (live edits):
   // networkOutput(x, c, p) = L(T(x)) in representation units (refined, contacts c planted under path p),
@@ -103,12 +108,12 @@ class Stylizer {
   // not the features'. `cancel`: OperationCancelled when it is set before a refinement step, so that a
   // dropped job stops within a few ms instead of finishing the network.
   Eigen::MatrixXd networkOutput(const Eigen::MatrixXd& features, const Eigen::MatrixXd& contacts, PathMode path,
-                                const std::atomic<bool>* cancel = nullptr) const;
+                                const std::string& kind = {}, const std::atomic<bool>* cancel = nullptr) const;
   Eigen::MatrixXd finishFeatures(const Eigen::MatrixXd& features, const Eigen::MatrixXd& contacts,
                                  const Eigen::MatrixXd& network_output, double strength,
                                  PathMode path = PathMode::Content) const;
   StylizedClip stylize(const MotionFeatures& content, const Eigen::MatrixXd& network_output, double strength,
-                       PathMode path = PathMode::Content) const;
+                       PathMode path = PathMode::Content, const std::string& kind = {}) const;
 
   // L(x) = decode(encode(x)) through this network's own loss network (the projection alone), with the
   // kernels prepared once (a fresh projectFeatures() prepares them on every call: 0.1 s, more than a
@@ -128,7 +133,8 @@ class Stylizer {
  private:
   // The clip of `features` (finished for `content` at `strength`): strength 0 is exactly the content;
   // any other output has its stances held where it lands (holdStancesInOwnRig) and names its kind.
-  StylizedClip clipOf(const MotionFeatures& content, Eigen::MatrixXd features, double strength, PathMode path) const;
+  StylizedClip clipOf(const MotionFeatures& content, Eigen::MatrixXd features, double strength, PathMode path,
+                      const std::string& kind) const;
 
   nn::StyleModel model_;
   std::string source_name_;

@@ -20,11 +20,11 @@ class RecentResultsTest : public QObject {
   }
 
  private slots:
-  // A network's job memory on a clip is found whatever the strength, path and contacts (its network
-  // output serves them all); another clip or network has none.
+  // A network's job memory on a clip is found whatever the strength, path, aim and contacts (its
+  // network output serves them all, or the job computes it again); another clip or network has none.
   void aNetworksMemoryIsFoundForAnyStrength() {
     RecentResults recent;
-    const ResultInputs inputs{7, network(), 0.5, style::PathMode::Content, Eigen::MatrixXi()};
+    const ResultInputs inputs{7, network(), 0.5, style::PathMode::Content, "", Eigen::MatrixXi()};
     QVERIFY(recent.memoryFor(7, inputs.stylizer) == nullptr);
     const RecentResults::Entry kept = entry(inputs);
     recent.remember(kept);
@@ -37,7 +37,7 @@ class RecentResultsTest : public QObject {
 
   void findsOnlyTheExactInputs() {
     RecentResults recent;
-    const ResultInputs inputs{7, network(), 0.5, style::PathMode::Content, Eigen::MatrixXi::Constant(10, 4, -1)};
+    const ResultInputs inputs{7, network(), 0.5, style::PathMode::Content, "", Eigen::MatrixXi::Constant(10, 4, -1)};
     QVERIFY(recent.find(inputs) == nullptr);
     recent.remember(entry(inputs));
     QVERIFY(recent.find(inputs) != nullptr);
@@ -46,6 +46,9 @@ class RecentResultsTest : public QObject {
     QVERIFY(recent.find(other) == nullptr);
     other = inputs;
     other.path = style::PathMode::Style;
+    QVERIFY(recent.find(other) == nullptr);
+    other = inputs;
+    other.kind = "run";  // the style's run aimed at, not the clip's own kind
     QVERIFY(recent.find(other) == nullptr);
     other = inputs;
     other.contact_overrides(3, 1) = 1;
@@ -69,7 +72,7 @@ class RecentResultsTest : public QObject {
     RecentResults recent;
     std::vector<ResultInputs> inputs;
     for (int i = 0; i < RecentResults::kCapacity; ++i) {
-      inputs.push_back({1, network(), 1.0, style::PathMode::Content, {}});
+      inputs.push_back({1, network(), 1.0, style::PathMode::Content, "", {}});
       recent.remember(entry(inputs.back()));
     }
     QCOMPARE(recent.size(), RecentResults::kCapacity);
@@ -82,7 +85,7 @@ class RecentResultsTest : public QObject {
     QVERIFY(recent.find(inputs[0]) != nullptr);  // used: now the most recent
     QVERIFY(recent.contains(inputs[2]));          // looked at, not used: still the least recent
     QVERIFY(!recent.contains(inputs[1]));
-    recent.remember(entry({1, network(), 1.0, style::PathMode::Content, {}}));
+    recent.remember(entry({1, network(), 1.0, style::PathMode::Content, "", {}}));
     QCOMPARE(recent.size(), RecentResults::kCapacity);
     QVERIFY(!recent.contains(inputs[2]));  // the least recently used went
     QVERIFY(recent.find(inputs[0]) != nullptr);

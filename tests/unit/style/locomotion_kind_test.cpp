@@ -7,8 +7,10 @@
 #include <stdexcept>
 
 #include "features/feature_layout.h"
+#include "mapping/joint_mapping.h"
 #include "style/evaluation.h"
 #include "style/locomotion_kind.h"
+#include "style/stylize_cleanup_job.h"
 #include "style/stylizer.h"
 #include "style_test_support.h"
 
@@ -146,6 +148,60 @@ TEST(LocomotionKind, AKindGivenInTheRefinementIsAimedAtForEveryClipAndTheClipSay
   style::StyleRefinement off;
   off.iterations = 0;
   EXPECT_EQ(style::Stylizer(both, "tiny", off).stylize(content, 1.0).kind, "");
+}
+
+
+TEST(LocomotionKind, AKindGivenForOneCallIsAimedAtOverTheRefinementsAndAnUnknownOneIsRefused) {
+  Eigen::MatrixXd turning = test::fixtureClips()[0].features.values;
+  turning.row(kTurningVelocity).setConstant(20.0 * std::numbers::pi / 180.0 / kDefaultFeatureFps);
+  const nn::StyleModel both = tinyModelWithWalkAndTurn(turning);
+  style::StyleRefinement read, walk;
+  walk.kind = "walk";
+  const style::Stylizer reading(both, "tiny", read), walking(both, "tiny", walk);
+  EXPECT_THROW(reading.networkOutput(turning, {}, style::PathMode::Content, "jog"), std::invalid_argument);
+  EXPECT_THROW(reading.aimedKind(turning, {}, "Walk"), std::invalid_argument);
+  EXPECT_THROW(reading.stylizeFeatures(turning, {}, 1.0, style::PathMode::Content, "sprint"), std::invalid_argument);
+  EXPECT_EQ(reading.aimedKind(turning, {}, "run"), "run");
+  EXPECT_EQ(walking.aimedKind(turning, {}, "walk-turn-left"), "walk-turn-left");  // the call's over the refinement's
+  const Eigen::MatrixXd aimed_walk = walking.networkOutput(turning, {}, style::PathMode::Content);
+  const Eigen::MatrixXd aimed_turn = reading.networkOutput(turning, {}, style::PathMode::Content);
+  ASSERT_GT((aimed_walk - aimed_turn).cwiseAbs().maxCoeff(), 1e-3) << "the two targets must differ here";
+  EXPECT_EQ(reading.networkOutput(turning, {}, style::PathMode::Content, "walk"), aimed_walk);
+  EXPECT_EQ(walking.networkOutput(turning, {}, style::PathMode::Content, "walk-turn-left"), aimed_turn);
+  MotionFeatures content = test::fixtureClips()[0].features;
+  content.values = turning;
+  const style::StylizedClip clip = reading.stylize(content, 1.0, style::PathMode::Content, "walk");
+  EXPECT_EQ(clip.kind, "walk");
+  EXPECT_EQ(clip.features, walking.stylize(content, 1.0).features);
+}
+
+// The job's kind (the app's Aim at): refused when unknown; a change runs the network again on a job's
+// memory, as the memory-less job does, and a strength change after it keeps that output.
+TEST(LocomotionKind, AJobsKindIsCheckedAndAChangeOfItRunsTheNetworkAgain) {
+  style::StylizeCleanupJob job;
+  job.content = readBvh(test::fixture("cmu_131_01.bvh"));
+  job.content.values.conservativeResize(90, Eigen::NoChange);
+  job.mapping = mapJoints(job.content.skeleton, "cmu_131_01.bvh");
+  const MotionFeatures features = extractFeatures(job.content, job.mapping);
+  const std::string own = style::locomotionKind(features.values, features.contacts);  // aimed at the walk's
+  ASSERT_TRUE(own == "walk" || own == "walk-turn-right") << own;
+  job.stylizer = std::make_shared<const style::Stylizer>(tinyModelWithWalkAndTurn(features.values));
+  job.kind = "shuffle";
+  EXPECT_THROW(job.validate(), std::invalid_argument);
+  job.kind.clear();
+  job.memory = std::make_shared<style::StylizeCleanupMemory>();
+  const style::StylizeCleanupResult read = job.run();
+  EXPECT_EQ(read.stylized.kind, own);
+  job.kind = "walk-turn-left";
+  style::StylizeCleanupJob fresh = job;
+  fresh.memory = nullptr;
+  const style::StylizeCleanupResult chosen = job.run();
+  EXPECT_FALSE(chosen.network_output_kept);
+  EXPECT_EQ(chosen.stylized.kind, "walk-turn-left");
+  EXPECT_EQ(chosen.stylized.features, fresh.run().stylized.features);
+  EXPECT_GT((chosen.stylized.features - read.stylized.features).cwiseAbs().maxCoeff(), 1e-3);
+  job.strength = 0.5;
+  EXPECT_TRUE(job.run().network_output_kept);
 }
 
 }  // namespace

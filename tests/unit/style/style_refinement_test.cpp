@@ -226,10 +226,10 @@ TEST(StyleRefinement, ASetCancelFlagStopsIt) {
 
   const Eigen::MatrixXd& clip = test::fixtureClips()[0].features.values;
   const style::Stylizer refining(tinyModelWithTarget(), "tiny");
-  EXPECT_THROW(refining.networkOutput(clip, {}, style::PathMode::Content, &cancel), OperationCancelled);
-  EXPECT_EQ(refining.networkOutput(clip, {}, style::PathMode::Content, &go), refining.networkOutput(clip, {}, style::PathMode::Content));
+  EXPECT_THROW(refining.networkOutput(clip, {}, style::PathMode::Content, {}, &cancel), OperationCancelled);
+  EXPECT_EQ(refining.networkOutput(clip, {}, style::PathMode::Content, {}, &go), refining.networkOutput(clip, {}, style::PathMode::Content));
   const style::Stylizer plain(test::tinyStyleModel(), "tiny");  // no style targets: no refinement
-  EXPECT_NO_THROW(plain.networkOutput(clip, {}, style::PathMode::Content, &cancel));
+  EXPECT_NO_THROW(plain.networkOutput(clip, {}, style::PathMode::Content, {}, &cancel));
 }
 
 TEST(StyleRefinement, TheStylizerRunsItOnlyWithTargetsAndItAddsStyle) {

@@ -1,0 +1,86 @@
+// An animator's path through "Aim at" (AimChoice, style/locomotion_kind.h): the shipped elderly network
+// on the CMU walk sample aims at the style's walk, read from the clip; the animator picks the style's
+// run from the control with the keyboard, as a user does; the result follows at once, is the one
+// `motionstyle-cli stylize --kind run` gives (the same Stylizer told the kind), and the status says it
+// was chosen; back to "Read from the clip", the first result comes back.
+#include <QComboBox>
+#include <QSignalSpy>
+
+#include <filesystem>
+
+#include "common/resource_paths.h"
+#include "features/representation.h"
+#include "gui_test_support.h"
+#include "main_window.h"
+#include "result_panel.h"
+#include "style/training.h"
+
+using namespace motionstyle;
+
+class AimTest : public QObject {
+  Q_OBJECT
+
+ private slots:
+  void theStyleClipAimedAtIsReadFromTheClipOrChosen() {
+    const auto resources = resourceDirectory();
+    QVERIFY2(resources.has_value(), "the repository's resources/ was not found");
+    const auto network = shippedNetworkFile(*resources, "elderly");
+    QVERIFY(network.has_value());
+    const std::filesystem::path sample = *resources / "samples" / "cmu_131_01_walk.bvh";
+
+    MainWindow window(false);
+    window.setErrorReporter([](const QString& title, const QString& message) { QFAIL(qPrintable(title + message)); });
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    ResultPanel* panel = window.resultPanel();
+    QSignalSpy ended(panel, &ResultPanel::jobEnded);
+    QCOMPARE(window.openFiles({QString::fromStdString(sample.string())}), 1);
+    QVERIFY(panel->loadNetworkFile(QString::fromStdString(network->string())));
+    panel->stylize();
+    QVERIFY(test::waitForJobs(ended));
+    QVERIFY2(test::statusLine(window).contains(QStringLiteral("Aimed at the style's walk (read from the clip).")),
+             qPrintable(test::statusLine(window)));
+    const auto read = panel->result();
+    QCOMPARE(read->stylized.kind, std::string("walk"));
+    const Eigen::MatrixXd walk_features = read->stylized.features;
+
+    // The animator picks the style's run: focus on the control, two steps down (walk, run).
+    auto* aim = panel->findChild<QComboBox*>(QStringLiteral("AimChoice"));
+    QVERIFY(aim != nullptr && aim->isEnabled());
+    QCOMPARE(aim->currentText(), QStringLiteral("Read from the clip"));
+    aim->setFocus();
+    const int jobs = static_cast<int>(ended.count());
+    QTest::keyClick(aim, Qt::Key_Down);
+    QTest::keyClick(aim, Qt::Key_Down);
+    QCOMPARE(aim->currentText(), QStringLiteral("The style's run"));
+    QCOMPARE(panel->aimKind(), std::string("run"));
+    QVERIFY(test::waitForJobs(ended, jobs + 1));
+    QTRY_VERIFY_WITH_TIMEOUT(!panel->isBusy() && panel->result()->stylized.kind == "run", 60000);
+    QVERIFY2(test::statusLine(window).contains(QStringLiteral("Aimed at the style's run (chosen under Aim at).")),
+             qPrintable(test::statusLine(window)));
+
+    // What the CLI's --kind run gives: the same network told the kind, on the same clip.
+    style::StyleRefinement run;
+    run.kind = "run";
+    const style::Stylizer told(style::loadCompatibleStyleModel(*network), network->string(), run);
+    const LoadedClip& clip = window.clip(0);
+    const MotionFeatures features = extractFeatures(clip.motion, *clip.mapping);
+    const Eigen::MatrixXd& run_features = panel->result()->stylized.features;
+    QVERIFY(run_features == told.stylize(features, 1.0).features);
+    const double moved = (run_features - walk_features).cwiseAbs().maxCoeff();
+    qInfo("elderly on the CMU walk sample, aimed at the style's run: features move up to %.2f from the walk's", moved);
+    QVERIFY2(moved > 1.0, "aiming at the style's run changed nothing");
+
+    // Back to the clip's own reading: the first result again, bit for bit (computed again: the panel
+    // remembers one result per network, RecentResults).
+    QTest::keyClick(aim, Qt::Key_Up);
+    QTest::keyClick(aim, Qt::Key_Up);
+    QCOMPARE(panel->aimKind(), std::string());
+    QTRY_VERIFY_WITH_TIMEOUT(!panel->isBusy() && panel->result()->stylized.kind == "walk", 60000);
+    QVERIFY(panel->result()->stylized.features == walk_features);
+    QVERIFY2(test::statusLine(window).contains(QStringLiteral("(read from the clip).")), qPrintable(test::statusLine(window)));
+  }
+};
+
+MOTIONSTYLE_GUI_TEST_MAIN(AimTest)
+#include "test_aim.moc"
