@@ -21,6 +21,7 @@
 #include "common/text_safety.h"
 #include "nn/network_file.h"
 #include "style/familiarity.h"
+#include "style/locomotion_kind.h"
 #include "style/motion_dataset.h"
 #include "style/reconstruction_memory.h"
 #include "stylized_output.h"
@@ -114,6 +115,7 @@ nlohmann::ordered_json describeClip(const std::string& path, const std::optional
     contacts[std::string(contactLabelName(label))] = {{"fraction", summary.fraction}, {"segments", summary.segments}};
   }
   info["contacts"] = {{"fps", features.anchor.fps}, {"labels", contacts}};
+  info["locomotion"] = style::locomotionKind(features.values, features.contacts);  // what stylize aims at
   if (!loss_network.problem.empty()) info["familiarity"] = {{"error", loss_network.problem}};
   if (loss_network.model) {
     const style::Familiarity familiarity = style::measureFamiliarity(*loss_network.model, features.values);
@@ -158,7 +160,8 @@ void printText(const nlohmann::ordered_json& info) {
   std::printf("\n  contacts     at %.4g fps:", info["contacts"]["fps"].get<double>());
   for (const auto& [name, summary] : info["contacts"]["labels"].items())
     std::printf(" %s %.0f%% (%d)", name.c_str(), 100.0 * summary["fraction"].get<double>(), summary["segments"].get<int>());
-  std::printf("\n");
+  std::printf("\n  locomotion   %s (read from its contacts and turning: the style clip stylize aims at; --kind "
+              "sets another)\n", style::locomotionKindText(info["locomotion"].get<std::string>()).c_str());
   if (info.contains("familiarity") && info["familiarity"].contains("error"))
     std::printf("  familiarity  unknown: %s\n", text(info["familiarity"]["error"]).c_str());
   else if (info.contains("familiarity"))

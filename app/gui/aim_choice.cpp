@@ -1,5 +1,9 @@
 #include "aim_choice.h"
 
+#include <QSignalBlocker>
+
+#include <algorithm>
+
 #include "style/locomotion_kind.h"
 
 namespace motionstyle {
@@ -14,15 +18,19 @@ AimChoice::AimChoice(QWidget* parent) : QComboBox(parent) {
                 "Read from the clip: a run where a fifth of the frames have no foot down, a turning walk where "
                 "it turns steadily.\nChoose one when the reading is wrong for your clip (a shuffling run read "
                 "as a walk)."));
-  connect(this, &QComboBox::currentIndexChanged, this, &AimChoice::kindChanged);
+  connect(this, &QComboBox::currentIndexChanged, this, [this] {
+    by_clip_[clip_file_] = currentData().toString();
+    emit kindChanged();
+  });
+}
+
+void AimChoice::showChoiceFor(const QString& clip_file) {
+  clip_file_ = clip_file;
+  const QSignalBlocker quiet(this);
+  setCurrentIndex(std::max(0, findData(by_clip_.value(clip_file))));
 }
 
 std::string AimChoice::kind() const { return currentData().toString().toStdString(); }
-
-void AimChoice::setKind(const std::string& kind) {
-  const int index = findData(QString::fromStdString(kind));
-  setCurrentIndex(index >= 0 ? index : 0);
-}
 
 QString AimChoice::statusSentence(const std::string& aimed) const {
   if (aimed.empty()) return {};

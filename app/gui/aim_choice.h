@@ -6,6 +6,7 @@
 // walk) or to try the style's other gait. The same choice as `motionstyle-cli stylize --kind`.
 
 #include <QComboBox>
+#include <QMap>
 #include <QString>
 
 #include <string>
@@ -20,8 +21,10 @@ class AimChoice : public QComboBox {
 
   // "" (read from the clip, the first entry) or one of style::kLocomotionKinds.
   std::string kind() const;
-  // Selects `kind` ("" or one of kLocomotionKinds); any other selects "read from the clip".
-  void setKind(const std::string& kind);
+  // Shows the choice made for the clip `clip_file` (the last one picked while it was the content),
+  // "read from the clip" for one without: a kind belongs to a clip, so another clip does not inherit
+  // it. No kindChanged: the caller redoes its result for the new clip anyway.
+  void showChoiceFor(const QString& clip_file);
 
   // The status's sentence for a result aimed at `aimed` (the StylizedClip's kind), saying whether it
   // was read from the clip or chosen here: " Aimed at the style's walk (read from the clip)."; "" for
@@ -29,7 +32,11 @@ class AimChoice : public QComboBox {
   QString statusSentence(const std::string& aimed) const;
 
  signals:
-  void kindChanged();  // the user or setKind picked another entry
+  void kindChanged();  // the user picked another entry
+
+ private:
+  QString clip_file_;                 // the content clip the choice is for
+  QMap<QString, QString> by_clip_;    // clip file -> the kind picked for it ("" none)
 };
 
 }  // namespace motionstyle

@@ -167,6 +167,7 @@ void ResultPanel::setContentClip(const LoadedClip* clip) {
   stopLookAhead();
   recent_.clear();
   overrides_ = content_ ? content_->contact_overrides : Eigen::MatrixXi();
+  aim_choice_->showChoiceFor(content_ ? content_->path : QString());
   given_stylized_.reset();
   clearResult();
   refreshControls();
@@ -209,8 +210,6 @@ style::PathMode ResultPanel::pathMode() const {
 void ResultPanel::setPathMode(style::PathMode mode) { keep_path_->setChecked(mode == style::PathMode::Content); }
 
 std::string ResultPanel::aimKind() const { return aim_choice_->kind(); }
-
-void ResultPanel::setAimKind(const std::string& kind) { aim_choice_->setKind(kind); }
 
 const std::optional<style::Familiarity>& ResultPanel::familiarity() const { return familiarity_label_->familiarity(); }
 

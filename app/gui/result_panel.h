@@ -138,7 +138,6 @@ class ResultPanel : public QWidget {
   // Which of the style's clips the refinement aims at (AimChoice, style/locomotion_kind.h): "" read
   // from the content clip (the default), else one of style::kLocomotionKinds.
   std::string aimKind() const;
-  void setAimKind(const std::string& kind);
   // How familiar the content is to the chosen network (style/familiarity.h); nullopt without a mapped
   // content clip and a network.
   const std::optional<style::Familiarity>& familiarity() const;

@@ -34,6 +34,7 @@ expect 2 "option --loss-network given more than once" "$cli" info "$data/zombie.
 
 # Working commands.
 expect 0 "up axis      +Z" "$cli" info "$data/zombie.bvh"
+expect 0 "locomotion   walk (read from its contacts and turning" "$cli" info "$data/zombie.bvh"
 # A folder: every .bvh below it, as stylize and cleanup take folders.
 mkdir -p "$work/takes/day2"
 cp "$data/zombie.bvh" "$work/takes/a.bvh"

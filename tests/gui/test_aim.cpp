@@ -2,7 +2,8 @@
 // on the CMU walk sample aims at the style's walk, read from the clip; the animator picks the style's
 // run from the control with the keyboard, as a user does; the result follows at once, is the one
 // `motionstyle-cli stylize --kind run` gives (the same Stylizer told the kind), and the status says it
-// was chosen; back to "Read from the clip", the first result comes back.
+// was chosen; the choice stays with the clip, not with the next one opened; back to "Read from the
+// clip", the first result comes back.
 #include <QComboBox>
 #include <QSignalSpy>
 
@@ -65,11 +66,23 @@ class AimTest : public QObject {
     const style::Stylizer told(style::loadCompatibleStyleModel(*network), network->string(), run);
     const LoadedClip& clip = window.clip(0);
     const MotionFeatures features = extractFeatures(clip.motion, *clip.mapping);
-    const Eigen::MatrixXd& run_features = panel->result()->stylized.features;
+    const Eigen::MatrixXd run_features = panel->result()->stylized.features;
     QVERIFY(run_features == told.stylize(features, 1.0).features);
     const double moved = (run_features - walk_features).cwiseAbs().maxCoeff();
     qInfo("elderly on the CMU walk sample, aimed at the style's run: features move up to %.2f from the walk's", moved);
     QVERIFY2(moved > 1.0, "aiming at the style's run changed nothing");
+
+    // The kind belongs to the clip: another content clip is read from itself, and the first one, made
+    // the content again, has its choice back.
+    const std::filesystem::path zombie = *resources / "samples" / "zombie_walk.bvh";
+    QCOMPARE(window.openFiles({QString::fromStdString(zombie.string())}), 1);
+    window.setContentClip(1);
+    QCOMPARE(aim->currentText(), QStringLiteral("Read from the clip"));
+    window.setContentClip(0);
+    QCOMPARE(aim->currentText(), QStringLiteral("The style's run"));
+    panel->stylize();
+    QTRY_VERIFY_WITH_TIMEOUT(!panel->isBusy() && panel->result() && panel->result()->stylized.kind == "run", 60000);
+    QVERIFY(panel->result()->stylized.features == run_features);
 
     // Back to the clip's own reading: the first result again, bit for bit (computed again: the panel
     // remembers one result per network, RecentResults).
