@@ -34,7 +34,8 @@ struct StylizeRequest {
   std::filesystem::path network;
   std::optional<std::filesystem::path> loss_network;  // checked against the network's own loss network
   double strength = 1.0;
-  style::StyleRefinement refinement;  // --refine-steps, --kind
+  style::StyleRefinement refinement;  // --refine-steps
+  std::string kind;                   // --kind: "" read from each clip
   style::DatasetOptions dataset;
   OutputOptions output;  // --path, --no-cleanup, --fps, --time-limit; --metrics per clip
 };
@@ -59,7 +60,8 @@ std::string stylizeFile(const style::Stylizer& stylizer, const StylizeRequest& r
   const style::MotionClip clip = style::loadMotionClip(input, request.dataset);
   const style::Familiarity familiarity = style::measureFamiliarity(stylizer, clip.features.values);
   const auto start = std::chrono::steady_clock::now();
-  const style::StylizedClip stylized = stylizer.stylize(clip.features, request.strength, request.output.path);
+  const style::StylizedClip stylized =
+      stylizer.stylize(clip.features, request.strength, request.output.path, request.kind);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::ostringstream log;
   log << "stylized " << stylized.frameCount() << " frames (60 fps) at strength " << request.strength << " in "
@@ -69,7 +71,7 @@ std::string stylizeFile(const style::Stylizer& stylizer, const StylizeRequest& r
   OutputOptions options = request.output;
   options.metrics = metrics;
   if (!stylized.kind.empty()) {
-    const bool given = !request.refinement.kind.empty();
+    const bool given = !request.kind.empty();
     log << "aimed at the style's " << style::locomotionKindText(stylized.kind)
         << (given ? " (--kind)" : " (read from the clip; --kind sets it)") << "\n";
     options.extra_metrics["style_target"] = {{"kind", stylized.kind}, {"from", given ? "--kind" : "clip"}};
@@ -97,7 +99,7 @@ int runStylize(const Args& args) {
   if (auto kind = parsed.value("kind"); kind && *kind != "auto") {
     if (!style::isLocomotionKind(*kind))
       throw UsageError("--kind must be auto, " + style::locomotionKindList() + ", not '" + *kind + "'");
-    request.refinement.kind = *kind;
+    request.kind = *kind;
   }
   request.dataset.features.unit = lengthUnit(parsed);
   const std::filesystem::path out = parsed.required("out");

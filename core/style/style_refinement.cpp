@@ -27,7 +27,6 @@ void StyleRefinement::validate() const {
     throw std::invalid_argument("refinement weights must be finite, >= 0 and not both 0");
   if (!(converged_fraction >= 0.0 && converged_fraction < 1.0))
     throw std::invalid_argument("refinement converged fraction must be in [0, 1)");
-  requireKindOrNone(kind, "refinement kind");
 }
 
 std::vector<float> transformationShare(const Eigen::MatrixXd& content, Eigen::Index columns) {

@@ -35,13 +35,10 @@ struct StyleRefinement {
   double learning_rate = 0.03;   // in normalised hidden units per step
   double content_weight = 1.0;   // eq. 10's c (nn::LossWeights)
   double style_weight = 100.0;   // eq. 10's s
-  // The kind of locomotion whose style target the refinement aims at (locomotion_kind.h): "" reads it
-  // from each clip (locomotionKind), one of kLocomotionKinds sets it for every clip (a clip the reading
-  // gets wrong: a shuffling run read as a walk).
-  std::string kind;
+  // (The target is each clip's: Stylizer::aimedKind, read from it or the caller's choice.)
 
   // Throws std::invalid_argument naming the field (iterations in [0, kMaxIterations], converged_fraction
-  // in [0, 1), kind "" or one of kLocomotionKinds).
+  // in [0, 1)).
   void validate() const;
 };
 

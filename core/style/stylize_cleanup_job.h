@@ -76,9 +76,9 @@ struct StylizeCleanupJob {
   std::shared_ptr<const Stylizer> stylizer;
   double strength = 1.0;
   PathMode path = PathMode::Content;  // whose root path the output follows
-  // The locomotion kind whose style clip the refinement aims at (locomotion_kind.h): "" the network's
-  // own setting (read from the clip, unless the Stylizer was made with one), else one of
-  // kLocomotionKinds: the user's choice for a clip the reading gets wrong (a shuffling run read as a walk).
+  // The locomotion kind whose style clip the refinement aims at (locomotion_kind.h): "" read from the
+  // clip, else one of kLocomotionKinds: the user's choice for a clip the reading gets wrong (a shuffling
+  // run read as a walk).
   std::string kind;
   std::optional<StylizedClip> stylized;
   // User contact overrides at the CONTENT's rate (frames x 4, -1 auto / 0 off / 1 on); empty: none.

@@ -154,8 +154,7 @@ Eigen::MatrixXd Stylizer::stylizeFeatures(const Eigen::MatrixXd& features, const
 std::string Stylizer::aimedKind(const Eigen::MatrixXd& features, const Eigen::MatrixXd& contacts,
                                 const std::string& kind) const {
   requireKindOrNone(kind, "the kind to aim at");
-  if (!kind.empty()) return kind;
-  return refinement_.kind.empty() ? locomotionKind(features, contacts) : refinement_.kind;
+  return kind.empty() ? locomotionKind(features, contacts) : kind;
 }
 
 StylizedClip Stylizer::clipOf(const MotionFeatures& content, Eigen::MatrixXd features, double strength,

@@ -1,7 +1,7 @@
 // An animator's path through "Aim at" (AimChoice, style/locomotion_kind.h): the shipped elderly network
 // on the CMU walk sample aims at the style's walk, read from the clip; the animator picks the style's
 // run from the control with the keyboard, as a user does; the result follows at once, is the one
-// `motionstyle-cli stylize --kind run` gives (the same Stylizer told the kind), and the status says it
+// `motionstyle-cli stylize --kind run` gives (the same network told the kind), and the status says it
 // was chosen; the choice stays with the clip, not with the next one opened; back to "Read from the
 // clip", the first result comes back.
 #include <QComboBox>
@@ -61,13 +61,11 @@ class AimTest : public QObject {
              qPrintable(test::statusLine(window)));
 
     // What the CLI's --kind run gives: the same network told the kind, on the same clip.
-    style::StyleRefinement run;
-    run.kind = "run";
-    const style::Stylizer told(style::loadCompatibleStyleModel(*network), network->string(), run);
+    const style::Stylizer told(style::loadCompatibleStyleModel(*network), network->string());
     const LoadedClip& clip = window.clip(0);
     const MotionFeatures features = extractFeatures(clip.motion, *clip.mapping);
     const Eigen::MatrixXd run_features = panel->result()->stylized.features;
-    QVERIFY(run_features == told.stylize(features, 1.0).features);
+    QVERIFY(run_features == told.stylize(features, 1.0, style::PathMode::Content, "run").features);
     const double moved = (run_features - walk_features).cwiseAbs().maxCoeff();
     qInfo("elderly on the CMU walk sample, aimed at the style's run: features move up to %.2f from the walk's", moved);
     QVERIFY2(moved > 1.0, "aiming at the style's run changed nothing");

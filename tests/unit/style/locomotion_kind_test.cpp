@@ -125,54 +125,34 @@ TEST(LocomotionKind, TheRefinementAimsAtTheClipsKindNotTheTargetNearestTheNetwor
   EXPECT_EQ(refined(both, straight), refined(walk_only, straight));
 }
 
-TEST(LocomotionKind, AKindGivenInTheRefinementIsAimedAtForEveryClipAndTheClipSaysWhich) {
+TEST(LocomotionKind, AKindGivenIsAimedAtInsteadOfTheClipsAndTheClipSaysWhich) {
   Eigen::MatrixXd turning = test::fixtureClips()[0].features.values;
   turning.row(kTurningVelocity).setConstant(20.0 * std::numbers::pi / 180.0 / kDefaultFeatureFps);
   const nn::StyleModel both = tinyModelWithWalkAndTurn(turning);
   nn::StyleModel walk_only = both;
   walk_only.style_targets.pop_back();
-  style::StyleRefinement read, walk;
-  walk.kind = "walk";
-  const style::Stylizer reading(both, "tiny", read), walking(both, "tiny", walk);
-  EXPECT_EQ(reading.aimedKind(turning, {}), "walk-turn-left");
-  EXPECT_EQ(walking.aimedKind(turning, {}), "walk");
+  const style::Stylizer stylizer(both, "tiny");
+  EXPECT_THROW(stylizer.networkOutput(turning, {}, style::PathMode::Content, "jog"), std::invalid_argument);
+  EXPECT_THROW(stylizer.aimedKind(turning, {}, "Walk"), std::invalid_argument);
+  EXPECT_THROW(stylizer.stylizeFeatures(turning, {}, 1.0, style::PathMode::Content, "sprint"), std::invalid_argument);
+  EXPECT_EQ(stylizer.aimedKind(turning, {}), "walk-turn-left");
+  EXPECT_EQ(stylizer.aimedKind(turning, {}, "run"), "run");
+  EXPECT_EQ(stylizer.aimedKind(turning, {}, "walk"), "walk");
   // Told "walk", the turning clip is refined as the walk-only network refines it.
-  EXPECT_EQ(walking.networkOutput(turning, {}, style::PathMode::Content),
-            style::Stylizer(walk_only, "tiny", read).networkOutput(turning, {}, style::PathMode::Content));
+  const Eigen::MatrixXd aimed_walk = stylizer.networkOutput(turning, {}, style::PathMode::Content, "walk");
+  EXPECT_EQ(aimed_walk, style::Stylizer(walk_only, "tiny").networkOutput(turning, {}, style::PathMode::Content));
+  EXPECT_GT((aimed_walk - stylizer.networkOutput(turning, {}, style::PathMode::Content)).cwiseAbs().maxCoeff(), 1e-3);
   // The stylized clip names the kind aimed at; none without a refinement or at strength 0.
   MotionFeatures content = test::fixtureClips()[0].features;
   content.values = turning;
-  EXPECT_EQ(reading.stylize(content, 1.0).kind, "walk-turn-left");
-  EXPECT_EQ(walking.stylize(content, 0.5).kind, "walk");
-  EXPECT_EQ(reading.stylize(content, 0.0).kind, "");
+  EXPECT_EQ(stylizer.stylize(content, 1.0).kind, "walk-turn-left");
+  const style::StylizedClip told = stylizer.stylize(content, 0.5, style::PathMode::Content, "walk");
+  EXPECT_EQ(told.kind, "walk");
+  EXPECT_EQ(told.features, style::Stylizer(walk_only, "tiny").stylize(content, 0.5).features);
+  EXPECT_EQ(stylizer.stylize(content, 0.0).kind, "");
   style::StyleRefinement off;
   off.iterations = 0;
-  EXPECT_EQ(style::Stylizer(both, "tiny", off).stylize(content, 1.0).kind, "");
-}
-
-
-TEST(LocomotionKind, AKindGivenForOneCallIsAimedAtOverTheRefinementsAndAnUnknownOneIsRefused) {
-  Eigen::MatrixXd turning = test::fixtureClips()[0].features.values;
-  turning.row(kTurningVelocity).setConstant(20.0 * std::numbers::pi / 180.0 / kDefaultFeatureFps);
-  const nn::StyleModel both = tinyModelWithWalkAndTurn(turning);
-  style::StyleRefinement read, walk;
-  walk.kind = "walk";
-  const style::Stylizer reading(both, "tiny", read), walking(both, "tiny", walk);
-  EXPECT_THROW(reading.networkOutput(turning, {}, style::PathMode::Content, "jog"), std::invalid_argument);
-  EXPECT_THROW(reading.aimedKind(turning, {}, "Walk"), std::invalid_argument);
-  EXPECT_THROW(reading.stylizeFeatures(turning, {}, 1.0, style::PathMode::Content, "sprint"), std::invalid_argument);
-  EXPECT_EQ(reading.aimedKind(turning, {}, "run"), "run");
-  EXPECT_EQ(walking.aimedKind(turning, {}, "walk-turn-left"), "walk-turn-left");  // the call's over the refinement's
-  const Eigen::MatrixXd aimed_walk = walking.networkOutput(turning, {}, style::PathMode::Content);
-  const Eigen::MatrixXd aimed_turn = reading.networkOutput(turning, {}, style::PathMode::Content);
-  ASSERT_GT((aimed_walk - aimed_turn).cwiseAbs().maxCoeff(), 1e-3) << "the two targets must differ here";
-  EXPECT_EQ(reading.networkOutput(turning, {}, style::PathMode::Content, "walk"), aimed_walk);
-  EXPECT_EQ(walking.networkOutput(turning, {}, style::PathMode::Content, "walk-turn-left"), aimed_turn);
-  MotionFeatures content = test::fixtureClips()[0].features;
-  content.values = turning;
-  const style::StylizedClip clip = reading.stylize(content, 1.0, style::PathMode::Content, "walk");
-  EXPECT_EQ(clip.kind, "walk");
-  EXPECT_EQ(clip.features, walking.stylize(content, 1.0).features);
+  EXPECT_EQ(style::Stylizer(both, "tiny", off).stylize(content, 1.0, style::PathMode::Content, "run").kind, "");
 }
 
 // The job's kind (the app's Aim at): refused when unknown; a change runs the network again on a job's
