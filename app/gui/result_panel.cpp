@@ -464,7 +464,8 @@ void ResultPanel::refreshControls() {
   stylize_button_->setToolTip(missing.isEmpty() ? tr("Stylize the content and clean up the result") : missing);
   strength_slider_->setEnabled(!given_stylized_);
   keep_path_->setEnabled(!given_stylized_);
-  aim_choice_->setEnabled(!given_stylized_);
+  // A network without stored style targets (files before format 3) has no refinement to aim.
+  aim_choice_->setEnabled(!given_stylized_ && (!stylizer_ || stylizer_->refinementSteps() > 0));
   cancel_button_->setEnabled(busy_);
   export_button_->setEnabled(result_ != nullptr && !busy_);
   metrics_->setEnabled(!resultIsStale());  // greyed: the figures of an out-of-date result

@@ -15,6 +15,7 @@
 #include "main_window.h"
 #include "result_panel.h"
 #include "style/training.h"
+#include "tiny_style_network.h"
 
 using namespace motionstyle;
 
@@ -90,6 +91,23 @@ class AimTest : public QObject {
     QTRY_VERIFY_WITH_TIMEOUT(!panel->isBusy() && panel->result()->stylized.kind == "walk", 60000);
     QVERIFY(panel->result()->stylized.features == walk_features);
     QVERIFY2(test::statusLine(window).contains(QStringLiteral("(read from the clip).")), qPrintable(test::statusLine(window)));
+  }
+
+  // A network without stored style targets (a file before format 3) has no refinement to aim: the
+  // control is greyed while it is the chosen style.
+  void aNetworkWithoutStyleTargetsHasNothingToAim() {
+    MainWindow window(false);
+    ResultPanel* panel = window.resultPanel();
+    auto* aim = panel->findChild<QComboBox*>(QStringLiteral("AimChoice"));
+    QVERIFY(aim != nullptr && aim->isEnabled());
+    nn::StyleModel model = test::tinyStyleModel();
+    QVERIFY(model.style_targets.empty());
+    panel->setStyleNetwork(std::make_shared<const nn::StyleModel>(model), QStringLiteral("no targets"));
+    QVERIFY(!aim->isEnabled());
+    model.style_targets.push_back({"walk", nn::Mat<float>::Zero(model.loss_network.shape().hidden,
+                                                                  model.loss_network.shape().hidden)});
+    panel->setStyleNetwork(std::make_shared<const nn::StyleModel>(model), QStringLiteral("a walk target"));
+    QVERIFY(aim->isEnabled());
   }
 };
 
