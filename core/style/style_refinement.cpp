@@ -13,7 +13,6 @@
 #include "nn/losses.h"
 #include "style/cancellation.h"
 #include "style/hidden_style_descent.h"
-#include "style/locomotion_kind.h"
 
 namespace motionstyle::style {
 

@@ -15,7 +15,6 @@
 
 #include <Eigen/Core>
 #include <atomic>
-#include <string>
 #include <vector>
 
 #include "nn/network_file.h"

@@ -72,10 +72,10 @@ class Stylizer {
   int refinementSteps() const { return model_.style_targets.empty() ? 0 : refinement_.iterations; }
   // The locomotion kind whose style target the refinement aims at on this clip: `kind`, the caller's
   // choice for it (the app's Aim at, stylize --kind), else read from the clip (locomotionKind; contacts
-  // 4 x frames or 0 x 0). The target is the one labelled with it
-  // (styleTargetFor), else the nearest to T's output. Every call below that takes a `kind` aims at
-  // aimedKind(features, contacts, kind). Throws std::invalid_argument for a kind that is neither ""
-  // nor one of kLocomotionKinds, else as locomotionKind.
+  // 4 x frames or 0 x 0). The target is the one labelled with it (styleTargetFor), else the nearest to
+  // T's output. Every call below that takes a `kind` aims at aimedKind(features, contacts, kind).
+  // Throws std::invalid_argument for a kind that is neither "" nor one of kLocomotionKinds, else as
+  // locomotionKind.
   std::string aimedKind(const Eigen::MatrixXd& features, const Eigen::MatrixXd& contacts,
                         const std::string& kind = {}) const;
 
