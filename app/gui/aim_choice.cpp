@@ -24,9 +24,11 @@ AimChoice::AimChoice(QWidget* parent) : QComboBox(parent) {
   });
 }
 
-void AimChoice::showChoiceFor(const QString& clip_file) {
+void AimChoice::showChoiceFor(const QString& clip_file, const std::string& read_kind) {
   clip_file_ = clip_file;
   const QSignalBlocker quiet(this);
+  setItemText(0, read_kind.empty() ? tr("Read from the clip")
+                                   : tr("Read from the clip: %1").arg(QString::fromStdString(style::locomotionKindText(read_kind))));
   setCurrentIndex(std::max(0, findData(by_clip_.value(clip_file))));
 }
 

@@ -23,8 +23,10 @@ class AimChoice : public QComboBox {
   std::string kind() const;
   // Shows the choice made for the clip `clip_file` (the last one picked while it was the content),
   // "read from the clip" for one without: a kind belongs to a clip, so another clip does not inherit
-  // it. No kindChanged: the caller redoes its result for the new clip anyway.
-  void showChoiceFor(const QString& clip_file);
+  // it. `read_kind` is what style::locomotionKind reads from the clip, shown in the first entry before
+  // any result ("Read from the clip: walk"; "" for no clip or none read). No kindChanged: the caller
+  // redoes its result for the new clip anyway.
+  void showChoiceFor(const QString& clip_file, const std::string& read_kind);
 
   // The status's sentence for a result aimed at `aimed` (the StylizedClip's kind), saying whether it
   // was read from the clip or chosen here: " Aimed at the style's walk (read from the clip)."; "" for

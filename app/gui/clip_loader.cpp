@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <exception>
 #include <optional>
 #include <stdexcept>
 
@@ -140,6 +141,15 @@ void saveContactTracksBeside(LoadedClip& clip) {
   tracks.overrides = clip.contact_overrides;
   saveContactTracks(tracks, file);
   clip.saved_contact_overrides = clip.contact_overrides;
+}
+
+std::shared_ptr<const MotionFeatures> clipFeatures(const LoadedClip& clip) {
+  if (!clip.mapping) return nullptr;
+  try {
+    return std::make_shared<const MotionFeatures>(extractFeatures(clip.motion, *clip.mapping));
+  } catch (const std::exception&) {  // std::bad_alloc included: the clip stays open, Stylize reports
+    return nullptr;
+  }
 }
 
 void remapClip(LoadedClip& clip, const std::filesystem::path& mapping_file) {

@@ -11,10 +11,12 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <optional>
 
 #include "display_space.h"
 #include "features/foot_contacts.h"
+#include "features/representation.h"
 #include "figure_data.h"
 #include "ik/contacts.h"
 #include "mapping/joint_mapping.h"
@@ -72,6 +74,11 @@ void saveContactTracksBeside(LoadedClip& clip);
 // is left alone and named in contacts_note). Throws InputError (bad or unreadable file) and
 // std::bad_alloc; never leaves a partial clip.
 LoadedClip loadClip(const std::filesystem::path& file);
+
+// The clip's features (extractFeatures with the default options, as a stylize job reads it), null when
+// it is unmapped or cannot be featurised (too short, say: Stylize then says why). For what the GUI
+// thread reads from a clip once, when it becomes the content: its familiarity and its locomotion kind.
+std::shared_ptr<const MotionFeatures> clipFeatures(const LoadedClip& clip);
 
 // Maps `clip` with a mapping file (mapping/mapping_file.h) and recomputes its display space and
 // contacts; the overrides are those saved beside it (or automatic). Throws InputError naming the mapping file; the clip is unchanged then.

@@ -3,7 +3,6 @@
 #include <exception>
 #include <optional>
 
-#include "features/representation.h"
 #include "shipped_networks.h"
 
 namespace motionstyle {
@@ -61,27 +60,25 @@ bool readAlike(const style::Stylizer* a, const style::Stylizer* b) {
 
 }  // namespace
 
-void FamiliarityLabel::measure(const LoadedClip* clip, std::shared_ptr<const style::Stylizer> network) {
+void FamiliarityLabel::measure(std::uint64_t clip_id, const MotionFeatures* features,
+                               std::shared_ptr<const style::Stylizer> network) {
   ShippedReader* shipped = network == nullptr ? shippedReader() : nullptr;
-  const bool readable = clip != nullptr && clip->mapping && (network != nullptr || shipped != nullptr);
-  if (readable && familiarity_ && clip->id == measured_clip_ && readAlike(network.get(), measured_with_.get())) {
+  const bool readable = features != nullptr && (network != nullptr || shipped != nullptr);
+  if (readable && familiarity_ && clip_id == measured_clip_ && readAlike(network.get(), measured_with_.get())) {
     measured_with_ = std::move(network);  // the same reading: the text stays
     return;
   }
   familiarity_.reset();
   measured_clip_ = 0;
   measured_with_.reset();
-  int rest_pose_frames = 0;
   if (readable) {
     try {
-      const MotionFeatures features = extractFeatures(clip->motion, *clip->mapping);
-      rest_pose_frames = features.anchor.rest_pose_frames;
       familiarity_ = network != nullptr
-                         ? style::measureFamiliarity(*network, features.values)
+                         ? style::measureFamiliarity(*network, features->values)
                          : style::familiarityFromReconstruction(
-                               features.values, style::projectFeatures(shipped->projection, shipped->model.normalisation,
-                                                                       features.values));
-      measured_clip_ = clip->id;
+                               features->values, style::projectFeatures(shipped->projection, shipped->model.normalisation,
+                                                                        features->values));
+      measured_clip_ = clip_id;
       measured_with_ = std::move(network);
     } catch (const std::exception&) {
       familiarity_.reset();
@@ -97,7 +94,7 @@ void FamiliarityLabel::measure(const LoadedClip* clip, std::shared_ptr<const sty
                           QString::fromStdString(style::familiaritySummary(*familiarity_)).toHtmlEscaped());
   if (familiarity_->level != style::FamiliarityLevel::Familiar) text += tr(" <a href=\"adapt\">Adapt...</a>");
   // features/rest_pose_frames.h: a CMU file's T-pose frame 0.
-  if (rest_pose_frames > 0) text += tr("<br>Frame 0 is the rig's rest pose, not motion: it is kept as it is.");
+  if (features->anchor.rest_pose_frames > 0) text += tr("<br>Frame 0 is the rig's rest pose, not motion: it is kept as it is.");
   setText(text);
 }
 

@@ -13,7 +13,7 @@
 #include <memory>
 #include <optional>
 
-#include "clip_loader.h"
+#include "features/representation.h"
 #include "nn/network_file.h"
 #include "style/familiarity.h"
 #include "style/stylizer.h"
@@ -26,13 +26,13 @@ class FamiliarityLabel : public QLabel {
  public:
   explicit FamiliarityLabel(QWidget* parent = nullptr);
 
-  // Measures `clip` (its content features) with `network`'s loss network, as the network prepared it
-  // (no layer set up again); before a style is chosen (null `network`) with the shipped loss network,
-  // the one every shipped style learnt against (prepared once, sharing its layers with the shipped
-  // styles). The reading is kept when the clip (LoadedClip::id) and the loss network (weights and
-  // normalisation) are those of the last one. No clip, or no network of either kind, reads "-"; so
-  // does a clip that cannot be featurised (Stylize says why).
-  void measure(const LoadedClip* clip, std::shared_ptr<const style::Stylizer> network);
+  // Measures the clip `clip_id` (LoadedClip::id) from its `features` (clipFeatures) with `network`'s
+  // loss network, as the network prepared it (no layer set up again); before a style is chosen (null
+  // `network`) with the shipped loss network, the one every shipped style learnt against (prepared
+  // once, sharing its layers with the shipped styles). The reading is kept when the clip and the loss
+  // network (weights and normalisation) are those of the last one. No features (no clip, or one that
+  // cannot be featurised: Stylize says why) or no network of either kind reads "-".
+  void measure(std::uint64_t clip_id, const MotionFeatures* features, std::shared_ptr<const style::Stylizer> network);
   const std::optional<style::Familiarity>& familiarity() const { return familiarity_; }
 
  signals:

@@ -26,6 +26,7 @@
 #include "result_figures.h"
 #include "result_metrics_view.h"
 #include "shipped_networks.h"
+#include "style/locomotion_kind.h"
 #include "style/training.h"
 
 namespace motionstyle {
@@ -167,7 +168,10 @@ void ResultPanel::setContentClip(const LoadedClip* clip) {
   stopLookAhead();
   recent_.clear();
   overrides_ = content_ ? content_->contact_overrides : Eigen::MatrixXi();
-  aim_choice_->showChoiceFor(content_ ? content_->path : QString());
+  content_features_ = content_ ? clipFeatures(*content_) : nullptr;
+  aim_choice_->showChoiceFor(content_ ? content_->path : QString(),
+                             content_features_ ? style::locomotionKind(content_features_->values, content_features_->contacts)
+                                               : std::string());
   given_stylized_.reset();
   clearResult();
   refreshControls();
@@ -257,7 +261,7 @@ void ResultPanel::inputsChanged(const QString& what, qint64 changed_ms) {
 }
 
 void ResultPanel::refreshFamiliarity() {
-  familiarity_label_->measure(content_.get(), stylizer_);
+  familiarity_label_->measure(content_ ? content_->id : 0, content_features_.get(), stylizer_);
   emit familiarityChanged();
 }
 

@@ -260,6 +260,7 @@ class ResultPanel : public QWidget {
   // the entry again uses the network again.
   std::map<QString, std::shared_ptr<const style::Stylizer>> unfiled_networks_;
   std::shared_ptr<const LoadedClip> content_;
+  std::shared_ptr<const MotionFeatures> content_features_;  // clipFeatures(content_): familiarity, kind read
   Eigen::MatrixXi overrides_;
   std::optional<style::StylizedClip> given_stylized_;
   std::shared_ptr<const style::StylizeCleanupResult> result_;

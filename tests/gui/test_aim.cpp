@@ -3,17 +3,20 @@
 // run from the control with the keyboard, as a user does; the result follows at once, is the one
 // `motionstyle-cli stylize --kind run` gives (the same network told the kind), and the status says it
 // was chosen; the choice stays with the clip, not with the next one opened; back to "Read from the
-// clip", the first result comes back.
+// clip", the first result comes back. Before any result, the first entry names the kind read ("Read
+// from the clip: walk"), the one the result then aims at.
 #include <QComboBox>
 #include <QSignalSpy>
 
 #include <filesystem>
 
+#include "aim_choice.h"
 #include "common/resource_paths.h"
 #include "features/representation.h"
 #include "gui_test_support.h"
 #include "main_window.h"
 #include "result_panel.h"
+#include "style/locomotion_kind.h"
 #include "style/training.h"
 #include "tiny_style_network.h"
 
@@ -38,6 +41,10 @@ class AimTest : public QObject {
     QSignalSpy ended(panel, &ResultPanel::jobEnded);
     QCOMPARE(window.openFiles({QString::fromStdString(sample.string())}), 1);
     QVERIFY(panel->loadNetworkFile(QString::fromStdString(network->string())));
+    // Before any result the control says what it reads from the clip, as `info` does.
+    auto* aim = panel->findChild<QComboBox*>(QStringLiteral("AimChoice"));
+    QVERIFY(aim != nullptr && aim->isEnabled());
+    QCOMPARE(aim->currentText(), QStringLiteral("Read from the clip: walk"));
     panel->stylize();
     QVERIFY(test::waitForJobs(ended));
     QVERIFY2(test::statusLine(window).contains(QStringLiteral("Aimed at the style's walk (read from the clip).")),
@@ -47,9 +54,6 @@ class AimTest : public QObject {
     const Eigen::MatrixXd walk_features = read->stylized.features;
 
     // The animator picks the style's run: focus on the control, two steps down (walk, run).
-    auto* aim = panel->findChild<QComboBox*>(QStringLiteral("AimChoice"));
-    QVERIFY(aim != nullptr && aim->isEnabled());
-    QCOMPARE(aim->currentText(), QStringLiteral("Read from the clip"));
     aim->setFocus();
     const int jobs = static_cast<int>(ended.count());
     QTest::keyClick(aim, Qt::Key_Down);
@@ -76,7 +80,12 @@ class AimTest : public QObject {
     const std::filesystem::path zombie = *resources / "samples" / "zombie_walk.bvh";
     QCOMPARE(window.openFiles({QString::fromStdString(zombie.string())}), 1);
     window.setContentClip(1);
-    QCOMPARE(aim->currentText(), QStringLiteral("Read from the clip"));
+    const LoadedClip& zombie_clip = window.clip(1);
+    const MotionFeatures zombie_features = extractFeatures(zombie_clip.motion, *zombie_clip.mapping);
+    const std::string zombie_kind = style::locomotionKind(zombie_features.values, zombie_features.contacts);
+    QCOMPARE(aim->currentText(),
+             QStringLiteral("Read from the clip: ") + QString::fromStdString(style::locomotionKindText(zombie_kind)));
+    QCOMPARE(panel->aimKind(), std::string());
     window.setContentClip(0);
     QCOMPARE(aim->currentText(), QStringLiteral("The style's run"));
     panel->stylize();
@@ -91,6 +100,23 @@ class AimTest : public QObject {
     QTRY_VERIFY_WITH_TIMEOUT(!panel->isBusy() && panel->result()->stylized.kind == "walk", 60000);
     QVERIFY(panel->result()->stylized.features == walk_features);
     QVERIFY2(test::statusLine(window).contains(QStringLiteral("(read from the clip).")), qPrintable(test::statusLine(window)));
+  }
+
+  // The first entry names the kind read from the clip, whichever it is, and only that: no clip, no kind.
+  void theFirstEntryNamesTheKindReadFromTheClip() {
+    AimChoice aim;
+    aim.showChoiceFor(QStringLiteral("/clips/turn.bvh"), "walk-turn-left");
+    QCOMPARE(aim.currentText(), QStringLiteral("Read from the clip: walk turning left"));
+    QCOMPARE(aim.kind(), std::string());
+    aim.setCurrentIndex(aim.findData(QStringLiteral("run")));
+    QCOMPARE(aim.kind(), std::string("run"));
+    aim.showChoiceFor(QStringLiteral("/clips/stand.bvh"), "walk");
+    QCOMPARE(aim.currentText(), QStringLiteral("Read from the clip: walk"));
+    aim.showChoiceFor(QString(), "");
+    QCOMPARE(aim.currentText(), QStringLiteral("Read from the clip"));
+    aim.showChoiceFor(QStringLiteral("/clips/turn.bvh"), "walk-turn-left");
+    QCOMPARE(aim.currentText(), QStringLiteral("The style's run"));
+    QCOMPARE(aim.itemText(0), QStringLiteral("Read from the clip: walk turning left"));
   }
 
   // A network without stored style targets (a file before format 3) has no refinement to aim: the
