@@ -130,6 +130,12 @@ void ContactTrackController::overrideFoot(int foot, int first_frame, int last_fr
   emit overridesChanged(clip->contact_overrides);
 }
 
+void ContactTrackController::endFootContact(int contact, int first_frame, int last_frame) {
+  if (contact < 0 || contact >= kContactCount) return;
+  const bool right = contact == static_cast<int>(ContactLabel::RightHeel) || contact == static_cast<int>(ContactLabel::RightToe);
+  overrideFoot(right ? kRightFootTrack : kLeftFootTrack, first_frame, last_frame, false);
+}
+
 void ContactTrackController::resetOverrides() {
   LoadedClip* clip = content_();
   if (clip == nullptr || clip->contact_overrides.size() == 0) return;

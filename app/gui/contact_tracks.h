@@ -69,6 +69,10 @@ class ContactTrackController : public QObject {
  public slots:
   // Force heel and toe of `foot` (0 left, 1 right) on or off over frames first..last of the content.
   void overrideFoot(int foot, int first_frame, int last_frame, bool in_contact);
+  // Ends the contact of the foot that `contact` (a ContactLabel: a heel or toe) belongs to over frames
+  // first..last, as a drag off its track does: the foot's track is what the user sees and edits, so
+  // the fix of a held-down warning (CleanupWarning::contact) shows on it. Other values do nothing.
+  void endFootContact(int contact, int first_frame, int last_frame);
   void resetOverrides();
   // Beside the clip (contactTracksPath). false and a report on failure.
   bool saveTracks();

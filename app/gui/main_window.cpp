@@ -150,6 +150,11 @@ void MainWindow::createResultDock() {
   contact_tracks_ = new ContactTrackController(timeline_->trackView(), content,
                                                [this](const QString& title, const QString& message) { report(title, message); }, this);
   connect(contact_tracks_, &ContactTrackController::overridesChanged, result_panel_, &ResultPanel::setContactOverrides);
+  // A held-down warning's fix: the foot's contact ended there (the clip is cleaned again), shown there.
+  connect(result_panel_, &ResultPanel::contactEndRequested, this, [this](int contact, int first, int last) {
+    contact_tracks_->endFootContact(contact, first, last);
+    timeline_->setFrame(first);
+  });
   connect(result_panel_, &ResultPanel::familiarityChanged, this,
           [this] { contact_tracks_->setQualityTracks(result_panel_->qualityTracks()); });
 }

@@ -53,9 +53,16 @@ ResultMetricsView::ResultMetricsView(QWidget* parent) : QWidget(parent) {
   warnings_label_->setTextInteractionFlags(Qt::LinksAccessibleByMouse | Qt::LinksAccessibleByKeyboard);
   warnings_label_->setStyleSheet(QStringLiteral("color: #d08a2a"));
   connect(warnings_label_, &QLabel::linkActivated, this, [this](const QString& link) {
-    bool ok = false;
-    const int frame = link.toInt(&ok);
-    if (ok) emit frameRequested(frame);
+    // "<frame>" or "end:<contact>:<first>:<last>" (showResult).
+    const QStringList parts = link.split(QLatin1Char(':'));
+    bool ok[3] = {false, false, false};
+    if (parts.size() == 1) {
+      const int frame = link.toInt(ok);
+      if (ok[0]) emit frameRequested(frame);
+    } else if (parts.size() == 4 && parts[0] == QLatin1String("end")) {
+      const int contact = parts[1].toInt(&ok[0]), first = parts[2].toInt(&ok[1]), last = parts[3].toInt(&ok[2]);
+      if (ok[0] && ok[1] && ok[2]) emit contactEndRequested(contact, first, last);
+    }
   });
   // A click on the cleaned residual goes to its worst frame.
   connect(table_, &QTableWidget::cellClicked, this, [this](int row, int column) {
@@ -127,10 +134,17 @@ void ResultMetricsView::showResult(const style::StylizeCleanupResult* result) {
     const QString text = QString::fromStdString(warning.text);
     all << text;
     if (shown.size() == kShownWarnings) continue;
-    shown << (warning.first_frame < 0 ? text.toHtmlEscaped()
-                                      : QStringLiteral("<a href=\"%1\" style=\"color:#d08a2a\">%2</a>")
-                                            .arg(warning.first_frame)
-                                            .arg(text.toHtmlEscaped()));
+    QString line = warning.first_frame < 0 ? text.toHtmlEscaped()
+                                           : QStringLiteral("<a href=\"%1\" style=\"color:#d08a2a\">%2</a>")
+                                                 .arg(warning.first_frame)
+                                                 .arg(text.toHtmlEscaped());
+    if (warning.contact >= 0 && warning.first_frame >= 0)
+      line += QStringLiteral(" <a href=\"end:%1:%2:%3\"><b>%4</b></a>")
+                  .arg(warning.contact)
+                  .arg(warning.first_frame)
+                  .arg(warning.last_frame)
+                  .arg(tr("End it"));
+    shown << line;
   }
   if (all.size() > kShownWarnings) shown << tr("... and %1 more (hover to see them)").arg(all.size() - kShownWarnings);
   warnings_label_->setText(shown.join(QStringLiteral("<br>")));

@@ -95,6 +95,7 @@ ResultPanel::ResultPanel(QWidget* parent) : QWidget(parent), memory_(std::make_s
 
   metrics_ = new ResultMetricsView(this);
   connect(metrics_, &ResultMetricsView::frameRequested, this, &ResultPanel::frameRequested);
+  connect(metrics_, &ResultMetricsView::contactEndRequested, this, &ResultPanel::contactEndRequested);
 
   export_button_ = new QPushButton(tr("Export BVH..."), this);
   export_button_->setObjectName(QStringLiteral("ExportButton"));

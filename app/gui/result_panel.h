@@ -181,6 +181,8 @@ class ResultPanel : public QWidget {
   void jobEnded(bool succeeded);  // after finished, failed or cancelled
   void statusMessage(const QString& message);
   void frameRequested(int frame);  // a clean-up warning's link: show this frame of the content
+  // A held-down warning's fix (ResultMetricsView::contactEndRequested): the content's frames.
+  void contactEndRequested(int contact, int first_frame, int last_frame);
 
  private:
   void startJob(style::StylizeCleanupJob job);

@@ -174,6 +174,9 @@ struct CleanupWarning {
   std::string text;     // e.g. "targets unreachable: left arm stretched by 12.0 cm at frames 40-60"
   int first_frame = -1;  // the frames it names, inclusive (CleanupOptions::warning_fps); -1: none
   int last_frame = -1;
+  // A contact that holds a foot under the style's lift: its ContactLabel, whose contact ended over the
+  // frames is the fix the text names (a front end offers it as an action); -1 for every other warning.
+  int contact = -1;
 };
 
 // The first frame, at a rate `rate_ratio` times the solve's, that overlaps solve frame `frame` in time:

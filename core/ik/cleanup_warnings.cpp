@@ -68,7 +68,8 @@ void RunReporter::closeRun() {
     const int last = std::max(first, static_cast<int>(std::ceil((run_last_ + 1) * frame_scale_ - 1e-9)) - 1);
     const std::string span = last > first ? "frames " + std::to_string(first) + "-" + std::to_string(last)
                                           : "frame " + std::to_string(first);
-    messages_.push_back({prefix_ + " " + verb_ + " " + formatFixed(run_peak_, 1) + " cm at " + span + suffix_, first, last});
+    messages_.push_back(
+        {prefix_ + " " + verb_ + " " + formatFixed(run_peak_, 1) + " cm at " + span + suffix_, first, last, contact_});
   }
   ++runs_;
   run_first_ = run_last_ = -1;
@@ -95,7 +96,8 @@ CleanupWarnings::CleanupWarnings(const CleanupInput& input, const CleanupOptions
     for (int label = 0; label < kContactCount; ++label)
       held_down_.emplace_back(options.held_down_warning_cm,
                               "held down by its contact: " + std::string(contactLabelName(label)),
-                              "under the style's lift by", frame_scale, " (end the contact there to follow the style)");
+                              "under the style's lift by", frame_scale, " (end the contact there to follow the style)",
+                              label);
 }
 
 void CleanupWarnings::add(int first, const LocalPoses& content_block, const Eigen::MatrixXd& result_world) {

@@ -22,9 +22,11 @@ namespace motionstyle::ik_detail {
 // warning_fps: r = the named rate / the fed frames' rate; 1 names the fed frames).
 class RunReporter {
  public:
-  RunReporter(double threshold, std::string prefix, std::string verb, double frame_scale = 1.0, std::string suffix = {})
+  // `contact`: the CleanupWarning::contact each run's warning carries (-1: none).
+  RunReporter(double threshold, std::string prefix, std::string verb, double frame_scale = 1.0, std::string suffix = {},
+              int contact = -1)
       : threshold_(threshold), prefix_(std::move(prefix)), verb_(std::move(verb)), suffix_(std::move(suffix)),
-        frame_scale_(frame_scale) {}
+        frame_scale_(frame_scale), contact_(contact) {}
   void add(int frame, double value);
   void finish(std::vector<CleanupWarning>& warnings);  // closes an open run, appends the messages
 
@@ -33,6 +35,7 @@ class RunReporter {
   double threshold_;
   std::string prefix_, verb_, suffix_;
   double frame_scale_;
+  int contact_;
   int run_first_ = -1, run_last_ = -1;
   double run_peak_ = 0.0;
   int runs_ = 0;

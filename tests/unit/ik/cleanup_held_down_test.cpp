@@ -83,6 +83,23 @@ TEST_F(CleanupHeldDown, ComesBeforeTheLargeResidualsTheHeldFootCauses) {
   EXPECT_LT(held - all.begin(), residual - all.begin());
 }
 
+// The warning carries its fix as data (CleanupWarning::contact, what a front end offers as an action):
+// the contact it names, which ended over the frames it names ends the warning; no other warning has one.
+TEST_F(CleanupHeldDown, TheWarningsOwnFixEndsIt) {
+  const std::vector<CleanupWarning> all = warnings(heelLifted(12.0), leftFootPlanted());
+  const std::vector<CleanupWarning> held = leftHeelHeld(all);
+  ASSERT_EQ(held.size(), 1u);
+  EXPECT_EQ(held[0].contact, static_cast<int>(ContactLabel::LeftHeel));
+  for (const CleanupWarning& w : all) {
+    if (w.text.rfind("held down by its contact", 0) != 0) {
+      EXPECT_EQ(w.contact, -1) << w.text;
+    }
+  }
+  Eigen::MatrixXi fixed = leftFootPlanted();
+  fixed.block(held[0].first_frame, held[0].contact, held[0].last_frame - held[0].first_frame + 1, 1).setZero();
+  EXPECT_TRUE(leftHeelHeld(warnings(heelLifted(12.0), fixed)).empty());
+}
+
 TEST_F(CleanupHeldDown, NoWarningWhereTheContactIsEndedOrNothingIsLocked) {
   Eigen::MatrixXi ended = leftFootPlanted();
   ended.block(38, 0, 15, 1).setZero();  // the heel's contact ended over the lift (frames 38-52)
