@@ -4,7 +4,7 @@
 // the clip is cleaned again at once, the warning is gone and the toe follows the style there
 // (ik/cleanup.h, CleanupOptions::held_down_warning_cm). The shipped elderly
 // network on the CMU sample, the left toe 6.4 cm under the style's at frames 136-142: one of the few
-// such warnings left (5 of 847 eval pairs, 5.4-6.4 cm); a change that ends it needs another case here
+// such warnings left (3 of 847 eval pairs, 5.3-6.4 cm); a change that ends it needs another case here
 // (it was masculine on the zombie until the refinement aimed at the clip's own kind, locomotion_kind.h,
 // then proud's left toe until the refinement ran to convergence). Where the style lifts one joint of
 // a foot while the other stays down, the clean-up rolls it up on the other instead (cleanup_locks.cpp),
