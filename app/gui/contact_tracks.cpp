@@ -131,9 +131,10 @@ void ContactTrackController::overrideFoot(int foot, int first_frame, int last_fr
 }
 
 void ContactTrackController::endFootContact(int contact, int first_frame, int last_frame) {
-  if (contact < 0 || contact >= kContactCount) return;
-  const bool right = contact == static_cast<int>(ContactLabel::RightHeel) || contact == static_cast<int>(ContactLabel::RightToe);
-  overrideFoot(right ? kRightFootTrack : kLeftFootTrack, first_frame, last_frame, false);
+  for (int foot : {kLeftFootTrack, kRightFootTrack}) {
+    const std::array<int, 2> labels = footLabels(foot);
+    if (std::find(labels.begin(), labels.end(), contact) != labels.end()) overrideFoot(foot, first_frame, last_frame, false);
+  }
 }
 
 void ContactTrackController::resetOverrides() {
