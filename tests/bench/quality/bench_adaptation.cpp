@@ -1,6 +1,7 @@
 // bench_adaptation: "ten clips of a new studio adapted, with one style retrained" (issue 12), timed on
 // this machine, with what it changes: the clips' familiarity before and after, the retrained style's
-// style ratio on them, and what the loss network forgets (its Bandai held-out error before and after).
+// style ratio and content distance (eq. 4) on them and on Bandai's held-out clips (issue 12's content
+// goal: the new studio's over Bandai's), and what the loss network forgets (its Bandai held-out error).
 //
 //   bench_adaptation [--models DIR] [--style elderly] [--fixtures SHARED_FIXTURES] [--data BANDAI_ROOT]
 //                    [--loss-epochs N] [--style-epochs N] [--loss-lr LR]
@@ -70,16 +71,28 @@ double meanFamiliarity(const nn::LossNetworkModel& loss_network, const std::vect
   return clips.empty() ? 0.0 : sum / static_cast<double>(clips.size());
 }
 
-double meanStyleRatio(const nn::StyleModel& model, const std::vector<style::MotionClip>& clips) {
+// The stylized clips' mean style ratio (against the network's walk target) and content distance (eq. 4,
+// through the network's own encoder, which adapt keeps), as stylize runs it.
+struct StyleFigures {
+  double style_ratio = 0.0;
+  double content_distance = 0.0;
+};
+
+StyleFigures meanStyleFigures(const nn::StyleModel& model, const std::vector<style::MotionClip>& clips) {
   const style::Stylizer stylizer(model);
-  double sum = 0.0;
+  StyleFigures mean;
   for (const style::MotionClip& clip : clips) {
     const nn::StyleTarget& target = model.style_targets.back();  // the default (the walk)
-    sum += style::measureStyleDistances(model.loss_network, model.normalisation, clip.features.values,
-                                        stylizer.stylize(clip.features, 1.0).features, target.gram)
-               .styleRatio();
+    const style::StyleDistances distances =
+        style::measureStyleDistances(model.loss_network, model.normalisation, clip.features.values,
+                                     stylizer.stylize(clip.features, 1.0).features, target.gram);
+    mean.style_ratio += distances.styleRatio();
+    mean.content_distance += distances.content_after;
   }
-  return sum / static_cast<double>(clips.size());
+  const double count = static_cast<double>(std::max<std::size_t>(clips.size(), 1));
+  mean.style_ratio /= count;
+  mean.content_distance /= count;
+  return mean;
 }
 
 }  // namespace
@@ -161,8 +174,12 @@ int main(int argc, char** argv) {
     if (result.status != style::TrainingStatus::Completed || result.styles.empty()) throw std::runtime_error("did not complete");
     std::printf("time: %.1f s for the whole action (goal: at most 180 s)\n", seconds);
     std::printf("familiarity of the ten clips: %.2f -> %.2f cm\n", result.loss.mean_before_cm, result.loss.mean_after_cm);
-    std::printf("%s style ratio on them: %.3f -> %.3f\n", style_name.c_str(), meanStyleRatio(style_model, job.loss.clips),
-                meanStyleRatio(result.styles.front().model, job.loss.clips));
+    const StyleFigures new_before = meanStyleFigures(style_model, job.loss.clips);
+    const StyleFigures new_after = meanStyleFigures(result.styles.front().model, job.loss.clips);
+    std::printf("%s style ratio on them: %.3f -> %.3f\n", style_name.c_str(), new_before.style_ratio,
+                new_after.style_ratio);
+    std::printf("%s content distance on them (eq. 4): %.4f -> %.4f\n", style_name.c_str(),
+                new_before.content_distance, new_after.content_distance);
     if (fs::is_directory(d1) && fs::is_directory(d2)) {
       std::vector<style::MotionClip> held;
       for (const fs::path& f : style::splitHoldout(style::findBvhFiles({d1, d2}), 10).held_out) held.push_back(style::loadMotionClip(f));
@@ -178,9 +195,17 @@ int main(int argc, char** argv) {
       }
       std::vector<style::MotionClip> style_held;
       for (const fs::path& f : style::splitHoldout(normal, 5).held_out) style_held.push_back(style::loadMotionClip(f));
+      const StyleFigures held_before = meanStyleFigures(style_model, style_held);
+      const StyleFigures held_after = meanStyleFigures(result.styles.front().model, style_held);
       std::printf("forgetting: %s style ratio on Bandai held-out %.3f -> %.3f (%zu clips)\n", style_name.c_str(),
-                  meanStyleRatio(style_model, style_held), meanStyleRatio(result.styles.front().model, style_held),
-                  style_held.size());
+                  held_before.style_ratio, held_after.style_ratio, style_held.size());
+      // Issue 12's content goal (a new studio's content distance at most 2x Bandai's), before adapting
+      // and after, each network against its own Bandai figure.
+      std::printf("forgetting: %s content distance on Bandai held-out %.4f -> %.4f\n", style_name.c_str(),
+                  held_before.content_distance, held_after.content_distance);
+      std::printf("the ten clips' content distance over Bandai's: %.2fx -> %.2fx (goal: at most 2x)\n",
+                  new_before.content_distance / held_before.content_distance,
+                  new_after.content_distance / held_after.content_distance);
     }
     std::error_code ignored;
     fs::remove_all(scratch, ignored);
