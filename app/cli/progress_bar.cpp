@@ -76,8 +76,12 @@ void ProgressBar::finish() {
 
 std::string formatDuration(double seconds) {
   if (!(seconds >= 0.0) || !std::isfinite(seconds)) return "?";
-  const long total = std::lround(seconds);
   char buffer[32];
+  if (seconds < 9.95) {
+    std::snprintf(buffer, sizeof buffer, "%.1fs", seconds);
+    return buffer;
+  }
+  const long total = std::lround(seconds);
   if (total < 60)
     std::snprintf(buffer, sizeof buffer, "%lds", total);
   else if (total < 3600)

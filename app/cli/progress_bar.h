@@ -45,7 +45,7 @@ class ProgressBar {
   std::chrono::steady_clock::time_point last_update_{};
 };
 
-// "12s", "4m05s", "1h02m".
+// "0.4s", "12s", "4m05s", "1h02m": tenths under 10 s, so that a sub-second run does not read "0s".
 std::string formatDuration(double seconds);
 // "total 0.0123  mse 0.0101  sparsity 0.0220" with 4 significant digits.
 std::string formatLosses(double total, const std::vector<style::NamedLoss>& terms);

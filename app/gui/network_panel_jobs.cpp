@@ -26,8 +26,10 @@
 namespace motionstyle {
 namespace {
 
+// "0.4 s" under 10 s (a quick run read "0:00"), else "m:ss" or "h:mm:ss".
 QString formatDuration(double seconds) {
   if (!(seconds >= 0.0) || !std::isfinite(seconds)) return QStringLiteral("--:--");
+  if (seconds < 9.95) return QStringLiteral("%1 s").arg(seconds, 0, 'f', 1);
   const long long total = std::llround(seconds);
   if (total >= 3600)
     return QStringLiteral("%1:%2:%3")
